@@ -1,0 +1,17 @@
+/*
+ * cclouds/cclouds.h -- umbrella header: includes every public header of the cclouds C99 core.
+ * The order below is also the order in which the Python binding reads the headers.
+ */
+#ifndef CCLOUDS_CCLOUDS_H
+#define CCLOUDS_CCLOUDS_H
+
+#include "cclouds/common.h"
+#include "cclouds/phase.h"
+#include "cclouds/media.h"
+#include "cclouds/noise.h"
+#include "cclouds/texgen.h"
+#include "cclouds/clouds.h"
+#include "cclouds/sky.h"
+#include "cclouds/reproj.h"
+
+#endif /* CCLOUDS_CCLOUDS_H */

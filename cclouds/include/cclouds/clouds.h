@@ -1,0 +1,17 @@
+/*
+ * cclouds/clouds.h -- (topic header; declarations are added as the catalogue entries are implemented).
+ */
+#ifndef CCLOUDS_CLOUDS_H
+#define CCLOUDS_CLOUDS_H
+
+#include "cclouds/common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CCLOUDS_CLOUDS_H */

@@ -1,0 +1,62 @@
+/*
+ * cclouds/common.h -- types shared by every cclouds header.
+ *
+ * Header conventions (the Python binding parses the public headers with cffi, so they stay in a plain C subset):
+ *   - declarations only: no inline functions, no function-like macros, no conditional declarations;
+ *   - every public function is declared on lines starting with `CCL_API`;
+ *   - constants are either enum values or `#define CCL_NAME <integer>`.
+ */
+#ifndef CCLOUDS_COMMON_H
+#define CCLOUDS_COMMON_H
+
+#include <stdint.h>
+#include <stddef.h>
+
+#if defined(_WIN32) && defined(CCLOUDS_SHARED)
+#  if defined(CCLOUDS_BUILDING)
+#    define CCL_API __declspec(dllexport)
+#  else
+#    define CCL_API __declspec(dllimport)
+#  endif
+#elif defined(__GNUC__) && defined(CCLOUDS_BUILDING)
+#  define CCL_API __attribute__((visibility("default")))
+#else
+#  define CCL_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define CCL_VERSION_MAJOR 0
+#define CCL_VERSION_MINOR 1
+#define CCL_VERSION_PATCH 0
+
+/* Result of every function that validates input, allocates or does I/O. Pure math functions return their value. */
+typedef enum ccl_status {
+    CCL_OK = 0,       /* success */
+    CCL_EINVAL = 1,   /* an argument is outside its documented domain (NaN included) */
+    CCL_ENOMEM = 2,   /* allocation failed */
+    CCL_EIO = 3,      /* reading or writing a file failed */
+    CCL_ERANGE = 4    /* a size or index is out of range */
+} ccl_status;
+
+/* Where a source text prints a formula that is wrong, the function takes a variant:
+ * CCL_VARIANT_CORRECTED (default, the formula of the original paper / the physically right form) or
+ * CCL_VARIANT_THESIS (the formula exactly as printed, kept for reproducing the text). */
+typedef enum ccl_variant {
+    CCL_VARIANT_CORRECTED = 0,
+    CCL_VARIANT_THESIS = 1
+} ccl_variant;
+
+/* Short human-readable name of a status code ("ok", "invalid argument", ...); never NULL. */
+CCL_API const char *ccl_status_str(ccl_status status);
+
+/* Library version as MAJOR*10000 + MINOR*100 + PATCH. */
+CCL_API int ccl_version(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CCLOUDS_COMMON_H */

@@ -1,0 +1,17 @@
+/*
+ * cclouds/media.h -- (topic header; declarations are added as the catalogue entries are implemented).
+ */
+#ifndef CCLOUDS_MEDIA_H
+#define CCLOUDS_MEDIA_H
+
+#include "cclouds/common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CCLOUDS_MEDIA_H */

@@ -1,0 +1,17 @@
+/*
+ * cclouds/reproj.h -- (topic header; declarations are added as the catalogue entries are implemented).
+ */
+#ifndef CCLOUDS_REPROJ_H
+#define CCLOUDS_REPROJ_H
+
+#include "cclouds/common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CCLOUDS_REPROJ_H */

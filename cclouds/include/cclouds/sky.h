@@ -1,0 +1,17 @@
+/*
+ * cclouds/sky.h -- (topic header; declarations are added as the catalogue entries are implemented).
+ */
+#ifndef CCLOUDS_SKY_H
+#define CCLOUDS_SKY_H
+
+#include "cclouds/common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CCLOUDS_SKY_H */

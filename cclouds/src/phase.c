@@ -1,0 +1,42 @@
+/* Phase functions, vc §2.1.4. See cclouds/phase.h for the conventions. */
+#include "cclouds/phase.h"
+#include "internal.h"
+
+float ccl_phase_isotropic(void)
+{
+    /* vc-2.11: p = 1 / (4 pi) */
+    return CCL_INV_4PI_F;
+}
+
+float ccl_phase_rayleigh(float cos_theta)
+{
+    CCL_REQUIRE(!(cos_theta < -1.0f || cos_theta > 1.0f));
+    /* vc-2.12: p = 1/(4 pi) * 3/4 * (1 + cos^2 theta) */
+    return CCL_INV_4PI_F * 0.75f * (1.0f + cos_theta * cos_theta);
+}
+
+float ccl_phase_hg(float cos_theta, float g)
+{
+    float denom;
+    CCL_REQUIRE(!(cos_theta < -1.0f || cos_theta > 1.0f));
+    CCL_REQUIRE(!(g <= -1.0f || g >= 1.0f));
+    /* vc-2.13: the (1 + g^2 - 2 g cos theta)^(3/2) term */
+    denom = 1.0f + g * g - 2.0f * g * cos_theta;
+    return CCL_INV_4PI_F * (1.0f - g * g) / (denom * sqrtf(denom));
+}
+
+float ccl_phase_schlick(float cos_theta, float k, ccl_variant variant)
+{
+    float s;
+    CCL_REQUIRE(!(cos_theta < -1.0f || cos_theta > 1.0f));
+    CCL_REQUIRE(!(k <= -1.0f || k >= 1.0f));
+    /* vc-2.15: corrected (1 - k cos theta)^2; as printed (1 + k cos theta)^2 */
+    s = (variant == CCL_VARIANT_THESIS) ? 1.0f + k * cos_theta : 1.0f - k * cos_theta;
+    return CCL_INV_4PI_F * (1.0f - k * k) / (s * s);
+}
+
+float ccl_schlick_k(float g)
+{
+    /* vc-2.16: k = 1.55 g - 0.55 g^3 */
+    return 1.55f * g - 0.55f * g * g * g;
+}

@@ -1,0 +1,36 @@
+"""pywarp -- the equations of procedural atmospheric rendering as NVIDIA Warp kernels, with a C99 twin (cclouds).
+
+Every catalogued equation is reachable by its ID, ``pywarp.equation("vc-2.13")``, or by its name,
+``pywarp.phase_hg(cos_theta, g)``; both evaluate the Warp twin on NumPy arrays (CPU by default).
+``pywarp.equation("vc-2.13", impl="c")`` evaluates the C function of the cclouds library instead.
+"""
+from __future__ import annotations
+
+from importlib.metadata import PackageNotFoundError, version as _version
+
+from .equations import equation, missing, registry
+
+try:
+    __version__ = _version("cclouds")
+except PackageNotFoundError:  # running from a source tree
+    __version__ = "0.0.0+source"
+
+_SUBMODULES = {"kernels", "runtime", "equations", "cli", "bench", "figures"}
+
+__all__ = ["equation", "registry", "missing", "__version__"]
+
+
+def __getattr__(name: str):
+    """``pywarp.<name>`` for every registered function, evaluated with Warp (lazily: imports the kernels)."""
+    if name.startswith("_") or name in _SUBMODULES:
+        raise AttributeError(f"module 'pywarp' has no attribute {name!r}")
+    for eq in registry().values():
+        if eq.name == name:
+            fn = equation(eq.id)
+            globals()[name] = fn
+            return fn
+    raise AttributeError(f"module 'pywarp' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | {eq.name for eq in registry().values()})

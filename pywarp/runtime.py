@@ -1,0 +1,141 @@
+"""Warp runtime for pywarp: initialisation, device choice and the tile-parallel launcher.
+
+Warp's CPU backend runs one ``wp.launch`` on one thread. Launches release the GIL, so an image kernel is split into
+row bands that a small persistent thread pool launches concurrently -- one worker per core by default. This is how a
+render uses every core of a laptop without a GPU.
+
+Image kernels that go through :class:`TileLauncher` follow one convention: their **first** parameter is
+``row0: int``, the first image row of the band, and they are launched with ``dim=(band_rows, width)``, so the pixel
+of thread ``(i, j)`` is ``(row0 + i, j)``.
+"""
+from __future__ import annotations
+
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
+
+import warp as wp
+
+_init_lock = threading.Lock()
+_initialised = False
+
+
+def init() -> None:
+    """Initialise Warp once: quiet, no backward passes (halves compile time), kernels cached on disk."""
+    global _initialised
+    with _init_lock:
+        if _initialised:
+            return
+        wp.config.quiet = True
+        wp.config.log_level = wp.LOG_WARNING  # no greeting banner on every command
+        wp.set_module_options({"enable_backward": False})
+        wp.init()
+        _initialised = True
+
+
+def resolve_device(device: str | None = None) -> str:
+    """Return a Warp device name; ``None`` means ``"cpu"``. Raises ``ValueError`` for an unusable device."""
+    init()
+    if device is None:
+        return "cpu"
+    if not isinstance(device, str):
+        raise TypeError(f"device must be a string such as 'cpu' or 'cuda:0', got {type(device).__name__}")
+    names = [d.alias for d in wp.get_devices()]
+    if device == "cuda" and any(n.startswith("cuda") for n in names):
+        return "cuda:0"
+    if device not in names:
+        raise ValueError(f"device={device!r} is not available here; available: {', '.join(names)}")
+    return device
+
+
+def default_workers() -> int:
+    """One worker per core (``os.cpu_count()``), overridable with the environment variable PYWARP_THREADS."""
+    env = os.environ.get("PYWARP_THREADS")
+    if env:
+        n = int(env)
+        if n < 1:
+            raise ValueError(f"PYWARP_THREADS must be >= 1, got {n}")
+        return n
+    return max(1, os.cpu_count() or 1)
+
+
+class TileLauncher:
+    """Launch an image kernel as row bands from a persistent thread pool.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Number of worker threads (default: one per core, see :func:`default_workers`).
+    bands_per_worker : int
+        Bands per worker and frame; more than one evens out rows of unequal cost (sky vs. clouds).
+    device : str, optional
+        Warp device. On CUDA a single launch already uses the whole GPU, so bands are launched from the caller.
+    """
+
+    def __init__(self, workers: int | None = None, bands_per_worker: int = 2, device: str | None = None):
+        self.device = resolve_device(device)
+        self.workers = default_workers() if workers is None else int(workers)
+        if self.workers < 1:
+            raise ValueError(f"workers must be >= 1, got {workers}")
+        if bands_per_worker < 1:
+            raise ValueError(f"bands_per_worker must be >= 1, got {bands_per_worker}")
+        self.bands_per_worker = bands_per_worker
+        self._pool = None
+        self._loaded = set()
+
+    def _ensure_loaded(self, kernel) -> None:
+        # Modules must be compiled/loaded before worker threads launch them concurrently.
+        if kernel.module not in self._loaded:
+            wp.load_module(kernel.module, device=self.device)
+            self._loaded.add(kernel.module)
+
+    def bands(self, height: int) -> list[tuple[int, int]]:
+        """Row ranges ``(row0, rows)`` covering ``height`` rows."""
+        n = 1 if (self.workers == 1 or not self.device.startswith("cpu")) else self.workers * self.bands_per_worker
+        n = max(1, min(n, height))
+        edges = [round(k * height / n) for k in range(n + 1)]
+        return [(edges[k], edges[k + 1] - edges[k]) for k in range(n) if edges[k + 1] > edges[k]]
+
+    def launch(self, kernel, height: int, width: int, inputs: list, outputs: list | None = None) -> None:
+        """Run ``kernel(row0, *inputs, *outputs)`` over a ``height`` x ``width`` image and wait for it."""
+        if height < 1 or width < 1:
+            raise ValueError(f"image size must be at least 1x1, got {width}x{height}")
+        self._ensure_loaded(kernel)
+        outputs = outputs or []
+        bands = self.bands(height)
+
+        def run(band):
+            row0, rows = band
+            wp.launch(kernel, dim=(rows, width), inputs=[row0, *inputs], outputs=outputs, device=self.device)
+
+        if len(bands) == 1:
+            run(bands[0])
+        else:
+            if self._pool is None:
+                self._pool = ThreadPoolExecutor(max_workers=self.workers, thread_name_prefix="pywarp-tile")
+            for f in [self._pool.submit(run, b) for b in bands]:
+                f.result()
+        if not self.device.startswith("cpu"):
+            wp.synchronize_device(self.device)
+
+    def close(self) -> None:
+        if self._pool is not None:
+            self._pool.shutdown(wait=True)
+            self._pool = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+_shared: dict[tuple, TileLauncher] = {}
+
+
+def launcher(device: str | None = None, workers: int | None = None) -> TileLauncher:
+    """A process-wide :class:`TileLauncher` per (device, workers), so pools are created once."""
+    key = (resolve_device(device), workers)
+    if key not in _shared:
+        _shared[key] = TileLauncher(workers=workers, device=key[0])
+    return _shared[key]
