@@ -123,6 +123,11 @@ class Equation:
     summary: str = ""
     c_out_pointers: bool | None = None  # default: True when there are several outputs
     check: Callable | None = None  # extra cross-argument validation: check(**arrays_and_options)
+    # Entries that are not element-wise (a sum over sample arrays, a texture generator, a whole pixel pipeline) give
+    # their own NumPy-level evaluators instead of the generic ones: make_warp(eq, device) / make_c(eq) -> callable.
+    # The callable must validate its input like Equation.bind does (ValueError naming the parameter).
+    make_warp: Callable | None = None
+    make_c: Callable | None = None
     extra: dict = field(default_factory=dict)
 
     @property
@@ -284,11 +289,15 @@ def equation(cid: str, impl: str = "warp", device: str | None = None) -> Callabl
     if impl not in ("warp", "c"):
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
     eq = get(cid)
-    fn = _warp_eval(eq, device) if impl == "warp" else _c_eval(eq)
+    if impl == "warp":
+        fn = eq.make_warp(eq, device) if eq.make_warp else _warp_eval(eq, device)
+    else:
+        fn = eq.make_c(eq) if eq.make_c else _c_eval(eq)
     fn.__name__ = eq.name
     fn.__qualname__ = eq.name
     fn.__doc__ = eq.docstring()
-    fn.__signature__ = eq.signature()
+    if not (eq.make_warp or eq.make_c):
+        fn.__signature__ = eq.signature()
     fn.equation = eq
     return fn
 

@@ -11,6 +11,8 @@
 #include "cclouds/noise.h"
 #include "cclouds/texgen.h"
 #include "cclouds/clouds.h"
+#include "cclouds/raymarch.h"
+#include "cclouds/colour.h"
 #include "cclouds/sky.h"
 #include "cclouds/reproj.h"
 
