@@ -61,6 +61,8 @@ def cdef_source(include_dir: Path | None = None) -> str:
     parts = []
     for path in header_order(include_dir):
         text = path.read_text()
+        text = re.sub(r"/\*.*?\*/", "", text, flags=re.S)  # comments (cffi would accept them; keep the cdef lean)
+        text = re.sub(r"//[^\n]*", "", text)
         text = re.sub(r"#ifdef __cplusplus.*?#endif", "", text, flags=re.S)
         lines = []
         depth = 0  # skip the bodies of #if blocks other than the include guard (e.g. the CCL_API definition)

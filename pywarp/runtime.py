@@ -28,7 +28,7 @@ def init() -> None:
             return
         wp.config.quiet = True
         wp.config.log_level = wp.LOG_WARNING  # no greeting banner on every command
-        wp.set_module_options({"enable_backward": False})
+        wp.config.enable_backward = False  # default of every module created after this point
         wp.init()
         _initialised = True
 

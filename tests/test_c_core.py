@@ -1,0 +1,78 @@
+"""The C core on its own, as a C user gets it: CMake configure/build with warnings as errors, ctest, the same under
+AddressSanitizer + UndefinedBehaviorSanitizer, install, and a C program built against the installed package config.
+
+These tests need CMake and a C compiler (the README's prerequisites); they build into pytest's temporary directory.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SRC = ROOT / "cclouds"
+
+pytestmark = pytest.mark.skipif(shutil.which("cmake") is None, reason="CMake is not installed")
+
+
+def run(cmd, **kw):
+    res = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, **kw)
+    assert res.returncode == 0, f"{' '.join(map(str, cmd))} failed:\n{res.stdout[-4000:]}\n{res.stderr[-4000:]}"
+    return res
+
+
+def jobs():
+    return str(max(1, os.cpu_count() or 1))
+
+
+@pytest.fixture(scope="module")
+def release_build(tmp_path_factory):
+    build = tmp_path_factory.mktemp("cclouds-build")
+    run(["cmake", "-S", SRC, "-B", build, "-DCMAKE_BUILD_TYPE=Release", "-DCCLOUDS_WERROR=ON"])
+    run(["cmake", "--build", build, "--parallel", jobs()])
+    return build
+
+
+def test_c_library_builds_warning_free_and_ctest_passes(release_build):
+    res = run(["ctest", "--test-dir", release_build, "--output-on-failure"])
+    assert "100% tests passed" in res.stdout
+    # one ctest test per cclouds/tests/test_*.c: nothing silently left out
+    n_sources = len(list((SRC / "tests").glob("test_*.c")))
+    assert f"out of {n_sources}" in res.stdout
+
+
+def test_c_tests_pass_under_address_and_undefined_sanitizers(tmp_path):
+    build = tmp_path / "asan"
+    run(["cmake", "-S", SRC, "-B", build, "-DCMAKE_BUILD_TYPE=Debug", "-DCCLOUDS_SANITIZE=ON", "-DCCLOUDS_WERROR=ON",
+         "-DCCLOUDS_BUILD_STATIC=OFF"])
+    run(["cmake", "--build", build, "--parallel", jobs()])
+    env = dict(os.environ, ASAN_OPTIONS="detect_leaks=1:abort_on_error=1", UBSAN_OPTIONS="halt_on_error=1")
+    res = run(["ctest", "--test-dir", build, "--output-on-failure"], env=env)
+    assert "100% tests passed" in res.stdout
+
+
+def test_installed_package_config_builds_a_c_program(release_build, tmp_path):
+    prefix = tmp_path / "prefix"
+    run(["cmake", "--install", release_build, "--prefix", prefix])
+    headers = sorted(p.name for p in (prefix / "include" / "cclouds").glob("*.h"))
+    assert headers == sorted(p.name for p in (SRC / "include" / "cclouds").glob("*.h"))
+    libdir = next(p for p in (prefix / "lib", prefix / "lib64") if p.is_dir())
+    assert (libdir / "cmake" / "cclouds" / "ccloudsConfig.cmake").is_file()
+    example = tmp_path / "example"
+    run(["cmake", "-S", SRC / "examples", "-B", example, f"-DCMAKE_PREFIX_PATH={prefix}"])
+    run(["cmake", "--build", example])
+    exe = example / "hello_cclouds"
+    res = run([exe], env=dict(os.environ, LD_LIBRARY_PATH=str(libdir)))
+    assert "HG(cos=1, g=0.8) = 3.58" in res.stdout
+
+
+@pytest.mark.skipif(shutil.which("c++") is None and shutil.which("g++") is None, reason="no C++ compiler")
+def test_public_headers_compile_as_cpp(tmp_path):
+    """The headers carry extern "C" guards: a C++ translation unit can include the umbrella header."""
+    cxx = shutil.which("c++") or shutil.which("g++")
+    src = tmp_path / "use.cpp"
+    src.write_text('#include <cclouds/cclouds.h>\nint main() { return ccl_version() > 0 ? 0 : 1; }\n')
+    run([cxx, "-std=c++11", "-Wall", "-Wextra", "-Werror", "-I", SRC / "include", "-c", src, "-o", tmp_path / "use.o"])

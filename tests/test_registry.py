@@ -1,0 +1,115 @@
+"""The registry and the shipped catalogue: every registered ID is catalogued and complete (C symbol present in the
+library, Warp function, tests), the catalogue data is up to date with spec/ tests/ tutorials/, and the
+`pywarp equations` command prints the traceability matrix."""
+from __future__ import annotations
+
+import inspect
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import pywarp
+from pywarp import _cclouds
+from pywarp.equations import catalogue, missing, registry
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_catalogue_data_is_up_to_date():
+    """pywarp/data/catalogue.json is what tools/gen_catalogue.py makes from spec/, tests/ and tutorials/ now."""
+    res = subprocess.run([sys.executable, str(ROOT / "tools" / "gen_catalogue.py"), "--check"],
+                         capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    shipped = (ROOT / "pywarp" / "data" / "catalogue.json").read_text(encoding="utf-8")
+    installed = (Path(pywarp.__file__).parent / "data" / "catalogue.json").read_text(encoding="utf-8")
+    assert installed == shipped, "the installed package is older than the source tree: pip install . again"
+
+
+def test_catalogue_holds_every_id_of_the_four_texts():
+    ids = catalogue()["ids"]
+    counts = {s: sum(1 for e in ids.values() if e["seed"] == s) for s in ("vc", "pt", "rr", "oc")}
+    # vc.md states its contents: 52 equations, 36 algorithm entries, 37 figures, 11 measurement rows
+    vc = [e for e in ids.values() if e["seed"] == "vc"]
+    assert sum(e["kind"] == "equation" for e in vc) == 52
+    assert sum(e["kind"] == "algorithm" for e in vc) == 36
+    assert sum(e["kind"] == "figure" for e in vc) == 37
+    assert sum(e["kind"] == "measurement" for e in vc) == 11
+    assert all(n > 0 for n in counts.values()), counts
+    assert ids["vc-2.13"]["title"] == "Henyey–Greenstein (HG) phase function"
+
+
+def test_every_registered_entry_is_complete():
+    ids = catalogue()["ids"]
+    lib = _cclouds.lib()
+    for cid, eq in registry().items():
+        assert cid in ids, f"{cid} is registered but not catalogued"
+        assert eq.c_symbol and hasattr(lib, eq.c_symbol), f"{cid}: C symbol {eq.c_symbol} missing from libcclouds"
+        assert eq.warp is not None and eq.kernel is not None or eq.make_warp is not None, cid
+        assert eq.tests, f"{cid} has no test marked @pytest.mark.spec({cid!r})"
+        assert eq.name.isidentifier()
+
+
+def test_registered_names_are_unique_and_exposed_on_the_package():
+    names = [eq.name for eq in registry().values()]
+    assert len(names) == len(set(names))
+    for eq in registry().values():
+        fn = getattr(pywarp, eq.name)
+        assert fn.equation is eq
+
+
+def test_phase_contract_keywords():
+    """The fixed keyword names of the foundation contract."""
+    sig = {n: list(inspect.signature(getattr(pywarp, n)).parameters) for n in
+           ("phase_isotropic", "phase_rayleigh", "phase_hg", "phase_schlick", "schlick_k")}
+    assert sig == {"phase_isotropic": [], "phase_rayleigh": ["cos_theta"], "phase_hg": ["cos_theta", "g"],
+                   "phase_schlick": ["cos_theta", "k", "variant"], "schlick_k": ["g"]}
+    assert pywarp.equation("vc-2.15").equation.variants == ("corrected", "thesis")
+
+
+def test_equation_lookup_errors():
+    with pytest.raises(KeyError, match="unknown catalogue ID 'vc-99.1'"):
+        pywarp.equation("vc-99.1")
+    with pytest.raises(ValueError, match="impl must be 'warp' or 'c'"):
+        pywarp.equation("vc-2.13", impl="cuda")
+    not_done = missing("vc")
+    if not_done:
+        cid = not_done[0][0]
+        with pytest.raises(NotImplementedError, match=f"{cid} .* not implemented"):
+            pywarp.equation(cid)
+
+
+def test_missing_lists_exactly_the_unregistered_ids():
+    reg = set(registry())
+    ids = catalogue()["ids"]
+    assert {cid for cid, _ in missing()} == set(ids) - reg
+    assert {cid for cid, _ in missing("pt")} == {c for c, e in ids.items() if e["seed"] == "pt"} - reg
+
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "pywarp.cli", *args], capture_output=True, text=True, cwd=ROOT / "tests")
+
+
+def test_cli_equations_prints_traceability_matrix():
+    res = _cli("equations", "--seed", "vc")
+    assert res.returncode == 0, res.stderr
+    lines = {line.split()[0]: line for line in res.stdout.splitlines() if line.startswith("vc-")}
+    for cid in ("vc-2.11", "vc-2.12", "vc-2.13", "vc-2.15", "vc-2.16"):
+        assert cid in lines
+        assert "ccl_" in lines[cid] and "phase." in lines[cid] and "test_" in lines[cid]
+    assert "implemented of" in res.stdout
+
+
+def test_cli_equations_missing_lists_other_texts():
+    res = _cli("equations", "--missing")
+    assert res.returncode == 0, res.stderr
+    listed = {line.split()[0] for line in res.stdout.splitlines() if line[:3] in ("vc-", "pt-", "rr-", "oc-")}
+    assert listed == {cid for cid, _ in missing()}
+    assert "vc-2.13" not in listed and "pt-3.1" in listed
+
+
+def test_cli_bad_option_is_one_line_error():
+    res = _cli("equations", "--seed", "xx")
+    assert res.returncode == 2
+    assert "invalid choice: 'xx'" in res.stderr

@@ -1,0 +1,74 @@
+"""The Warp runtime: CPU by default, the tile-parallel launcher gives the same image as one launch, bands cover the
+frame exactly once, and bad arguments are rejected."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import warp as wp
+
+from pywarp import runtime
+from pywarp.bench import _bench_image
+
+
+@wp.kernel
+def _write_row_col(row0: int, out: wp.array2d(dtype=wp.int32)):
+    i, j = wp.tid()
+    y = row0 + i
+    wp.atomic_add(out, y, j, y * 1000 + j + 1)
+
+
+def test_default_device_is_cpu():
+    assert runtime.resolve_device() == "cpu"
+    with pytest.raises(ValueError, match="device='cuda:7' is not available"):
+        runtime.resolve_device("cuda:7")
+    with pytest.raises(TypeError, match="device must be a string"):
+        runtime.resolve_device(3)
+
+
+@pytest.mark.parametrize("height,workers", [(1, 2), (7, 2), (540, 2), (31, 3), (64, 1)])
+def test_tile_launcher_covers_every_pixel_exactly_once(height, workers):
+    width = 13
+    out = wp.zeros((height, width), dtype=wp.int32, device="cpu")
+    with runtime.TileLauncher(workers=workers) as tl:
+        tl.launch(_write_row_col, height, width, [], [out])
+        bands = tl.bands(height)
+    y, x = np.mgrid[0:height, 0:width]
+    np.testing.assert_array_equal(out.numpy(), y * 1000 + x + 1)  # atomic_add: a pixel written twice would differ
+    assert sum(r for _, r in bands) == height
+    assert [b[0] for b in bands] == sorted(b[0] for b in bands)
+
+
+def test_tile_parallel_image_equals_single_launch():
+    h, w = 45, 64
+    a = wp.zeros((h, w), dtype=float, device="cpu")
+    b = wp.zeros((h, w), dtype=float, device="cpu")
+    runtime.TileLauncher(workers=1).launch(_bench_image, h, w, [8], [a])
+    with runtime.TileLauncher(workers=2, bands_per_worker=3) as tl:
+        tl.launch(_bench_image, h, w, [8], [b])
+    np.testing.assert_array_equal(a.numpy(), b.numpy())
+    assert np.all(np.isfinite(a.numpy()))
+
+
+def test_tile_launcher_rejects_bad_arguments():
+    with pytest.raises(ValueError, match="workers must be >= 1"):
+        runtime.TileLauncher(workers=0)
+    with pytest.raises(ValueError, match="bands_per_worker must be >= 1"):
+        runtime.TileLauncher(bands_per_worker=0)
+    out = wp.zeros((1, 1), dtype=float, device="cpu")
+    with pytest.raises(ValueError, match="image size must be at least 1x1, got 0x5"):
+        runtime.TileLauncher(workers=1).launch(_bench_image, 5, 0, [1], [out])
+
+
+def test_default_workers_env(monkeypatch):
+    monkeypatch.setenv("PYWARP_THREADS", "3")
+    assert runtime.default_workers() == 3
+    monkeypatch.setenv("PYWARP_THREADS", "0")
+    with pytest.raises(ValueError, match="PYWARP_THREADS must be >= 1"):
+        runtime.default_workers()
+
+
+def test_backward_passes_are_off():
+    import pywarp.kernels.phase  # noqa: F401
+
+    assert wp.config.enable_backward is False
+    assert wp.get_module("pywarp.kernels.phase").options["enable_backward"] is False
