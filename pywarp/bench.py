@@ -55,15 +55,15 @@ def _best(fn, repeat: int) -> float:
 
 
 def bench_tiles(width: int = 960, height: int = 540, repeat: int = 5, octaves: int = 48,
-                workers: int | None = None) -> dict:
+                workers: int | None = None, device: str | None = None) -> dict:
     """Speedup of the tile-parallel launcher over one launch, for a frame-sized kernel (same kernel, same pixels)."""
     if width < 1 or height < 1:
         raise ValueError(f"width and height must be >= 1, got {width}x{height}")
     if repeat < 1:
         raise ValueError(f"repeat must be >= 1, got {repeat}")
-    out = wp.zeros((height, width), dtype=float, device="cpu")
-    single = TileLauncher(workers=1)
-    tiled = TileLauncher(workers=workers)
+    single = TileLauncher(workers=1, device=device)
+    tiled = TileLauncher(workers=workers, device=device)
+    out = wp.zeros((height, width), dtype=float, device=single.device)
     single.launch(_bench_image, height, width, [octaves], [out])  # compile/load, warm up
     ref = out.numpy().copy()
     tiled.launch(_bench_image, height, width, [octaves], [out])
@@ -77,6 +77,7 @@ def bench_tiles(width: int = 960, height: int = 540, repeat: int = 5, octaves: i
     return {
         "benchmark": "tiles",
         "size": [width, height],
+        "device": single.device,
         "workers": tiled.workers,
         "bands": len(tiled.bands(height)),
         "ms_single_launch": round(1e3 * min(t1), 2),

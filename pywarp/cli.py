@@ -2,7 +2,7 @@
 
     pywarp equations [--seed KEY] [--missing]     traceability matrix: ID, title, C, Warp, tests, figures
     pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...]
-    pywarp bench tiles [--width W] [--height H] [--repeat N] [--workers N] [--json]
+    pywarp bench tiles [--width W] [--height H] [--repeat N] [--workers N] [--device D] [--json]
 
 Bad arguments print one line ``pywarp: error: ...`` naming the option and exit with status 2.
 """
@@ -76,7 +76,7 @@ def cmd_bench(args) -> int:
     from . import bench
 
     bench.main(args.name, as_json=args.json, width=args.width, height=args.height, repeat=args.repeat,
-               workers=args.workers)
+               workers=args.workers, device=args.device)
     return 0
 
 
@@ -105,6 +105,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--repeat", type=_positive_int("--repeat"), default=5, help="timed repetitions, best kept (default 5)")
     b.add_argument("--workers", type=_positive_int("--workers"), default=None,
                    help="worker threads (default: one per core)")
+    b.add_argument("--device", default="cpu", help="Warp device: cpu (default) or cuda:N where present")
     b.add_argument("--json", action="store_true", help="print one JSON object as the last line")
     b.set_defaults(run=cmd_bench)
     return p

@@ -72,3 +72,21 @@ def test_backward_passes_are_off():
 
     assert wp.config.enable_backward is False
     assert wp.get_module("pywarp.kernels.phase").options["enable_backward"] is False
+
+
+def test_cli_bench_tiles_json_small(tmp_path):
+    import json
+    import subprocess
+    import sys
+
+    res = subprocess.run([sys.executable, "-m", "pywarp.cli", "bench", "tiles", "--width", "64", "--height", "32",
+                          "--repeat", "1", "--json"], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    out = json.loads(res.stdout.strip().splitlines()[-1])
+    assert out["identical_output"] is True and out["parallel_speedup"] > 0 and out["device"] == "cpu"
+    res = subprocess.run([sys.executable, "-m", "pywarp.cli", "bench", "tiles", "--width", "-5"],
+                         capture_output=True, text=True)
+    assert res.returncode == 2 and "--width must be >= 1, got -5" in res.stderr
+    res = subprocess.run([sys.executable, "-m", "pywarp.cli", "bench", "tiles", "--device", "cuda:3"],
+                         capture_output=True, text=True)
+    assert res.returncode == 2 and "device='cuda:3' is not available" in res.stderr

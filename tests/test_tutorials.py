@@ -67,3 +67,9 @@ def test_cli_figures_only_and_bad_selection(tmp_path):
                          capture_output=True, text=True)
     assert res.returncode == 2
     assert res.stderr.strip().splitlines()[-1] == "pywarp: error: --only: no tutorial reproduces fig-9.99"
+
+
+def test_figure_index_is_up_to_date():
+    res = subprocess.run([sys.executable, str(ROOT / "tools" / "gen_figure_index.py"), "--check"],
+                         capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
