@@ -40,8 +40,11 @@ def cmd_equations(args) -> int:
     if args.missing:
         rows = missing(args.seed)
         for cid, e in rows:
-            print(f"{cid:<16} {e['kind']:<12} {e['title']}")
-        print(f"{len(rows)} catalogued IDs not implemented" + (f" in {args.seed}" if args.seed else ""))
+            title = e["title"] if len(e["title"]) <= 60 else e["title"][:57] + "..."
+            print(f"{cid:<16} {e['kind']:<12} {title:<60} {e['reason'] or 'NOT IMPLEMENTED YET'}")
+        todo = sum(1 for _, e in rows if not e["reason"])
+        print(f"{len(rows)} catalogued IDs without an implementation" + (f" in {args.seed}" if args.seed else "")
+              + f": {len(rows) - todo} not computational (reason given), {todo} not implemented yet")
         return 0
     reg = registry()
     ids = catalogue()["ids"]

@@ -302,8 +302,25 @@ def equation(cid: str, impl: str = "warp", device: str | None = None) -> Callabl
     return fn
 
 
+@lru_cache(maxsize=None)
+def _not_computational() -> dict:
+    text = resources.files("pywarp").joinpath("data/not_computational.json").read_text(encoding="utf-8")
+    return json.loads(text)
+
+
+def not_computational_reason(cid: str) -> str | None:
+    """Why a catalogued ID has no C/Warp implementation by design (a figure, a class diagram, ...), else None."""
+    data = _not_computational()
+    if cid in data:
+        return data[cid]
+    kind = catalogue()["ids"].get(cid, {}).get("kind")
+    return data["_kinds"].get(kind)
+
+
 def missing(seed: str | None = None) -> list[tuple[str, dict]]:
-    """Catalogued IDs (of ``seed``, or all) that have no registered implementation, with their catalogue entry."""
+    """Catalogued IDs (of ``seed``, or all) that have no registered implementation, with their catalogue entry and
+    ``reason``: why it is not computational, or None when it is simply not implemented yet."""
     reg = registry()
-    return [(cid, e) for cid, e in sorted(catalogue()["ids"].items(), key=lambda kv: _sort_key(kv[0]))
+    return [(cid, {**e, "reason": not_computational_reason(cid)})
+            for cid, e in sorted(catalogue()["ids"].items(), key=lambda kv: _sort_key(kv[0]))
             if cid not in reg and (seed is None or e["seed"] == seed)]

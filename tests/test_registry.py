@@ -113,3 +113,17 @@ def test_cli_bad_option_is_one_line_error():
     res = _cli("equations", "--seed", "xx")
     assert res.returncode == 2
     assert "invalid choice: 'xx'" in res.stderr
+
+
+def test_not_computational_reasons_only_for_catalogued_unregistered_ids():
+    import json
+
+    data = json.loads((ROOT / "pywarp" / "data" / "not_computational.json").read_text(encoding="utf-8"))
+    ids, reg = catalogue()["ids"], registry()
+    for cid in data:
+        if cid.startswith("_"):
+            continue
+        assert cid in ids and cid not in reg, cid
+    rows = dict(missing("vc"))
+    assert "figure" in rows["vc-fig-2.2"]["reason"]
+    assert rows["vc-A34"]["reason"].startswith("technologies")
