@@ -1,0 +1,313 @@
+/* Sky models, vc §2.5 and §4.2. See cclouds/sky.h for the angle conventions, units and the horizon clamp. */
+#include "cclouds/sky.h"
+#include "internal.h"
+
+#define SKY_HALF_PI_F 1.57079632679489662f  /* pi / 2 */
+#define SKY_DEG2RAD_F 0.0174532925199432958f /* pi / 180 */
+#define SKY_COS_THETA_MIN 0.01f              /* horizon clamp of cos(theta) (Radiance perezlum.cal), sky.h */
+
+/* max(cos_theta, 0.01), keeping NaN */
+static float clamp_cos_theta(float cos_theta)
+{
+    return (cos_theta < SKY_COS_THETA_MIN) ? SKY_COS_THETA_MIN : cos_theta;
+}
+
+/* Perez 2.36 from cos(theta), gamma and cos(gamma): the form every caller shares (the sky kernel has the cosines
+ * from dot products and must not recompute them from the angles). */
+static float perez_cg(float cos_theta, float gamma, float cos_gamma, float A, float B, float C, float D, float E)
+{
+    const float ct = clamp_cos_theta(cos_theta);
+    return (1.0f + A * expf(B / ct)) * (1.0f + C * expf(D * gamma) + E * cos_gamma * cos_gamma);
+}
+
+static float perez_arr(float cos_theta, float gamma, float cos_gamma, const float c[5])
+{
+    return perez_cg(cos_theta, gamma, cos_gamma, c[0], c[1], c[2], c[3], c[4]);
+}
+
+float ccl_turbidity(float t_m, float t_h)
+{
+    CCL_REQUIRE(!(t_m <= 0.0f) && !(t_h < 0.0f));
+    /* vc-2.33 */
+    return (t_m + t_h) / t_m;
+}
+
+/* the CIE clear-sky scattering indicatrix 0.91 + 10 exp(-3 g) + 0.45 cos^2 g */
+static float cie_indicatrix(float g)
+{
+    const float c = cosf(g);
+    return 0.91f + 10.0f * expf(-3.0f * g) + 0.45f * c * c;
+}
+
+float ccl_cie_clear_sky(float theta, float gamma, float theta_s, float Y_z)
+{
+    float num, den;
+    CCL_REQUIRE(!(theta < 0.0f || theta > CCL_PI_F) && !(gamma < 0.0f || gamma > CCL_PI_F));
+    CCL_REQUIRE(!(theta_s < 0.0f || theta_s > SKY_HALF_PI_F));
+    /* vc-2.35: gradation 1 - exp(-0.32 / cos theta), 1 - exp(-0.32) at the zenith */
+    num = cie_indicatrix(gamma) * (1.0f - expf(-0.32f / clamp_cos_theta(cosf(theta))));
+    den = cie_indicatrix(theta_s) * (1.0f - expf(-0.32f));
+    return (num / den) * Y_z;
+}
+
+float ccl_perez(float theta, float gamma, float A, float B, float C, float D, float E)
+{
+    CCL_REQUIRE(!(theta < 0.0f || theta > CCL_PI_F) && !(gamma < 0.0f || gamma > CCL_PI_F));
+    /* vc-2.36 */
+    return perez_cg(cosf(theta), gamma, cosf(gamma), A, B, C, D, E);
+}
+
+float ccl_perez_cie(float theta, float gamma, float A, float B, float C, float D, float E, ccl_variant variant)
+{
+    float ct, cg, sub;
+    CCL_REQUIRE(!(theta < 0.0f || theta > CCL_PI_F) && !(gamma < 0.0f || gamma > CCL_PI_F));
+    /* vc-2.37: corrected subtracts the constant exp(D pi/2); as printed exp(D gamma pi/2) */
+    ct = clamp_cos_theta(cosf(theta));
+    cg = cosf(gamma);
+    sub = (variant == CCL_VARIANT_THESIS) ? expf(D * gamma * SKY_HALF_PI_F) : expf(D * SKY_HALF_PI_F);
+    return (1.0f + A * expf(B / ct)) * (1.0f + C * (expf(D * gamma) - sub) + E * cg * cg);
+}
+
+float ccl_perez_zenith_factor(float theta_s, float Y_z, float A, float B, float C, float D, float E)
+{
+    CCL_REQUIRE(!(theta_s < 0.0f || theta_s > SKY_HALF_PI_F));
+    /* vc-4.2: Y_z / F(0, theta_s); at the zenith cos theta = 1 and gamma = theta_s */
+    return Y_z / perez_cg(1.0f, theta_s, cosf(theta_s), A, B, C, D, E);
+}
+
+float ccl_perez_normalized(float theta, float gamma, float theta_s, float Y_z, float A, float B, float C, float D,
+                           float E)
+{
+    float f, f0;
+    CCL_REQUIRE(!(theta < 0.0f || theta > CCL_PI_F) && !(gamma < 0.0f || gamma > CCL_PI_F));
+    CCL_REQUIRE(!(theta_s < 0.0f || theta_s > SKY_HALF_PI_F));
+    /* vc-2.38: F(theta, gamma) / F(0, theta_s) * Y_z */
+    f = perez_cg(cosf(theta), gamma, cosf(gamma), A, B, C, D, E);
+    f0 = perez_cg(1.0f, theta_s, cosf(theta_s), A, B, C, D, E);
+    return (f / f0) * Y_z;
+}
+
+static float zenith_Y(float T, float theta_s, ccl_variant variant)
+{
+    /* vc-2.39: Preetham 4.0453 (corrected) or 6.0453 (as printed) */
+    const float k = (variant == CCL_VARIANT_THESIS) ? 6.0453f : 4.0453f;
+    const float chi = (4.0f / 9.0f - T / 120.0f) * (CCL_PI_F - 2.0f * theta_s);
+    return (k * T - 4.9710f) * tanf(chi) - 0.2155f * T + 2.4192f;
+}
+
+float ccl_preetham_zenith_x(float turbidity, float theta_s)
+{
+    const float T = turbidity, t = theta_s;
+    float t2, t3, r0, r1, r2;
+    CCL_REQUIRE(!(theta_s < 0.0f || theta_s > SKY_HALF_PI_F));
+    /* vc-2.40: rows of M_x times [t^3 t^2 t 1], then [T^2 T 1] */
+    t2 = t * t;
+    t3 = t2 * t;
+    r0 = 0.00166f * t3 - 0.00375f * t2 + 0.00209f * t;
+    r1 = -0.02903f * t3 + 0.06377f * t2 - 0.03202f * t + 0.00394f;
+    r2 = 0.11693f * t3 - 0.21196f * t2 + 0.06052f * t + 0.25886f;
+    return T * T * r0 + T * r1 + r2;
+}
+
+float ccl_preetham_zenith_y(float turbidity, float theta_s)
+{
+    const float T = turbidity, t = theta_s;
+    float t2, t3, r0, r1, r2;
+    CCL_REQUIRE(!(theta_s < 0.0f || theta_s > SKY_HALF_PI_F));
+    /* vc-2.41 */
+    t2 = t * t;
+    t3 = t2 * t;
+    r0 = 0.00275f * t3 - 0.00610f * t2 + 0.00317f * t;
+    r1 = -0.04214f * t3 + 0.08970f * t2 - 0.04153f * t + 0.00516f;
+    r2 = 0.15346f * t3 - 0.26756f * t2 + 0.06670f * t + 0.26688f;
+    return T * T * r0 + T * r1 + r2;
+}
+
+void ccl_preetham_zenith(float turbidity, float theta_s, ccl_variant variant, float *out_Y, float *out_x,
+                         float *out_y)
+{
+    CCL_REQUIRE(out_Y != NULL && out_x != NULL && out_y != NULL);
+    CCL_REQUIRE(!(theta_s < 0.0f || theta_s > SKY_HALF_PI_F));
+    *out_Y = zenith_Y(turbidity, theta_s, variant);
+    *out_x = ccl_preetham_zenith_x(turbidity, theta_s);
+    *out_y = ccl_preetham_zenith_y(turbidity, theta_s);
+}
+
+void ccl_preetham_perez_Y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
+{
+    const float T = turbidity;
+    CCL_REQUIRE(out_A != NULL && out_B != NULL && out_C != NULL && out_D != NULL && out_E != NULL);
+    /* vc-2.42 */
+    *out_A = 0.1787f * T - 1.4630f;
+    *out_B = -0.3554f * T + 0.4275f;
+    *out_C = -0.0227f * T + 5.3251f;
+    *out_D = 0.1206f * T - 2.5771f;
+    *out_E = -0.0670f * T + 0.3703f;
+}
+
+void ccl_preetham_perez_x(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
+{
+    const float T = turbidity;
+    CCL_REQUIRE(out_A != NULL && out_B != NULL && out_C != NULL && out_D != NULL && out_E != NULL);
+    /* vc-2.43 */
+    *out_A = -0.0193f * T - 0.2592f;
+    *out_B = -0.0665f * T + 0.0008f;
+    *out_C = -0.0004f * T + 0.2125f;
+    *out_D = -0.0641f * T - 0.8989f;
+    *out_E = -0.0033f * T + 0.0452f;
+}
+
+void ccl_preetham_perez_y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
+{
+    const float T = turbidity;
+    CCL_REQUIRE(out_A != NULL && out_B != NULL && out_C != NULL && out_D != NULL && out_E != NULL);
+    /* vc-2.44 */
+    *out_A = -0.0167f * T - 0.2608f;
+    *out_B = -0.0950f * T + 0.0092f;
+    *out_C = -0.0079f * T + 0.2102f;
+    *out_D = -0.0441f * T - 1.6537f;
+    *out_E = -0.0109f * T + 0.0529f;
+}
+
+void ccl_sky_sun_direction(float elevation_deg, float azimuth_deg, float *out_x, float *out_y, float *out_z)
+{
+    float e, a, ce;
+    CCL_REQUIRE(out_x != NULL && out_y != NULL && out_z != NULL);
+    CCL_REQUIRE(!(elevation_deg < -90.0f || elevation_deg > 90.0f));
+    e = elevation_deg * SKY_DEG2RAD_F;
+    a = azimuth_deg * SKY_DEG2RAD_F;
+    ce = cosf(e);
+    *out_x = ce * sinf(a);
+    *out_y = sinf(e);
+    *out_z = -ce * cosf(a);
+}
+
+ccl_status ccl_preetham_init(float turbidity, float theta_s, float exposure, ccl_variant variant, ccl_preetham *out)
+{
+    ccl_preetham p;
+    float zY, zx, zy;
+    if (out == NULL) return CCL_EINVAL;
+    if (!(turbidity >= (float)CCL_PREETHAM_TURBIDITY_MIN && turbidity <= (float)CCL_PREETHAM_TURBIDITY_MAX))
+        return CCL_EINVAL;
+    if (!(theta_s >= 0.0f && theta_s <= SKY_HALF_PI_F)) return CCL_EINVAL; /* sun below the horizon */
+    if (!(exposure > 0.0f && isfinite(exposure))) return CCL_EINVAL;
+    if (variant != CCL_VARIANT_CORRECTED && variant != CCL_VARIANT_THESIS) return CCL_EINVAL;
+    /* 2.42-2.44 -> 2.39-2.41 -> 4.2 (the order of PreethamSkyModel::update) */
+    ccl_preetham_perez_Y(turbidity, &p.perez_Y[0], &p.perez_Y[1], &p.perez_Y[2], &p.perez_Y[3], &p.perez_Y[4]);
+    ccl_preetham_perez_x(turbidity, &p.perez_x[0], &p.perez_x[1], &p.perez_x[2], &p.perez_x[3], &p.perez_x[4]);
+    ccl_preetham_perez_y(turbidity, &p.perez_y[0], &p.perez_y[1], &p.perez_y[2], &p.perez_y[3], &p.perez_y[4]);
+    ccl_preetham_zenith(turbidity, theta_s, variant, &zY, &zx, &zy);
+    p.zenith_Y = zY;
+    p.zenith_x = zx;
+    p.zenith_y = zy;
+    p.factor_Y = ccl_perez_zenith_factor(theta_s, zY, p.perez_Y[0], p.perez_Y[1], p.perez_Y[2], p.perez_Y[3],
+                                         p.perez_Y[4]);
+    p.factor_x = ccl_perez_zenith_factor(theta_s, zx, p.perez_x[0], p.perez_x[1], p.perez_x[2], p.perez_x[3],
+                                         p.perez_x[4]);
+    p.factor_y = ccl_perez_zenith_factor(theta_s, zy, p.perez_y[0], p.perez_y[1], p.perez_y[2], p.perez_y[3],
+                                         p.perez_y[4]);
+    p.turbidity = turbidity;
+    p.theta_s = theta_s;
+    p.exposure = exposure;
+    p.variant = (int)variant;
+    *out = p;
+    return CCL_OK;
+}
+
+void ccl_sky_preetham_xyY(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
+                          const ccl_preetham *p, float *out_x, float *out_y, float *out_Y)
+{
+    float cos_g, gamma;
+    CCL_REQUIRE(p != NULL && out_x != NULL && out_y != NULL && out_Y != NULL);
+    /* theta from cos theta = d_y (Y up), gamma = angle(d, s) */
+    cos_g = dir_x * sun_x + dir_y * sun_y + dir_z * sun_z;
+    if (cos_g > 1.0f) cos_g = 1.0f;
+    if (cos_g < -1.0f) cos_g = -1.0f;
+    gamma = acosf(cos_g);
+    /* 2.36 x 4.2 = 2.38, per channel */
+    *out_x = p->factor_x * perez_arr(dir_y, gamma, cos_g, p->perez_x);
+    *out_y = p->factor_y * perez_arr(dir_y, gamma, cos_g, p->perez_y);
+    *out_Y = p->factor_Y * perez_arr(dir_y, gamma, cos_g, p->perez_Y);
+}
+
+void ccl_sky_preetham_hdr(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
+                          const ccl_preetham *p, float *out_r, float *out_g, float *out_b)
+{
+    float x, y, Y, X, Y2, Z;
+    CCL_REQUIRE(p != NULL && out_r != NULL && out_g != NULL && out_b != NULL);
+    ccl_sky_preetham_xyY(dir_x, dir_y, dir_z, sun_x, sun_y, sun_z, p, &x, &y, &Y);
+    ccl_xyY_to_XYZ(x, y, Y, &X, &Y2, &Z);                                   /* 4.3 */
+    ccl_XYZ_to_linear_srgb(X, Y2, Z, (ccl_variant)p->variant, out_r, out_g, out_b); /* 4.4 */
+}
+
+void ccl_sky_preetham_rgb(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
+                          const ccl_preetham *p, float *out_r, float *out_g, float *out_b)
+{
+    float r, g, b;
+    CCL_REQUIRE(p != NULL && out_r != NULL && out_g != NULL && out_b != NULL);
+    ccl_sky_preetham_hdr(dir_x, dir_y, dir_z, sun_x, sun_y, sun_z, p, &r, &g, &b);
+    /* 4.5 per channel */
+    *out_r = ccl_tonemap_exp(r, p->exposure, (ccl_variant)p->variant);
+    *out_g = ccl_tonemap_exp(g, p->exposure, (ccl_variant)p->variant);
+    *out_b = ccl_tonemap_exp(b, p->exposure, (ccl_variant)p->variant);
+}
+
+void ccl_sky_gradient_defaults(ccl_sky_gradient *out)
+{
+    CCL_REQUIRE(out != NULL);
+    out->horizon[0] = 0.66f;
+    out->horizon[1] = 0.78f;
+    out->horizon[2] = 0.94f;
+    out->zenith[0] = 0.16f;
+    out->zenith[1] = 0.34f;
+    out->zenith[2] = 0.72f;
+    out->sun[0] = 1.0f;
+    out->sun[1] = 0.9f;
+    out->sun[2] = 0.7f;
+    out->sun_exponent = 64.0f;
+}
+
+static int valid_colour(float v)
+{
+    return v >= 0.0f && isfinite(v);
+}
+
+ccl_status ccl_sky_gradient_init(float horizon_r, float horizon_g, float horizon_b, float zenith_r, float zenith_g,
+                                 float zenith_b, float sun_r, float sun_g, float sun_b, float sun_exponent,
+                                 ccl_sky_gradient *out)
+{
+    if (out == NULL) return CCL_EINVAL;
+    if (!(valid_colour(horizon_r) && valid_colour(horizon_g) && valid_colour(horizon_b) && valid_colour(zenith_r) &&
+          valid_colour(zenith_g) && valid_colour(zenith_b) && valid_colour(sun_r) && valid_colour(sun_g) &&
+          valid_colour(sun_b)))
+        return CCL_EINVAL;
+    if (!(sun_exponent > 0.0f && isfinite(sun_exponent))) return CCL_EINVAL;
+    out->horizon[0] = horizon_r;
+    out->horizon[1] = horizon_g;
+    out->horizon[2] = horizon_b;
+    out->zenith[0] = zenith_r;
+    out->zenith[1] = zenith_g;
+    out->zenith[2] = zenith_b;
+    out->sun[0] = sun_r;
+    out->sun[1] = sun_g;
+    out->sun[2] = sun_b;
+    out->sun_exponent = sun_exponent;
+    return CCL_OK;
+}
+
+void ccl_sky_gradient_rgb(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
+                          const ccl_sky_gradient *g, float *out_r, float *out_g, float *out_b)
+{
+    float t, c, s;
+    CCL_REQUIRE(g != NULL && out_r != NULL && out_g != NULL && out_b != NULL);
+    /* vc-A28: lerp(horizon, zenith, clamp(d_y, 0, 1)) + sun * max(d . s, 0)^n */
+    t = dir_y;
+    if (t < 0.0f) t = 0.0f;
+    if (t > 1.0f) t = 1.0f;
+    c = dir_x * sun_x + dir_y * sun_y + dir_z * sun_z;
+    if (c < 0.0f) c = 0.0f;
+    s = powf(c, g->sun_exponent);
+    *out_r = g->horizon[0] + t * (g->zenith[0] - g->horizon[0]) + g->sun[0] * s;
+    *out_g = g->horizon[1] + t * (g->zenith[1] - g->horizon[1]) + g->sun[1] * s;
+    *out_b = g->horizon[2] + t * (g->zenith[2] - g->horizon[2]) + g->sun[2] * s;
+}
