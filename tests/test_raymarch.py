@@ -1,0 +1,616 @@
+"""View-ray geometry vc-A14, A18, A19, A21, A23, A24, A25, A35, A36: closed forms, float64 references written here,
+properties, C vs Warp agreement and bad input at the Python boundary."""
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+import pywarp
+from pywarp.kernels import raymarch as rm
+
+EPS32 = float(np.finfo(np.float32).eps)
+R_E, R_I, R_O = 6371.0, 6372.5, 6375.0
+IMPLS = ["warp", "c"]
+
+
+def ordered_ulp(a, b) -> int:
+    """Largest ulp distance between two float32 arrays; equal NaN patterns required; +0 and -0 are 0 apart."""
+    a = np.asarray(a, dtype=np.float32).ravel()
+    b = np.asarray(b, dtype=np.float32).ravel()
+    assert np.array_equal(np.isnan(a), np.isnan(b)), "NaN patterns differ"
+    m = ~np.isnan(a)
+
+    def key(x):
+        i = x.view(np.int32).astype(np.int64)
+        return np.where(i < 0, -(i & 0x7FFFFFFF), i)
+
+    return int(np.max(np.abs(key(a[m]) - key(b[m])))) if m.any() else 0
+
+
+def pcg(v: int) -> int:
+    """PCG hash (Jarzynski & Olano 2020), written independently of the library."""
+    s = (v * 747796405 + 2891336453) & 0xFFFFFFFF
+    w = (((s >> ((s >> 28) + 4)) ^ s) * 277803737) & 0xFFFFFFFF
+    return (w >> 22) ^ w
+
+
+def roots64(o, d, c, r):
+    """float64 quadratic-formula roots for unit d: (t0, t1, sqrt(disc)) with NaN on a miss."""
+    f = o - c
+    b = np.sum(f * d, axis=-1)
+    disc = b * b - (np.sum(f * f, axis=-1) - r * r)
+    s = np.sqrt(np.where(disc >= 0, disc, np.nan))
+    return -b - s, -b + s, disc
+
+
+# --- vc-A14: ray-sphere -----------------------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A14")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_ray_sphere_closed_forms(impl):
+    rs = pywarp.equation("vc-A14", impl=impl)
+    assert rs(1, 2, 3, 0, 0, 1, 1, 2, 3, 2.5) == (-2.5, 2.5)  # from the centre: +-R
+    assert rs(-5, 1, 0, 1, 0, 0, 0, 0, 0, 1.0) == (5.0, 5.0)  # tangent: double root
+    t0, t1 = rs(0, 2, -5, 0, 0, 1, 0, 0, 0, 1.0)  # closest approach 2 > R: miss
+    assert np.isnan(t0) and np.isnan(t1)
+    assert rs(0, 0, 5, 0, 0, 1, 0, 0, 0, 1.0) == (-6.0, -4.0)  # sphere behind the origin
+    assert rs(0, 0, -5, 0, 0, 7.0, 0, 0, 0, 1.0) == (4.0, 6.0)  # direction of any length is normalized
+    # from the ground straight up to the layer base and top (|o - c| = 6371 is exact in float32)
+    assert rs(0, 0, 0, 0, 1, 0, 0, -R_E, 0, R_I)[1] == 1.5
+    assert rs(0, 0, 0, 0, 1, 0, 0, -R_E, 0, R_O)[1] == 4.0
+    # horizontal from the ground: sqrt((R + h)^2 - R^2); radii near 6371 km have a float32 spacing of 4.9e-4 km
+    for r in (R_I, R_O):
+        assert rs(0, 0, 0, 1, 0, 0, 0, -R_E, 0, r)[1] == pytest.approx(math.sqrt(r * r - R_E * R_E), abs=1e-3)
+
+
+@pytest.mark.spec("vc-A14")
+def test_ray_sphere_matches_float64_reference(rng):
+    n = 4000
+    o = rng.uniform(-10, 10, (n, 3)).astype(np.float32)
+    d = rng.normal(size=(n, 3)).astype(np.float32)
+    c = rng.uniform(-3, 3, (n, 3)).astype(np.float32)
+    r = rng.uniform(0.5, 8, n).astype(np.float32)
+    t0, t1 = pywarp.ray_sphere(*o.T, *d.T, *c.T, r)
+    o64, c64, r64 = o.astype(np.float64), c.astype(np.float64), r.astype(np.float64)
+    d64 = d.astype(np.float64) / np.linalg.norm(d.astype(np.float64), axis=1, keepdims=True)
+    e0, e1, disc = roots64(o64, d64, c64, r64)
+    # hit/miss agrees wherever the discriminant is not within float32 round-off of zero
+    clear = np.abs(disc) > 64 * EPS32 * (np.linalg.norm(o64 - c64, axis=1) + r64) ** 2
+    assert np.array_equal(np.isnan(t0)[clear], np.isnan(e0)[clear])
+    assert np.isnan(e0).sum() > 500 and (~np.isnan(e0)).sum() > 500  # both cases exercised
+    # Away from tangency (disc >= 0.01 R^2) the robust form's error is a few roundings of the largest length
+    # |o - c| + R, amplified by at most R / (2 sqrt(disc)) <= 5 through the square root: 16 eps (|o - c| + R).
+    m = ~np.isnan(e0) & (disc >= 0.01 * r64 ** 2)
+    scale = np.linalg.norm(o64 - c64, axis=1)[m] + r64[m]
+    assert np.all(np.abs(t0[m] - e0[m]) <= 16 * EPS32 * scale)
+    assert np.all(np.abs(t1[m] - e1[m]) <= 16 * EPS32 * scale)
+    assert np.all(t0[~np.isnan(t0)] <= t1[~np.isnan(t0)])
+
+
+# --- vc-A14 / vc-A24: layer segment -----------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A14", "vc-A24")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_layer_segment_below_inside_above(impl):
+    seg = pywarp.equation("vc-A24", impl=impl)
+    assert seg(0, 0, 0, 0, 1, 0) == (1.5, 4.0)  # below, zenith (defaults: 6371 km, layer 1.5-4 km)
+    assert all(np.isnan(seg(0, 0.5, 0, 0, -1, 0)))  # below, looking down: the Earth blocks
+    assert all(np.isnan(seg(0, -1, 0, 0, 1, 0)))  # underground camera
+    ts, te = seg(0, 2, 0, 0, 1, 0)  # inside: camera to the top
+    assert ts == 0.0 and te == pytest.approx(2.0, abs=1e-3)
+    ts, te = seg(0, 2, 0, 0, -1, 0)  # inside, looking down: leaves through the base
+    assert ts == 0.0 and te == pytest.approx(0.5, abs=1e-3)
+    ts, te = seg(0, 10, 0, 0, -1, 0)  # above: enter the top, leave through the base
+    assert (ts, te) == (pytest.approx(6.0, abs=1e-3), pytest.approx(8.5, abs=1e-3))
+    assert all(np.isnan(seg(0, 10, 0, 0, 1, 0)))  # above, looking up
+    assert all(np.isnan(seg(0, 10, 0, 1, 0, 0)))  # above, horizontal: passes over the layer
+    # a custom layer: the same geometry scaled (Earth 1000, layer 1010-1020), camera on the ground
+    assert seg(0, 0, 0, 0, 1, 0, 0, -1000, 0, 1000, 1010, 1020) == (10.0, 20.0)
+
+
+@pytest.mark.spec("vc-A14")
+def test_layer_segment_horizon_is_the_earth_tangent():
+    """From a camera at height h the Earth hides everything below the elevation -acos(R / (R + h)); above the
+    horizontal the segment shrinks monotonically to the layer thickness at zenith."""
+    h = 0.5
+    horizon = -math.acos(R_E / (R_E + h))
+    el = np.array([horizon - 2e-3, horizon + 2e-3, 0.0, 0.3, math.pi / 2])
+    ts, te = pywarp.layer_segment(0, h, 0, np.cos(el), np.sin(el), 0)
+    assert np.isnan(ts[0]) and not np.isnan(ts[1])
+    length = te[2:] - ts[2:]
+    assert np.all(np.diff(length) < 0)
+    assert length[-1] == pytest.approx(2.5, abs=1e-3)
+
+
+@pytest.mark.spec("vc-A14", "vc-A24")
+def test_layer_segment_matches_float64_reference(rng):
+    n = 8000
+    alt = rng.choice([0.01, 0.8, 2.0, 3.5, 6.0, 12.0], n) + rng.uniform(0, 0.3, n)
+    xz = rng.uniform(-20, 20, (n, 2))
+    o = np.stack([xz[:, 0], alt, xz[:, 1]], 1).astype(np.float32)
+    d = rng.normal(size=(n, 3)).astype(np.float32)
+    ts, te = pywarp.layer_segment(*o.T, *d.T)
+    # independent float64 selection rules
+    o64 = o.astype(np.float64)
+    d64 = d.astype(np.float64) / np.linalg.norm(d.astype(np.float64), axis=1, keepdims=True)
+    c = np.array([0.0, -R_E, 0.0])
+    rho = np.linalg.norm(o64 - c, axis=1)
+    (e0, e1, de), (i0, i1, di), (u0, u1, du) = (roots64(o64, d64, c, r) for r in (R_E, R_I, R_O))
+    below, inside, above = rho < R_I, (rho >= R_I) & (rho <= R_O), rho > R_O
+    rs, re_ = np.full(n, np.nan), np.full(n, np.nan)
+    m = below & ~(e1 > 0)
+    rs[m], re_[m] = i1[m], u1[m]
+    rs[inside] = 0.0
+    re_[inside] = np.where(i0 > 0, i0, u1)[inside]
+    m = above & (u1 > 0)
+    rs[m], re_[m] = np.maximum(u0, 0)[m], np.where(i0 > 0, i0, u1)[m]
+    for name, arr in (("below", below), ("inside", inside), ("above", above)):
+        assert (arr & ~np.isnan(rs)).sum() > 200, name
+    # decisions agree unless a discriminant or a deciding root is within float32 round-off (eps R^2, 1 m) of zero
+    near = np.zeros(n, bool)
+    for disc in (de, di, du):
+        near |= np.abs(disc) < 64 * EPS32 * R_E ** 2
+    for t in (e1, i0, u0, u1):
+        near |= np.abs(np.nan_to_num(t, nan=1e9)) < 1e-3
+    assert np.array_equal(np.isnan(ts)[~near], np.isnan(rs)[~near])
+    # Error propagation: the radii and |o - c| carry float32 errors of order eps R, and a root moves by
+    # delta(disc) / (2 sqrt(disc)) ~ eps R^2 / s, so |error| <= 4 eps (R^2 / s + R), s = sqrt(disc) of the sphere
+    # that gave the root (measured <= 1.4 eps (R^2 / s + R)).
+    ok = ~np.isnan(ts) & ~np.isnan(rs)
+    s_start = np.sqrt(np.abs(np.where(below, di, du)))
+    s_end = np.sqrt(np.abs(np.where(below, du, np.where(i0 > 0, di, du))))
+    assert np.all(np.abs(ts - rs)[ok & ~inside] <= 4 * EPS32 * (R_E ** 2 / s_start + R_E)[ok & ~inside])
+    assert np.all(ts[ok & inside] == 0.0)
+    assert np.all(np.abs(te - re_)[ok] <= 4 * EPS32 * (R_E ** 2 / s_end + R_E)[ok])
+
+
+@pytest.mark.spec("vc-A14")
+def test_cloud_layer_defaults_and_validation():
+    layer = rm.CloudLayer()
+    assert (layer.r_earth, layer.r_inner, layer.r_outer) == (6371.0, 6372.5, 6375.0)
+    assert layer.centre == (0.0, -6371.0, 0.0)
+    with pytest.raises(ValueError, match=r"^earth_radius must be > 0"):
+        rm.CloudLayer(earth_radius=-1.0)
+    with pytest.raises(ValueError, match=r"^base_altitude must be >= 0"):
+        rm.CloudLayer(base_altitude=-0.5)
+    with pytest.raises(ValueError, match=r"^top_altitude must be > base_altitude"):
+        rm.CloudLayer(base_altitude=4.0, top_altitude=4.0)
+    with pytest.raises(ValueError, match=r"^top_altitude must be finite"):
+        rm.CloudLayer(top_altitude=float("nan"))
+    with pytest.raises(ValueError, match=r"below the float32 resolution"):
+        rm.CloudLayer(base_altitude=1.0, top_altitude=1.0001)
+
+
+# --- vc-A18 -----------------------------------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A18")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_view_sample_count_horizon_zenith_and_law(impl):
+    n = pywarp.equation("vc-A18", impl=impl)
+    assert n(0.0) == 128 and n(1.0) == 64 and n(-1.0) == 64 and n(0.5) == 96
+    y = np.linspace(-1, 1, 2001).astype(np.float32)
+    got = n(y)
+    ref = 128.0 - 64.0 * np.abs(y.astype(np.float64))
+    clear = np.abs(ref - np.floor(ref) - 0.5) > 1e-4  # exact halves round up in both; skip float32 ties
+    np.testing.assert_array_equal(got[clear], np.floor(ref[clear] + 0.5))
+    assert np.all(np.diff(got[y >= 0]) <= 0) and np.all(np.diff(got[y <= 0]) >= 0)
+    assert n(0.3, 32, 32) == 32 and n(0.5, 16, 48) == 32
+
+
+# --- vc-A19 -----------------------------------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A19")
+def test_light_cone_kernel_is_the_documented_derivation():
+    """The default kernel equals its derivation recomputed here: uniform points on the sphere from PCG(2i) and
+    PCG(2i+1)."""
+    for i in range(6):
+        u1, u2 = pcg(2 * i) / 2 ** 32, pcg(2 * i + 1) / 2 ** 32
+        z, phi = 1 - 2 * u1, 2 * math.pi * u2
+        k = np.array([math.sqrt(1 - z * z) * math.cos(phi), math.sqrt(1 - z * z) * math.sin(phi), z])
+        np.testing.assert_array_equal(rm.LIGHT_CONE_KERNEL[i], k.astype(np.float32))
+    assert np.allclose(np.linalg.norm(rm.LIGHT_CONE_KERNEL.astype(np.float64), axis=1), 1.0, atol=1e-7)
+
+
+@pytest.mark.spec("vc-A19")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_light_sample_offsets_in_a_cone(impl):
+    off = pywarp.equation("vc-A19", impl=impl)
+    sun = np.array([0.3, 0.8, -0.52])
+    L = sun / np.linalg.norm(sun)
+    i = np.arange(6)
+    x, y, z = off(i, *sun)
+    p = np.stack([x, y, z], 1).astype(np.float64)
+    s = np.where(i < 5, (i + 1) * 0.1, 3.0 * 0.5)  # 5 near samples, the 6th at 3x the near cone length
+    # position - axial part = the sideways offset s_i tan(15 deg) k_i: increasing, and inside the cone's ball
+    side = p - s[:, None] * L
+    np.testing.assert_allclose(side, (s * math.tan(math.radians(15)))[:, None] * rm.LIGHT_CONE_KERNEL, atol=1e-6)
+    assert np.all(np.diff(np.linalg.norm(side, axis=1)) > 0)
+    # zero cone angle: all six on the axis at s_i
+    x, y, z = off(i, *sun, 0.2, 0.0, 2.0)
+    np.testing.assert_allclose(np.stack([x, y, z], 1), np.where(i < 5, (i + 1) * 0.2, 2.0)[:, None] * L, atol=1e-6)
+
+
+# --- vc-A21 -----------------------------------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A21", "vc-2.18")
+def test_march_accumulate_constant_medium_closed_form():
+    c = np.zeros(3, np.float32)
+    t = np.float32(1.0)
+    light = (1.0, 0.5, 0.25)
+    for _ in range(20):
+        *c, t, stop = pywarp.march_accumulate(*c, t, 2.0, 0.5, 0.1, *light)
+    assert t == pytest.approx(math.exp(-2.0), rel=1e-5)  # T = exp(-sigma rho N dt)
+    np.testing.assert_allclose(c, np.array(light) * (1 - math.exp(-2.0)), rtol=1e-5)  # C = L (1 - T)
+    assert stop == 0.0
+
+
+@pytest.mark.spec("vc-A21")
+def test_march_accumulate_equals_back_to_front_compositing(rng):
+    """Front-to-back accumulation equals the independent back-to-front 'over' recursion in float64."""
+    n = 64
+    sigma, dt = 1.3, 0.05
+    rho = rng.uniform(0, 2, n)
+    light = rng.uniform(0, 1, (n, 3))
+    c, t = np.zeros(3, np.float32), np.float32(1.0)
+    for k in range(n):
+        *c, t, _ = pywarp.march_accumulate(*c, t, sigma, rho[k], dt, *light[k], 0.0)
+    alpha = 1 - np.exp(-sigma * rho * dt)
+    ref = np.zeros(3)
+    for k in reversed(range(n)):
+        ref = alpha[k] * light[k] + (1 - alpha[k]) * ref
+    # 64 float32 steps, each adding a few roundings relative to the running sum: within 64 * 8 eps
+    np.testing.assert_allclose(c, ref, rtol=64 * 8 * EPS32)
+    assert t == pytest.approx(np.exp(-sigma * dt * rho.sum()), rel=64 * 4 * EPS32)
+
+
+@pytest.mark.spec("vc-A21")
+def test_march_accumulate_early_termination_threshold():
+    acc = pywarp.march_accumulate
+    # one step of optical depth tau from T = 1: stop iff 1 - e^-tau >= 1 - eps
+    for tau, eps, stop in ((10.0, 1 / 256, 1.0), (5.0, 1 / 256, 0.0), (5.0, 0.01, 1.0), (math.log(256) + 1e-3,
+                                                                                         1 / 256, 1.0)):
+        assert acc(0, 0, 0, 1.0, tau, 1.0, 1.0, 1, 1, 1, eps)[4] == stop, (tau, eps)
+    # the default threshold is 1/256
+    assert acc(0, 0, 0, 1.0, 5.0, 1.0, 1.0, 1, 1, 1)[4] == 0.0
+    assert acc(0, 0, 0, 1.0, 6.0, 1.0, 1.0, 1, 1, 1)[4] == 1.0
+    # rho = 0 leaves colour and transmittance untouched
+    r, g, b, t, s = acc(0.1, 0.2, 0.3, 0.7, 5.0, 0.0, 1.0, 1, 1, 1)
+    assert (r, g, b, t, s) == (np.float32(0.1), np.float32(0.2), np.float32(0.3), np.float32(0.7), 0.0)
+
+
+# --- vc-A25 camera ----------------------------------------------------------------------------------------------------
+
+def basis64(eye, target, up):
+    f = np.asarray(target, float) - np.asarray(eye, float)
+    f /= np.linalg.norm(f)
+    s = np.cross(f, up)
+    s /= np.linalg.norm(s)
+    return s, np.cross(s, f), f
+
+
+@pytest.mark.spec("vc-A25")
+def test_camera_matrices_match_independent_float64_and_c():
+    eye, target, up, fov, aspect, zn, zf = (3.0, 0.5, 7.0), (2.0, 0.6, 6.0), (0.0, 1.0, 0.0), 1.1, 1.5, 0.01, 100.0
+    cam = rm.camera_look_at(eye, target, up, fov, aspect, zn, zf)
+    e = np.array(eye, np.float32).astype(float)
+    s, u, f = basis64(e, np.array(target, np.float32), np.array(up))
+    view = np.eye(4)
+    view[0, :3], view[1, :3], view[2, :3] = s, u, -f
+    view[:3, 3] = -view[:3, :3] @ e
+    t = math.tan(float(np.float32(fov)) / 2)
+    asp, n_, f_ = (float(np.float32(v)) for v in (aspect, zn, zf))
+    proj = np.array([[1 / (asp * t), 0, 0, 0], [0, 1 / t, 0, 0],
+                     [0, 0, (f_ + n_) / (n_ - f_), 2 * f_ * n_ / (n_ - f_)], [0, 0, -1, 0]])
+    rot = view.copy()
+    rot[:3, 3] = 0
+    refs = {"view": view, "proj": proj, "view_proj": proj @ view, "inv_view_proj": np.linalg.inv(proj @ view),
+            "inv_view_proj_rot": np.linalg.inv(proj @ rot)}
+    c_cam = rm.c_camera_look_at(eye, target, up, fov, aspect, zn, zf)
+    for name, ref in refs.items():
+        got = getattr(cam, name).astype(np.float64)
+        # both are float64 computations rounded once to float32: half an ulp of each entry (+ tiny absolute slack
+        # for entries that are exactly zero in the reference and 1e-17 after np.linalg.inv)
+        np.testing.assert_allclose(got, ref, rtol=EPS32, atol=1e-12 * np.abs(ref).max(), err_msg=name)
+        # C and Python: the same float64 formulas rounded once; 1 ulp covers a double-rounding tie
+        assert ordered_ulp(getattr(c_cam, name), getattr(cam, name)) <= 1, name
+    np.testing.assert_array_equal(c_cam.eye, cam.eye)
+
+
+def pinhole_dirs(eye, target, fov, aspect, x, y, w, h):
+    """float64 pinhole model from the float32-rounded camera inputs: d = normalize(ndc_x a t s + ndc_y t u + f)."""
+    s, u, f = basis64(np.array(eye, np.float32), np.array(target, np.float32), np.array([0.0, 1.0, 0.0]))
+    t = math.tan(float(np.float32(fov)) / 2)
+    ndc_x, ndc_y = 2 * (x + 0.5) / w - 1, 1 - 2 * (y + 0.5) / h
+    ref = (ndc_x * float(np.float32(aspect)) * t)[:, None] * s + (ndc_y * t)[:, None] * u + f
+    return ref / np.linalg.norm(ref, axis=1, keepdims=True)
+
+
+@pytest.mark.spec("vc-A25")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_camera_ray_matches_pinhole_model(impl, rng):
+    w, h, fov = 64, 36, 1.2
+    x, y = rng.integers(0, w, 500), rng.integers(0, h, 500)
+    ray = pywarp.equation("vc-A25", impl=impl)
+    # near the origin and 500 km away: the camera-relative inverse keeps the direction exact anywhere
+    for eye, target in (((3.0, 0.5, 7.0), (2.0, 0.6, 6.0)), ((503.0, 500.5, 507.0), (502.0, 500.625, 506.0))):
+        cam = rm.camera_look_at(eye, target, fov_y=fov, aspect=w / h)
+        # float32 matrix entries and four roundings per component: a few eps of the unit vector
+        np.testing.assert_allclose(ray(x, y, w, h, cam), pinhole_dirs(eye, target, fov, w / h, x, y, w, h),
+                                   atol=8 * EPS32)
+    # the centre pixel of an odd-size image looks at the target
+    cam = rm.camera_look_at((1, 2, 3), (4, 2.5, -1), fov_y=0.7, aspect=1.0)
+    f = np.array([3, 0.5, -4]) / np.linalg.norm([3, 0.5, -4])
+    np.testing.assert_allclose(ray(5, 5, 11, 11, cam), f, atol=4 * EPS32)
+
+
+@pytest.mark.spec("vc-A25")
+def test_camera_rejects_bad_input():
+    with pytest.raises(ValueError, match=r"^target must differ from eye"):
+        rm.camera_look_at((0, 0, 0), (0, 0, 0))
+    with pytest.raises(ValueError, match=r"^up must not be parallel"):
+        rm.camera_look_at((0, 0, 0), (0, 2, 0))
+    with pytest.raises(ValueError, match=r"^up must be a non-zero vector"):
+        rm.camera_look_at((0, 0, 0), (0, 0, -1), up=(0, 0, 0))
+    with pytest.raises(ValueError, match=r"^fov_y must be in \(0, pi\)"):
+        rm.camera_look_at((0, 0, 0), (0, 0, -1), fov_y=3.2)
+    with pytest.raises(ValueError, match=r"^aspect must be > 0"):
+        rm.camera_look_at((0, 0, 0), (0, 0, -1), aspect=0)
+    with pytest.raises(ValueError, match=r"^z_far must be > z_near"):
+        rm.camera_look_at((0, 0, 0), (0, 0, -1), z_near=1.0, z_far=1.0)
+    with pytest.raises(ValueError, match=r"^eye must be finite"):
+        rm.camera_look_at((0, np.nan, 0), (0, 0, -1))
+    with pytest.raises(ValueError, match=r"^eye must be a 3-vector"):
+        rm.camera_look_at((0, 0), (0, 0, -1))
+    with pytest.raises(ValueError, match=r"ccl_camera_look_at: invalid argument"):
+        rm.c_camera_look_at((0, 0, 0), (0, 0, 0))
+    cam = rm.camera_look_at((0, 0, 0), (0, 0, -1))
+    for impl in IMPLS:
+        ray = pywarp.equation("vc-A25", impl=impl)
+        with pytest.raises(ValueError, match=r"^x must be in \[0, width - 1\]"):
+            ray(10, 0, 10, 5, cam)
+        with pytest.raises(ValueError, match=r"^width must be >= 1"):
+            ray(0, 0, 0, 5, cam)
+        with pytest.raises(ValueError, match=r"^y must be in \[0, inf\)"):
+            ray(0, -1, 10, 5, cam)
+        with pytest.raises(TypeError, match=r"^camera must be a pywarp.kernels.raymarch.Camera"):
+            ray(0, 0, 10, 5, "camera")
+
+
+# --- vc-A23 -----------------------------------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A23")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_ray_jitter_matches_independent_pcg(impl, rng):
+    jit = pywarp.equation("vc-A23", impl=impl)
+    x, y, f = rng.integers(0, 4096, 300), rng.integers(0, 4096, 300), rng.integers(0, 10000, 300)
+    d = np.array([0.2, 0.7, -0.5])
+    dx, dy, dz, off = jit(*d, x, y, f, 0.01)
+    dn = d / np.linalg.norm(d)
+    seeds = [pcg((int(a) + pcg((int(b) + pcg(int(c))) & 0xFFFFFFFF)) & 0xFFFFFFFF) for a, b, c in zip(x, y, f)]
+    unit = lambda hh: (hh >> 8) / 2 ** 24  # noqa: E731
+    r = np.array([[2 * unit(pcg((sd + k) & 0xFFFFFFFF)) - 1 for k in range(3)] for sd in seeds])
+    ref = dn + 0.01 * r
+    ref /= np.linalg.norm(ref, axis=1, keepdims=True)
+    np.testing.assert_allclose(np.stack([dx, dy, dz], 1), ref, atol=8 * EPS32)
+    assert np.all(off == 0.5)
+    angle = np.arccos(np.clip(np.stack([dx, dy, dz], 1) @ dn, -1, 1))
+    assert angle.max() <= math.sqrt(3) * 0.01 + 1e-6 and angle.min() > 0
+    # the offset mode: the same hash chain, salt 3, exactly
+    _, _, _, off = jit(*d, x, y, f, mode="offset")
+    np.testing.assert_array_equal(off, np.array([unit(pcg((sd + 3) & 0xFFFFFFFF)) for sd in seeds], np.float32))
+    # deterministic, and 'none' leaves the normalized direction
+    assert np.array_equal(jit(*d, x, y, f, mode="offset")[3], off)
+    ndx, ndy, ndz, noff = jit(*d, x, y, f, mode="none")
+    np.testing.assert_allclose(np.stack([ndx, ndy, ndz], 1), np.broadcast_to(dn, (300, 3)), atol=2 * EPS32)
+    assert np.all(noff == 0.5)
+
+
+@pytest.mark.spec("vc-A23")
+def test_ray_jitter_offsets_are_uniform():
+    x, y = np.meshgrid(np.arange(128), np.arange(96))
+    off = pywarp.ray_jitter(0, 0, 1, x.ravel(), y.ravel(), 7, mode="offset")[3]
+    hist = np.histogram(off, bins=8, range=(0, 1))[0]
+    # 12288 samples, 1536 per bin expected; 5 sigma of the binomial count is ~185
+    assert np.all(np.abs(hist - 1536) < 185)
+    assert off.min() >= 0.0 and off.max() < 1.0
+
+
+# --- vc-A35 -----------------------------------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A35", "vc-2.18")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_march_volume_sphere_and_box(impl):
+    mv = pywarp.equation("vc-A35", impl=impl)
+    pts, dt = mv([0, 0, -5], [0, 0, 2], 4, centre=(0, 0, 0), radius=1.0)
+    np.testing.assert_array_equal(pts[:, 2], [-0.75, -0.25, 0.25, 0.75])
+    assert dt == 0.5
+    pts, dt = mv([0, 0, -5], [0, 0, 1], 4, box_min=(-1, -1, -1), box_max=(1, 1, 1), offset=0.0)
+    np.testing.assert_array_equal(pts[:, 2], [-1.0, -0.5, 0.0, 0.5])
+    # origin inside: the march starts at the origin
+    pts, dt = mv([0, 0, 0], [0, 1, 0], 5, box_min=(-1, -2, -1), box_max=(1, 3, 1), offset=0.0)
+    np.testing.assert_allclose(pts[:, 1], [0.0, 0.6, 1.2, 1.8, 2.4], rtol=2 * EPS32)  # dt = 3/5 rounded
+    # misses and volumes behind the origin give NaN
+    pts, dt = mv([[0, 3, -5], [0, 0, 5]], [0, 0, 1], 3, centre=(0, 0, 0), radius=1.0)
+    assert np.all(np.isnan(pts)) and np.all(np.isnan(dt))
+
+
+@pytest.mark.spec("vc-A35")
+def test_march_volume_uniform_between_entry_and_exit(rng):
+    o = rng.uniform(-4, 4, (400, 3))
+    d = rng.normal(size=(400, 3))
+    c, r, n = np.array([0.5, -0.2, 0.1]), 3.0, 16
+    pts, dt = pywarp.march_volume(o, d, n, centre=c, radius=r)
+    o64, d64 = o.astype(np.float32).astype(float), d.astype(np.float32).astype(float)
+    d64 /= np.linalg.norm(d64, axis=1, keepdims=True)
+    t0, t1, disc = roots64(o64, d64, c.astype(np.float32).astype(float), r)
+    hit = ~np.isnan(t0) & (t1 >= 0)
+    clear = np.abs(disc) > 0.01 * r * r  # away from tangency, where float32 round-off may flip hit / miss
+    assert np.array_equal(hit[clear], ~np.isnan(dt)[clear]) and hit.sum() > 50
+    ts = np.maximum(t0, 0)
+    ref = o64[:, None, :] + (ts[:, None] + (np.arange(n) + 0.5)[None, :] * ((t1 - ts) / n)[:, None])[..., None] * \
+        d64[:, None, :]
+    m = hit & clear
+    # |t| <= 12: the roots carry <= 16 eps (|o - c| + r) (see the ray-sphere test), the sample a few more roundings
+    np.testing.assert_allclose(pts[m], ref[m], atol=32 * EPS32 * 12)
+    assert np.all(np.linalg.norm(pts[~np.isnan(dt)] - c, axis=-1) <= r + 1e-5)  # every sample inside the sphere
+
+
+# --- vc-A36 -----------------------------------------------------------------------------------------------------------
+
+def spec_table_rows(root):
+    text = (root / "spec" / "vc.md").read_text(encoding="utf-8")
+    block = text.split("### vc-A36", 1)[1].split("\n### ", 1)[0].split("\n---", 1)[0]
+    rows = {}
+    for line in block.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 3 and cells[0] not in ("Constant", "---") and not cells[0].startswith("-"):
+            rows[cells[0]] = cells[1]
+    return rows
+
+
+def numbers(cell):
+    """The numbers of a spec cell in order; the Unicode minus counts as a sign, the en dash as a range separator."""
+    cell = cell.replace("−", "-").replace("–", " ")
+    return [float(v) for v in re.findall(r"(?<![\w.])-?\d+(?:\.\d+)?", cell)]
+
+
+@pytest.mark.spec("vc-A36")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_vc_constants_match_the_spec_table(impl, root):
+    k = pywarp.equation("vc-A36", impl=impl)()
+    assert isinstance(k, rm.VcConstants)
+    rows = spec_table_rows(root)
+    f32 = lambda v: [float(np.float32(x)) for x in v]  # noqa: E731
+    expected = {
+        "Base texture size": [k.base_texture_size] * 3,
+        "Detail texture size": [k.detail_texture_size] * 3,
+        "Low-freq fBm weights (G, B, A)": list(k.low_freq_fbm_weights),
+        "High-freq fBm weights (R, G, B)": list(k.high_freq_fbm_weights),
+        "Detail erosion factor": [k.detail_erosion],
+        "Powder exponent factor": [k.powder_factor],
+        "Schlick fit": list(k.schlick_fit),
+        "Cloud types": list(k.cloud_types),
+        "Height-gradient break points": [*k.gradient_cumulus, *k.gradient_stratocumulus, *k.gradient_stratus],
+        "View samples": [k.view_samples_zenith, k.view_samples_horizon],
+        "Light samples": [k.light_samples, k.light_samples_near, 1, k.light_far_factor],
+        "Reprojection block / cycle": [k.reprojection_block, k.reprojection_block, k.reprojection_cycle],
+        "Tone-map constant": [k.tone_map_constant],
+        "CIE clear sky in Perez form": list(k.cie_clear_sky_bcde),
+        "Cloud altitudes": [k.low_cloud_top_km, k.middle_cloud_base_km, k.middle_cloud_top_km, k.high_cloud_base_km],
+    }
+    for label, values in expected.items():
+        assert label in rows, label
+        assert f32(numbers(rows[label])[:len(values)]) == f32(values), label
+    assert numbers(rows["Rayleigh blue vs red"])[:3] == [k.rayleigh_blue_nm, k.rayleigh_blue_vs_red,
+                                                          k.rayleigh_red_nm]
+    assert "(RGBA)" in rows["Base texture size"] and k.base_texture_channels == 4
+    assert "(RGB)" in rows["Detail texture size"] and k.detail_texture_channels == 3
+    # the table's last row names what the text does not give: our defaults for those live elsewhere (vc-A14 etc.)
+    assert "Earth radius" in rows["Not given"]
+
+
+@pytest.mark.spec("vc-A36")
+def test_vc_constants_agree_with_the_named_defaults():
+    k = pywarp.vc_constants()
+    assert (k.view_samples_zenith, k.view_samples_horizon) == (rm.VIEW_SAMPLES_ZENITH, rm.VIEW_SAMPLES_HORIZON)
+    assert k.light_far_factor == rm.LIGHT_FAR_FACTOR and k.light_samples == len(rm.LIGHT_CONE_KERNEL)
+    assert k.schlick_fit == (float(np.float32(1.55)), float(np.float32(0.55)))
+
+
+# --- C vs Warp --------------------------------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A14", "vc-A18", "vc-A19", "vc-A21", "vc-A23", "vc-A24", "vc-A25", "vc-A35")
+def test_raymarch_c_and_warp_agree_on_random_inputs(rng):
+    """C (gcc -std=c99, no contraction) vs Warp (clang, no contraction) on seeded random inputs: at most 2 ulp
+    apart, NaN in the same places. Both evaluate the same float32 expression trees in the same order with correctly
+    rounded sqrt; expf and tanf come from the same glibc in both builds (measured: 0 ulp everywhere). Integer
+    outputs (sample counts) must be equal."""
+    n = 1500
+    o = rng.uniform(-10, 10, (n, 3)).astype(np.float32)
+    d = rng.normal(size=(n, 3)).astype(np.float32)
+    c = rng.uniform(-3, 3, (n, 3)).astype(np.float32)
+    r = rng.uniform(0.5, 8, n).astype(np.float32)
+    alt = rng.uniform(-0.5, 12, n).astype(np.float32)
+    u = lambda *s: rng.uniform(0, 1, s).astype(np.float32)  # noqa: E731
+    cases = [
+        ("vc-A14", (*o.T, *d.T, *c.T, r), {}),
+        ("vc-A24", (o[:, 0], alt, o[:, 2], *d.T), {}),
+        ("vc-A18", (rng.uniform(-1, 1, n).astype(np.float32), 64, 128), {}),
+        ("vc-A19", (rng.integers(0, 6, n), *d.T, u(n) + 0.01, u(n) * 1.5, 1 + 2 * u(n)), {}),
+        ("vc-A21", (*u(3, n), u(n), 3 * u(n), 2 * u(n), u(n), *u(3, n), u(n) * 0.1), {}),
+        ("vc-A23", (*d.T, rng.integers(0, 5000, n), rng.integers(0, 5000, n), rng.integers(0, 99, n), 0.02 * u(n)),
+         {"mode": "tilt"}),
+        ("vc-A23", (*d.T, rng.integers(0, 5000, n), rng.integers(0, 5000, n), rng.integers(0, 99, n), 0.02 * u(n)),
+         {"mode": "offset"}),
+    ]
+    for cid, args, kw in cases:
+        w = pywarp.equation(cid)(*args, **kw)
+        cc = pywarp.equation(cid, impl="c")(*args, **kw)
+        w, cc = (w if isinstance(w, tuple) else (w,)), (cc if isinstance(cc, tuple) else (cc,))
+        for a, b in zip(w, cc):
+            assert ordered_ulp(a, b) <= 2, (cid, kw)
+    cam = rm.camera_look_at((3, 0.5, 7), (2, 0.6, 6), aspect=1.5)
+    x, y = rng.integers(0, 300, n), rng.integers(0, 200, n)
+    assert ordered_ulp(pywarp.camera_ray(x, y, 300, 200, cam),
+                       pywarp.equation("vc-A25", impl="c")(x, y, 300, 200, cam)) <= 2
+    for kw in ({"centre": (0.5, 0, 0), "radius": 6.0}, {"box_min": (-5, -4, -3), "box_max": (3, 4, 5)}):
+        pw, dw = pywarp.march_volume(o, d, 8, **kw)
+        pc, dc = pywarp.equation("vc-A35", impl="c")(o, d, 8, **kw)
+        assert ordered_ulp(pw, pc) <= 2 and ordered_ulp(dw, dc) <= 2, kw
+
+
+# --- bad input --------------------------------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-A14", "vc-A18", "vc-A19", "vc-A21", "vc-A23", "vc-A24", "vc-A35")
+@pytest.mark.parametrize("impl", IMPLS)
+def test_raymarch_bad_input_raises_value_error_naming_parameter(impl):
+    eq = lambda cid: pywarp.equation(cid, impl=impl)  # noqa: E731
+    with pytest.raises(ValueError, match=r"^direction \(dx, dy, dz\) must be non-zero"):
+        eq("vc-A14")(0, 0, 0, 0, 0, 0, 0, 0, 0, 1.0)
+    with pytest.raises(ValueError, match=r"^radius must be in \(0, inf\), got -1\.0"):
+        eq("vc-A14")(0, 0, 0, 0, 1, 0, 0, 0, 0, -1.0)
+    with pytest.raises(ValueError, match=r"^ox must be finite"):
+        eq("vc-A14")(np.nan, 0, 0, 0, 1, 0, 0, 0, 0, 1.0)
+    with pytest.raises(ValueError, match=r"^direction \(dx, dy, dz\) must be non-zero"):
+        eq("vc-A24")(0, 0, 0, [0, 0], 0, 0)
+    with pytest.raises(ValueError, match=r"^r_inner must be < r_outer"):
+        eq("vc-A24")(0, 0, 0, 0, 1, 0, r_inner=6375.0, r_outer=6375.0)
+    with pytest.raises(ValueError, match=r"^r_inner must be >= r_earth"):
+        eq("vc-A24")(0, 0, 0, 0, 1, 0, r_earth=6373.0)
+    with pytest.raises(ValueError, match=r"^r_earth must be in \(0, inf\)"):
+        eq("vc-A24")(0, 0, 0, 0, 1, 0, r_earth=-6371.0)
+    with pytest.raises(ValueError, match=r"^dir_y must be in \[-1, 1\]"):
+        eq("vc-A18")(1.5)
+    with pytest.raises(ValueError, match=r"^n_min must be <= n_max"):
+        eq("vc-A18")(0.5, 128, 64)
+    with pytest.raises(ValueError, match=r"^n_min must be in \[1, inf\)"):
+        eq("vc-A18")(0.5, 0, 64)
+    with pytest.raises(ValueError, match=r"^i must be in \[0, 5\]"):
+        eq("vc-A19")(6, 0, 1, 0)
+    with pytest.raises(ValueError, match=r"^sun direction \(sx, sy, sz\) must be non-zero"):
+        eq("vc-A19")(0, 0, 0, 0)
+    with pytest.raises(ValueError, match=r"^step must be in \(0, inf\)"):
+        eq("vc-A19")(0, 0, 1, 0, 0.0)
+    with pytest.raises(ValueError, match=r"^transmittance must be in \[0, 1\]"):
+        eq("vc-A21")(0, 0, 0, 1.5, 1, 1, 1, 1, 1, 1)
+    with pytest.raises(ValueError, match=r"^rho must be in \[0, inf\)"):
+        eq("vc-A21")(0, 0, 0, 1.0, 1, -1, 1, 1, 1, 1)
+    with pytest.raises(ValueError, match=r"^mode must be one of 'tilt', 'offset', 'none'"):
+        eq("vc-A23")(0, 0, 1, 0, 0, 0, mode="shift")
+    with pytest.raises(ValueError, match=r"^frame must be in \[0, inf\)"):
+        eq("vc-A23")(0, 0, 1, 0, 0, -1)
+    with pytest.raises(ValueError, match=r"^direction must be non-zero"):
+        eq("vc-A35")([0, 0, 0], [0, 0, 0], 4, centre=(0, 0, 0), radius=1.0)
+    with pytest.raises(ValueError, match=r"^radius must be > 0"):
+        eq("vc-A35")([0, 0, 0], [0, 0, 1], 4, centre=(0, 0, 0), radius=-1.0)
+    with pytest.raises(ValueError, match=r"^n must be >= 1"):
+        eq("vc-A35")([0, 0, 0], [0, 0, 1], 0, centre=(0, 0, 0), radius=1.0)
+    with pytest.raises(ValueError, match=r"^box_min must be <= box_max"):
+        eq("vc-A35")([0, 0, 0], [0, 0, 1], 4, box_min=(1, 0, 0), box_max=(0, 1, 1))
+    with pytest.raises(ValueError, match=r"^give either centre and radius"):
+        eq("vc-A35")([0, 0, 0], [0, 0, 1], 4)
+    with pytest.raises(ValueError, match=r"^offset must be in \[0, 1\)"):
+        eq("vc-A35")([0, 0, 0], [0, 0, 1], 4, centre=(0, 0, 0), radius=1.0, offset=1.0)
