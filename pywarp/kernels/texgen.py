@@ -1,2 +1,616 @@
-"""Warp twins of ``cclouds/texgen.h`` (entries are added as they are implemented)."""
+"""Noise-texture generator (vc §2.3.3, §4.3.1) -- Warp twins of ``cclouds/texgen.h``.
+
+* :func:`texgen_gamma` -- vc-4.6, ``C = C^(1/gamma)``.
+* :func:`base_shape_texel` -- one texel of the 128^3 RGBA base-shape texture (vc-A9, vc-A8),
+  :func:`detail_shape_texel` -- one texel of the 32^3 RGB detail texture (vc-A10),
+  :func:`curl_noise_texel` -- one texel of the generated 2-D curl-noise texture (vc-A11),
+  :func:`weather_map_texel` -- one texel of the procedural weather map (vc-A12),
+  :func:`base_shape_settings_code` -- the settings validation of vc-A13 (the C ``ccl_base_shape_settings_check``).
+* :func:`sample_trilinear_wrap` -- the renderer's trilinear sampler of a periodic power-of-two RGBA volume
+  (``wp.array3d(dtype=wp.vec4)`` indexed ``[z, y, x]``) with bit-mask wrap, exactly shift-invariant.
+* Tile kernels (first parameter ``row0``, launched through :class:`pywarp.runtime.TileLauncher`; for a 3-D texture
+  row = z * size + y, so a 128^3 volume is 16384 rows x 128 columns).
+
+The readings chosen where the thesis is silent are stated in the C header (``cclouds/texgen.h``) and repeated here:
+
+* texel (ix, iy, iz) sits at u = (ix + 0.5) / size; noise is evaluated at u times an integer frequency with the noise
+  period equal to that frequency, so every texture is exactly periodic (``texel(ix + size) == texel(ix)``);
+* four inverse-Worley layers W_j (cells ``worley_cells * 2^j``, seed ``seed + j``) fill three channels by a sliding
+  window (vc-A9's open mapping, spec §7 item 24; Hillaire's TileableVolumeNoise does the same):
+  channel k = sum_{j, k+j <= 3} w_j W_{k+j} / sum w_j -> G = fBm(W0, W1, W2), B = fBm(W1, W2, W3), A = fBm(W2, W3);
+* R = noise_perlin_worley(P, W = G, combination), P = clamp(0.5 fbm_perlin + 0.5, 0, 1) (vc-A8);
+* every channel is clamped to [0, 1], then gamma-corrected (vc-4.6);
+* weather map: R coverage, G precipitation (the spec's reading of the "blue twice" erratum), B cloud type, A = 0.
+
+The Python-side generator classes, settings dataclasses and the cache are in :mod:`pywarp.textures`.
+"""
 from __future__ import annotations
+
+import math
+
+import numpy as np
+import warp as wp
+
+from ..equations import Arg, Equation, register
+from .noise import (COMBINATION, COMBINATIONS, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3, noise_perlin_worley,
+                    noise_worley3, perm_array)
+
+# Field order of the settings validation codes (1-based; 0 = valid), as checked by ccl_base_shape_settings_check.
+BASE_SHAPE_FIELDS = ("size", "perlin_octaves", "perlin_frequency", "worley_cells", "worley_weights", "combination",
+                     "gamma")
+MIN_SIZE = 4  # CCL_TEXGEN_MIN_SIZE
+MAX_SIZE_3D = 512  # CCL_TEXGEN_MAX_SIZE_3D
+MAX_SIZE_2D = 8192  # CCL_TEXGEN_MAX_SIZE_2D
+MAX_OCTAVES = 8  # CCL_TEXGEN_MAX_OCTAVES
+MAX_LATTICE = 4096  # CCL_TEXGEN_MAX_LATTICE
+_MIN_SIZE = wp.constant(MIN_SIZE)
+_MAX_SIZE_3D = wp.constant(MAX_SIZE_3D)
+_MAX_OCTAVES = wp.constant(MAX_OCTAVES)
+_MAX_LATTICE = wp.constant(MAX_LATTICE)
+
+
+# --- helpers (mirror the C statics of texgen.c) -----------------------------------------------------------------------
+
+@wp.func
+def _clamp01(v: float) -> float:
+    if v < 0.0:
+        return 0.0
+    if v > 1.0:
+        return 1.0
+    return v  # NaN passes through
+
+
+@wp.func
+def _texcoord(i: int, size: int) -> float:
+    """Centre of texel i: (i + 0.5) / size."""
+    return (float(i) + 0.5) / float(size)
+
+
+@wp.func
+def _worley_layers(u: float, v: float, w: float, cells: int, seed: wp.uint32) -> wp.vec4:
+    """The four inverse-Worley layers: cells * 2^j cells per texture, seed + j."""
+    return wp.vec4(noise_worley3(u, v, w, cells, seed, 0, 1),
+                   noise_worley3(u, v, w, cells * 2, seed + wp.uint32(1), 0, 1),
+                   noise_worley3(u, v, w, cells * 4, seed + wp.uint32(2), 0, 1),
+                   noise_worley3(u, v, w, cells * 8, seed + wp.uint32(3), 0, 1))
+
+
+@wp.func
+def _sliding_fbm(layers: wp.vec4, w0: float, w1: float, w2: float) -> wp.vec3:
+    """channel k = sum_{j, k+j <= 3} w_j W_{k+j} / sum w_j, clamped to [0, 1] (same summation order as C)."""
+    c0 = (w0 * layers[0] + w1 * layers[1] + w2 * layers[2]) / (w0 + w1 + w2)
+    c1 = (w0 * layers[1] + w1 * layers[2] + w2 * layers[3]) / (w0 + w1 + w2)
+    c2 = (w0 * layers[2] + w1 * layers[3]) / (w0 + w1)
+    return wp.vec3(_clamp01(c0), _clamp01(c1), _clamp01(c2))
+
+
+@wp.func
+def _perlin01(u: float, v: float, w: float, octaves: int, frequency: int, perm: wp.array(dtype=wp.int32),
+              gain: float) -> float:
+    """Perlin fBm mapped to [0, 1]: clamp(gain fbm + 0.5, 0, 1); period = frequency cells = one texture."""
+    p = noise_fbm_perlin3(u, v, w, octaves, float(frequency), perm, frequency)
+    return _clamp01(gain * p + 0.5)
+
+
+@wp.func
+def _coverage_shape(n: float, c: float) -> float:
+    """clamp(remap(n, 1 - c, 1, 0, 1), 0, 1) for c > 0, 0 for c <= 0."""
+    if c <= 0.0:
+        return 0.0
+    return _clamp01((n - (1.0 - c)) / c)
+
+
+# --- vc-4.6 -----------------------------------------------------------------------------------------------------------
+
+@wp.func
+def texgen_gamma(c: float, gamma: float) -> float:
+    """vc-4.6: gamma correction of generated noise, C = C^(1/gamma) (gamma > 0; 1 = identity, > 1 brightens)."""
+    return wp.pow(c, 1.0 / gamma)
+
+
+# --- texels -----------------------------------------------------------------------------------------------------------
+
+@wp.func
+def base_shape_texel(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, perlin_octaves: int,
+                     perlin_frequency: int, worley_cells: int, worley_w0: float, worley_w1: float, worley_w2: float,
+                     gamma: float, combination: int, perm: wp.array(dtype=wp.int32)) -> wp.vec4:
+    """vc-A9: RGBA texel (ix, iy, iz) of the base-shape texture; ``perm`` = the permutation table of ``seed``
+    (``noise.perm_array(seed)``; the C twin builds it from the seed)."""
+    u = _texcoord(ix, size)
+    v = _texcoord(iy, size)
+    w = _texcoord(iz, size)
+    ch = _sliding_fbm(_worley_layers(u, v, w, worley_cells, seed), worley_w0, worley_w1, worley_w2)
+    p = _perlin01(u, v, w, perlin_octaves, perlin_frequency, perm, 0.5)
+    r = noise_perlin_worley(p, ch[0], combination)  # vc-A8
+    return wp.vec4(texgen_gamma(_clamp01(r), gamma), texgen_gamma(ch[0], gamma), texgen_gamma(ch[1], gamma),
+                   texgen_gamma(ch[2], gamma))
+
+
+@wp.func
+def detail_shape_texel(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, worley_cells: int, worley_w0: float,
+                       worley_w1: float, worley_w2: float, gamma: float) -> wp.vec3:
+    """vc-A10: RGB texel of the detail texture (inverse-Worley fBm of increasing frequency)."""
+    u = _texcoord(ix, size)
+    v = _texcoord(iy, size)
+    w = _texcoord(iz, size)
+    ch = _sliding_fbm(_worley_layers(u, v, w, worley_cells, seed), worley_w0, worley_w1, worley_w2)
+    return wp.vec3(texgen_gamma(ch[0], gamma), texgen_gamma(ch[1], gamma), texgen_gamma(ch[2], gamma))
+
+
+@wp.func
+def curl_noise_texel(ix: int, iy: int, size: int, frequency: int, fd_step: float,
+                     perm: wp.array(dtype=wp.int32)) -> wp.vec2:
+    """vc-A11: curl noise (dpsi/dy, -dpsi/dx) of Perlin noise psi at texel (ix, iy), noise-lattice units."""
+    f = float(frequency)
+    x = _texcoord(ix, size) * f
+    y = _texcoord(iy, size) * f
+    return noise_curl2(x, y, perm, frequency, fd_step)
+
+
+@wp.func
+def weather_map_texel(ix: int, iy: int, size: int, seed: wp.uint32, perlin_frequency: int, perlin_octaves: int,
+                      perlin_contrast: float, worley_cells: int, worley_octaves: int, combination: int,
+                      coverage: float, precipitation: float, cloud_type: float, cloud_type_variation: float,
+                      perm0: wp.array(dtype=wp.int32), perm1: wp.array(dtype=wp.int32),
+                      perm2: wp.array(dtype=wp.int32)) -> wp.vec4:
+    """vc-A12: (coverage, precipitation, cloud type, 0); perm0/1/2 = the tables of seed, seed + 1, seed + 2."""
+    u = _texcoord(ix, size)
+    v = _texcoord(iy, size)
+    p = _perlin01(u, v, 0.0, perlin_octaves, perlin_frequency, perm0, perlin_contrast)
+    wv = noise_fbm_worley3(u, v, 0.0, worley_octaves, worley_cells, seed, 0, 1)
+    n = noise_perlin_worley(p, wv, combination)
+    r = _coverage_shape(n, coverage)
+    p2 = _perlin01(u, v, 0.0, perlin_octaves, perlin_frequency, perm1, perlin_contrast)
+    g = _coverage_shape(p2, precipitation)
+    p3 = _perlin01(u, v, 0.0, perlin_octaves, perlin_frequency, perm2, perlin_contrast)
+    b = _clamp01(cloud_type + cloud_type_variation * (2.0 * p3 - 1.0))
+    return wp.vec4(r, g, b, 0.0)
+
+
+# --- vc-A13: settings validation (mirror of ccl_base_shape_settings_check) ------------------------------------------
+
+@wp.func
+def _lattice_ok(base: int, octaves: int) -> int:
+    if base < 1:
+        return 0
+    if base > (_MAX_LATTICE >> (octaves - 1)):
+        return 0
+    return 1
+
+
+@wp.func
+def base_shape_settings_code(size: int, perlin_octaves: int, perlin_frequency: int, worley_cells: int,
+                             worley_w0: float, worley_w1: float, worley_w2: float, combination: int,
+                             gamma: float) -> int:
+    """vc-A13: 0 when the base-shape settings are valid, else 1 + the index of the first invalid field in
+    BASE_SHAPE_FIELDS (the order of the C check)."""
+    if size < _MIN_SIZE or size > _MAX_SIZE_3D or (size & (size - 1)) != 0:
+        return 1
+    if perlin_octaves < 1 or perlin_octaves > _MAX_OCTAVES:
+        return 2
+    if _lattice_ok(perlin_frequency, perlin_octaves) == 0:
+        return 3
+    if _lattice_ok(worley_cells, 4) == 0:
+        return 4
+    if not (wp.isfinite(worley_w0) and wp.isfinite(worley_w1) and wp.isfinite(worley_w2)):
+        return 5
+    if worley_w0 <= 0.0 or worley_w1 < 0.0 or worley_w2 < 0.0:
+        return 5
+    if combination < 0 or combination > 4:
+        return 6
+    if not (wp.isfinite(gamma) and gamma > 0.0):
+        return 7
+    return 0
+
+
+# --- sampler ----------------------------------------------------------------------------------------------------------
+
+@wp.func
+def _axis_lo(x: float) -> int:
+    """Lower texel index (unwrapped) of x = p * size with texel centres at i + 0.5."""
+    fx = wp.floor(x)
+    i = int(fx)
+    if x - fx < 0.5:
+        i = i - 1
+    return i
+
+
+@wp.func
+def _axis_t(x: float) -> float:
+    """Weight of the upper texel: frac(x) - 0.5 or frac(x) + 0.5, from the exact frac(x) only."""
+    fx = wp.floor(x)
+    f = x - fx
+    if f >= 0.5:
+        return f - 0.5
+    return f + 0.5
+
+
+@wp.func
+def sample_trilinear_wrap(tex: wp.array3d(dtype=wp.vec4), size_mask: int, p: wp.vec3) -> wp.vec4:
+    """Trilinear sample of the periodic RGBA volume ``tex[z, y, x]`` (edge size_mask + 1, a power of two) at texture
+    coordinates p (1 = one period, texel centres at (i + 0.5) / size); indices wrap with ``& size_mask``. Like
+    GL_REPEAT + GL_LINEAR; sampling p and p + 1 gives identical results (weights depend on frac(p * size) only)."""
+    fsize = float(size_mask + 1)
+    x = p[0] * fsize
+    y = p[1] * fsize
+    z = p[2] * fsize
+    ix = _axis_lo(x)
+    iy = _axis_lo(y)
+    iz = _axis_lo(z)
+    tx = _axis_t(x)
+    ty = _axis_t(y)
+    tz = _axis_t(z)
+    x0 = ix & size_mask
+    x1 = (ix + 1) & size_mask
+    y0 = iy & size_mask
+    y1 = (iy + 1) & size_mask
+    z0 = iz & size_mask
+    z1 = (iz + 1) & size_mask
+    c000 = tex[z0, y0, x0]
+    c100 = tex[z0, y0, x1]
+    c010 = tex[z0, y1, x0]
+    c110 = tex[z0, y1, x1]
+    c001 = tex[z1, y0, x0]
+    c101 = tex[z1, y0, x1]
+    c011 = tex[z1, y1, x0]
+    c111 = tex[z1, y1, x1]
+    c00 = c000 + (c100 - c000) * tx
+    c10 = c010 + (c110 - c010) * tx
+    c01 = c001 + (c101 - c001) * tx
+    c11 = c011 + (c111 - c011) * tx
+    c0 = c00 + (c10 - c00) * ty
+    c1 = c01 + (c11 - c01) * ty
+    return c0 + (c1 - c0) * tz
+
+
+# --- tile kernels (row0 first; TileLauncher) ------------------------------------------------------------------------
+
+@wp.kernel
+def _base_shape_kernel(row0: int, size: int, seed: wp.uint32, perlin_octaves: int, perlin_frequency: int,
+                       worley_cells: int, worley_w0: float, worley_w1: float, worley_w2: float, gamma: float,
+                       combination: int, perm: wp.array(dtype=wp.int32), out: wp.array3d(dtype=wp.vec4)):
+    i, j = wp.tid()
+    row = row0 + i
+    iz = row // size
+    iy = row - iz * size
+    out[iz, iy, j] = base_shape_texel(j, iy, iz, size, seed, perlin_octaves, perlin_frequency, worley_cells,
+                                      worley_w0, worley_w1, worley_w2, gamma, combination, perm)
+
+
+@wp.kernel
+def _detail_shape_kernel(row0: int, size: int, seed: wp.uint32, worley_cells: int, worley_w0: float,
+                         worley_w1: float, worley_w2: float, gamma: float, out: wp.array3d(dtype=wp.vec3)):
+    i, j = wp.tid()
+    row = row0 + i
+    iz = row // size
+    iy = row - iz * size
+    out[iz, iy, j] = detail_shape_texel(j, iy, iz, size, seed, worley_cells, worley_w0, worley_w1, worley_w2, gamma)
+
+
+@wp.kernel
+def _curl_noise_kernel(row0: int, size: int, frequency: int, fd_step: float, perm: wp.array(dtype=wp.int32),
+                       out: wp.array2d(dtype=wp.vec2)):
+    i, j = wp.tid()
+    iy = row0 + i
+    out[iy, j] = curl_noise_texel(j, iy, size, frequency, fd_step, perm)
+
+
+@wp.kernel
+def _weather_map_kernel(row0: int, size: int, seed: wp.uint32, perlin_frequency: int, perlin_octaves: int,
+                        perlin_contrast: float, worley_cells: int, worley_octaves: int, combination: int,
+                        coverage: float, precipitation: float, cloud_type: float, cloud_type_variation: float,
+                        perm0: wp.array(dtype=wp.int32), perm1: wp.array(dtype=wp.int32),
+                        perm2: wp.array(dtype=wp.int32), out: wp.array2d(dtype=wp.vec4)):
+    i, j = wp.tid()
+    iy = row0 + i
+    out[iy, j] = weather_map_texel(j, iy, size, seed, perlin_frequency, perlin_octaves, perlin_contrast,
+                                   worley_cells, worley_octaves, combination, coverage, precipitation, cloud_type,
+                                   cloud_type_variation, perm0, perm1, perm2)
+
+
+@wp.kernel
+def _sample_kernel(tex: wp.array3d(dtype=wp.vec4), size_mask: int, p: wp.array(dtype=wp.vec3),
+                   out: wp.array(dtype=wp.vec4)):
+    i = wp.tid()
+    out[i] = sample_trilinear_wrap(tex, size_mask, p[i])
+
+
+# --- element-wise evaluation kernels ----------------------------------------------------------------------------------
+
+_F = wp.array(dtype=float)
+_I = wp.array(dtype=wp.int32)
+_U = wp.array(dtype=wp.uint32)
+
+
+@wp.kernel
+def _eval_texgen_gamma(c: _F, gamma: _F, out: _F):
+    i = wp.tid()
+    out[i] = texgen_gamma(c[i], gamma[i])
+
+
+@wp.kernel
+def _eval_base_shape_texel(ix: _I, iy: _I, iz: _I, size: _I, perlin_octaves: _I, perlin_frequency: _I,
+                           worley_cells: _I, worley_w0: _F, worley_w1: _F, worley_w2: _F, gamma: _F,
+                           combination: int, seed: wp.uint32, perm: _I, r: _F, g: _F, b: _F, a: _F):
+    """Every array but ``seed``, the option, then the seed and its permutation table, then the outputs."""
+    i = wp.tid()
+    t = base_shape_texel(ix[i], iy[i], iz[i], size[i], seed, perlin_octaves[i], perlin_frequency[i], worley_cells[i],
+                         worley_w0[i], worley_w1[i], worley_w2[i], gamma[i], combination, perm)
+    r[i] = t[0]
+    g[i] = t[1]
+    b[i] = t[2]
+    a[i] = t[3]
+
+
+@wp.kernel
+def _eval_detail_shape_texel(ix: _I, iy: _I, iz: _I, size: _I, seed: _U, worley_cells: _I, worley_w0: _F,
+                             worley_w1: _F, worley_w2: _F, gamma: _F, r: _F, g: _F, b: _F):
+    i = wp.tid()
+    t = detail_shape_texel(ix[i], iy[i], iz[i], size[i], seed[i], worley_cells[i], worley_w0[i], worley_w1[i],
+                           worley_w2[i], gamma[i])
+    r[i] = t[0]
+    g[i] = t[1]
+    b[i] = t[2]
+
+
+@wp.kernel
+def _eval_base_shape_settings_code(size: _I, perlin_octaves: _I, perlin_frequency: _I, worley_cells: _I,
+                                   worley_w0: _F, worley_w1: _F, worley_w2: _F, combination: _I, gamma: _F,
+                                   out: _I):
+    i = wp.tid()
+    out[i] = base_shape_settings_code(size[i], perlin_octaves[i], perlin_frequency[i], worley_cells[i],
+                                      worley_w0[i], worley_w1[i], worley_w2[i], combination[i], gamma[i])
+
+
+# --- NumPy-level helpers ----------------------------------------------------------------------------------------------
+
+def is_pow2(n) -> np.ndarray:
+    n = np.asarray(n, dtype=np.int64)
+    return (n > 0) & ((n & (n - 1)) == 0)
+
+
+def base_shape_settings_codes(size, perlin_octaves, perlin_frequency, worley_cells, worley_w0, worley_w1, worley_w2,
+                              combination, gamma, device=None) -> np.ndarray:
+    """Evaluate :func:`base_shape_settings_code` on NumPy arrays (no validation: any values; int32/float32)."""
+    from ..runtime import resolve_device
+
+    dev = resolve_device(device)
+    ints = [np.asarray(v, dtype=np.int32) for v in (size, perlin_octaves, perlin_frequency, worley_cells)]
+    flts = [np.asarray(v, dtype=np.float32) for v in (worley_w0, worley_w1, worley_w2)]
+    comb, gam = np.asarray(combination, dtype=np.int32), np.asarray(gamma, dtype=np.float32)
+    shape = np.broadcast_shapes(*(a.shape for a in (*ints, *flts, comb, gam)))
+    flat = [np.ascontiguousarray(np.broadcast_to(a, shape).ravel()) for a in (*ints, *flts, comb, gam)]
+    n = int(math.prod(shape))
+    out = wp.zeros(max(n, 1), dtype=wp.int32, device=dev)
+    if n:
+        wp.launch(_eval_base_shape_settings_code, dim=n, inputs=[wp.array(a, device=dev) for a in flat],
+                  outputs=[out], device=dev)
+    return out.numpy()[:n].reshape(shape)
+
+
+def sample_trilinear_wrap_np(tex, p, impl: str = "warp", device=None) -> np.ndarray:
+    """Sample an RGBA volume ``tex`` of shape (n, n, n, 4) (n a power of two, indexed [z, y, x, c]) at texture
+    coordinates ``p`` of shape (..., 3) with :func:`sample_trilinear_wrap` (``impl="warp"``) or
+    ``ccl_texgen_sample_trilinear_wrap`` (``impl="c"``). Returns float32 (..., 4)."""
+    tex = np.ascontiguousarray(tex, dtype=np.float32)
+    if tex.ndim != 4 or tex.shape[3] != 4 or not (tex.shape[0] == tex.shape[1] == tex.shape[2]):
+        raise ValueError(f"tex must have shape (n, n, n, 4), got {tex.shape}")
+    n = tex.shape[0]
+    if not is_pow2(n):
+        raise ValueError(f"tex size must be a power of two, got {n}")
+    p = np.asarray(p, dtype=np.float32)
+    if p.shape[-1:] != (3,):
+        raise ValueError(f"p must have shape (..., 3), got {p.shape}")
+    if not np.all(np.isfinite(p)) or np.any(np.abs(p.astype(np.float64)) * n >= 2.0 ** 23):
+        raise ValueError("p must be finite with |p| * size < 2^23")
+    flat = np.ascontiguousarray(p.reshape(-1, 3))
+    if impl == "c":
+        from .._cclouds import ffi, lib
+
+        f, lb = ffi(), lib()
+        buf = f.from_buffer("float[]", tex)
+        outs = f.new("float[4]")
+        res = np.empty((flat.shape[0], 4), dtype=np.float32)
+        for k, (x, y, z) in enumerate(flat.tolist()):
+            lb.ccl_texgen_sample_trilinear_wrap(buf, n - 1, x, y, z, outs, outs + 1, outs + 2, outs + 3)
+            res[k] = (outs[0], outs[1], outs[2], outs[3])
+    elif impl == "warp":
+        from ..runtime import resolve_device
+
+        dev = resolve_device(device)
+        t = wp.array(tex, dtype=wp.vec4, device=dev)
+        out = wp.empty(max(flat.shape[0], 1), dtype=wp.vec4, device=dev)
+        if flat.shape[0]:
+            wp.launch(_sample_kernel, dim=flat.shape[0], inputs=[t, n - 1, wp.array(flat, dtype=wp.vec3, device=dev)],
+                      outputs=[out], device=dev)
+        res = out.numpy()[:flat.shape[0]]
+    else:
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    return res.reshape(p.shape[:-1] + (4,))
+
+
+# --- registry: argument domains and checks ----------------------------------------------------------------------------
+
+_COORD = 2 ** 22  # (float)i + 0.5 is exact for |i| < 2^22
+
+
+def _icoord(name):
+    return Arg(name, f"integer texel coordinate {name[-1]} (any: the texture is periodic)", lo=-_COORD, hi=_COORD,
+               dtype="int32")
+
+
+def _check_size_3d(size, **_):
+    bad = ~is_pow2(size)
+    if np.any(bad):
+        raise ValueError(f"size must be a power of two in [{MIN_SIZE}, {MAX_SIZE_3D}], "
+                         f"got {int(np.asarray(size)[bad].flat[0])}")
+
+
+def _check_lattice(name, base, octaves):
+    top = np.asarray(base, dtype=np.int64) * (2 ** (np.asarray(octaves, dtype=np.int64) - 1))
+    if np.any(top > MAX_LATTICE):
+        raise ValueError(f"{name} * 2^(octaves - 1) must be <= {MAX_LATTICE}, got {int(np.max(top))}")
+
+
+def _check_base_texel(size, perlin_octaves, perlin_frequency, **_):
+    _check_size_3d(size)
+    _check_lattice("perlin_frequency", perlin_frequency, perlin_octaves)
+
+
+_SIZE3 = Arg("size", f"texture edge, a power of two in [{MIN_SIZE}, {MAX_SIZE_3D}]", lo=MIN_SIZE, hi=MAX_SIZE_3D,
+             dtype="int32")
+_SEED = Arg("seed", "uint32 seed (Perlin: permutation of the seed, 0 = Perlin's reference; Worley layer j: seed + j)",
+            lo=0, hi=4294967295, dtype="uint32")
+_CELLS = Arg("worley_cells", "cells per texture of the lowest inverse-Worley layer (layers cells * 1, 2, 4, 8)", lo=1,
+             hi=MAX_LATTICE // 8, dtype="int32")
+_W0 = Arg("worley_w0", "fBm weight of the lowest layer in each channel's window (> 0)", lo=0.0, lo_open=True)
+_W1 = Arg("worley_w1", "fBm weight of the second layer (>= 0)", lo=0.0)
+_W2 = Arg("worley_w2", "fBm weight of the third layer (>= 0)", lo=0.0)
+_GAMMA = Arg("gamma", "gamma of vc-4.6 (> 0; 1 = identity)", lo=0.0, lo_open=True)
+
+
+def _base_texel_make_warp(eq: Equation, device):
+    """Validate like Equation.bind, then launch once per distinct seed with its permutation table."""
+    from ..runtime import resolve_device
+
+    dev = resolve_device(device)
+    seed_pos = [a.name for a in eq.args].index("seed")
+
+    def call(*args, **kwargs):
+        shape, arrays, opts = eq.bind(*args, **kwargs)
+        n = int(math.prod(shape))
+        flat = [np.ascontiguousarray(np.broadcast_to(a, shape).ravel()) for a in arrays]
+        seeds = flat.pop(seed_pos)
+        outs = [np.empty(n, dtype=np.float32) for _ in eq.outputs]
+        for s in (np.unique(seeds) if n else ()):
+            sel = seeds == s
+            m = int(np.count_nonzero(sel))
+            ins = [wp.array(a if m == n else a[sel], device=dev) for a in flat]
+            res = [wp.empty(m, dtype=wp.float32, device=dev) for _ in eq.outputs]
+            wp.launch(eq.kernel, dim=m, inputs=[*ins, *opts, int(s), perm_array(int(s), dev)], outputs=res,
+                      device=dev)
+            for o, r in zip(outs, res):
+                o[sel] = r.numpy()
+        out = tuple(o.reshape(shape)[()] if shape == () else o.reshape(shape) for o in outs)
+        return out[0] if len(out) == 1 else out
+
+    call.__signature__ = eq.signature()
+    return call
+
+
+# --- registry: whole-texture evaluators (settings object or keyword fields) -------------------------------------------
+
+def _settings_from_call(cls, settings, fields, what):
+    if settings is not None:
+        if fields:
+            raise TypeError(f"{what}(): pass either a {cls.__name__} or keyword fields, not both")
+        if not isinstance(settings, cls):
+            raise TypeError(f"{what}(): settings must be a {cls.__name__}, got {type(settings).__name__}")
+        return settings
+    return cls(**fields)
+
+
+def _texture_evaluator(kind: str, settings_cls_name: str, name: str):
+    def make(impl):
+        def factory(eq: Equation, device=None):
+            def call(settings=None, **fields):
+                from .. import textures
+
+                cls = getattr(textures, settings_cls_name)
+                s = _settings_from_call(cls, settings, fields, name)
+                return textures.generate(kind, s, impl=impl, device=device)
+
+            return call
+
+        return factory if impl == "warp" else (lambda eq: factory(eq, None))
+
+    return make("warp"), make("c")
+
+
+_curl_warp, _curl_c = _texture_evaluator("curl_noise", "CurlNoiseSettings", "curl_noise_texture")
+_weather_warp, _weather_c = _texture_evaluator("weather_map", "WeatherMapSettings", "weather_map_texture")
+
+
+def _settings_make(impl):
+    def factory(eq: Equation, device=None):
+        def call(kind: str = "base_shape", **fields):
+            from .. import textures
+
+            return textures.texture_settings(kind, impl=impl, **fields)
+
+        return call
+
+    return factory if impl == "warp" else (lambda eq: factory(eq, None))
+
+
+# --- registry ---------------------------------------------------------------------------------------------------------
+
+_REF_SV = "A. Schneider & N. Vos, The real-time volumetric cloudscapes of Horizon: Zero Dawn, SIGGRAPH 2015 course"
+_REF_GPU7 = "A. Schneider, Real-Time Volumetric Cloudscapes, GPU Pro 7, 2016"
+_REF_HILLAIRE = "S. Hillaire, TileableVolumeNoise, https://github.com/sebh/TileableVolumeNoise, 2016"
+_REF_BRIDSON = "R. Bridson, J. Hourihan & M. Nordenstam, Curl-Noise for Procedural Fluid Flow, SIGGRAPH 2007"
+
+register(Equation(
+    "vc-4.6", "texgen_gamma", "ccl_texgen_gamma", texgen_gamma, _eval_texgen_gamma,
+    args=(Arg("c", "generated noise value C", lo=0.0, hi=1.0), _GAMMA), outputs=("C",),
+    summary="Gamma correction of generated noise, C = C^(1/gamma), applied to every channel of the base and detail "
+            "textures (a shaping step, not display gamma); gamma > 1 brightens, 1 is the identity (the default of "
+            "the settings: the thesis gives none).",
+    references=()))
+
+register(Equation(
+    "vc-A9", "base_shape_texel", "ccl_texgen_base_shape_texel", base_shape_texel, _eval_base_shape_texel,
+    args=(_icoord("ix"), _icoord("iy"), _icoord("iz"), _SIZE3, _SEED,
+          Arg("perlin_octaves", "Perlin fBm octaves", lo=1, hi=MAX_OCTAVES, dtype="int32"),
+          Arg("perlin_frequency", "Perlin lattice cells per texture (octave 0); period = frequency", lo=1,
+              hi=MAX_LATTICE, dtype="int32"),
+          _CELLS, _W0, _W1, _W2, _GAMMA),
+    options=(COMBINATION,), outputs=("R", "G", "B", "A"), check=_check_base_texel, make_warp=_base_texel_make_warp,
+    summary="One texel (ix, iy, iz) of the base-shape texture (128^3 RGBA in the thesis), texture coordinate "
+            "(i + 0.5)/size. G, B, A: four inverse-Worley layers (cells worley_cells * 2^j, seed + j) mapped to three "
+            "channels by a sliding fBm window (G = W0..W2, B = W1..W3, A = W2..W3 renormalised; the thesis leaves "
+            "the mapping open). R: noise_perlin_worley(P, G, combination) with P = clamp(0.5 fBm_Perlin + 0.5) "
+            "(vc-A8; default 'thesis' = remap(P, 0, 1, W, 1)^2). All channels clamped to [0, 1], then gamma "
+            "(vc-4.6). Exactly periodic: texel(i + size) == texel(i). Whole texture: pywarp.textures "
+            "(BasicTextureGenerator.base_shape, ccl_texgen_base_shape).",
+    references=(_REF_SV, _REF_GPU7, _REF_HILLAIRE)))
+
+register(Equation(
+    "vc-A10", "detail_shape_texel", "ccl_texgen_detail_shape_texel", detail_shape_texel, _eval_detail_shape_texel,
+    args=(_icoord("ix"), _icoord("iy"), _icoord("iz"), _SIZE3, _SEED, _CELLS, _W0, _W1, _W2, _GAMMA),
+    outputs=("R", "G", "B"), check=lambda size, **_: _check_size_3d(size),
+    summary="One texel of the detail (erosion) texture (32^3 RGB in the thesis): R, G, B = inverse-Worley fBm of "
+            "increasing frequency by the same sliding window as vc-A9 (R = W0..W2, G = W1..W3, B = W2..W3), "
+            "clamped, gamma-corrected (vc-4.6). With weights 1, 1/2, 1/4 a channel equals noise_fbm_worley3 "
+            "(vc-A6) of three octaves. Whole texture: BasicTextureGenerator.detail_shape / ccl_texgen_detail_shape.",
+    references=(_REF_SV, _REF_HILLAIRE)))
+
+register(Equation(
+    "vc-A11", "curl_noise_texture", "ccl_texgen_curl_noise", curl_noise_texel, _curl_noise_kernel,
+    make_warp=_curl_warp, make_c=_curl_c, outputs=("curl",),
+    summary="The 2-D curl-noise texture, generated (the thesis loads a shipped file): texel (ix, iy) = "
+            "noise_curl2 = (dpsi/dy, -dpsi/dx) of Perlin noise psi at (u, v) * frequency with period = frequency "
+            "(vc-A7 reading (i), divergence-free, exactly tileable), 2 channels in noise-lattice units. Call with a "
+            "CurlNoiseSettings or its fields as keywords; returns float32 (size, size, 2) indexed [iy, ix].",
+    references=(_REF_BRIDSON,)))
+
+register(Equation(
+    "vc-A12", "weather_map_texture", "ccl_texgen_weather_map", weather_map_texel, _weather_map_kernel,
+    make_warp=_weather_warp, make_c=_weather_c, outputs=("weather",),
+    summary="Procedural weather map (the thesis loads a shipped file): R = coverage = clamp(remap(n, 1 - c, 1, 0, "
+            "1)) of a tileable Perlin-Worley noise n and the global coverage c; G = precipitation (the spec's "
+            "reading of the 'blue twice' erratum) from an independent Perlin fBm; B = cloud type = cloud_type + "
+            "cloud_type_variation (2 P - 1) clamped; A = 0 (free). Call with a WeatherMapSettings or its fields; "
+            "returns float32 (size, size, 4). Images: pywarp.textures.WeatherMap.from_image.",
+    references=(_REF_SV, _REF_GPU7)))
+
+register(Equation(
+    "vc-A13", "texture_settings", "ccl_base_shape_settings_check", base_shape_settings_code,
+    _eval_base_shape_settings_code, make_warp=_settings_make("warp"), make_c=_settings_make("c"),
+    outputs=("settings",),
+    summary="The generator settings BaseShapeSettings, DetailShapeSettings (+ CurlNoiseSettings, "
+            "WeatherMapSettings) with documented defaults (the thesis gives none). texture_settings(kind, **fields) "
+            "returns the validated dataclass (kind 'base_shape', 'detail_shape', 'curl_noise', 'weather_map'); "
+            "impl='c' validates with ccl_<kind>_settings_check instead. Bad fields raise ValueError naming the "
+            "field. Warp twin: base_shape_settings_code (the C check's field order).",
+    references=()))

@@ -1,0 +1,863 @@
+"""The noise-texture generator of the cloudscape (vc §2.3.3, §4.3.1): settings, generators, cache, weather maps.
+
+Four textures feed the cloud density (spec vc-A9 .. vc-A12):
+
+=================  =====================================  ==============================================================
+texture            array (float32, values)                content
+=================  =====================================  ==============================================================
+base shape         (n, n, n, 4) [z, y, x, c], [0, 1]      R Perlin-Worley (vc-A8), G/B/A inverse-Worley fBm (freq. up)
+detail shape       (n, n, n, 3) [z, y, x, c], [0, 1]      R/G/B inverse-Worley fBm of rising frequency
+curl noise         (n, n, 2) [y, x, c], signed            2-D curl of Perlin noise (divergence-free), lattice units
+weather map        (n, n, 4) [y, x, c], [0, 1]            R coverage, G precipitation, B cloud type, A free (0)
+=================  =====================================  ==============================================================
+
+Class design (vc-A32): :class:`TextureGenerator` is the interface (``base_shape``, ``detail_shape``, ``curl_noise``,
+``weather_map``); :class:`BasicTextureGenerator` implements it with the Warp kernels (tile-parallel) or the C library,
+and a cache; write your own subclass to feed the renderer other textures (:class:`CloudTextures` checks them).
+Settings (vc-A13) are frozen dataclasses whose every default is documented where it is defined, with the reason (the
+thesis gives none); invalid fields raise ``ValueError`` (``TypeError`` for a wrong type) naming the field.
+
+The readings chosen for what the thesis leaves open are in ``cclouds/texgen.h`` and :mod:`pywarp.kernels.texgen`.
+
+Caching: every generated texture is kept in memory (per settings, implementation and device) and on disk in the user
+cache directory -- ``$PYWARP_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/pywarp``, else ``~/.cache/pywarp`` -- under
+``textures/``, keyed by a hash of the settings, the implementation, the package version and the texture format
+version. Files are written to a temporary file and moved into place with ``os.replace`` (an interrupted run never
+leaves a partial entry); each file carries the SHA-256 of its payload, and an entry that fails the check (truncated,
+overwritten, wrong shape) is regenerated with a :class:`TextureCacheWarning`.
+
+Example::
+
+    from pywarp.textures import BasicTextureGenerator, BaseShapeSettings
+    gen = BasicTextureGenerator()                      # Warp on the CPU, all cores, cached
+    base = gen.base_shape(BaseShapeSettings(seed=3))   # (128, 128, 128, 4) float32, read-only
+    tex = gen.textures().to_warp()                     # the four textures as Warp arrays for the renderer
+"""
+from __future__ import annotations
+
+import abc
+import hashlib
+import io
+import json
+import math
+import os
+import tempfile
+import threading
+import warnings
+from collections import OrderedDict
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from .kernels.noise import COMBINATIONS  # Perlin-Worley combination names (vc-A8)
+from .kernels.texgen import MAX_LATTICE, MAX_OCTAVES, MAX_SIZE_2D, MAX_SIZE_3D, MIN_SIZE  # cclouds/texgen.h limits
+
+#: Version of the generated data's definition; bump it whenever a texture's content changes for the same settings.
+FORMAT_VERSION = 1
+_MAGIC = b"PWTEX01\n"  # 8 bytes, then the 32-byte SHA-256 of the payload, then the payload (.npy)
+
+
+
+class TextureCacheWarning(UserWarning):
+    """A cache entry was unreadable or corrupt (it is regenerated) or the cache directory is not writable."""
+
+
+# --- settings (vc-A13) -----------------------------------------------------------------------------------------------
+
+def _int(obj, name: str, lo: int, hi: int, pow2: bool = False) -> int:
+    v = getattr(obj, name)
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {v!r}")
+    v = int(v)
+    if pow2 and not (lo <= v <= hi and v & (v - 1) == 0):
+        raise ValueError(f"{name} must be a power of two in [{lo}, {hi}], got {v}")
+    if not lo <= v <= hi:
+        raise ValueError(f"{name} must be in [{lo}, {hi}], got {v}")
+    object.__setattr__(obj, name, v)
+    return v
+
+
+def _float(obj, name: str, lo: float, hi: float | None = None, lo_open: bool = False) -> float:
+    v = getattr(obj, name)
+    if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a number, got {v!r}")
+    v = float(v)
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be finite, got {v}")
+    if (v <= lo if lo_open else v < lo) or (hi is not None and v > hi):
+        dom = f"{'(' if lo_open else '['}{lo:g}, " + ("inf)" if hi is None else f"{hi:g}]")
+        raise ValueError(f"{name} must be in {dom}, got {v}")
+    object.__setattr__(obj, name, v)
+    return v
+
+
+def _lattice(obj, name: str, octaves: int, what: str = "octaves") -> int:
+    """Lattice frequency of the lowest octave/layer: the highest one, v * 2^(octaves - 1), must stay <= 4096."""
+    v = _int(obj, name, 1, MAX_LATTICE)
+    if v * 2 ** (octaves - 1) > MAX_LATTICE:
+        raise ValueError(f"{name} * 2^({what} - 1) must be <= {MAX_LATTICE}, got {v} * 2^{octaves - 1} = "
+                         f"{v * 2 ** (octaves - 1)}")
+    return v
+
+
+def _seed(obj) -> None:
+    _int(obj, "seed", 0, 0xFFFFFFFF)
+
+
+def _weights(obj) -> None:
+    w = obj.worley_weights
+    try:
+        w = tuple(w)
+    except TypeError:
+        raise TypeError(f"worley_weights must be a sequence of 3 numbers, got {w!r}") from None
+    if len(w) != 3:
+        raise ValueError(f"worley_weights must hold 3 weights (lowest-frequency first), got {len(w)}")
+    for v in w:
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+            raise TypeError(f"worley_weights must hold numbers, got {v!r}")
+    w = tuple(float(v) for v in w)
+    if not all(math.isfinite(v) and v >= 0.0 for v in w) or not w[0] > 0.0:
+        raise ValueError(f"worley_weights must be finite and >= 0 with worley_weights[0] > 0 (every channel's window "
+                         f"needs a positive weight sum), got {w}")
+    object.__setattr__(obj, "worley_weights", w)
+
+
+def _combination(obj) -> None:
+    if obj.combination not in COMBINATIONS or not isinstance(obj.combination, str):
+        raise ValueError(f"combination must be one of {', '.join(map(repr, COMBINATIONS))}, got {obj.combination!r}")
+
+
+@dataclass(frozen=True)
+class BaseShapeSettings:
+    """Settings of the base-shape texture (vc-A9, vc-A13 ``BaseShapeSettings``). The thesis names the parameters
+    (Perlin octaves and frequency, Worley grid size, the weights of the Worley fBm, the Perlin-Worley combination,
+    gamma) but gives no values; each default below says where it comes from."""
+
+    #: Texture edge in texels, a power of two in [4, 512]. Default 128: the 128^3 of vc-A9.
+    size: int = 128
+    #: Seed (uint32). Default 0: the Perlin part then uses Ken Perlin's reference permutation.
+    seed: int = 0
+    #: Octaves of the Perlin fBm, in [1, 8]. Default 3: Hillaire's TileableVolumeNoise (the Electronic Arts code the
+    #: thesis says it adopted) uses 3.
+    perlin_octaves: int = 3
+    #: Perlin lattice cells per texture (octave 0; also the period). Default 8: Hillaire's value; the top octave
+    #: (8 * 4 = 32 cells) keeps 4 texels per cell at 128^3.
+    perlin_frequency: int = 8
+    #: "Worley grid size": cells per texture of the lowest of the four inverse-Worley layers (cells * 1, 2, 4, 8).
+    #: Default 4: Hillaire's cell count; the finest layer (32 cells) keeps 4 texels per cell at 128^3.
+    worley_cells: int = 4
+    #: Weights of the Worley fBm window (lowest frequency first). Default (0.625, 0.25, 0.125): the only fBm weights
+    #: the thesis prints (eq 2.28) and Hillaire's generator weights.
+    worley_weights: tuple = (0.625, 0.25, 0.125)
+    #: Perlin-Worley combination for R (vc-A8): 'thesis', 'gpu_pro_7', 'hillaire', 'product', 'average'.
+    #: Default 'thesis': remap(P, 0, 1, W, 1)^2, the combination the thesis chose (§4.3.1).
+    combination: str = "thesis"
+    #: Gamma of vc-4.6 (C^(1/gamma)), > 0. Default 1: the identity -- the thesis gives no value.
+    gamma: float = 1.0
+
+    def __post_init__(self):  # the order of ccl_base_shape_settings_check
+        _int(self, "size", MIN_SIZE, MAX_SIZE_3D, pow2=True)
+        _seed(self)
+        octaves = _int(self, "perlin_octaves", 1, MAX_OCTAVES)
+        _lattice(self, "perlin_frequency", octaves)
+        _lattice(self, "worley_cells", 4, "layers")
+        _weights(self)
+        _combination(self)
+        _float(self, "gamma", 0.0, lo_open=True)
+
+    @property
+    def shape(self) -> tuple:
+        return (self.size, self.size, self.size, 4)
+
+
+@dataclass(frozen=True)
+class DetailShapeSettings:
+    """Settings of the detail (erosion) texture (vc-A10, vc-A13 ``DetailShapeSettings``: fBm weights, base frequency,
+    gamma; values not given in the thesis)."""
+
+    #: Texture edge, a power of two in [4, 512]. Default 32: the 32^3 of vc-A10.
+    size: int = 32
+    #: Seed (uint32) of the Worley feature points (layer j uses seed + j). Default 0.
+    seed: int = 0
+    #: Base frequency: cells per texture of the lowest layer (layers cells * 1, 2, 4, 8). Default 2: Hillaire's
+    #: detail texture (layers 2, 4, 8, 16; the finest keeps 2 texels per cell at 32^3).
+    worley_cells: int = 2
+    #: Weights of the fBm layers (lowest first). Default (0.625, 0.25, 0.125): eq 2.30's weights, Hillaire's too.
+    worley_weights: tuple = (0.625, 0.25, 0.125)
+    #: Gamma of vc-4.6, > 0. Default 1: the identity.
+    gamma: float = 1.0
+
+    def __post_init__(self):
+        _int(self, "size", MIN_SIZE, MAX_SIZE_3D, pow2=True)
+        _seed(self)
+        _lattice(self, "worley_cells", 4, "layers")
+        _weights(self)
+        _float(self, "gamma", 0.0, lo_open=True)
+
+    @property
+    def shape(self) -> tuple:
+        return (self.size, self.size, self.size, 3)
+
+
+@dataclass(frozen=True)
+class CurlNoiseSettings:
+    """Settings of the generated 2-D curl-noise texture (vc-A11; the thesis ships a file and states only that it holds
+    curl noise of Perlin noise)."""
+
+    #: Texture edge, a power of two in [4, 8192]. Default 128: not given; 128^2 x 2 floats samples the default 4 cells
+    #: with 32 texels per cell, far finer than the swirls.
+    size: int = 128
+    #: Seed (uint32) of the Perlin permutation. Default 0 (Perlin's reference).
+    seed: int = 0
+    #: Perlin lattice cells per texture (= the period). Default 4: a few swirls per tile, like the usual curl textures.
+    frequency: int = 4
+    #: Central-difference step in lattice units, in (0, 0.25]. Default 1/256: the noise module's default
+    #: (CCL_NOISE_FD_STEP_INV), a power of two so that p +- h is exact.
+    fd_step: float = 1.0 / 256.0
+
+    def __post_init__(self):
+        _int(self, "size", MIN_SIZE, MAX_SIZE_2D, pow2=True)
+        _seed(self)
+        _int(self, "frequency", 1, MAX_LATTICE)
+        _float(self, "fd_step", 0.0, 0.25, lo_open=True)
+
+    @property
+    def shape(self) -> tuple:
+        return (self.size, self.size, 2)
+
+
+@dataclass(frozen=True)
+class WeatherMapSettings:
+    """Settings of the procedural weather map (vc-A12; the thesis ships a file). R = coverage, G = precipitation,
+    B = cloud type, A = 0 (free). See ``cclouds/texgen.h`` for the formulas."""
+
+    #: Map edge, a power of two in [4, 8192]. Default 512: not given; 4 MiB of float32 RGBA, finer than any cloud.
+    size: int = 512
+    #: Seed (uint32): Perlin tables of seed (coverage), seed + 1 (precipitation), seed + 2 (type); Worley seed.
+    #: Default 0: Perlin's reference permutation for the coverage noise.
+    seed: int = 0
+    #: Perlin lattice cells per map. Default 4: a few cloud systems per tile.
+    perlin_frequency: int = 4
+    #: Perlin fBm octaves, in [1, 8]. Default 4: ragged cloud-field edges down to 1/32 of the map.
+    perlin_octaves: int = 4
+    #: Gain of the Perlin fBm before clamping to [0, 1] (P = clamp(0.5 + contrast * fbm)). Default 2: the fBm has a
+    #: standard deviation of ~0.15 and |fbm| < 0.45, so 2 spreads it over ~[0.1, 0.9]; then the covered fraction
+    #: (R > 0) of the default map is 0.24 / 0.61 / 0.91 at coverage 0.25 / 0.5 / 0.75 ("coverage ~ fraction of sky").
+    perlin_contrast: float = 2.0
+    #: Worley fBm octaves, in [1, 8]. Default 3: cells down to 1/16 of the map give clustered cumulus cells.
+    worley_octaves: int = 3
+    #: Worley cells per map (octave 0). Default 4: the same scale as the Perlin blobs.
+    worley_cells: int = 4
+    #: Perlin-Worley combination of the coverage noise (vc-A8 names). Default 'thesis', the thesis' cloud noise.
+    combination: str = "thesis"
+    #: Global coverage in [0, 1]: 0 clear sky, 1 the raw noise everywhere. Default 0.5 (about 60 % of the sky).
+    coverage: float = 0.5
+    #: Global precipitation in [0, 1] (the same remap on an independent noise). Default 0.2: mostly dry clouds, the
+    #: fair-weather cumulus of the thesis' scenes.
+    precipitation: float = 0.2
+    #: Mean cloud type in [0, 1] (0 stratus, 0.5 stratocumulus, 1 cumulus). Default 0.75: the low clouds the layer
+    #: models (§2.3.1), between stratocumulus and cumulus.
+    cloud_type: float = 0.75
+    #: Spread of the cloud type around its mean, in [0, 1]. Default 0.25: types from 0.5 to 1.
+    cloud_type_variation: float = 0.25
+
+    def __post_init__(self):  # the order of ccl_weather_map_settings_check
+        _int(self, "size", MIN_SIZE, MAX_SIZE_2D, pow2=True)
+        _seed(self)
+        octaves = _int(self, "perlin_octaves", 1, MAX_OCTAVES)
+        _lattice(self, "perlin_frequency", octaves)
+        _float(self, "perlin_contrast", 0.0, lo_open=True)
+        w_oct = _int(self, "worley_octaves", 1, MAX_OCTAVES)
+        _lattice(self, "worley_cells", w_oct)
+        _combination(self)
+        for name in ("coverage", "precipitation", "cloud_type", "cloud_type_variation"):
+            _float(self, name, 0.0, 1.0)
+
+    @property
+    def shape(self) -> tuple:
+        return (self.size, self.size, 4)
+
+
+SETTINGS = {"base_shape": BaseShapeSettings, "detail_shape": DetailShapeSettings, "curl_noise": CurlNoiseSettings,
+            "weather_map": WeatherMapSettings}
+
+
+def _check_kind(kind) -> type:
+    if kind not in SETTINGS:
+        raise ValueError(f"kind must be one of {', '.join(map(repr, SETTINGS))}, got {kind!r}")
+    return SETTINGS[kind]
+
+
+def _check_impl(impl) -> str:
+    if impl not in ("warp", "c"):
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    return impl
+
+
+# --- C structs ------------------------------------------------------------------------------------------------------
+
+_C_TYPES = {"base_shape": "ccl_base_shape_settings", "detail_shape": "ccl_detail_shape_settings",
+            "curl_noise": "ccl_curl_noise_settings", "weather_map": "ccl_weather_map_settings"}
+
+
+def _c_struct(kind: str, values: dict):
+    """A cffi ``ccl_<kind>_settings *`` holding ``values`` (dataclass field -> value), without Python validation:
+    a value that does not fit its C type raises ValueError/TypeError naming the field."""
+    from ._cclouds import ffi
+
+    f = ffi()
+    st = f.new(f"{_C_TYPES[kind]} *")
+    for name, v in values.items():
+        try:
+            if name == "worley_weights":
+                w = list(v)
+                if len(w) != 3:
+                    raise ValueError(f"worley_weights must hold 3 weights, got {len(w)}")
+                for i in range(3):
+                    st.worley_weights[i] = w[i]
+            elif name == "combination":
+                if v not in COMBINATIONS:
+                    raise ValueError(f"combination must be one of {', '.join(map(repr, COMBINATIONS))}, got {v!r}")
+                st.combination = COMBINATIONS[v]
+            else:
+                setattr(st, name, v)
+        except OverflowError:
+            raise ValueError(f"{name} is out of range of its C type, got {v!r}") from None
+        except TypeError as exc:
+            raise TypeError(f"{name}: {exc}") from None
+    return st
+
+
+def texture_settings(kind: str = "base_shape", impl: str = "warp", **fields_):
+    """The validated settings dataclass of ``kind`` (vc-A13) with ``fields_`` overriding the defaults.
+
+    ``impl="warp"``: validated in Python (what the Warp generator uses); ``impl="c"``: validated by
+    ``ccl_<kind>_settings_check`` first (the C generator's validation), which names the first invalid field."""
+    cls = _check_kind(kind)
+    _check_impl(impl)
+    if impl == "c":
+        from ._cclouds import ffi, lib
+
+        known = {fl.name for fl in fields(cls)}
+        unknown = set(fields_) - known
+        if unknown:
+            raise TypeError(f"{cls.__name__} has no field {sorted(unknown)[0]!r}")
+        values = {**asdict(cls()), **fields_}
+        st = _c_struct(kind, values)
+        out = ffi().new("const char **")
+        status = getattr(lib(), f"ccl_{kind}_settings_check")(st, out)
+        if status != 0:
+            name = ffi().string(out[0]).decode()
+            raise ValueError(f"{name} is invalid (ccl_{kind}_settings_check), got {values.get(name)!r}")
+    return cls(**fields_)
+
+
+# --- generation -----------------------------------------------------------------------------------------------------
+
+def generate(kind: str, settings=None, impl: str = "warp", device: str | None = None, launcher=None) -> np.ndarray:
+    """Generate one texture without caching: a new float32 array of ``settings.shape``.
+
+    ``impl="warp"``: the Warp kernels of :mod:`pywarp.kernels.texgen` launched through ``launcher`` (a
+    :class:`pywarp.runtime.TileLauncher`; default the process-wide one of ``device``: row bands on every core).
+    ``impl="c"``: ``ccl_texgen_<kind>`` of the C library, one thread."""
+    cls = _check_kind(kind)
+    _check_impl(impl)
+    settings = cls() if settings is None else settings
+    if not isinstance(settings, cls):
+        raise TypeError(f"settings must be a {cls.__name__} for kind {kind!r}, got {type(settings).__name__}")
+    return _generate_c(kind, settings) if impl == "c" else _generate_warp(kind, settings, device, launcher)
+
+
+def _generate_c(kind: str, s) -> np.ndarray:
+    from ._cclouds import ffi, lib, status_error
+
+    st = _c_struct(kind, asdict(s))
+    out = np.empty(s.shape, dtype=np.float32)
+    status = getattr(lib(), f"ccl_texgen_{kind}")(st, ffi().from_buffer("float[]", out), out.size)
+    status_error(status, f"ccl_texgen_{kind}")
+    return out
+
+
+def _generate_warp(kind: str, s, device, launcher) -> np.ndarray:
+    import warp as wp
+
+    from .kernels import texgen as k
+    from .kernels.noise import perm_array
+    from .runtime import launcher as shared_launcher
+
+    lau = launcher if launcher is not None else shared_launcher(device)
+    dev = lau.device
+    n = s.size
+    if kind == "base_shape":
+        w0, w1, w2 = s.worley_weights
+        out = wp.empty((n, n, n), dtype=wp.vec4, device=dev)
+        lau.launch(k._base_shape_kernel, n * n, n,
+                   [n, s.seed, s.perlin_octaves, s.perlin_frequency, s.worley_cells, w0, w1, w2, s.gamma,
+                    COMBINATIONS[s.combination], perm_array(s.seed, dev)], [out])
+    elif kind == "detail_shape":
+        w0, w1, w2 = s.worley_weights
+        out = wp.empty((n, n, n), dtype=wp.vec3, device=dev)
+        lau.launch(k._detail_shape_kernel, n * n, n, [n, s.seed, s.worley_cells, w0, w1, w2, s.gamma], [out])
+    elif kind == "curl_noise":
+        out = wp.empty((n, n), dtype=wp.vec2, device=dev)
+        lau.launch(k._curl_noise_kernel, n, n, [n, s.frequency, s.fd_step, perm_array(s.seed, dev)], [out])
+    else:
+        out = wp.empty((n, n), dtype=wp.vec4, device=dev)
+        seeds = [(s.seed + i) & 0xFFFFFFFF for i in range(3)]
+        lau.launch(k._weather_map_kernel, n, n,
+                   [n, s.seed, s.perlin_frequency, s.perlin_octaves, s.perlin_contrast, s.worley_cells,
+                    s.worley_octaves, COMBINATIONS[s.combination], s.coverage, s.precipitation, s.cloud_type,
+                    s.cloud_type_variation, *(perm_array(x, dev) for x in seeds)], [out])
+    return np.array(out.numpy(), dtype=np.float32, copy=True).reshape(s.shape)
+
+
+# --- cache ----------------------------------------------------------------------------------------------------------
+
+def cache_dir() -> Path:
+    """The user cache directory of pywarp: $PYWARP_CACHE_DIR, else $XDG_CACHE_HOME/pywarp, else ~/.cache/pywarp."""
+    env = os.environ.get("PYWARP_CACHE_DIR")
+    if env:
+        return Path(env)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    return (Path(xdg) if xdg else Path.home() / ".cache") / "pywarp"
+
+
+def _package_version() -> str:
+    from . import __version__
+
+    return __version__
+
+
+class TextureCache:
+    """In-memory (LRU, bounded in bytes) and on-disk cache of generated textures.
+
+    Parameters
+    ----------
+    directory : path, optional
+        Root of the disk cache (entries go to ``<directory>/textures``); default :func:`cache_dir` at each use, so
+        the environment variables are honoured when they change.
+    memory, disk : bool
+        Enable the two levels.
+    max_memory_bytes : int
+        Memory budget of the in-memory level (least recently used entries are dropped first). Default 512 MiB:
+        the default base texture is 32 MiB.
+    """
+
+    def __init__(self, directory: str | os.PathLike | None = None, memory: bool = True, disk: bool = True,
+                 max_memory_bytes: int = 512 * 2 ** 20):
+        self._directory = None if directory is None else Path(directory)
+        self.memory = bool(memory)
+        self.disk = bool(disk)
+        self.max_memory_bytes = int(max_memory_bytes)
+        self._mem: OrderedDict[str, np.ndarray] = OrderedDict()
+        self._lock = threading.RLock()
+        self.stats = {"memory_hits": 0, "disk_hits": 0, "misses": 0, "corrupt": 0}
+
+    @property
+    def directory(self) -> Path:
+        return (self._directory if self._directory is not None else cache_dir()) / "textures"
+
+    @staticmethod
+    def key(kind: str, settings, impl: str, device: str) -> str:
+        """Hash of everything that determines the data: kind, settings, implementation, device type, package
+        version, format version."""
+        desc = {"kind": kind, "settings": asdict(settings), "impl": impl, "device": device.split(":")[0],
+                "version": _package_version(), "format": FORMAT_VERSION}
+        return hashlib.sha256(json.dumps(desc, sort_keys=True).encode()).hexdigest()[:40]
+
+    def path(self, kind: str, key: str) -> Path:
+        return self.directory / f"{kind}-{key}.pwtex"
+
+    def get(self, kind: str, settings, impl: str, device: str, make: Callable[[], np.ndarray]) -> np.ndarray:
+        """The cached texture, or ``make()`` stored in both levels. Returned arrays are read-only."""
+        key = self.key(kind, settings, impl, device)
+        with self._lock:
+            if self.memory and key in self._mem:
+                self._mem.move_to_end(key)
+                self.stats["memory_hits"] += 1
+                return self._mem[key]
+            arr = self._read(kind, key, settings.shape) if self.disk else None
+            if arr is not None:
+                self.stats["disk_hits"] += 1
+            else:
+                self.stats["misses"] += 1
+                arr = np.ascontiguousarray(make(), dtype=np.float32)
+                if arr.shape != tuple(settings.shape):
+                    raise RuntimeError(f"generated {kind} has shape {arr.shape}, expected {settings.shape}")
+                if self.disk:
+                    self._write(kind, key, arr)
+            arr.setflags(write=False)
+            if self.memory:
+                self._remember(key, arr)
+            return arr
+
+    def _remember(self, key: str, arr: np.ndarray) -> None:
+        self._mem[key] = arr
+        total = sum(a.nbytes for a in self._mem.values())
+        while total > self.max_memory_bytes and len(self._mem) > 1:
+            _, old = self._mem.popitem(last=False)
+            total -= old.nbytes
+
+    def clear_memory(self) -> None:
+        with self._lock:
+            self._mem.clear()
+
+    def _read(self, kind: str, key: str, shape: tuple) -> np.ndarray | None:
+        path = self.path(kind, key)
+        try:
+            data = path.read_bytes()
+        except FileNotFoundError:
+            return None
+        except OSError as exc:
+            warnings.warn(f"texture cache entry {path} is unreadable ({exc}); regenerating", TextureCacheWarning,
+                          stacklevel=4)
+            return None
+        reason = None
+        if len(data) < len(_MAGIC) + 32 or data[:len(_MAGIC)] != _MAGIC:
+            reason = "bad header"
+        else:
+            digest, payload = data[len(_MAGIC):len(_MAGIC) + 32], data[len(_MAGIC) + 32:]
+            if hashlib.sha256(payload).digest() != digest:
+                reason = "checksum mismatch"
+            else:
+                try:
+                    arr = np.load(io.BytesIO(payload), allow_pickle=False)
+                except Exception as exc:  # a malformed .npy payload with a matching hash: treat as corrupt
+                    reason = f"unreadable payload: {exc}"
+                else:
+                    if arr.dtype != np.float32 or arr.shape != tuple(shape):
+                        reason = f"shape {arr.shape} / dtype {arr.dtype}, expected {tuple(shape)} float32"
+                    else:
+                        return np.ascontiguousarray(arr)
+        self.stats["corrupt"] += 1
+        warnings.warn(f"corrupt texture cache entry {path} ({reason}); regenerating", TextureCacheWarning,
+                      stacklevel=4)
+        return None
+
+    def _write(self, kind: str, key: str, arr: np.ndarray) -> None:
+        path = self.path(kind, key)
+        buf = io.BytesIO()
+        np.save(buf, arr, allow_pickle=False)
+        payload = buf.getvalue()
+        tmp = None
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(_MAGIC)
+                fh.write(hashlib.sha256(payload).digest())
+                fh.write(payload)
+                fh.flush()
+                os.fsync(fh.fileno())
+            os.replace(tmp, path)  # atomic: readers see the old entry or the complete new one
+            tmp = None
+        except OSError as exc:
+            warnings.warn(f"could not write the texture cache entry {path} ({exc}); continuing without it",
+                          TextureCacheWarning, stacklevel=4)
+        finally:
+            if tmp is not None:
+                try:
+                    os.unlink(tmp)
+                except OSError:
+                    pass
+
+
+_default_cache: TextureCache | None = None
+_default_lock = threading.Lock()
+
+
+def default_cache() -> TextureCache:
+    """The process-wide cache used by :class:`BasicTextureGenerator` unless told otherwise."""
+    global _default_cache
+    with _default_lock:
+        if _default_cache is None:
+            _default_cache = TextureCache()
+        return _default_cache
+
+
+# --- weather maps ---------------------------------------------------------------------------------------------------
+
+def _is_pow2(n: int) -> bool:
+    return n > 0 and n & (n - 1) == 0
+
+
+@dataclass(frozen=True, eq=False)
+class WeatherMap:
+    """A weather map (vc-A12): float32 (height, width, 4) in [0, 1], row = y, column = x;
+    R coverage, G precipitation, B cloud type (0 stratus, 0.5 stratocumulus, 1 cumulus), A free.
+    Width and height are powers of two in [4, 8192] (the renderer wraps with a bit mask)."""
+
+    data: np.ndarray
+
+    def __post_init__(self):
+        a = np.asarray(self.data)
+        if a.ndim != 3 or a.shape[2] != 4:
+            raise ValueError(f"data must have shape (height, width, 4), got {a.shape}")
+        h, w = a.shape[:2]
+        if not (_is_pow2(h) and _is_pow2(w) and MIN_SIZE <= min(h, w) and max(h, w) <= MAX_SIZE_2D):
+            raise ValueError(f"size must be powers of two in [{MIN_SIZE}, {MAX_SIZE_2D}], got {w}x{h}")
+        a = np.ascontiguousarray(a, dtype=np.float32)
+        if not np.all(np.isfinite(a)) or a.min() < 0.0 or a.max() > 1.0:
+            raise ValueError("data must hold finite values in [0, 1]")
+        a.setflags(write=False)
+        object.__setattr__(self, "data", a)
+
+    @property
+    def coverage(self) -> np.ndarray:
+        return self.data[..., 0]
+
+    @property
+    def precipitation(self) -> np.ndarray:
+        return self.data[..., 1]
+
+    @property
+    def cloud_type(self) -> np.ndarray:
+        return self.data[..., 2]
+
+    @classmethod
+    def generate(cls, settings: WeatherMapSettings | None = None,
+                 generator: TextureGenerator | None = None) -> WeatherMap:
+        """A procedural weather map from ``generator`` (default a :class:`BasicTextureGenerator`)."""
+        gen = generator if generator is not None else BasicTextureGenerator()
+        return cls(gen.weather_map(settings))
+
+    @classmethod
+    def from_image(cls, path: str | os.PathLike) -> WeatherMap:
+        """Load an 8-bit RGB or RGBA image (PNG, ...) with Pillow: R coverage, G precipitation, B cloud type
+        (A, when present, is kept; RGB images get A = 0), scaled by 1/255. Row 0 of the image is y = 0.
+
+        Raises FileNotFoundError for a missing file, ValueError for a file Pillow cannot read, an image mode other
+        than 'RGB'/'RGBA' or a size that is not a power of two in [4, 8192] on both axes."""
+        from PIL import Image, UnidentifiedImageError
+
+        p = Path(path)
+        if not p.is_file():
+            raise FileNotFoundError(f"weather map image not found: {p}")
+        try:
+            with Image.open(p) as img:
+                img.load()
+                mode, (w, h) = img.mode, img.size
+                if mode not in ("RGB", "RGBA"):
+                    raise ValueError(f"mode of the weather map image must be 'RGB' or 'RGBA' (8 bits per channel: "
+                                     f"R coverage, G precipitation, B cloud type), got {mode!r}; convert it first, "
+                                     f"e.g. Image.open(path).convert('RGB')")
+                if not (_is_pow2(w) and _is_pow2(h) and MIN_SIZE <= min(w, h) and max(w, h) <= MAX_SIZE_2D):
+                    raise ValueError(f"size of the weather map image must be powers of two in [{MIN_SIZE}, "
+                                     f"{MAX_SIZE_2D}] (the renderer wraps with a bit mask), got {w}x{h}")
+                px = np.asarray(img, dtype=np.uint8)
+        except (UnidentifiedImageError, OSError, SyntaxError) as exc:
+            if isinstance(exc, FileNotFoundError):
+                raise
+            raise ValueError(f"path {str(p)!r} is not an image Pillow can read: {exc}") from None
+        data = px.astype(np.float32) / np.float32(255.0)
+        if mode == "RGB":
+            data = np.concatenate([data, np.zeros(data.shape[:2] + (1,), np.float32)], axis=2)
+        return cls(data)
+
+    def to_image(self, path: str | os.PathLike) -> None:
+        """Save as an 8-bit RGBA PNG (values rounded to multiples of 1/255); written atomically."""
+        from PIL import Image
+
+        p = Path(path)
+        px = np.clip(np.rint(self.data * 255.0), 0, 255).astype(np.uint8)
+        fd, tmp = tempfile.mkstemp(dir=p.parent if str(p.parent) else ".", prefix=f".{p.name}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "wb") as fh:
+                Image.fromarray(px, mode="RGBA").save(fh, format="PNG")
+            os.replace(tmp, p)
+        except BaseException:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+            raise
+
+
+# --- textures for the renderer ----------------------------------------------------------------------------------------
+
+def to_warp_texture3d(arr, device: str | None = None):
+    """A (n, n, n, 3|4) float32 volume as a ``wp.array3d(dtype=wp.vec4)`` indexed [z, y, x] (RGB gets A = 0), the
+    input of :func:`pywarp.kernels.texgen.sample_trilinear_wrap` (size_mask = n - 1)."""
+    import warp as wp
+
+    from .runtime import resolve_device
+
+    a = np.asarray(arr, dtype=np.float32)
+    if a.ndim != 4 or a.shape[3] not in (3, 4) or not a.shape[0] == a.shape[1] == a.shape[2] or not _is_pow2(
+            a.shape[0]):
+        raise ValueError(f"arr must have shape (n, n, n, 3 or 4) with n a power of two, got {a.shape}")
+    if a.shape[3] == 3:
+        a = np.concatenate([a, np.zeros(a.shape[:3] + (1,), np.float32)], axis=3)
+    return wp.array(np.ascontiguousarray(a), dtype=wp.vec4, device=resolve_device(device))
+
+
+def to_warp_texture2d(arr, device: str | None = None):
+    """A (h, w, 2|4) float32 image as a ``wp.array2d`` of ``wp.vec2`` / ``wp.vec4`` indexed [y, x]."""
+    import warp as wp
+
+    from .runtime import resolve_device
+
+    a = np.asarray(arr, dtype=np.float32)
+    if a.ndim != 3 or a.shape[2] not in (2, 4) or not (_is_pow2(a.shape[0]) and _is_pow2(a.shape[1])):
+        raise ValueError(f"arr must have shape (h, w, 2 or 4) with powers of two h, w, got {a.shape}")
+    return wp.array(np.ascontiguousarray(a), dtype=wp.vec2 if a.shape[2] == 2 else wp.vec4,
+                    device=resolve_device(device))
+
+
+@dataclass(frozen=True)
+class WarpCloudTextures:
+    """The four textures on a Warp device: base/detail ``array3d(vec4)`` (detail A = 0), curl ``array2d(vec2)``,
+    weather ``array2d(vec4)``; ``*_mask`` = edge - 1 for the bit-mask wrap."""
+
+    base_shape: object
+    detail_shape: object
+    curl_noise: object
+    weather_map: object
+    base_mask: int
+    detail_mask: int
+    curl_mask: int
+    weather_mask: tuple
+
+
+@dataclass(frozen=True, eq=False)
+class CloudTextures:
+    """The four input textures of the cloudscape, checked: shapes as in the module docstring, power-of-two edges,
+    float32, finite; base/detail/weather values in [0, 1]."""
+
+    base_shape: np.ndarray
+    detail_shape: np.ndarray
+    curl_noise: np.ndarray
+    weather_map: np.ndarray
+
+    def __post_init__(self):
+        checks = {"base_shape": (4, 4), "detail_shape": (4, 3), "curl_noise": (3, 2), "weather_map": (3, 4)}
+        for name, (ndim, ch) in checks.items():
+            a = np.asarray(getattr(self, name), dtype=np.float32)
+            edges = a.shape[:-1]
+            ok = a.ndim == ndim and a.shape[-1] == ch and all(_is_pow2(e) and e >= MIN_SIZE for e in edges)
+            if ndim == 4:
+                ok = ok and len(set(edges)) == 1
+            if not ok:
+                raise ValueError(f"{name} must have shape {('(n, n, n, ' if ndim == 4 else '(h, w, ')}{ch}) with "
+                                 f"power-of-two edges >= {MIN_SIZE}, got {a.shape}")
+            if not np.all(np.isfinite(a)):
+                raise ValueError(f"{name} must be finite")
+            if name != "curl_noise" and (a.min() < 0.0 or a.max() > 1.0):
+                raise ValueError(f"{name} values must be in [0, 1], got [{a.min()}, {a.max()}]")
+            object.__setattr__(self, name, a)
+
+    def to_warp(self, device: str | None = None) -> WarpCloudTextures:
+        return WarpCloudTextures(
+            to_warp_texture3d(self.base_shape, device), to_warp_texture3d(self.detail_shape, device),
+            to_warp_texture2d(self.curl_noise, device), to_warp_texture2d(self.weather_map, device),
+            self.base_shape.shape[0] - 1, self.detail_shape.shape[0] - 1, self.curl_noise.shape[0] - 1,
+            (self.weather_map.shape[0] - 1, self.weather_map.shape[1] - 1))
+
+
+# --- generators (vc-A32) ----------------------------------------------------------------------------------------------
+
+class TextureGenerator(abc.ABC):
+    """Interface of a noise-texture generator (vc-A32; the thesis names the methods baseShape, detailShape,
+    curlNoise, weatherMap). Implement the four methods to feed the renderer your own textures; each returns a
+    float32 NumPy array with the shape and value range of the table in the module docstring, and ``None`` settings
+    mean the defaults."""
+
+    @abc.abstractmethod
+    def base_shape(self, settings: BaseShapeSettings | None = None) -> np.ndarray:
+        """The base-shape texture, (n, n, n, 4) in [0, 1] (vc-A9)."""
+
+    @abc.abstractmethod
+    def detail_shape(self, settings: DetailShapeSettings | None = None) -> np.ndarray:
+        """The detail texture, (n, n, n, 3) in [0, 1] (vc-A10)."""
+
+    @abc.abstractmethod
+    def curl_noise(self, settings: CurlNoiseSettings | None = None) -> np.ndarray:
+        """The 2-D curl-noise texture, (n, n, 2) (vc-A11)."""
+
+    @abc.abstractmethod
+    def weather_map(self, settings: WeatherMapSettings | None = None) -> np.ndarray:
+        """The weather map, (h, w, 4) in [0, 1] (vc-A12)."""
+
+    def textures(self, base_shape: BaseShapeSettings | None = None, detail_shape: DetailShapeSettings | None = None,
+                 curl_noise: CurlNoiseSettings | None = None,
+                 weather_map: WeatherMapSettings | None = None) -> CloudTextures:
+        """All four textures, checked."""
+        return CloudTextures(self.base_shape(base_shape), self.detail_shape(detail_shape),
+                             self.curl_noise(curl_noise), self.weather_map(weather_map))
+
+
+class BasicTextureGenerator(TextureGenerator):
+    """The library's generator (vc-A32 ``BasicSkyTextureGenerator``): all four textures generated from settings --
+    including the curl noise and the weather map the thesis loads from shipped files -- or the weather map loaded
+    from an image (``weather_image``), like the thesis.
+
+    Parameters
+    ----------
+    impl : 'warp' (default) or 'c'
+        Warp kernels launched tile-parallel (one worker per core) or the single-threaded C library.
+    device : str, optional
+        Warp device (default CPU).
+    workers : int, optional
+        Tile-launcher workers (default one per core).
+    cache : TextureCache, None or False
+        None (default): the process-wide :func:`default_cache`; False: no caching.
+    weather_image : path, optional
+        An RGB/RGBA image used as the weather map (:meth:`WeatherMap.from_image`) instead of generating one.
+    """
+
+    def __init__(self, impl: str = "warp", device: str | None = None, workers: int | None = None,
+                 cache: TextureCache | None | bool = None, weather_image: str | os.PathLike | None = None):
+        self.impl = _check_impl(impl)
+        from .runtime import resolve_device
+
+        self.device = resolve_device(device) if impl == "warp" else "cpu"
+        self.workers = workers
+        if cache is None or cache is True:
+            cache = default_cache()
+        elif cache is not False and not isinstance(cache, TextureCache):
+            raise TypeError(f"cache must be a TextureCache, None or False, got {type(cache).__name__}")
+        self.cache = cache or None
+        self.weather_image = None if weather_image is None else Path(weather_image)
+        self._weather_loaded: WeatherMap | None = None
+        if self.weather_image is not None and not self.weather_image.is_file():
+            raise FileNotFoundError(f"weather_image not found: {self.weather_image}")
+
+    def _get(self, kind: str, settings) -> np.ndarray:
+        cls = SETTINGS[kind]
+        settings = cls() if settings is None else settings
+        if not isinstance(settings, cls):
+            raise TypeError(f"settings must be a {cls.__name__}, got {type(settings).__name__}")
+
+        def make():
+            lau = None
+            if self.impl == "warp":
+                from .runtime import launcher
+
+                lau = launcher(self.device, self.workers)
+            return generate(kind, settings, impl=self.impl, device=self.device, launcher=lau)
+
+        if self.cache is None:
+            arr = make()
+            arr.setflags(write=False)
+            return arr
+        return self.cache.get(kind, settings, self.impl, self.device, make)
+
+    def base_shape(self, settings: BaseShapeSettings | None = None) -> np.ndarray:
+        return self._get("base_shape", settings)
+
+    def detail_shape(self, settings: DetailShapeSettings | None = None) -> np.ndarray:
+        return self._get("detail_shape", settings)
+
+    def curl_noise(self, settings: CurlNoiseSettings | None = None) -> np.ndarray:
+        return self._get("curl_noise", settings)
+
+    def weather_map(self, settings: WeatherMapSettings | None = None) -> np.ndarray:
+        if self.weather_image is not None:
+            if settings is not None:
+                raise ValueError("settings cannot be combined with weather_image: the weather map is the image")
+            if self._weather_loaded is None:
+                self._weather_loaded = WeatherMap.from_image(self.weather_image)
+            return self._weather_loaded.data
+        return self._get("weather_map", settings)
