@@ -15,7 +15,8 @@ try:
 except PackageNotFoundError:  # running from a source tree
     __version__ = "0.0.0+source"
 
-_SUBMODULES = {"kernels", "runtime", "equations", "cli", "bench", "figures"}
+_SUBMODULES = {"kernels", "runtime", "equations", "cli", "bench", "figures", "textures", "bench_textures",
+               "cloudscape", "output"}
 
 __all__ = ["equation", "registry", "missing", "__version__"]
 

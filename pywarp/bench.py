@@ -88,9 +88,135 @@ def bench_tiles(width: int = 960, height: int = 540, repeat: int = 5, octaves: i
     }
 
 
+def _timed(fn, repeat: int) -> float:
+    """Best of ``repeat`` runs of fn(), in ms."""
+    return 1e3 * _best(fn, repeat)
+
+
+def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, workers: int | None = None,
+                     device: str | None = None, small: tuple[int, int] = (160, 90)) -> dict:
+    """The vc renderer's numbers, all measured in this run on this machine.
+
+    ladder_ms: the thesis' fig 4.17 ladder on the same frame and camera, each step including the previous ones:
+        unoptimised (128 samples always, no early exit), adaptive_samples (64..128 by ray elevation, vc-A18),
+        early_exit (vc-A21), reprojection (vc-A26, steady state: one pixel of each 4x4 block raymarched + the
+        reprojection pass).
+    sky_ms: the sky stage alone over the full frame, gradient and Preetham (fig 4.16).
+    parallel_speedup: full frame, tile-parallel over one launch.
+    warp_over_c_per_thread: Warp with one launch (one thread) over the C reference ccl_cloudscape_render (one
+        thread), the same small frame (``small``), same pixels.
+    reprojected_over_full, ms_640x360_reprojected, ms_1280x720_full, machine.
+    """
+    from .cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, render_frame_c
+
+    if width < 1 or height < 1:
+        raise ValueError(f"width and height must be >= 1, got {width}x{height}")
+    if repeat < 1:
+        raise ValueError(f"repeat must be >= 1, got {repeat}")
+    base = CloudscapeSettings(width=width, height=height, device=device or "cpu", threads=workers)
+    tech = CloudscapeTechnique(base)
+    textures = tech.textures
+    pose = CameraPose.from_settings(base)
+    tech.render(pose, reprojection=False)  # compile / warm up
+
+    def full(**changes):
+        tech.update(**changes)
+        return _timed(lambda: tech.render(pose, reprojection=False), repeat)
+
+    ladder = {
+        "unoptimised": full(adaptive_samples=False, early_exit=False),
+        "adaptive_samples": full(adaptive_samples=True, early_exit=False),
+        "early_exit": full(adaptive_samples=True, early_exit=True),
+    }
+
+    def reprojected_ms(t: CloudscapeTechnique, n_frames: int = 16) -> float:
+        p = CameraPose.from_settings(t.settings)
+        t.render(p, reprojection=True)  # frame with no history
+        times = []
+        for k in range(n_frames):
+            q = CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * (k + 1), p.yaw_deg + 0.02 * (k + 1), p.pitch_deg,
+                           p.fov_y_deg)
+            t0 = time.perf_counter()
+            t.render(q, reprojection=True)
+            times.append(time.perf_counter() - t0)
+        return 1e3 * float(np.median(times))
+
+    ladder["reprojection"] = reprojected_ms(tech)
+
+    sky_ms = {}
+    from .cloudscape import make_sky
+
+    for kind in ("gradient", "preetham"):
+        st = CloudscapeSettings(width=width, height=height, sky=kind)
+        sky = make_sky(st)
+        buf = tech._buffers["current"]
+        cam = pose.camera(width, height)
+        sky.render(buf, cam, 0, False, tech.params, tech.launcher)
+        sky_ms[kind] = _timed(lambda: sky.render(buf, cam, 0, False, tech.params, tech.launcher), repeat)
+
+    one = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, threads=1), textures=textures)
+    one.render(pose, reprojection=False)
+    t_one = _timed(lambda: one.render(pose, reprojection=False), repeat)
+    t_all = ladder["early_exit"]
+
+    sw, sh = small
+    s_small = CloudscapeSettings(width=sw, height=sh, threads=1)
+    w_small = CloudscapeTechnique(s_small, textures=textures)
+    w_small.render(reprojection=False)
+    t_w = _timed(lambda: w_small.render(reprojection=False), repeat)
+    t_c = _timed(lambda: render_frame_c(s_small, textures), repeat)
+
+    t640 = CloudscapeTechnique(CloudscapeSettings(width=640, height=360, threads=workers), textures=textures)
+    ms_640_reproj = reprojected_ms(t640)
+    t1280 = CloudscapeTechnique(CloudscapeSettings(width=1280, height=720, threads=workers), textures=textures)
+    t1280.render(reprojection=False)
+    ms_1280_full = _timed(lambda: t1280.render(reprojection=False), 1)
+
+    r = lambda v: round(v, 2)  # noqa: E731
+    return {
+        "benchmark": "cloudscape",
+        "size": [width, height],
+        "ladder_ms": {k: r(v) for k, v in ladder.items()},
+        "ladder_cut_percent": {k: round(100.0 * (1.0 - v / ladder["unoptimised"]), 1) for k, v in ladder.items()},
+        "thesis_cut_percent": {"adaptive_samples": 20, "early_exit": 70, "reprojection": 97},
+        "sky_ms": {k: r(v) for k, v in sky_ms.items()},
+        "parallel_speedup": round(t_one / t_all, 3),
+        "warp_over_c_per_thread": round(t_w / t_c, 3),
+        "reprojected_over_full": round(ladder["reprojection"] / ladder["early_exit"], 4),
+        "ms_640x360_reprojected": r(ms_640_reproj),
+        "fps_640x360_reprojected": round(1e3 / ms_640_reproj, 1),
+        "ms_1280x720_full": r(ms_1280_full),
+        "small_frame": [sw, sh],
+        "machine": machine(),
+    }
+
+
 def main(name: str, as_json: bool = False, **kw) -> dict:
+    if name == "cloudscape":
+        res = bench_cloudscape(**{k: v for k, v in kw.items() if k in ("width", "height", "repeat", "workers",
+                                                                          "device")})
+        if as_json:
+            print(json.dumps(res))
+        else:
+            print(f"cloudscape {res['size'][0]}x{res['size'][1]} on {res['machine']['cores']} cores "
+                  f"({res['machine']['cpu']})")
+            for k, v in res["ladder_ms"].items():
+                print(f"  ladder {k:<18} {v:10.1f} ms   cut {res['ladder_cut_percent'][k]:5.1f} %"
+                      f"   (thesis {res['thesis_cut_percent'].get(k, 0)} %)")
+            for k, v in res["sky_ms"].items():
+                print(f"  sky {k:<21} {v:10.1f} ms")
+            for k in ("parallel_speedup", "warp_over_c_per_thread", "reprojected_over_full",
+                      "ms_640x360_reprojected", "fps_640x360_reprojected", "ms_1280x720_full"):
+                print(f"  {k:<25} {res[k]}")
+        return res
+    if name == "textures":
+        from .bench_textures import bench_textures, report
+
+        res = bench_textures(repeat=kw.get("repeat", 3), workers=kw.get("workers"))
+        print(json.dumps(res) if as_json else report(res))
+        return res
     if name != "tiles":
-        raise ValueError(f"unknown benchmark {name!r}; available: tiles")
+        raise ValueError(f"unknown benchmark {name!r}; available: tiles, cloudscape, textures")
     res = bench_tiles(**kw)
     if as_json:
         print(json.dumps(res))

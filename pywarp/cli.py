@@ -1,8 +1,10 @@
 """The ``pywarp`` command.
 
+    pywarp render [options] [--out cloudscape.png]   one image of the volumetric cloudscape (vc)
+    pywarp animate [options] [--out flythrough.mp4]  a camera path from below the cloud layer, into it and above it
     pywarp equations [--seed KEY] [--missing]     traceability matrix: ID, title, C, Warp, tests, figures
     pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...]
-    pywarp bench tiles [--width W] [--height H] [--repeat N] [--workers N] [--device D] [--json]
+    pywarp bench tiles|cloudscape|textures [--width W] [--height H] [--repeat N] [--workers N] [--device D] [--json]
 
 Bad arguments print one line ``pywarp: error: ...`` naming the option and exit with status 2.
 """
@@ -78,8 +80,108 @@ def cmd_figures(args) -> int:
 def cmd_bench(args) -> int:
     from . import bench
 
-    bench.main(args.name, as_json=args.json, width=args.width, height=args.height, repeat=args.repeat,
+    repeat = args.repeat or (5 if args.name == "tiles" else 2)
+    bench.main(args.name, as_json=args.json, width=args.width, height=args.height, repeat=repeat,
                workers=args.workers, device=args.device)
+    return 0
+
+
+# --- render / animate --------------------------------------------------------------------------------------------------
+
+# option -> (settings field, type, help with unit and default filled in from CloudscapeSettings)
+_SCENE_OPTIONS = [
+    ("--width", "width", int, "image width in pixels"),
+    ("--height", "height", int, "image height in pixels"),
+    ("--sky", "sky", str, "sky model: preetham (vc-A29) or gradient (vc-A28)"),
+    ("--sun-elevation", "sun_elevation_deg", float, "sun elevation above the horizon in degrees (>= 0 for preetham)"),
+    ("--sun-azimuth", "sun_azimuth_deg", float, "sun azimuth in degrees, 0 = straight ahead of the default camera"),
+    ("--turbidity", "turbidity", float, "Preetham turbidity, in [2, 10]"),
+    ("--sky-variant", "sky_variant", str, "errata of the sky chain (vc-2.39, 4.4, 4.5): corrected or thesis"),
+    ("--coverage", "coverage", float, "cloud coverage of the weather map, in [0, 1]"),
+    ("--precipitation", "precipitation", float, "precipitation of the weather map, in [0, 1] (darker clouds)"),
+    ("--cloud-type", "cloud_type", float, "mean cloud type, 0 stratus, 0.5 stratocumulus, 1 cumulus"),
+    ("--seed", "seed", int, "seed of every texture; the same seed gives the same image"),
+    ("--altitude", "camera_altitude_km", float, "camera altitude above the ground in km (layer: 1.5-4 km)"),
+    ("--yaw", "camera_yaw_deg", float, "camera heading in degrees, 0 = -z"),
+    ("--pitch", "camera_pitch_deg", float, "camera pitch above the horizon in degrees"),
+    ("--fov", "fov_y_deg", float, "vertical field of view in degrees"),
+    ("--time", "time_s", float, "time in seconds: the wind moves the clouds"),
+    ("--wind-speed", "wind_speed_kmh", float, "wind speed in km/h"),
+    ("--jitter", "jitter", str, "ray jitter against banding (vc-A23): tilt, offset or none"),
+    ("--device", "device", str, "Warp device: cpu or cuda:N where present"),
+    ("--threads", "threads", int, "worker threads (default: one per core)"),
+]
+
+
+def _add_scene_options(p: argparse.ArgumentParser, overrides: dict | None = None) -> None:
+    from .cloudscape import CloudscapeSettings
+
+    defaults = {**{f: getattr(CloudscapeSettings, f) for _, f, _, _ in _SCENE_OPTIONS
+                   if hasattr(CloudscapeSettings, f)}, **(overrides or {})}
+    for opt, fld, typ, text in _SCENE_OPTIONS:
+        d = defaults.get(fld)
+        p.add_argument(opt, dest=fld, type=typ, default=d, metavar=typ.__name__.upper(),
+                       help=f"{text} (default: {'one per core' if d is None and fld == 'threads' else d})")
+
+
+def _settings_from_args(args, **extra):
+    from .cloudscape import CloudscapeSettings
+
+    kw = {f: getattr(args, f) for _, f, _, _ in _SCENE_OPTIONS}
+    kw.update(extra)
+    try:
+        return CloudscapeSettings(**kw).validate()
+    except ValueError as exc:
+        msg = str(exc)
+        for opt, fld, _, _ in _SCENE_OPTIONS:  # name the command-line option, not the Python field
+            if msg.startswith(fld + " "):
+                msg = opt + msg[len(fld):]
+                break
+        raise ValueError(msg) from None
+
+
+def cmd_render(args) -> int:
+    from tqdm import tqdm
+
+    from .cloudscape import CloudscapeTechnique
+    from .output import IMAGE_SUFFIXES, check_output_path, write_png
+
+    out = check_output_path(args.out, IMAGE_SUFFIXES)
+    settings = _settings_from_args(args)
+    with tqdm(total=2, desc="render", unit="stage", disable=args.no_progress) as bar:
+        bar.set_postfix_str("textures")
+        tech = CloudscapeTechnique(settings)
+        bar.update(1)
+        bar.set_postfix_str(f"{settings.width}x{settings.height}")
+        img = tech.render(reprojection=False)
+        bar.update(1)
+    write_png(out, img)
+    print(f"wrote {out} ({settings.width}x{settings.height}, {settings.sky} sky, seed {settings.seed})")
+    return 0
+
+
+def cmd_animate(args) -> int:
+    from tqdm import tqdm
+
+    from .cloudscape import CloudscapeTechnique, flythrough_path
+    from .output import VIDEO_SUFFIXES, VideoWriter, check_output_path
+
+    out = check_output_path(args.out, VIDEO_SUFFIXES)
+    if args.frames < 1:
+        raise ValueError(f"--frames must be >= 1, got {args.frames}")
+    if not 0 < args.fps <= 240:
+        raise ValueError(f"--fps must be in (0, 240], got {args.fps}")
+    settings = _settings_from_args(args, reprojection=args.reprojection)
+    if out.suffix.lower() == ".mp4" and (settings.width % 2 or settings.height % 2):
+        raise ValueError(f"--width and --height must be even for MP4, got {settings.width}x{settings.height}")
+    poses = flythrough_path(args.frames, settings)
+    tech = CloudscapeTechnique(settings)
+    with VideoWriter(out, fps=args.fps) as video:
+        for i, pose in enumerate(tqdm(poses, desc="animate", unit="frame", disable=args.no_progress)):
+            tech.update(time_s=settings.time_s + i / args.fps * args.time_scale)
+            video.add(tech.render(pose))
+    print(f"wrote {out} ({args.frames} frames, {settings.width}x{settings.height}, "
+          f"reprojection {'on' if settings.reprojection else 'off'})")
     return 0
 
 
@@ -101,11 +203,38 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--no-progress", action="store_true", help="no progress bar")
     f.set_defaults(run=cmd_figures)
 
+    r = sub.add_parser("render", help="render one image of the volumetric cloudscape (vc)",
+                       description="Render one image of the volumetric cloudscape: Preetham or gradient sky, cloud "
+                                   "layer raymarch (vc chapter 4). Every option has a unit and a default.")
+    _add_scene_options(r)
+    r.add_argument("--out", default="cloudscape.png", help="output PNG (default: cloudscape.png)")
+    r.add_argument("--no-progress", action="store_true", help="no progress bar")
+    r.set_defaults(run=cmd_render)
+
+    a = sub.add_parser("animate", help="render a fly-through video: below the cloud layer, into it and above it",
+                       description="Render a camera path that climbs from below the cloud layer through it to above "
+                                   "it while the wind moves the clouds; MP4 (H.264) or GIF.")
+    _add_scene_options(a, {"width": 640, "height": 360})
+    a.add_argument("--frames", type=int, default=96, help="number of frames (default: 96)")
+    a.add_argument("--fps", type=float, default=24.0, help="frames per second of the video (default: 24)")
+    a.add_argument("--time-scale", type=float, default=20.0,
+                   help="simulated seconds per video second, for the wind (default: 20)")
+    a.add_argument("--reprojection", action=argparse.BooleanOptionalAction, default=True,
+                   help="temporal reprojection (vc-A26) below the layer; full frames inside and above it "
+                        "(default: on)")
+    a.add_argument("--out", default="flythrough.mp4", help="output .mp4 or .gif (default: flythrough.mp4)")
+    a.add_argument("--no-progress", action="store_true", help="no progress bar")
+    a.set_defaults(run=cmd_animate)
+
     b = sub.add_parser("bench", help="run a benchmark and print ratios measured in one run")
-    b.add_argument("name", choices=("tiles",), help="tiles: tile-parallel launcher vs one launch")
+    b.add_argument("name", choices=("tiles", "cloudscape", "textures"),
+                   help="tiles: tile-parallel launcher vs one launch; cloudscape: the vc renderer's optimisation "
+                        "ladder, sky models, Warp vs C, reprojection (keys documented in the README); textures: "
+                        "noise-texture generation, C one thread vs Warp tile-parallel")
     b.add_argument("--width", type=_positive_int("--width"), default=960, help="frame width in pixels (default 960)")
     b.add_argument("--height", type=_positive_int("--height"), default=540, help="frame height in pixels (default 540)")
-    b.add_argument("--repeat", type=_positive_int("--repeat"), default=5, help="timed repetitions, best kept (default 5)")
+    b.add_argument("--repeat", type=_positive_int("--repeat"), default=None,
+                   help="timed repetitions, best kept (default 5 for tiles, 2 for cloudscape)")
     b.add_argument("--workers", type=_positive_int("--workers"), default=None,
                    help="worker threads (default: one per core)")
     b.add_argument("--device", default="cpu", help="Warp device: cpu (default) or cuda:N where present")

@@ -15,5 +15,6 @@
 #include "cclouds/colour.h"
 #include "cclouds/sky.h"
 #include "cclouds/reproj.h"
+#include "cclouds/cloudscape.h"
 
 #endif /* CCLOUDS_CCLOUDS_H */

@@ -1,0 +1,139 @@
+/*
+ * cclouds/cloudscape.h -- the scalar C reference of the whole cloudscape pixel (vc chapter 4): sky background,
+ * cloud-layer raymarch with cone light sampling, compositing and sRGB encoding. pywarp/kernels/cloudscape.py mirrors
+ * it operation by operation; the tests compare the two at sampled pixels.
+ *
+ * One pixel (vc-A25 -> A14/A24 -> A18 -> A17 -> A19/A20/2.31 -> A21 -> 4.8):
+ *   d      = camera ray through the pixel centre (ccl_camera_ray), optionally tilted by the ray jitter (vc-A23)
+ *   B      = sky colour of d (gradient or Preetham, display-linear: the Preetham sky is already tone mapped)
+ *   [t0,t1]= the part of the ray inside the cloud layer (ccl_layer_segment: camera below, inside or above the layer)
+ *   n      = ccl_view_sample_count(d.y, samples_min, samples_max) when adaptive_samples, else samples_max
+ *   for i < n: p = ccl_march_point(eye, d, t0, dt, i, offset);  rho = density(p) (vc-A17)
+ *       if rho > 0: d_light = sigma_light * sum_j w_j density(q_j)  over the 6 cone samples q_j (vc-A19),
+ *                   w_j = light_step (near samples) and (far_factor - 1) * 5 light_step (the far one);
+ *                   a = absorption_base + absorption_precip * precipitation;
+ *                   L = sun_colour * E(d_light, a, dot(d, to_sun), g) + ambient(h)   (vc-2.31, vc-A20)
+ *                   ccl_march_accumulate(colour, T, sigma, rho, dt, L, exit_eps)     (vc-A21)
+ *                   stop when early_exit and the accumulation says so
+ *   C_f    = B (1 - O_D) + C_clouds with O_D = 1 - T (vc-4.8), then sRGB encoding.
+ * density(p) (vc-A17): h = relative height (vc-A15); weather map at (p.x, p.z) + wind -> coverage D_h (R),
+ *   precipitation (G), cloud type (B); D_v = height gradient (vc-4.7, A16); base texture at p -> B (vc-2.28);
+ *   B_D = coverage(B, D_v, D_h, C := D_h) (vc-2.29); curl texture at (p.x, p.z) displaces the detail lookup;
+ *   density = detail erosion (vc-2.30) with the detail texture. Densities are clamped at 0 (required here: a
+ *   negative extinction would amplify light). The early outs (h outside [0, 1], D_h = 0, D_v <= 0, B_D <= 0) return
+ *   exactly what the full pipeline returns for those inputs; they only skip texture fetches.
+ *
+ * Textures are float32 RGBA, power-of-two sizes, indexed [z][y][x][c] (3-D) or [y][x][c] (2-D) and sampled with
+ * wrap-around (they tile): base and detail with ccl_texgen_sample_trilinear_wrap, weather and curl with
+ * ccl_cloudscape_sample_bilinear_wrap. World units are kilometres, y is up (see cclouds/raymarch.h).
+ */
+#ifndef CCLOUDS_CLOUDSCAPE_H
+#define CCLOUDS_CLOUDSCAPE_H
+
+#include "cclouds/common.h"
+#include "cclouds/raymarch.h"
+#include "cclouds/sky.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The four textures of the cloudscape (not owned). */
+typedef struct ccl_cloud_textures {
+    const float *base;     /* base_size^3 RGBA: R Perlin-Worley, G B A inverse-Worley fBm (vc-A9) */
+    int base_size;
+    const float *detail;   /* detail_size^3 RGBA: RGB inverse-Worley fBm (vc-A10), A unused */
+    int detail_size;
+    const float *curl;     /* curl_size^2 RGBA: RG = 2-D curl-noise vector (vc-A11), BA unused */
+    int curl_size;
+    const float *weather;  /* weather_size^2 RGBA: R coverage, G precipitation, B cloud type (vc-A12) */
+    int weather_size;
+} ccl_cloud_textures;
+
+/* Every parameter of the cloud pass. ccl_cloudscape_params_default documents the defaults and their reasons. */
+typedef struct ccl_cloudscape_params {
+    ccl_cloud_layer layer;      /* Earth and layer spheres (vc-A14); default 6371 km, base 1.5 km, top 4 km */
+    float base_scale_km;        /* world size of one tile of the base texture (default 12 km) */
+    float detail_scale_km;      /* world size of one tile of the detail texture (default 1.5 km) */
+    float weather_scale_km;     /* world size of one tile of the weather map, planar projection (default 48 km) */
+    float curl_scale_km;        /* world size of one tile of the curl texture (default 8 km) */
+    float curl_strength_km;     /* displacement of the detail lookup per unit curl vector (default 0.25 km) */
+    float weather_offset[2];    /* wind: (x, z) offset of the weather-map lookup, km */
+    float detail_offset[3];     /* wind: offset of the detail lookup, km */
+    float sigma;                /* extinction per unit density along the view ray, 1/km (default 30) */
+    float sigma_light;          /* extinction per unit density towards the sun, 1/km (default 30) */
+    float absorption_base;      /* a of vc-2.31 = absorption_base + absorption_precip * precipitation (1) */
+    float absorption_precip;    /* (default 2) */
+    float g;                    /* Henyey-Greenstein asymmetry of vc-2.31 (default 0.2) */
+    float sun_colour[3];        /* sun radiance per channel, display-linear units (default 12 * (1, 0.96, 0.88)) */
+    float ambient_bottom[3];    /* ambient radiance at the layer base (vc-A20; default (0.12, 0.14, 0.18)) */
+    float ambient_top[3];       /* ambient radiance at the layer top (default (0.30, 0.34, 0.42)) */
+    int samples_min;            /* view samples at the zenith (vc-A18; 64) */
+    int samples_max;            /* view samples at the horizon (128) */
+    int adaptive_samples;       /* 1: n from the ray's y (vc-A18); 0: always samples_max */
+    int early_exit;             /* 1: stop when the accumulation reaches full opacity (vc-A21) */
+    float exit_eps;             /* early-exit threshold: stop once 1 - T >= 1 - exit_eps (1/256) */
+    float light_step_km;        /* axial step of the light cone (vc-A19; 0.1 km) */
+    float light_cone_angle;     /* half-angle of the light cone, rad (15 degrees) */
+    float light_far_factor;     /* distance of the far light sample relative to the near cone (3) */
+    int light_detail;           /* 1: light samples use the full density with detail erosion; 0: base shape only */
+    int jitter_mode;            /* ccl_jitter_mode (vc-A23): CCL_JITTER_TILT (default), _OFFSET, _NONE */
+    float jitter_amount;        /* tilt scale, rad (0.002) */
+    int gradient_clamp;         /* clamp the remaps of the height gradients (vc-4.7); default 1, see the .c */
+    int detail_direction;       /* ccl_detail_direction of vc-2.30 (default CCL_DETAIL_FORMULA) */
+} ccl_cloudscape_params;
+
+/* Sky background of the cloudscape. */
+typedef enum ccl_sky_kind {
+    CCL_SKY_GRADIENT = 0,  /* vc-A28 */
+    CCL_SKY_PREETHAM = 1   /* vc-A29 (default) */
+} ccl_sky_kind;
+
+typedef struct ccl_cloudscape_sky {
+    int kind;                   /* ccl_sky_kind */
+    float sun[3];               /* unit direction towards the sun (ccl_sky_sun_direction) */
+    ccl_preetham preetham;      /* filled by ccl_preetham_init when kind == CCL_SKY_PREETHAM */
+    ccl_sky_gradient gradient;  /* filled by ccl_sky_gradient_defaults / _init when kind == CCL_SKY_GRADIENT */
+} ccl_cloudscape_sky;
+
+/* The documented defaults (see the field comments; reasons in cloudscape.c). */
+CCL_API void ccl_cloudscape_params_default(ccl_cloudscape_params *out);
+
+/* Validate parameters, textures and sky. Returns CCL_OK, or CCL_EINVAL and *out_field = the name of the first bad
+ * field (a static string; out_field may be NULL). */
+CCL_API ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
+                                        const ccl_cloudscape_sky *sky, const char **out_field);
+
+/* Bilinear sample of a periodic 2-D RGBA texture tex[y][x][4] of edge size_mask + 1 (a power of two) at texture
+ * coordinates (u, v) (1 = one period, texel centres at (i + 0.5) / size), indices wrapped with & size_mask. */
+CCL_API void ccl_cloudscape_sample_bilinear_wrap(const float *tex, int size_mask, float u, float v, float *out_rgba);
+
+/* Cloud density at a world position (vc-A17, see above); *out_precipitation = weather-map G at the position.
+ * detail = 0 skips the detail erosion (returns B_D). Inputs must have passed ccl_cloudscape_check. */
+CCL_API float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos,
+                                     int detail, float *out_precipitation);
+
+/* March one view ray through the layer: cloud colour (premultiplied, display-linear), view transmittance T and the
+ * number of view samples taken. offset in [0, 1): sample position within each step (0.5 = midpoints). */
+CCL_API void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye,
+                                  ccl_vec3 dir, ccl_vec3 to_sun, float offset, float *out_rgb,
+                                  float *out_transmittance, int *out_samples);
+
+/* The display-linear colour (before sRGB encoding) of pixel (x, y) of a width x height frame: sky, clouds,
+ * composite. frame seeds the ray jitter. out_rgb[3]. */
+CCL_API void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
+                                  const ccl_cloudscape_sky *sky, const ccl_camera *cam, int x, int y, int width,
+                                  int height, int frame, float *out_rgb);
+
+/* Render a whole frame on one thread: out_rgb (height x width x 3, row 0 at the top) gets sRGB-encoded values in
+ * [0, 1]. Returns CCL_EINVAL for bad parameters (see ccl_cloudscape_check), sizes < 1, NULL pointers or
+ * out_len != width * height * 3. */
+CCL_API ccl_status ccl_cloudscape_render(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
+                                         const ccl_cloudscape_sky *sky, const ccl_camera *cam, int width, int height,
+                                         int frame, float *out_rgb, size_t out_len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CCLOUDS_CLOUDSCAPE_H */
