@@ -1,0 +1,203 @@
+"""The vc renderer: Warp frame vs the scalar C reference at sampled pixels, no NaN/Inf anywhere (camera below, inside,
+above the layer; both skies), determinism, temporal reprojection (static camera reproduces the full render; camera
+inside/above falls back to full rendering), the optimisation ladder as work counts, bad input, and the CLI."""
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from pywarp.cloudscape import (
+    CameraPose,
+    CloudscapeSettings,
+    CloudscapeTechnique,
+    flythrough_path,
+    render_frame_c,
+    render_pixels_c,
+    render_pixels_warp,
+)
+
+SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
+SPEC = ("vc-A14", "vc-A17", "vc-A18", "vc-A19", "vc-A20", "vc-A21", "vc-A22", "vc-A24", "vc-A25", "vc-4.8")
+
+
+def small(**kw) -> CloudscapeSettings:
+    return CloudscapeSettings(**{"width": 96, "height": 54, **SMALL, **kw})
+
+
+@pytest.fixture(scope="module")
+def tech():
+    return CloudscapeTechnique(small())
+
+
+@pytest.mark.spec(*SPEC, "vc-A23", "vc-A28", "vc-A29")
+@pytest.mark.parametrize("sky", ["preetham", "gradient"])
+@pytest.mark.parametrize("jitter", ["tilt", "offset"])
+def test_warp_pixels_match_c_reference(sky, jitter):
+    """300 sampled pixels of a 96x54 frame. Both sides evaluate the same float32 operations in the same order with
+    the same libm (expf, powf, tanf); C is compiled without FMA contraction and Warp's CPU code does not contract
+    either, so the results are expected bit-identical. The stated tolerance, 1e-5 absolute on values <= ~2, allows
+    a few ulp of difference per operation accumulated over <= 128 march steps on another platform."""
+    s = small(sky=sky, jitter=jitter, camera_pitch_deg=12.0)
+    t = CloudscapeTechnique(s)
+    rng = np.random.default_rng(7)
+    xs, ys = rng.integers(0, s.width, 300), rng.integers(0, s.height, 300)
+    w = render_pixels_warp(t, xs, ys)
+    c = render_pixels_c(s, t.textures, xs, ys)
+    assert np.all(np.isfinite(w)) and np.all(np.isfinite(c))
+    np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
+    # the sample must contain cloudy pixels, or the comparison would prove little
+    clear = render_pixels_warp(CloudscapeTechnique(small(sky=sky, jitter=jitter, camera_pitch_deg=12.0,
+                                                         coverage=0.0)), xs, ys)
+    assert np.mean(np.any(np.abs(w - clear) > 1e-3, axis=1)) > 0.2
+
+
+@pytest.mark.spec(*SPEC)
+def test_whole_frame_warp_equals_c_render():
+    s = small(width=48, height=27)
+    t = CloudscapeTechnique(s)
+    lin = t.render(reprojection=False, encode=False)
+    warp_img = t.render(reprojection=False)
+    c_img = render_frame_c(s, t.textures, frame=1)  # the second render above was frame 1
+    np.testing.assert_allclose(np.round(c_img * 255.0).astype(int), warp_img.astype(int), atol=1)
+    assert lin.shape == (27, 48, 3)
+
+
+@pytest.mark.spec(*SPEC, "vc-A24")
+@pytest.mark.parametrize("altitude,pitch", [(0.0, 5.0), (0.3, 30.0), (2.5, 0.0), (3.9, -20.0), (6.0, -30.0),
+                                            (6.0, 40.0), (0.3, -60.0)])
+@pytest.mark.parametrize("sky", ["preetham", "gradient"])
+def test_images_are_finite_everywhere(tech, altitude, pitch, sky):
+    s = small(sky=sky)
+    t = CloudscapeTechnique(s, textures=tech.textures)
+    lin = t.render(CameraPose(0.0, altitude, 0.0, 30.0, pitch, 60.0), reprojection=False, encode=False)
+    assert np.all(np.isfinite(lin))
+    assert lin.min() >= 0.0
+
+
+@pytest.mark.spec(*SPEC)
+def test_same_seed_same_image_and_other_seed_differs():
+    a = CloudscapeTechnique(small(seed=3)).render(reprojection=False)
+    b = CloudscapeTechnique(small(seed=3)).render(reprojection=False)
+    c = CloudscapeTechnique(small(seed=4)).render(reprojection=False)
+    np.testing.assert_array_equal(a, b)
+    assert np.mean(np.abs(a.astype(int) - c.astype(int))) > 1.0
+
+
+@pytest.mark.spec("vc-A26", "vc-4.1", "vc-A22")
+def test_reprojection_static_camera_converges_to_full_render(tech):
+    """With a static camera and no jitter, after 16 frames every pixel was raymarched once in its own frame and
+    carried over exactly: the reprojected frame equals the full render."""
+    s = small(jitter="none", reprojection=True)
+    t = CloudscapeTechnique(s, textures=tech.textures)
+    full = t.render(reprojection=False, encode=False)
+    t2 = CloudscapeTechnique(s, textures=tech.textures)
+    for _ in range(16):
+        img = t2.render(reprojection=True, encode=False)
+    np.testing.assert_array_equal(img, full)
+
+
+@pytest.mark.spec("vc-A26", "vc-A24")
+def test_reprojection_falls_back_to_full_render_inside_and_above_the_layer(tech):
+    pose = CameraPose(0.0, 2.5, 0.0, 10.0, 5.0, 60.0)
+    s = small(reprojection=True, jitter="none")
+    a = CloudscapeTechnique(s, textures=tech.textures).render(pose, reprojection=True, encode=False)
+    b = CloudscapeTechnique(s, textures=tech.textures).render(pose, reprojection=False, encode=False)
+    np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.spec("vc-A18", "vc-A21")
+def test_optimisation_ladder_reduces_the_work(tech):
+    """The ladder of fig 4.17 as work (samples marched), which is what the time follows: adaptive counts take fewer
+    samples than 128 everywhere the ray leaves the horizon; early exit takes fewer still where clouds are dense."""
+    counts = {}
+    for name, kw in {"unoptimised": dict(adaptive_samples=False, early_exit=False),
+                     "adaptive_samples": dict(adaptive_samples=True, early_exit=False),
+                     "early_exit": dict(adaptive_samples=True, early_exit=True)}.items():
+        t = CloudscapeTechnique(small(camera_pitch_deg=25.0, **kw), textures=tech.textures)
+        t.render(reprojection=False)
+        counts[name] = t.samples_taken().astype(np.int64)
+    assert counts["unoptimised"].max() == 128
+    assert np.all(counts["adaptive_samples"] <= counts["unoptimised"])
+    assert counts["adaptive_samples"].sum() < 0.9 * counts["unoptimised"].sum()
+    assert np.all(counts["early_exit"] <= counts["adaptive_samples"])
+    assert counts["early_exit"].sum() < counts["adaptive_samples"].sum()
+
+
+@pytest.mark.spec("vc-A14")
+def test_settings_validation_names_the_field():
+    cases = [
+        (dict(width=0), r"^width must be an integer in \[1, 8192\]"),
+        (dict(turbidity=1.0), r"^turbidity must be in \[2, 10\]"),
+        (dict(sky="hosek"), r"^sky must be one of preetham, gradient"),
+        (dict(sun_elevation_deg=-5.0), r"^sun_elevation_deg must be in \[0, 90\] degrees for the Preetham sky"),
+        (dict(coverage=float("nan")), r"^coverage must be in \[0, 1\]"),
+        (dict(layer_top_km=1.0), r"^layer_top_km must be > layer_base_km"),
+        (dict(base_size=100), r"^base_size must be a power of two"),
+        (dict(advanced={"sigma": -1.0}), r"^sigma is out of range"),
+        (dict(advanced={"bogus": 1.0}), r"^advanced: unknown parameter 'bogus'"),
+        (dict(reprojection_neighbourhood=2), r"^reprojection_neighbourhood must be an odd integer"),
+    ]
+    for kw, pattern in cases:
+        with pytest.raises(ValueError, match=pattern):
+            CloudscapeSettings(**kw).validate()
+    # the gradient sky accepts a sun below the horizon
+    CloudscapeSettings(sky="gradient", sun_elevation_deg=-5.0).validate()
+
+
+def test_flythrough_climbs_through_the_layer():
+    s = CloudscapeSettings()
+    poses = flythrough_path(30, s)
+    alts = [p.altitude_km for p in poses]
+    assert alts[0] == s.camera_altitude_km and alts[-1] > s.layer_top_km
+    assert all(b >= a for a, b in zip(alts, alts[1:]))
+    with pytest.raises(ValueError, match="frames must be >= 1"):
+        flythrough_path(0, s)
+
+
+def _cli(*args, cwd):
+    # cwd: never the repository root, where `python -m` would import the source folder instead of the package
+    return subprocess.run([sys.executable, "-m", "pywarp.cli", *args], capture_output=True, text=True, cwd=cwd)
+
+
+def test_cli_render_writes_png(tmp_path):
+    out = tmp_path / "c.png"
+    res = _cli("render", "--width", "64", "--height", "36", "--out", str(out), "--no-progress", cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    from PIL import Image
+
+    img = np.asarray(Image.open(out))
+    assert img.shape == (36, 64, 3) and img.std() > 1.0
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--width", "-5"], "pywarp: error: --width must be an integer in [1, 8192] pixels, got -5"),
+    (["--turbidity", "12"], "pywarp: error: --turbidity must be in [2, 10] (the range of Preetham's fit), got 12.0"),
+    (["--sun-elevation", "-3"], "pywarp: error: --sun-elevation must be in [0, 90] degrees for the Preetham sky"),
+    (["--sky", "hosek"], "pywarp: error: --sky must be one of preetham, gradient, got 'hosek'"),
+    (["--out", "/nonexistent-dir/x.png"], "pywarp: error: --out: folder '/nonexistent-dir' does not exist"),
+    (["--out", "x.jpg"], "pywarp: error: --out must end in .png"),
+])
+def test_cli_render_bad_arguments_one_line_no_file(tmp_path, args, message):
+    res = _cli("render", "--width", "32", "--height", "18", *args, cwd=tmp_path)
+    assert res.returncode == 2
+    assert res.stderr.strip().splitlines()[-1].startswith(message)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_cli_animate_gif_and_bad_frames(tmp_path):
+    out = tmp_path / "f.gif"
+    res = _cli("animate", "--width", "48", "--height", "28", "--frames", "3", "--out", str(out), "--no-progress",
+               cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    from PIL import Image
+
+    with Image.open(out) as im:
+        assert im.n_frames == 3
+    res = _cli("animate", "--frames", "0", "--out", str(tmp_path / "g.gif"), cwd=tmp_path)
+    assert res.returncode == 2 and "--frames must be >= 1" in res.stderr
+    res = _cli("animate", "--width", "49", "--height", "28", "--out", str(tmp_path / "g.mp4"), cwd=tmp_path)
+    assert res.returncode == 2 and "must be even for MP4" in res.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f.gif"]
