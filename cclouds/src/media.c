@@ -82,6 +82,22 @@ ccl_status ccl_media_phase_integral(const float *p, int n, float *out_integral)
     return CCL_OK;
 }
 
+ccl_status ccl_media_phase_asymmetry(const float *p, int n, float *out_g)
+{
+    float s, h;
+    int i;
+    if (p == NULL || out_g == NULL || n < 3 || n % 2 == 0 || !samples_ok(p, n)) return CCL_EINVAL;
+    /* vc-2.14: g = 2 pi int_{-1}^{1} p(mu) mu dmu, the same Simpson rule as vc-2.8 on the nodes mu_i */
+    h = 2.0f / (float)(n - 1);
+    s = -p[0] + p[n - 1];
+    for (i = 1; i < n - 1; ++i) {
+        float mu = -1.0f + (float)i * h;
+        s += ((i % 2) ? 4.0f : 2.0f) * (p[i] * mu);
+    }
+    *out_g = CCL_2PI_F * s * h / 3.0f;
+    return CCL_OK;
+}
+
 float ccl_media_gain_derivative(float sigma_a, float sigma_s, float L_e, float L_i)
 {
     /* vc-2.9: dL/dx = sigma_a L_e + sigma_s L_i */

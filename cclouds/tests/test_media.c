@@ -87,6 +87,30 @@ static void test_phase_integral_normalization(void)
     CCL_CHECK_CLOSE(out, 1.0, 1e-6);
 }
 
+static void test_phase_asymmetry_hg_isotropic_rayleigh(void)
+{
+    enum { N = 4001 };
+    static float p[N];
+    static const float gs[] = {-0.7f, 0.3f, 0.76f};
+    float out = -2.0f;
+    size_t j;
+    int i;
+    /* vc-2.14: HG returns g (Simpson error < 1e-4 on 4001 nodes for |g| <= 0.76), isotropic and Rayleigh 0 */
+    for (j = 0; j < sizeof gs / sizeof gs[0]; ++j) {
+        for (i = 0; i < N; ++i) p[i] = ccl_phase_hg((float)(-1.0 + 2.0 * i / (N - 1)), gs[j]);
+        CCL_CHECK(ccl_media_phase_asymmetry(p, N, &out) == CCL_OK);
+        CCL_CHECK_CLOSE(out, gs[j], 1e-4);
+    }
+    for (i = 0; i < N; ++i) p[i] = ccl_phase_rayleigh((float)(-1.0 + 2.0 * i / (N - 1)));
+    CCL_CHECK(ccl_media_phase_asymmetry(p, N, &out) == CCL_OK);
+    CCL_CHECK_CLOSE(out, 0.0, 1e-6);
+    for (i = 0; i < N; ++i) p[i] = ccl_phase_isotropic();
+    CCL_CHECK(ccl_media_phase_asymmetry(p, N, &out) == CCL_OK);
+    CCL_CHECK_CLOSE(out, 0.0, 1e-6);
+    CCL_CHECK(ccl_media_phase_asymmetry(p, 4, &out) == CCL_EINVAL);
+    CCL_CHECK(ccl_media_phase_asymmetry(NULL, 3, &out) == CCL_EINVAL);
+}
+
 static void test_phase_integral_rejects_bad_input(void)
 {
     float p[4] = {0.1f, 0.1f, 0.1f, 0.1f};
@@ -263,6 +287,7 @@ int main(void)
     CCL_RUN(test_loss_derivatives_values_and_decay);
     CCL_RUN(test_transmittance_and_slab_flux);
     CCL_RUN(test_transmittance_compose_variants);
+    CCL_RUN(test_phase_asymmetry_hg_isotropic_rayleigh);
     CCL_RUN(test_phase_integral_normalization);
     CCL_RUN(test_phase_integral_rejects_bad_input);
     CCL_RUN(test_gain_and_rte);

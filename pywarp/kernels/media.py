@@ -94,6 +94,21 @@ def media_phase_integral(p: wp.array2d(dtype=float), row: int) -> float:
 
 
 @wp.func
+def media_phase_asymmetry(p: wp.array2d(dtype=float), row: int) -> float:
+    """vc-2.14: g = 2 pi int_{-1}^{1} p(mu) mu dmu, the Simpson rule of :func:`media_phase_integral`."""
+    n = p.shape[1]
+    h = 2.0 / float(n - 1)
+    s = -p[row, 0] + p[row, n - 1]
+    for i in range(1, n - 1):
+        w = float(2.0)
+        if i % 2 == 1:
+            w = 4.0
+        mu = -1.0 + float(i) * h
+        s = s + w * (p[row, i] * mu)
+    return TWO_PI * s * h / 3.0
+
+
+@wp.func
 def media_volume_render(sigma_a: wp.array2d(dtype=float), sigma_s: wp.array2d(dtype=float),
                         L_e: wp.array2d(dtype=float), L_i: wp.array2d(dtype=float), row: int, dt: float,
                         L_bg: float, variant: int) -> float:
@@ -208,6 +223,12 @@ def _eval_media_rte_derivative(sigma_a: wp.array(dtype=float), sigma_s: wp.array
 def _rows_media_phase_integral(p: wp.array2d(dtype=float), out: wp.array(dtype=float)):
     r = wp.tid()
     out[r] = media_phase_integral(p, r)
+
+
+@wp.kernel
+def _rows_media_phase_asymmetry(p: wp.array2d(dtype=float), out: wp.array(dtype=float)):
+    r = wp.tid()
+    out[r] = media_phase_asymmetry(p, r)
 
 
 @wp.kernel
@@ -427,6 +448,17 @@ register(Equation(
     summary="Normalization check of a rotationally symmetric phase function: int_sphere p domega = 2 pi int_{-1}^1 "
             "p(mu) dmu by composite Simpson on tabulated values; 1 for a normalized phase function.",
     references=_REFS_PBR))
+
+register(Equation(
+    "vc-2.14", "media_phase_asymmetry", "ccl_media_phase_asymmetry", media_phase_asymmetry,
+    _rows_media_phase_asymmetry,
+    args=(Arg("p", "phase function p(mu) [sr^-1] >= 0 at the n (odd, >= 3) uniform nodes mu_i = -1 + 2 i/(n-1) on "
+                   "the last axis", lo=0.0),),
+    outputs=("g",), check=_check_phase_nodes, make_warp=_make_rows_warp, make_c=_make_rows_c,
+    extra={"n_sample_args": 1},
+    summary="Asymmetry parameter (mean cosine) g = int p cos(theta) domega of a tabulated phase function, by the "
+            "Simpson rule of vc-2.8; fits an HG lobe (vc-2.13) to a complex phase function.",
+    references=_REFS_PBR + ("Henyey & Greenstein, ApJ 93:70-83, 1941",)))
 
 register(Equation(
     "vc-2.17", "media_volume_render", "ccl_media_volume_render", media_volume_render, _rows_media_volume_render,

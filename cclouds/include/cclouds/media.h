@@ -69,6 +69,13 @@ CCL_API float ccl_media_transmittance_compose(float t_a, float t_b, ccl_variant 
  * polynomials in mu; error O(n^-4) for smooth p). Accumulated in float in node order. */
 CCL_API ccl_status ccl_media_phase_integral(const float *p, int n, float *out_integral);
 
+/* Asymmetry parameter (mean cosine) of a tabulated, rotationally symmetric phase function:
+ * g = int_Omega p(omega_i) cos(theta) domega_i = 2 pi int_{-1}^{1} p(mu) mu dmu, composite Simpson on the nodes of
+ * ccl_media_phase_integral. Ref: vc-2.14 (used to fit an HG lobe to a complex phase function). The same input rules
+ * and CCL_EINVAL cases as ccl_media_phase_integral. Output in [-1, 1] for a normalized p: 0 for isotropic and
+ * Rayleigh, g for Henyey-Greenstein. */
+CCL_API ccl_status ccl_media_phase_asymmetry(const float *p, int n, float *out_g);
+
 /* Radiance gain by emission and in-scattering: dL/dx = sigma_a L_e + sigma_s L_i.
  * Ref: vc-2.9. sigma_a, sigma_s >= 0 at x; L_e -> L_e(x, omega) >= 0; L_i -> L_i(x, omega) >= 0, the in-scattered
  * radiance int p L domega_i computed by the caller. Output >= 0. Evaluated as sigma_a * L_e + sigma_s * L_i. */
