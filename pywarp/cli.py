@@ -81,8 +81,10 @@ def cmd_bench(args) -> int:
     from . import bench
 
     repeat = args.repeat or (5 if args.name == "tiles" else 2)
-    bench.main(args.name, as_json=args.json, width=args.width, height=args.height, repeat=repeat,
-               workers=args.workers, device=args.device)
+    size = {} if args.name == "reprojection" else {"width": args.width or 960, "height": args.height or 540}
+    if args.name == "reprojection":
+        size = {"width": args.width or 640, "height": args.height or 360}
+    bench.main(args.name, as_json=args.json, repeat=repeat, workers=args.workers, device=args.device, **size)
     return 0
 
 
@@ -227,12 +229,15 @@ def build_parser() -> argparse.ArgumentParser:
     a.set_defaults(run=cmd_animate)
 
     b = sub.add_parser("bench", help="run a benchmark and print ratios measured in one run")
-    b.add_argument("name", choices=("tiles", "cloudscape", "textures"),
+    b.add_argument("name", choices=("tiles", "cloudscape", "textures", "reprojection"),
                    help="tiles: tile-parallel launcher vs one launch; cloudscape: the vc renderer's optimisation "
                         "ladder, sky models, Warp vs C, reprojection (keys documented in the README); textures: "
-                        "noise-texture generation, C one thread vs Warp tile-parallel")
-    b.add_argument("--width", type=_positive_int("--width"), default=960, help="frame width in pixels (default 960)")
-    b.add_argument("--height", type=_positive_int("--height"), default=540, help="frame height in pixels (default 540)")
+                        "noise-texture generation, C one thread vs Warp tile-parallel; reprojection: SSIM/PSNR of reprojected frames "
+                        "against full renders along a camera path (needs scikit-image, a test extra)")
+    b.add_argument("--width", type=_positive_int("--width"), default=None,
+                   help="frame width in pixels (default 960; 640 for reprojection)")
+    b.add_argument("--height", type=_positive_int("--height"), default=None,
+                   help="frame height in pixels (default 540; 360 for reprojection)")
     b.add_argument("--repeat", type=_positive_int("--repeat"), default=None,
                    help="timed repetitions, best kept (default 5 for tiles, 2 for cloudscape)")
     b.add_argument("--workers", type=_positive_int("--workers"), default=None,
