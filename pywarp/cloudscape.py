@@ -58,13 +58,18 @@ class CloudscapeSettings:
     #: Sky model: 'preetham' (the thesis' default, vc-A29) or 'gradient' (vc-A28).
     sky: str = "preetham"
     #: Sun elevation above the horizon and azimuth (degrees; azimuth 0 = -z, the default view direction).
-    #: Default 18 deg: a morning sun whose light grazes the cloud sides (silver lining and dark bases both show).
-    sun_elevation_deg: float = 18.0
-    sun_azimuth_deg: float = 20.0
+    #: Default 35 deg, azimuth 150 deg: a mid-morning sun behind the viewer's right shoulder, so the sky in view is
+    #: blue and the clouds are lit from the side (sunlit tops, grey bases).
+    sun_elevation_deg: float = 35.0
+    sun_azimuth_deg: float = 150.0
     #: Preetham turbidity in [2, 10] (the range of Preetham's fit). Default 2.5: a clear day.
     turbidity: float = 2.5
     #: Variant of the sky chain's errata (vc-2.39, 4.4, 4.5): 'corrected' or 'thesis'.
     sky_variant: str = "corrected"
+    #: Exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5), > 0. Default 0.05: with the thesis'
+    #: constant 0.03 and luminance in kcd/m^2 the corrected sky is a dim grey-blue; 0.05 gives a mid-blue zenith at
+    #: T = 2.5 without saturating the sky around the sun (figures/vc/fig-4.6.png uses the thesis' 0.03).
+    sky_exposure: float = 0.05
     #: Weather-map coverage in [0, 1] (fraction of the sky the cloud fields may occupy). Default 0.45.
     coverage: float = 0.45
     #: Weather-map precipitation in [0, 1] (darkens clouds through vc-2.31's a). Default 0.2.
@@ -75,12 +80,13 @@ class CloudscapeSettings:
     seed: int = 0
     #: Camera position: altitude above the ground (km) and horizontal position (km); view: yaw (deg, 0 = -z,
     #: positive towards +x) and pitch (deg above the horizon); vertical field of view (deg).
-    #: Default: 0.3 km above the ground, looking 8 deg up with a 60 deg field of view.
+    #: Default: 0.3 km above the ground, looking 20 deg up with a 60 deg field of view (the horizon near the bottom
+    #: edge, the cloud bases overhead).
     camera_altitude_km: float = 0.3
     camera_x_km: float = 0.0
     camera_z_km: float = 0.0
     camera_yaw_deg: float = 0.0
-    camera_pitch_deg: float = 8.0
+    camera_pitch_deg: float = 20.0
     fov_y_deg: float = 60.0
     #: Cloud layer (vc-A14): Earth radius, base and top altitude (km). See pywarp.kernels.raymarch for the reasons.
     earth_radius_km: float = R.EARTH_RADIUS_KM
@@ -137,6 +143,8 @@ class CloudscapeSettings:
         _check(_finite(self.turbidity) and 2.0 <= self.turbidity <= 10.0, "turbidity",
                "in [2, 10] (the range of Preetham's fit)", self.turbidity)
         _check(self.sky_variant in ("corrected", "thesis"), "sky_variant", "'corrected' or 'thesis'", self.sky_variant)
+        _check(_finite(self.sky_exposure) and 0.0 < self.sky_exposure <= 10.0, "sky_exposure", "in (0, 10]",
+               self.sky_exposure)
         for name in ("coverage", "precipitation", "cloud_type"):
             v = getattr(self, name)
             _check(_finite(v) and 0.0 <= v <= 1.0, name, "in [0, 1]", v)
@@ -274,7 +282,7 @@ class PreethamSky(SkyModel):
         self.sun = settings.sun()
         theta_s = math.radians(90.0 - settings.sun_elevation_deg)
         self.preetham = S.preetham_params(settings.turbidity, min(theta_s, float(np.float32(math.pi / 2))),
-                                          variant=settings.sky_variant)
+                                          exposure=settings.sky_exposure, variant=settings.sky_variant)
         self.gradient = S.gradient_params()
 
 
@@ -463,7 +471,7 @@ class CloudscapeTechnique:
         if any(getattr(old, f) != getattr(new, f) for f in tex_fields):
             self.textures = RenderTextures.generate(new, self.generator)
         if any(getattr(old, f) != getattr(new, f) for f in ("sky", "sun_elevation_deg", "sun_azimuth_deg",
-                                                             "turbidity", "sky_variant")):
+                                                             "turbidity", "sky_variant", "sky_exposure")):
             self.sky = make_sky(new) if type(self.sky) in (GradientSky, PreethamSky) else self.sky
             if type(self.sky) not in (GradientSky, PreethamSky):
                 self.sky.update(new)
@@ -554,7 +562,7 @@ def c_sky(settings: CloudscapeSettings):
     if settings.sky == "preetham":
         sky.kind = lb.CCL_SKY_PREETHAM
         theta_s = min(math.radians(90.0 - settings.sun_elevation_deg), float(np.float32(math.pi / 2)))
-        status_error(lb.ccl_preetham_init(settings.turbidity, theta_s, S.TONEMAP_EXPOSURE,
+        status_error(lb.ccl_preetham_init(settings.turbidity, theta_s, settings.sky_exposure,
                                           0 if settings.sky_variant == "corrected" else 1, f.addressof(sky.preetham)),
                      "ccl_preetham_init")
     else:

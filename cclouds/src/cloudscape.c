@@ -12,13 +12,13 @@
 
 /* Defaults. The thesis gives none of these values (spec vc-A36, "Not given"); each is our choice, with its reason:
  *   layer 6371 / 1.5 / 4 km   ccl_cloud_layer_default (reasons in cclouds/raymarch.h).
- *   base_scale_km 12          one tile of the 128^3 base texture spans 12 km: its lowest Worley frequency then
- *                             makes cloud cells of ~1.5-3 km, the size of fair-weather cumulus.
- *   detail_scale_km 1.5       the 32^3 detail texture erodes edges at ~50-200 m, below the base-shape scale.
- *   weather_scale_km 48       a weather-map tile covers 48 x 48 km: several cloud fields are visible towards the
- *                             horizon before the map repeats.
- *   curl_scale_km 8, curl_strength_km 0.25   turbulent swirls a few km wide that displace the detail by up to a
- *                             quarter of a kilometre (the thesis gives neither; Schneider 2015 only shows the look).
+ *   base_scale_km 6           one tile of the 128^3 base texture spans 6 km: its Worley cells (4 .. 32 per tile) then
+ *                             make cloud cells of ~0.2-1.5 km, the size of fair-weather cumulus; 12 km looked like
+ *                             soft blobs from the ground in our test renders.
+ *   detail_scale_km 0.8       the 32^3 detail texture (2 .. 16 cells per tile) erodes edges at ~50-400 m.
+ *   weather_scale_km 32       a weather-map tile covers 32 x 32 km: a few cloud fields in view before it repeats.
+ *   curl_scale_km 8, curl_strength_km 0.2   turbulent swirls a few km wide that displace the detail by up to
+ *                             200 m (the thesis gives neither; Schneider 2015 only shows the look).
  *   sigma = sigma_light 30/km a density-1 cloud has a mean free path of ~33 m; the densities of the default
  *                             textures are mostly 0.1-0.5, i.e. extinctions of 3-15/km inside the cloud and more at
  *                             the cores, the range of cumulus (20-100/km at liquid water contents of 0.2-1 g/m^3)
@@ -46,11 +46,11 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     CCL_REQUIRE(out != NULL);
     memset(out, 0, sizeof *out);
     ccl_cloud_layer_default(&out->layer);
-    out->base_scale_km = 12.0f;
-    out->detail_scale_km = 1.5f;
-    out->weather_scale_km = 48.0f;
+    out->base_scale_km = 6.0f;
+    out->detail_scale_km = 0.8f;
+    out->weather_scale_km = 32.0f;
     out->curl_scale_km = 8.0f;
-    out->curl_strength_km = 0.25f;
+    out->curl_strength_km = 0.2f;
     out->sigma = 30.0f;
     out->sigma_light = 30.0f;
     out->absorption_base = 1.0f;

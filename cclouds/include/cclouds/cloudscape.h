@@ -53,11 +53,11 @@ typedef struct ccl_cloud_textures {
 /* Every parameter of the cloud pass. ccl_cloudscape_params_default documents the defaults and their reasons. */
 typedef struct ccl_cloudscape_params {
     ccl_cloud_layer layer;      /* Earth and layer spheres (vc-A14); default 6371 km, base 1.5 km, top 4 km */
-    float base_scale_km;        /* world size of one tile of the base texture (default 12 km) */
-    float detail_scale_km;      /* world size of one tile of the detail texture (default 1.5 km) */
-    float weather_scale_km;     /* world size of one tile of the weather map, planar projection (default 48 km) */
+    float base_scale_km;        /* world size of one tile of the base texture (default 6 km) */
+    float detail_scale_km;      /* world size of one tile of the detail texture (default 0.8 km) */
+    float weather_scale_km;     /* world size of one tile of the weather map, planar projection (default 32 km) */
     float curl_scale_km;        /* world size of one tile of the curl texture (default 8 km) */
-    float curl_strength_km;     /* displacement of the detail lookup per unit curl vector (default 0.25 km) */
+    float curl_strength_km;     /* displacement of the detail lookup per unit curl vector (default 0.2 km) */
     float weather_offset[2];    /* wind: (x, z) offset of the weather-map lookup, km */
     float detail_offset[3];     /* wind: offset of the detail lookup, km */
     float sigma;                /* extinction per unit density along the view ray, 1/km (default 30) */
