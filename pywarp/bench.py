@@ -94,6 +94,69 @@ def _timed(fn, repeat: int) -> float:
     return 1e3 * _best(fn, repeat)
 
 
+def _reprojected_ms(t, n_frames: int = 16) -> float:
+    """Median time of steady-state reprojected frames (after one frame without history), slowly moving camera."""
+    from .cloudscape import CameraPose
+
+    p = CameraPose.from_settings(t.settings)
+    t.render(p, reprojection=True)
+    times = []
+    for k in range(n_frames):
+        q = CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * (k + 1), p.yaw_deg + 0.02 * (k + 1), p.pitch_deg,
+                       p.fov_y_deg)
+        t0 = time.perf_counter()
+        t.render(q, reprojection=True)
+        times.append(time.perf_counter() - t0)
+    return 1e3 * float(np.median(times))
+
+
+def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers: int | None = None,
+                   device: str | None = None, **settings):
+    """The fig 4.17 ladder on one frame and camera, each step including the previous ones (ms):
+    unoptimised, adaptive_samples, early_exit, reprojection. Returns (technique, ladder)."""
+    from .cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique
+
+    if width < 1 or height < 1:
+        raise ValueError(f"width and height must be >= 1, got {width}x{height}")
+    if repeat < 1:
+        raise ValueError(f"repeat must be >= 1, got {repeat}")
+    tech = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, device=device or "cpu",
+                                                  threads=workers, **settings))
+    pose = CameraPose.from_settings(tech.settings)
+    tech.render(pose, reprojection=False)  # compile / warm up
+
+    def full(**changes):
+        tech.update(**changes)
+        return _timed(lambda: tech.render(pose, reprojection=False), repeat)
+
+    ladder = {
+        "unoptimised": full(adaptive_samples=False, early_exit=False),
+        "adaptive_samples": full(adaptive_samples=True, early_exit=False),
+        "early_exit": full(adaptive_samples=True, early_exit=True),
+    }
+    ladder["reprojection"] = _reprojected_ms(tech)
+    return tech, ladder
+
+
+def measure_sky(tech, repeat: int = 2) -> dict:
+    """Fig 4.16: the sky stage alone (ms) for the gradient and Preetham models, over the full frame and with
+    reprojection (one pixel per 4 x 4 block), on ``tech``'s frame and camera."""
+    from .cloudscape import CameraPose, make_sky, replace
+
+    s = tech.settings
+    cam = CameraPose.from_settings(s).camera(s.width, s.height)
+    buf = tech._buffers["current"]
+    out = {}
+    for kind in ("gradient", "preetham"):
+        sky = make_sky(replace(s, sky=kind).validate())
+        res = {}
+        for name, rep in (("full", False), ("reprojection", True)):
+            sky.render(buf, cam, 0, rep, tech.params, tech.launcher)
+            res[name] = _timed(lambda: sky.render(buf, cam, 0, rep, tech.params, tech.launcher), repeat)
+        out[kind] = res
+    return out
+
+
 def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, workers: int | None = None,
                      device: str | None = None, small: tuple[int, int] = (160, 90)) -> dict:
     """The vc renderer's numbers, all measured in this run on this machine.
@@ -114,51 +177,17 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         raise ValueError(f"width and height must be >= 1, got {width}x{height}")
     if repeat < 1:
         raise ValueError(f"repeat must be >= 1, got {repeat}")
-    base = CloudscapeSettings(width=width, height=height, device=device or "cpu", threads=workers)
-    tech = CloudscapeTechnique(base)
+    tech, ladder = measure_ladder(width, height, repeat, workers, device)
     textures = tech.textures
-    pose = CameraPose.from_settings(base)
-    tech.render(pose, reprojection=False)  # compile / warm up
-
-    def full(**changes):
-        tech.update(**changes)
-        return _timed(lambda: tech.render(pose, reprojection=False), repeat)
-
-    ladder = {
-        "unoptimised": full(adaptive_samples=False, early_exit=False),
-        "adaptive_samples": full(adaptive_samples=True, early_exit=False),
-        "early_exit": full(adaptive_samples=True, early_exit=True),
-    }
-
-    def reprojected_ms(t: CloudscapeTechnique, n_frames: int = 16) -> float:
-        p = CameraPose.from_settings(t.settings)
-        t.render(p, reprojection=True)  # frame with no history
-        times = []
-        for k in range(n_frames):
-            q = CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * (k + 1), p.yaw_deg + 0.02 * (k + 1), p.pitch_deg,
-                           p.fov_y_deg)
-            t0 = time.perf_counter()
-            t.render(q, reprojection=True)
-            times.append(time.perf_counter() - t0)
-        return 1e3 * float(np.median(times))
-
-    ladder["reprojection"] = reprojected_ms(tech)
+    pose = CameraPose.from_settings(tech.settings)
     # the proposed cheaper option (not the default): light samples from the base shape only (no detail erosion)
     tech.update(light_detail=False)
     tech.render(pose, reprojection=False)
     option_light_base_only = _timed(lambda: tech.render(pose, reprojection=False), repeat)
     tech.update(light_detail=True)
-
-    sky_ms = {}
-    from .cloudscape import make_sky
-
-    for kind in ("gradient", "preetham"):
-        st = CloudscapeSettings(width=width, height=height, sky=kind)
-        sky = make_sky(st)
-        buf = tech._buffers["current"]
-        cam = pose.camera(width, height)
-        sky.render(buf, cam, 0, False, tech.params, tech.launcher)
-        sky_ms[kind] = _timed(lambda: sky.render(buf, cam, 0, False, tech.params, tech.launcher), repeat)
+    sky = measure_sky(tech, repeat)
+    sky_ms = {k: v["full"] for k, v in sky.items()}
+    sky_reprojected_ms = {k: v["reprojection"] for k, v in sky.items()}
 
     one = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, threads=1), textures=textures)
     one.render(pose, reprojection=False)
@@ -173,7 +202,7 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
     t_c = _timed(lambda: render_frame_c(s_small, textures), repeat)
 
     t640 = CloudscapeTechnique(CloudscapeSettings(width=640, height=360, threads=workers), textures=textures)
-    ms_640_reproj = reprojected_ms(t640)
+    ms_640_reproj = _reprojected_ms(t640)
     t1280 = CloudscapeTechnique(CloudscapeSettings(width=1280, height=720, threads=workers), textures=textures)
     t1280.render(reprojection=False)
     ms_1280_full = _timed(lambda: t1280.render(reprojection=False), 1)
@@ -186,6 +215,7 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         "ladder_cut_percent": {k: round(100.0 * (1.0 - v / ladder["unoptimised"]), 1) for k, v in ladder.items()},
         "thesis_cut_percent": {"adaptive_samples": 20, "early_exit": 70, "reprojection": 97},
         "sky_ms": {k: r(v) for k, v in sky_ms.items()},
+        "sky_reprojected_ms": {k: r(v) for k, v in sky_reprojected_ms.items()},
         "parallel_speedup": round(t_one / t_all, 3),
         "warp_over_c_per_thread": round(t_w / t_c, 3),
         "reprojected_over_full": round(ladder["reprojection"] / ladder["early_exit"], 4),

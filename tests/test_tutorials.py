@@ -48,7 +48,10 @@ def test_tutorial_runs_in_quick_mode(path, tmp_path):
 def test_tutorial_full_size_matches_committed_figure(path, tmp_path):
     from skimage.metrics import structural_similarity
 
-    written = figures.load(path).main(tmp_path, quick=False)
+    module = figures.load(path)
+    if not getattr(module, "DETERMINISTIC", True):
+        pytest.skip(f"{path.name} draws measurements (timings): not comparable run to run")
+    written = module.main(tmp_path, quick=False)
     for f in written:
         committed = ROOT / "figures" / path.parent.name / Path(f).name
         assert committed.is_file(), f"{committed} is not committed"
