@@ -67,12 +67,13 @@ class TileLauncher:
     workers : int, optional
         Number of worker threads (default: one per core, see :func:`default_workers`).
     bands_per_worker : int
-        Bands per worker and frame; more than one evens out rows of unequal cost (sky vs. clouds).
+        Bands per worker and frame (default 4): rows of a cloudscape differ in cost by 10x or more (clear sky,
+        ground, cloud bases), so several bands per worker, handed out as workers become free, even out the load.
     device : str, optional
         Warp device. On CUDA a single launch already uses the whole GPU, so bands are launched from the caller.
     """
 
-    def __init__(self, workers: int | None = None, bands_per_worker: int = 2, device: str | None = None):
+    def __init__(self, workers: int | None = None, bands_per_worker: int = 4, device: str | None = None):
         self.device = resolve_device(device)
         self.workers = default_workers() if workers is None else int(workers)
         if self.workers < 1:
