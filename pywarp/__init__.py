@@ -21,10 +21,26 @@ _SUBMODULES = {"kernels", "runtime", "equations", "cli", "bench", "figures", "te
 __all__ = ["equation", "registry", "missing", "__version__"]
 
 
+#: Public helpers that are not catalogue entries: name -> (module, attribute).
+_HELPERS = {
+    "camera_look_at": ("pywarp.kernels.raymarch", "camera_look_at"),  # vc-A25 camera matrices
+    "sun_direction": ("pywarp.kernels.sky", "sun_direction"),  # unit sun vector from elevation/azimuth
+    "perlin2": ("pywarp.kernels.noise", "perlin2"),  # 2-D Perlin noise with a choice of interpolant (fig 2.5)
+    "interpolants": ("pywarp.kernels.noise", "interpolants"),  # linear/cosine/cubic/quintic curves (fig 2.6)
+}
+
+
 def __getattr__(name: str):
     """``pywarp.<name>`` for every registered function, evaluated with Warp (lazily: imports the kernels)."""
     if name.startswith("_") or name in _SUBMODULES:
         raise AttributeError(f"module 'pywarp' has no attribute {name!r}")
+    if name in _HELPERS:
+        import importlib
+
+        mod, attr = _HELPERS[name]
+        value = getattr(importlib.import_module(mod), attr)
+        globals()[name] = value
+        return value
     for eq in registry().values():
         if eq.name == name:
             fn = equation(eq.id)
@@ -34,4 +50,4 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(set(globals()) | {eq.name for eq in registry().values()})
+    return sorted(set(globals()) | set(_HELPERS) | {eq.name for eq in registry().values()})

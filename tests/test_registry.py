@@ -127,3 +127,13 @@ def test_not_computational_reasons_only_for_catalogued_unregistered_ids():
     rows = dict(missing("vc"))
     assert "figure" in rows["vc-fig-2.2"]["reason"]
     assert rows["vc-A34"]["reason"].startswith("technologies")
+
+
+def test_public_helpers_are_reachable_from_the_package():
+    from pywarp.kernels import noise, raymarch, sky
+
+    assert pywarp.camera_look_at is raymarch.camera_look_at
+    assert pywarp.sun_direction is sky.sun_direction
+    assert pywarp.perlin2 is noise.perlin2 and pywarp.interpolants is noise.interpolants
+    with pytest.raises(AttributeError):
+        pywarp.no_such_name
