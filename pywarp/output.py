@@ -46,6 +46,19 @@ def to_uint8(rgb) -> np.ndarray:
     return (np.clip(a[..., :3], 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _publish(tmp: Path, path: Path) -> None:
+    """Give the finished temporary file the usual permissions (0666 minus the umask; mkstemp makes it 0600) and
+    rename it into place atomically."""
+    os.chmod(tmp, 0o666 & ~_umask())
+    os.replace(tmp, path)
+
+
 def _temp_next_to(path: Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix + ".part", dir=path.parent or ".")
     os.close(fd)
@@ -61,7 +74,7 @@ def write_png(path, rgb) -> Path:
     tmp = _temp_next_to(path)
     try:
         Image.fromarray(img).save(tmp, format="PNG")
-        os.replace(tmp, path)
+        _publish(tmp, path)
     finally:
         tmp.unlink(missing_ok=True)
     return path
@@ -120,7 +133,7 @@ class VideoWriter:
                     frames = [Image.fromarray(f) for f in self._frames]
                     frames[0].save(self._tmp, format="GIF", save_all=True, append_images=frames[1:],
                                    duration=int(round(1000 / self.fps)), loop=0)
-                os.replace(self._tmp, self.path)
+                _publish(Path(self._tmp), self.path)
         finally:
             if self._tmp is not None:
                 Path(self._tmp).unlink(missing_ok=True)

@@ -64,3 +64,13 @@ def test_video_writer_validation(tmp_path):
         with VideoWriter(tmp_path / "a.mp4") as vw:
             vw.add(np.zeros((5, 6, 3), np.float32))
     assert list(tmp_path.iterdir()) == []
+
+
+def test_written_files_have_the_usual_permissions(tmp_path):
+    import os
+    import stat
+
+    out = write_png(tmp_path / "p.png", np.zeros((4, 4, 3), np.float32))
+    mask = os.umask(0)
+    os.umask(mask)
+    assert stat.S_IMODE(out.stat().st_mode) == 0o666 & ~mask
