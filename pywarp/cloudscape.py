@@ -259,7 +259,8 @@ class SkyModel(ABC):
         rows, cols = (RP.reprojection_grid(w, h)[::-1]) if reprojection else (h, w)
         launcher.launch(K.sky_kernel, rows, cols,
                         [self.kind, wp.vec3(*self.sun.tolist()), self.preetham, self.gradient, params,
-                         camera.mat44("inv_view_proj_rot"), frame, int(reprojection)], [frame_buffer])
+                         camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), frame, int(reprojection)],
+                        [frame_buffer])
 
 
 class GradientSky(SkyModel):
@@ -369,7 +370,7 @@ def param_values(settings: CloudscapeSettings) -> dict:
         "light_cone_angle": p.light_cone_angle, "light_far_factor": p.light_far_factor,
         "light_detail": int(settings.light_detail), "jitter_mode": JITTERS[settings.jitter],
         "jitter_amount": p.jitter_amount, "gradient_clamp": p.gradient_clamp,
-        "detail_direction": p.detail_direction,
+        "detail_direction": p.detail_direction, "ground_colour": tuple(p.ground_colour),
     }
     for name, value in settings.advanced.items():
         if name not in v or name in ("centre", "r_earth", "r_inner", "r_outer"):

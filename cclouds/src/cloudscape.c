@@ -35,6 +35,8 @@
  *                             the thesis's counts and our raymarch defaults (cclouds/raymarch.h).
  *   light_detail 1            light samples use the full density (the thesis takes the density towards the sun;
  *                             it does not say that the light samples skip the detail).
+ *   ground_colour (0.09, 0.10, 0.08)  a dark, slightly green-brown ground (albedo ~0.1 of vegetation and soil under
+ *                             a display-linear sky of ~0.5-0.8): dark enough that cloud tops stand out from above.
  *   gradient_clamp 1          the height gradients are clamped to [0, 1] in the renderer: unclamped, D_v peaks at
  *                             2.18 and the coverage remap then amplifies density instead of thinning it
  *                             (pywarp.kernels.clouds documents the effect); clamped, coverage is monotonic. */
@@ -43,6 +45,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     static const float sun[3] = {12.0f, 11.52f, 10.56f};
     static const float amb_bottom[3] = {0.12f, 0.14f, 0.18f};
     static const float amb_top[3] = {0.30f, 0.34f, 0.42f};
+    static const float ground[3] = {0.09f, 0.10f, 0.08f};
     CCL_REQUIRE(out != NULL);
     memset(out, 0, sizeof *out);
     ccl_cloud_layer_default(&out->layer);
@@ -72,6 +75,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->jitter_amount = 0.002f;
     out->gradient_clamp = 1;
     out->detail_direction = CCL_DETAIL_FORMULA;
+    memcpy(out->ground_colour, ground, sizeof ground);
 }
 
 static int finite_pos(float v) { return v > 0.0f && v < INFINITY; }
@@ -111,6 +115,7 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         if (!finite_nonneg(p->sun_colour[c])) return bad(out_field, "sun_colour");
         if (!finite_nonneg(p->ambient_bottom[c])) return bad(out_field, "ambient_bottom");
         if (!finite_nonneg(p->ambient_top[c])) return bad(out_field, "ambient_top");
+        if (!finite_nonneg(p->ground_colour[c])) return bad(out_field, "ground_colour");
     }
     if (!(p->samples_min >= 1 && p->samples_min <= p->samples_max)) return bad(out_field, "samples_min");
     if (!(p->samples_max <= 4096)) return bad(out_field, "samples_max");
@@ -265,7 +270,7 @@ void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textur
                           int frame, float *out_rgb)
 {
     ccl_vec3 d = ccl_camera_ray(cam->inv_view_proj_rot, x, y, width, height), sun;
-    float offset = 0.5f, bg[3], cl[3], trans;
+    float offset = 0.5f, bg[3], cl[3], trans, e0, e1;
     int samples, c;
     if (p->jitter_mode == CCL_JITTER_TILT)
         d = ccl_ray_jitter_tilt(d, (uint32_t)x, (uint32_t)y, (uint32_t)frame, p->jitter_amount);
@@ -274,8 +279,15 @@ void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textur
     sun.x = sky->sun[0];
     sun.y = sky->sun[1];
     sun.z = sky->sun[2];
-    /* sky model: background colour of the view direction */
-    if (sky->kind == CCL_SKY_PREETHAM)
+    /* background: the ground where the ray hits the Earth ahead, else the sky model's colour */
+    if (ccl_ray_sphere(cam->eye, d, p->layer.centre, p->layer.r_earth, &e0, &e1) && e1 > 0.0f &&
+        (e0 > 0.0f || d.x * (cam->eye.x - p->layer.centre.x) + d.y * (cam->eye.y - p->layer.centre.y) +
+                          d.z * (cam->eye.z - p->layer.centre.z) < 0.0f)) {
+        /* the Earth ahead: entered in front of the camera, or (camera on the ground) the ray points downwards */
+        bg[0] = p->ground_colour[0];
+        bg[1] = p->ground_colour[1];
+        bg[2] = p->ground_colour[2];
+    } else if (sky->kind == CCL_SKY_PREETHAM)
         ccl_sky_preetham_rgb(d.x, d.y, d.z, sun.x, sun.y, sun.z, &sky->preetham, &bg[0], &bg[1], &bg[2]);
     else
         ccl_sky_gradient_rgb(d.x, d.y, d.z, sun.x, sun.y, sun.z, &sky->gradient, &bg[0], &bg[1], &bg[2]);

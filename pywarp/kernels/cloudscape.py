@@ -27,6 +27,7 @@ from .clouds import (
 from .colour import srgb_encode
 from .raymarch import (
     camera_ray,
+    ray_sphere,
     layer_segment,
     light_cone_kernel,
     light_sample_position,
@@ -84,6 +85,7 @@ class CloudscapeParams:
     jitter_amount: float
     gradient_clamp: int
     detail_direction: int
+    ground_colour: wp.vec3
 
 
 @wp.func
@@ -228,13 +230,26 @@ def sky_colour(sky_kind: int, d: wp.vec3, sun: wp.vec3, preetham: Preetham, grad
 
 
 @wp.func
+def background(p: CloudscapeParams, sky_kind: int, eye: wp.vec3, d: wp.vec3, sun: wp.vec3, preetham: Preetham,
+               gradient: SkyGradient) -> wp.vec3:
+    """Twin of the background step of ``ccl_cloudscape_pixel``: the ground colour where the ray hits the Earth
+    sphere ahead, else the sky model's colour."""
+    e0, e1 = ray_sphere(eye, d, p.centre, p.r_earth)
+    if e1 > 0.0:
+        down = d[0] * (eye[0] - p.centre[0]) + d[1] * (eye[1] - p.centre[1]) + d[2] * (eye[2] - p.centre[2])
+        if e0 > 0.0 or down < 0.0:  # entered ahead, or (camera on the ground) pointing downwards
+            return p.ground_colour
+    return sky_colour(sky_kind, d, sun, preetham, gradient)
+
+
+@wp.func
 def cloudscape_pixel(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detail: wp.array3d(dtype=wp.vec4),
                      curl: wp.array2d(dtype=wp.vec4), weather: wp.array2d(dtype=wp.vec4), sky_kind: int,
                      sun: wp.vec3, preetham: Preetham, gradient: SkyGradient, inv_view_proj_rot: wp.mat44,
                      eye: wp.vec3, x: int, y: int, width: int, height: int, frame: int) -> wp.vec3:
     """Twin of ``ccl_cloudscape_pixel``: the display-linear colour of one pixel (sky, clouds, composite)."""
     d, offset = pixel_ray(p, inv_view_proj_rot, x, y, width, height, frame)
-    bg = sky_colour(sky_kind, d, sun, preetham, gradient)
+    bg = background(p, sky_kind, eye, d, sun, preetham, gradient)
     cl, trans, taken = cloudscape_march(p, base, detail, curl, weather, eye, d, sun, offset)
     o_d = 1.0 - trans
     return wp.vec3(clouds_composite(bg[0], o_d, cl[0]), clouds_composite(bg[1], o_d, cl[1]),
@@ -245,10 +260,11 @@ def cloudscape_pixel(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
 
 @wp.kernel
 def sky_kernel(row0: int, sky_kind: int, sun: wp.vec3, preetham: Preetham, gradient: SkyGradient,
-               jitter: CloudscapeParams, inv_view_proj_rot: wp.mat44, frame: int, reprojection: int,
+               p: CloudscapeParams, inv_view_proj_rot: wp.mat44, eye: wp.vec3, frame: int, reprojection: int,
                # outputs
                frame_buffer: wp.array3d(dtype=float)):
-    """Stage 1 (vc-A28 / A29): the sky colour of every pixel, or of this frame's pixel of each 4 x 4 block."""
+    """Stage 1 (vc-A28 / A29): the background of every pixel (sky model, or the ground where the ray hits the
+    Earth), or of this frame's pixel of each 4 x 4 block."""
     i, j = wp.tid()
     height = frame_buffer.shape[0]
     width = frame_buffer.shape[1]
@@ -257,8 +273,8 @@ def sky_kernel(row0: int, sky_kind: int, sun: wp.vec3, preetham: Preetham, gradi
     if reprojection != 0:
         x, y = reprojection_pixel(j, row0 + i, frame)
     if x < width and y < height:
-        d, offset = pixel_ray(jitter, inv_view_proj_rot, x, y, width, height, frame)
-        c = sky_colour(sky_kind, d, sun, preetham, gradient)
+        d, offset = pixel_ray(p, inv_view_proj_rot, x, y, width, height, frame)
+        c = background(p, sky_kind, eye, d, sun, preetham, gradient)
         frame_buffer[y, x, 0] = c[0]
         frame_buffer[y, x, 1] = c[1]
         frame_buffer[y, x, 2] = c[2]

@@ -5,7 +5,9 @@
  *
  * One pixel (vc-A25 -> A14/A24 -> A18 -> A17 -> A19/A20/2.31 -> A21 -> 4.8):
  *   d      = camera ray through the pixel centre (ccl_camera_ray), optionally tilted by the ray jitter (vc-A23)
- *   B      = sky colour of d (gradient or Preetham, display-linear: the Preetham sky is already tone mapped)
+ *   B      = ground_colour if the ray hits the Earth sphere ahead, else the sky colour of d (gradient or Preetham,
+ *            display-linear: the Preetham sky is already tone mapped). The thesis draws no ground (the Earth sphere
+ *            only stops the clouds below the horizon); a flat ground colour keeps the view from above readable.
  *   [t0,t1]= the part of the ray inside the cloud layer (ccl_layer_segment: camera below, inside or above the layer)
  *   n      = ccl_view_sample_count(d.y, samples_min, samples_max) when adaptive_samples, else samples_max
  *   for i < n: p = ccl_march_point(eye, d, t0, dt, i, offset);  rho = density(p) (vc-A17)
@@ -81,6 +83,7 @@ typedef struct ccl_cloudscape_params {
     float jitter_amount;        /* tilt scale, rad (0.002) */
     int gradient_clamp;         /* clamp the remaps of the height gradients (vc-4.7); default 1, see the .c */
     int detail_direction;       /* ccl_detail_direction of vc-2.30 (default CCL_DETAIL_FORMULA) */
+    float ground_colour[3];     /* background where the view ray hits the Earth sphere (default (0.09, 0.10, 0.08)) */
 } ccl_cloudscape_params;
 
 /* Sky background of the cloudscape. */
