@@ -65,8 +65,17 @@ def test_installed_package_config_builds_a_c_program(release_build, tmp_path):
     run(["cmake", "-S", SRC / "examples", "-B", example, f"-DCMAKE_PREFIX_PATH={prefix}"])
     run(["cmake", "--build", example])
     exe = example / "hello_cclouds"
-    res = run([exe], env=dict(os.environ, LD_LIBRARY_PATH=str(libdir)))
+    env = dict(os.environ, LD_LIBRARY_PATH=str(libdir))
+    res = run([exe], env=env)
     assert "HG(cos=1, g=0.8) = 3.58" in res.stdout
+    # the cloudscape with the C library alone: a small PPM with sky and clouds
+    ppm = tmp_path / "c.ppm"
+    run([example / "cloudscape_ppm", "48", "27", ppm], env=env)
+    data = ppm.read_bytes()
+    header = b"P6\n48 27\n255\n"
+    assert data.startswith(header) and len(data) == len(header) + 48 * 27 * 3
+    pixels = data[len(header):]
+    assert len(set(pixels)) > 20  # not a flat image
 
 
 @pytest.mark.skipif(shutil.which("c++") is None and shutil.which("g++") is None, reason="no C++ compiler")

@@ -1,0 +1,106 @@
+/* Render the volumetric cloudscape with the C library alone: generate the four textures, set up the camera and the
+ * Preetham sky, render a frame on one thread and write it as a binary PPM.
+ *
+ *   cloudscape_ppm [width height [out.ppm]]      (default 320 x 180, cloudscape.ppm)
+ *
+ * The base texture is 64^3 here (the thesis' 128^3 takes ~2 s more to generate on one core). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <cclouds/cclouds.h>
+
+static float *make(size_t n)
+{
+    float *p = (float *)malloc(n * sizeof *p);
+    if (!p) fprintf(stderr, "out of memory\n");
+    return p;
+}
+
+/* RGB (n texels x 3) -> RGBA (n x 4, A = 0); 2-channel -> RGBA likewise. */
+static float *to_rgba(const float *src, size_t texels, int channels)
+{
+    float *dst = make(texels * 4u);
+    size_t i;
+    int c;
+    if (!dst) return NULL;
+    for (i = 0; i < texels; ++i)
+        for (c = 0; c < 4; ++c) dst[i * 4u + (size_t)c] = c < channels ? src[i * (size_t)channels + (size_t)c] : 0.0f;
+    return dst;
+}
+
+int main(int argc, char **argv)
+{
+    int width = argc > 2 ? atoi(argv[1]) : 320, height = argc > 2 ? atoi(argv[2]) : 180, x, y, ok = 1;
+    const char *path = argc > 3 ? argv[3] : "cloudscape.ppm";
+    ccl_base_shape_settings bs = ccl_base_shape_settings_default();
+    ccl_detail_shape_settings ds = ccl_detail_shape_settings_default();
+    ccl_curl_noise_settings cs = ccl_curl_noise_settings_default();
+    ccl_weather_map_settings ws = ccl_weather_map_settings_default();
+    ccl_cloudscape_params params;
+    ccl_cloudscape_sky sky;
+    ccl_cloud_textures tex;
+    ccl_camera cam;
+    ccl_vec3 eye = {0.0f, 0.3f, 0.0f}, target = {0.0f, 0.664f, -1.0f}, up = {0.0f, 1.0f, 0.0f};
+    float *base, *detail3, *curl2, *weather, *detail, *curl, *img;
+    size_t nb, nd, nc, nw;
+    FILE *f;
+
+    if (width < 1 || height < 1) {
+        fprintf(stderr, "usage: %s [width height [out.ppm]]\n", argv[0]);
+        return 2;
+    }
+    bs.size = 64;
+    ws.size = 256;
+    nb = (size_t)bs.size * bs.size * bs.size;
+    nd = (size_t)ds.size * ds.size * ds.size;
+    nc = (size_t)cs.size * cs.size;
+    nw = (size_t)ws.size * ws.size;
+    base = make(nb * 4u);
+    detail3 = make(nd * 3u);
+    curl2 = make(nc * 2u);
+    weather = make(nw * 4u);
+    img = make((size_t)width * height * 3u);
+    if (!base || !detail3 || !curl2 || !weather || !img) return 1;
+    if (ccl_texgen_base_shape(&bs, base, nb * 4u) || ccl_texgen_detail_shape(&ds, detail3, nd * 3u) ||
+        ccl_texgen_curl_noise(&cs, curl2, nc * 2u) || ccl_texgen_weather_map(&ws, weather, nw * 4u)) {
+        fprintf(stderr, "texture generation failed\n");
+        return 1;
+    }
+    detail = to_rgba(detail3, nd, 3);
+    curl = to_rgba(curl2, nc, 2);
+    if (!detail || !curl) return 1;
+    tex.base = base;
+    tex.base_size = bs.size;
+    tex.detail = detail;
+    tex.detail_size = ds.size;
+    tex.curl = curl;
+    tex.curl_size = cs.size;
+    tex.weather = weather;
+    tex.weather_size = ws.size;
+
+    ccl_cloudscape_params_default(&params);
+    sky.kind = CCL_SKY_PREETHAM;
+    ccl_sky_sun_direction(35.0f, 150.0f, &sky.sun[0], &sky.sun[1], &sky.sun[2]);
+    if (ccl_preetham_init(2.5f, 0.9599311f /* 90 - 35 degrees */, 0.05f, CCL_VARIANT_CORRECTED, &sky.preetham) ||
+        ccl_camera_look_at(eye, target, up, 1.0471976f /* 60 degrees */, (float)width / (float)height, 0.01f,
+                           1000.0f, &cam) ||
+        ccl_cloudscape_render(&params, &tex, &sky, &cam, width, height, 0, img, (size_t)width * height * 3u)) {
+        fprintf(stderr, "render failed: invalid parameters\n");
+        return 1;
+    }
+    f = fopen(path, "wb");
+    if (!f) {
+        perror(path);
+        return 1;
+    }
+    fprintf(f, "P6\n%d %d\n255\n", width, height);
+    for (y = 0; y < height; ++y)
+        for (x = 0; x < width * 3; ++x) ok &= fputc((int)(img[(size_t)y * width * 3 + x] * 255.0f + 0.5f), f) != EOF;
+    ok &= fclose(f) == 0;
+    free(base); free(detail3); free(curl2); free(weather); free(detail); free(curl); free(img);
+    if (!ok) {
+        fprintf(stderr, "%s: write failed\n", path);
+        return 1;
+    }
+    printf("wrote %s (%dx%d)\n", path, width, height);
+    return 0;
+}
