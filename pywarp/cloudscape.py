@@ -35,6 +35,7 @@ from . import textures as T  # noqa: E402
 
 SKIES = ("preetham", "gradient")
 JITTERS = {"tilt": K.JITTER_TILT, "offset": K.JITTER_OFFSET, "none": K.JITTER_NONE}
+COVERAGE_THRESHOLDS = {"coverage": 0, "one_minus_coverage": 1}
 
 
 def _check(cond: bool, name: str, rng: str, value) -> None:
@@ -74,8 +75,18 @@ class CloudscapeSettings:
     coverage: float = 0.45
     #: Weather-map precipitation in [0, 1] (darkens clouds through vc-2.31's a). Default 0.2.
     precipitation: float = 0.2
-    #: Mean cloud type in [0, 1]: 0 stratus, 0.5 stratocumulus, 1 cumulus. Default 0.75.
+    #: Mean cloud type in [0, 1]: 0 stratus, 0.5 stratocumulus, 1 cumulus, and its spread across the weather map
+    #: in [0, 1]. Defaults 0.75 and 0.25 (types 0.5 .. 1; pywarp.textures.WeatherMapSettings).
     cloud_type: float = 0.75
+    cloud_type_variation: float = 0.25
+    #: Reading of the undefined threshold C of vc-2.29: 'one_minus_coverage' (C = 1 - D_h, default: more coverage
+    #: gives more cloud) or 'coverage' (C = D_h, the literal reading: clouds survive only where 0 < D_h < B D_v,
+    #: as rings around covered areas). See cclouds/cloudscape.c.
+    coverage_threshold: str = "one_minus_coverage"
+    #: Terms of the lighting energy vc-2.31 (Beer's law, powder effect); switching one off replaces it by 1, to show
+    #: what each contributes (fig 2.17). Default: both on, the formula as printed.
+    beer: bool = True
+    powder: bool = True
     #: Seed of every texture (uint32). The same seed gives the same image.
     seed: int = 0
     #: Camera position: altitude above the ground (km) and horizontal position (km); view: yaw (deg, 0 = -z,
@@ -145,7 +156,9 @@ class CloudscapeSettings:
         _check(self.sky_variant in ("corrected", "thesis"), "sky_variant", "'corrected' or 'thesis'", self.sky_variant)
         _check(_finite(self.sky_exposure) and 0.0 < self.sky_exposure <= 10.0, "sky_exposure", "in (0, 10]",
                self.sky_exposure)
-        for name in ("coverage", "precipitation", "cloud_type"):
+        _check(self.coverage_threshold in COVERAGE_THRESHOLDS, "coverage_threshold",
+               f"one of {', '.join(COVERAGE_THRESHOLDS)}", self.coverage_threshold)
+        for name in ("coverage", "precipitation", "cloud_type", "cloud_type_variation"):
             v = getattr(self, name)
             _check(_finite(v) and 0.0 <= v <= 1.0, name, "in [0, 1]", v)
         _check(isinstance(self.seed, (int, np.integer)) and not isinstance(self.seed, bool)
@@ -332,7 +345,8 @@ class RenderTextures:
                          T.CurlNoiseSettings(size=settings.curl_size, seed=settings.seed),
                          T.WeatherMapSettings(size=settings.weather_size, seed=settings.seed,
                                               coverage=settings.coverage, precipitation=settings.precipitation,
-                                              cloud_type=settings.cloud_type))
+                                              cloud_type=settings.cloud_type,
+                                              cloud_type_variation=settings.cloud_type_variation))
         return cls.from_textures(t, settings.device)
 
     def warp(self) -> tuple:
@@ -371,6 +385,8 @@ def param_values(settings: CloudscapeSettings) -> dict:
         "light_detail": int(settings.light_detail), "jitter_mode": JITTERS[settings.jitter],
         "jitter_amount": p.jitter_amount, "gradient_clamp": p.gradient_clamp,
         "detail_direction": p.detail_direction, "ground_colour": tuple(p.ground_colour),
+        "coverage_threshold": COVERAGE_THRESHOLDS[settings.coverage_threshold], "beer": int(settings.beer),
+        "powder": int(settings.powder),
     }
     for name, value in settings.advanced.items():
         if name not in v or name in ("centre", "r_earth", "r_inner", "r_outer"):
@@ -466,8 +482,8 @@ class CloudscapeTechnique:
         setting changes."""
         old = self.settings
         new = replace(old, **changes).validate()
-        tex_fields = ("seed", "coverage", "precipitation", "cloud_type", "base_size", "detail_size", "curl_size",
-                      "weather_size")
+        tex_fields = ("seed", "coverage", "precipitation", "cloud_type", "cloud_type_variation", "base_size",
+                      "detail_size", "curl_size", "weather_size")
         self.settings = new
         if any(getattr(old, f) != getattr(new, f) for f in tex_fields):
             self.textures = RenderTextures.generate(new, self.generator)

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import abc
 import hashlib
+from functools import lru_cache
 import io
 import json
 import math
@@ -430,6 +431,19 @@ def _package_version() -> str:
     return __version__
 
 
+@lru_cache(maxsize=1)
+def _code_hash() -> str:
+    """Hash of the generator's sources (Warp modules and C headers), so that a changed generator never reads
+    textures cached by an older one even within one package version (a development install)."""
+    root = Path(__file__).resolve().parent
+    h = hashlib.sha256()
+    for rel in ("kernels/texgen.py", "kernels/noise.py", "include/cclouds/texgen.h", "include/cclouds/noise.h"):
+        f = root / rel
+        if f.is_file():
+            h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
 class TextureCache:
     """In-memory (LRU, bounded in bytes) and on-disk cache of generated textures.
 
@@ -464,7 +478,7 @@ class TextureCache:
         """Hash of everything that determines the data: kind, settings, implementation, device type, package
         version, format version."""
         desc = {"kind": kind, "settings": asdict(settings), "impl": impl, "device": device.split(":")[0],
-                "version": _package_version(), "format": FORMAT_VERSION}
+                "version": _package_version(), "format": FORMAT_VERSION, "code": _code_hash()}
         return hashlib.sha256(json.dumps(desc, sort_keys=True).encode()).hexdigest()[:40]
 
     def path(self, kind: str, key: str) -> Path:

@@ -32,15 +32,17 @@ def tech():
     return CloudscapeTechnique(small())
 
 
-@pytest.mark.spec(*SPEC, "vc-A23", "vc-A28", "vc-A29")
-@pytest.mark.parametrize("sky", ["preetham", "gradient"])
-@pytest.mark.parametrize("jitter", ["tilt", "offset"])
-def test_warp_pixels_match_c_reference(sky, jitter):
+@pytest.mark.spec(*SPEC, "vc-A23", "vc-A28", "vc-A29", "vc-2.29", "vc-2.31")
+@pytest.mark.parametrize("sky,jitter,extra", [
+    ("preetham", "tilt", {}), ("gradient", "offset", {}),
+    ("preetham", "none", dict(coverage_threshold="coverage", beer=False)),
+    ("gradient", "tilt", dict(powder=False, light_detail=False, adaptive_samples=False))])
+def test_warp_pixels_match_c_reference(sky, jitter, extra):
     """300 sampled pixels of a 96x54 frame. Both sides evaluate the same float32 operations in the same order with
     the same libm (expf, powf, tanf); C is compiled without FMA contraction and Warp's CPU code does not contract
     either, so the results are expected bit-identical. The stated tolerance, 1e-5 absolute on values <= ~2, allows
     a few ulp of difference per operation accumulated over <= 128 march steps on another platform."""
-    s = small(sky=sky, jitter=jitter, camera_pitch_deg=12.0)
+    s = small(sky=sky, jitter=jitter, camera_pitch_deg=12.0, **extra)
     t = CloudscapeTechnique(s)
     rng = np.random.default_rng(7)
     xs, ys = rng.integers(0, s.width, 300), rng.integers(0, s.height, 300)
@@ -50,7 +52,7 @@ def test_warp_pixels_match_c_reference(sky, jitter):
     np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
     # the sample must contain cloudy pixels, or the comparison would prove little
     clear = render_pixels_warp(CloudscapeTechnique(small(sky=sky, jitter=jitter, camera_pitch_deg=12.0,
-                                                         coverage=0.0)), xs, ys)
+                                                         coverage=0.0, **extra)), xs, ys)
     assert np.mean(np.any(np.abs(w - clear) > 1e-3, axis=1)) > 0.2
 
 
@@ -213,3 +215,28 @@ def test_ground_below_the_horizon_sky_above(tech, altitude):
     ground = np.array(t.params.ground_colour, dtype=np.float32)
     np.testing.assert_array_equal(lin[-1, s.width // 2], ground)  # bottom row looks 30 deg down
     assert np.abs(lin[0, s.width // 2] - ground).max() > 0.1  # top row looks 30 deg up: sky
+
+
+@pytest.mark.spec("vc-2.31", "vc-A20")
+def test_lighting_terms_switches_only_brighten(tech):
+    """Replacing the powder or the Beer term of vc-2.31 by 1 can only raise the light of every sample (both terms
+    are <= 1) while the opacity is unchanged, so every pixel gets at least as bright; and some clouds change."""
+    s = small(sky="gradient", jitter="none", camera_pitch_deg=15.0)
+    on = CloudscapeTechnique(s, textures=tech.textures).render(reprojection=False, encode=False)
+    for kw in (dict(powder=False), dict(beer=False)):
+        off = CloudscapeTechnique(small(sky="gradient", jitter="none", camera_pitch_deg=15.0, **kw),
+                                  textures=tech.textures).render(reprojection=False, encode=False)
+        assert np.all(off >= on)
+        assert np.mean(off - on) > 1e-3
+
+
+@pytest.mark.spec("vc-2.29")
+def test_more_coverage_more_cloud_with_one_minus_threshold():
+    """With C = 1 - D_h, the weather map's coverage raises the cloud amount monotonically (the difference to the
+    clear sky grows); the literal reading C = D_h is the other option (see cclouds/cloudscape.c)."""
+    clear = CloudscapeTechnique(small(coverage=0.0, jitter="none")).render(reprojection=False, encode=False)
+    amount = []
+    for c in (0.25, 0.5, 0.75):
+        img = CloudscapeTechnique(small(coverage=c, jitter="none")).render(reprojection=False, encode=False)
+        amount.append(float(np.mean(np.abs(img - clear))))
+    assert amount[0] < amount[1] < amount[2]

@@ -5,6 +5,7 @@
 
 #include "cclouds/clouds.h"
 #include "cclouds/colour.h"
+#include "cclouds/phase.h"
 #include "cclouds/texgen.h"
 #include "internal.h"
 
@@ -37,6 +38,13 @@
  *                             it does not say that the light samples skip the detail).
  *   ground_colour (0.09, 0.10, 0.08)  a dark, slightly green-brown ground (albedo ~0.1 of vegetation and soil under
  *                             a display-linear sky of ~0.5-0.8): dark enough that cloud tops stand out from above.
+ *   coverage_threshold CCL_COVERAGE_ONE_MINUS   the threshold C of vc-2.29 is undefined in the thesis. Read as
+ *                             C := D_h (the spec's most plausible literal reading, pywarp.clouds_coverage's
+ *                             default), coverage erodes cloud cores where D_h is high: clouds only survive where
+ *                             0 < D_h < B D_v, as rings around the covered areas (figures/vc/fig-4.10.png shows it).
+ *                             C := 1 - D_h (the form of many implementations) makes more coverage give more cloud.
+ *                             The renderer defaults to 1 - D_h; CCL_COVERAGE_SAME renders the literal reading.
+ *   beer 1, powder 1          both terms of vc-2.31 on (the formula as printed).
  *   gradient_clamp 1          the height gradients are clamped to [0, 1] in the renderer: unclamped, D_v peaks at
  *                             2.18 and the coverage remap then amplifies density instead of thinning it
  *                             (pywarp.kernels.clouds documents the effect); clamped, coverage is monotonic. */
@@ -76,6 +84,9 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->gradient_clamp = 1;
     out->detail_direction = CCL_DETAIL_FORMULA;
     memcpy(out->ground_colour, ground, sizeof ground);
+    out->coverage_threshold = CCL_COVERAGE_ONE_MINUS;
+    out->beer = 1;
+    out->powder = 1;
 }
 
 static int finite_pos(float v) { return v > 0.0f && v < INFINITY; }
@@ -127,6 +138,10 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!finite_nonneg(p->jitter_amount)) return bad(out_field, "jitter_amount");
     if (!(p->detail_direction == CCL_DETAIL_FORMULA || p->detail_direction == CCL_DETAIL_PROSE))
         return bad(out_field, "detail_direction");
+    if (!(p->coverage_threshold == CCL_COVERAGE_SAME || p->coverage_threshold == CCL_COVERAGE_ONE_MINUS))
+        return bad(out_field, "coverage_threshold");
+    if (!(p->beer == 0 || p->beer == 1)) return bad(out_field, "beer");
+    if (!(p->powder == 0 || p->powder == 1)) return bad(out_field, "powder");
     if (t == NULL) return bad(out_field, "textures");
     if (t->base == NULL || !is_pow2(t->base_size)) return bad(out_field, "base");
     if (t->detail == NULL || !is_pow2(t->detail_size)) return bad(out_field, "detail");
@@ -201,8 +216,8 @@ float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_tex
     ccl_texgen_sample_trilinear_wrap(t->base, t->base_size - 1, pos.x / p->base_scale_km, pos.y / p->base_scale_km,
                                      pos.z / p->base_scale_km, &base[0], &base[1], &base[2], &base[3]);
     ccl_clouds_base_shape(base[0], base[1], base[2], base[3], &l_fbm, &b);
-    /* vc-2.29: coverage, C := D_h */
-    b_d = ccl_clouds_coverage(b, d_v, w[0], w[0], 1);
+    /* vc-2.29: coverage with the threshold C read as 1 - D_h or D_h */
+    b_d = ccl_clouds_coverage(b, d_v, w[0], p->coverage_threshold == CCL_COVERAGE_SAME ? w[0] : 1.0f - w[0], 1);
     if (!(b_d > 0.0f) || !detail) return b_d > 0.0f ? b_d : 0.0f;
     /* vc-2.30: detail erosion at curl-displaced coordinates */
     ccl_cloudscape_sample_bilinear_wrap(t->curl, t->curl_size - 1, pos.x / p->curl_scale_km,
@@ -246,7 +261,11 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                 d_light *= p->sigma_light;
                 /* vc-2.31 + vc-A20: sun energy and ambient by relative height, per channel */
                 a = p->absorption_base + p->absorption_precip * precip;
-                e = ccl_cloud_energy(d_light, a, cos_theta, p->g);
+                if (p->beer && p->powder)
+                    e = ccl_cloud_energy(d_light, a, cos_theta, p->g);
+                else /* the same product with a term replaced by 1 */
+                    e = (p->beer ? expf(-d_light * a) : 1.0f) * ccl_phase_hg(cos_theta, p->g) *
+                        (p->powder ? 1.0f - expf(-2.0f * d_light) : 1.0f);
                 h = ccl_clouds_relative_height(length3(pos.x - L->centre.x, pos.y - L->centre.y, pos.z - L->centre.z),
                                                L->r_inner, L->r_outer, CCL_VARIANT_CORRECTED);
                 light.x = p->sun_colour[0] * e + (p->ambient_bottom[0] + (p->ambient_top[0] - p->ambient_bottom[0]) * h);

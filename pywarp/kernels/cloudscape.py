@@ -25,6 +25,7 @@ from .clouds import (
     height_gradient,
 )
 from .colour import srgb_encode
+from .phase import phase_hg
 from .raymarch import (
     camera_ray,
     ray_sphere,
@@ -86,6 +87,9 @@ class CloudscapeParams:
     gradient_clamp: int
     detail_direction: int
     ground_colour: wp.vec3
+    coverage_threshold: int
+    beer: int
+    powder: int
 
 
 @wp.func
@@ -142,7 +146,10 @@ def cloudscape_density(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), det
                                            wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km,
                                                    pos[2] / p.base_scale_km))
                 l_fbm, b = clouds_base_shape(bs[0], bs[1], bs[2], bs[3])
-                b_d = clouds_coverage(b, d_v, w[0], w[0], 1)
+                c_thr = 1.0 - w[0]
+                if p.coverage_threshold == 0:
+                    c_thr = w[0]
+                b_d = clouds_coverage(b, d_v, w[0], c_thr, 1)
                 if b_d > 0.0:
                     density = b_d
                     if with_detail != 0:
@@ -195,7 +202,17 @@ def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
                     d_light = d_light * p.sigma_light
                     # vc-2.31 + vc-A20
                     a = p.absorption_base + p.absorption_precip * precip
-                    e = cloud_energy(d_light, a, cos_theta, p.g)
+                    e = float(0.0)
+                    if p.beer != 0 and p.powder != 0:
+                        e = cloud_energy(d_light, a, cos_theta, p.g)
+                    else:  # the same product with a term replaced by 1
+                        beer = float(1.0)
+                        if p.beer != 0:
+                            beer = wp.exp(-d_light * a)
+                        powder = float(1.0)
+                        if p.powder != 0:
+                            powder = 1.0 - wp.exp(-2.0 * d_light)
+                        e = beer * phase_hg(cos_theta, p.g) * powder
                     h = clouds_relative_height(_length3(pos[0] - p.centre[0], pos[1] - p.centre[1],
                                                         pos[2] - p.centre[2]), p.r_inner, p.r_outer, 0)
                     light = wp.vec3(

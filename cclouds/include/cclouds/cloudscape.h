@@ -14,13 +14,15 @@
  *       if rho > 0: d_light = sigma_light * sum_j w_j density(q_j)  over the 6 cone samples q_j (vc-A19),
  *                   w_j = light_step (near samples) and (far_factor - 1) * 5 light_step (the far one);
  *                   a = absorption_base + absorption_precip * precipitation;
- *                   L = sun_colour * E(d_light, a, dot(d, to_sun), g) + ambient(h)   (vc-2.31, vc-A20)
+ *                   L = sun_colour * E(d_light, a, dot(d, to_sun), g) + ambient(h)   (vc-2.31, vc-A20;
+ *                       the beer / powder flags replace a term of E by 1, to show what each contributes)
  *                   ccl_march_accumulate(colour, T, sigma, rho, dt, L, exit_eps)     (vc-A21)
  *                   stop when early_exit and the accumulation says so
  *   C_f    = B (1 - O_D) + C_clouds with O_D = 1 - T (vc-4.8), then sRGB encoding.
  * density(p) (vc-A17): h = relative height (vc-A15); weather map at (p.x, p.z) + wind -> coverage D_h (R),
  *   precipitation (G), cloud type (B); D_v = height gradient (vc-4.7, A16); base texture at p -> B (vc-2.28);
- *   B_D = coverage(B, D_v, D_h, C := D_h) (vc-2.29); curl texture at (p.x, p.z) displaces the detail lookup;
+ *   B_D = coverage(B, D_v, D_h, C) (vc-2.29) with C = 1 - D_h or D_h (coverage_threshold); curl texture at (p.x,
+ *   p.z) displaces the detail lookup;
  *   density = detail erosion (vc-2.30) with the detail texture. Densities are clamped at 0 (required here: a
  *   negative extinction would amplify light). The early outs (h outside [0, 1], D_h = 0, D_v <= 0, B_D <= 0) return
  *   exactly what the full pipeline returns for those inputs; they only skip texture fetches.
@@ -84,7 +86,17 @@ typedef struct ccl_cloudscape_params {
     int gradient_clamp;         /* clamp the remaps of the height gradients (vc-4.7); default 1, see the .c */
     int detail_direction;       /* ccl_detail_direction of vc-2.30 (default CCL_DETAIL_FORMULA) */
     float ground_colour[3];     /* background where the view ray hits the Earth sphere (default (0.09, 0.10, 0.08)) */
+    int coverage_threshold;     /* reading of the undefined C of vc-2.29: CCL_COVERAGE_ONE_MINUS (default) or
+                                   CCL_COVERAGE_SAME (C := D_h, the spec's literal reading) -- see the .c */
+    int beer;                   /* 1: Beer's term exp(-d a) of vc-2.31 on (default); 0: replaced by 1 */
+    int powder;                 /* 1: the powder term 1 - exp(-2 d) of vc-2.31 on (default); 0: replaced by 1 */
 } ccl_cloudscape_params;
+
+/* Readings of the threshold C of vc-2.29 in the renderer. */
+typedef enum ccl_coverage_threshold {
+    CCL_COVERAGE_SAME = 0,      /* C := D_h: remap(B D_v, D_h, 1, 0, 1) D_h (the spec's most plausible literal reading) */
+    CCL_COVERAGE_ONE_MINUS = 1  /* C := 1 - D_h: remap(B D_v, 1 - D_h, 1, 0, 1) D_h (common implementations) */
+} ccl_coverage_threshold;
 
 /* Sky background of the cloudscape. */
 typedef enum ccl_sky_kind {
