@@ -17,6 +17,7 @@ pixel computation exists in C (``ccl_cloudscape_pixel``): :func:`render_pixels_c
 from __future__ import annotations
 
 import math
+import weakref
 from abc import ABC, abstractmethod
 from dataclasses import asdict, dataclass, field, fields, replace
 
@@ -588,6 +589,27 @@ def c_sky(settings: CloudscapeSettings):
     return sky
 
 
+def c_textures(textures: RenderTextures):
+    """A ``ccl_cloud_textures`` pointing into the NumPy arrays of ``textures`` (which must outlive it: the cffi
+    object keeps a reference to each buffer)."""
+    from ._cclouds import ffi
+
+    f = ffi()
+    tex = f.new("ccl_cloud_textures *")
+    buffers = []
+    for name in ("base", "detail", "curl", "weather"):
+        arr = getattr(textures, name)
+        buf = f.from_buffer("float[]", arr)
+        buffers.append(buf)
+        setattr(tex, name, f.cast("const float *", buf))
+        setattr(tex, f"{name}_size", arr.shape[0])
+    _KEEP_ALIVE[tex] = buffers
+    return tex
+
+
+_KEEP_ALIVE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # cffi struct -> the buffers it points into
+
+
 def c_camera(cam: R.Camera):
     from ._cclouds import ffi
 
@@ -609,13 +631,7 @@ def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, 
     s = settings.validate()
     pose = pose or CameraPose.from_settings(s)
     params = c_params(param_values(s))
-    keep = []
-    tex = f.new("ccl_cloud_textures *")
-    for name in ("base", "detail", "curl", "weather"):
-        arr = getattr(textures, name)
-        keep.append(arr)
-        setattr(tex, name, f.cast("const float *", f.from_buffer("float[]", arr)))
-        setattr(tex, f"{name}_size", arr.shape[0])
+    tex = c_textures(textures)
     sky = c_sky(s)
     cam = c_camera(pose.camera(s.width, s.height))
     field_ = f.new("const char **")
@@ -680,13 +696,7 @@ def render_frame_c(settings: CloudscapeSettings, textures: RenderTextures, pose:
     s = settings.validate()
     pose = pose or CameraPose.from_settings(s)
     params = c_params(param_values(s))
-    tex = f.new("ccl_cloud_textures *")
-    keep = []
-    for name in ("base", "detail", "curl", "weather"):
-        arr = getattr(textures, name)
-        keep.append(arr)
-        setattr(tex, name, f.cast("const float *", f.from_buffer("float[]", arr)))
-        setattr(tex, f"{name}_size", arr.shape[0])
+    tex = c_textures(textures)
     out = np.empty((s.height, s.width, 3), dtype=np.float32)
     status = lb.ccl_cloudscape_render(params, tex, c_sky(s), c_camera(pose.camera(s.width, s.height)), s.width,
                                       s.height, frame, f.from_buffer("float[]", out), out.size)
