@@ -49,9 +49,9 @@ def test_status_strings_and_errors():
     _cclouds.status_error(lib.CCL_OK, "x")
     with pytest.raises(ValueError, match="^render: invalid argument$"):
         _cclouds.status_error(lib.CCL_EINVAL, "render")
-    with pytest.raises(MemoryError):
+    with pytest.raises(MemoryError, match="^alloc: out of memory$"):
         _cclouds.status_error(lib.CCL_ENOMEM, "alloc")
-    with pytest.raises(OSError):
+    with pytest.raises(OSError, match="^write: input/output error$"):
         _cclouds.status_error(lib.CCL_EIO, "write")
 
 

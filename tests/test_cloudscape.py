@@ -63,6 +63,8 @@ def test_whole_frame_warp_equals_c_render():
     lin = t.render(reprojection=False, encode=False)
     warp_img = t.render(reprojection=False)
     c_img = render_frame_c(s, t.textures, frame=1)  # the second render above was frame 1
+    # 1 level of 8 bits: the float frames agree to 1e-5 (test_warp_pixels_match_c_reference), which can carry a value
+    # across a quantization boundary, and np.round (half to even) differs from the renderer's floor(x + 0.5) at ties
     np.testing.assert_allclose(np.round(c_img * 255.0).astype(int), warp_img.astype(int), atol=1)
     assert lin.shape == (27, 48, 3)
 

@@ -145,9 +145,12 @@ def test_phase_integral_normalizes_every_phase_function():
     p = np.stack(list(tables.values()))
     got = pywarp.media_phase_integral(p)
     assert got.shape == (len(tables),)
-    # Simpson with h = 1e-3 resolves these lobes (the sharpest, HG g = 0.85, has width ~(1-g)^2/2g ~ 0.013 in mu)
-    # to ~1e-4; float32 accumulation of 2001 terms adds < 1e-5
-    np.testing.assert_allclose(got, 1.0, atol=3e-4, err_msg=str(list(tables)))
+    # two error sources, each bounded here: the quadrature error of Simpson with h = 1e-3 on these lobes (the
+    # sharpest, HG g = 0.85, has width ~(1-g)^2/2g ~ 0.013 in mu), measured by the float64 rule on the same table
+    # (< 3e-6), and the float32 accumulation of 2001 terms (the next check: 2e-5 relative; observed 1.6e-5)
+    quad_err = np.abs(simpson64(p) - 1.0)
+    assert quad_err.max() < 1e-5
+    np.testing.assert_array_less(np.abs(got - 1.0), quad_err + 2e-5 * simpson64(p), err_msg=str(list(tables)))
     # the float32 sum equals the float64 Simpson rule on the same table to float32 accumulation accuracy
     np.testing.assert_allclose(got, simpson64(p), rtol=2e-5)
 
@@ -220,9 +223,11 @@ def test_raymarch_constant_medium_first_order_convergence():
         riemann = f32(ss) * f32(li) * f32(dt) * (1 - q ** n) / (1 - q) + f32(lbg) * q ** n
         assert L == pytest.approx(riemann, rel=n * 2 * EPS32)  # n float32 accumulations of positive terms
         errs.append(float(L) - exact)
-        # vc-2.17 with sigma_a = st - ss and no emission is the same sum
+        # vc-2.17 with sigma_a = st - ss and no emission is the same left-to-right sum; only sigma_t = sigma_a +
+        # sigma_s is formed by one more float32 rounding (<= eps/2 relative, moving every e^{-sigma_t dt} by
+        # <= tau eps/2 with tau = 2.4): allowed 4 eps relative (observed bit-identical)
         L17 = pywarp.media_volume_render(np.full(n, st - ss), np.full(n, ss), np.zeros(n), np.full(n, li), dt, lbg)
-        assert L17 == pytest.approx(L, rel=1e-5)
+        assert L17 == pytest.approx(L, rel=4 * EPS32)
     errs = np.array(errs)
     assert np.all(errs > 0)  # the left sum weights each step with the transmittance at its near end
     ratios = errs[:-1] / errs[1:]
@@ -298,14 +303,17 @@ def test_volume_render_emission_closed_form_and_variants():
     le = np.full(n, 3.0)
     L = pywarp.media_volume_render(np.full(n, sa), np.zeros(n), le, np.full(n, 100.0), s / n, lbg)
     exact = lbg * np.exp(-sa * s) + 3.0 * (1 - np.exp(-sa * s))
-    # first-order error dt/2 (f(0) - f(s)) = 5e-4 * 3.6 * (1 - e^{-2.4}) ~ 1.6e-3
+    # first-order error dt/2 (f(0) - f(s)) = 5e-4 * 3.6 * (1 - e^{-2.4}) ~ 1.6e-3; allowed 2 % of it: the next term
+    # (relative sa dt / 6 = 2e-4) plus the float32 accumulation of 2000 terms (observed 2e-3 of the leading term)
     assert float(L) - exact == pytest.approx(0.5 * (s / n) * sa * 3.0 * (1 - np.exp(-sa * s)), rel=0.02)
     le_step = le.copy()
     le_step[0] = 6.0  # a bright sample at the origin: the printed form applies it along the whole ray
     thesis = pywarp.media_volume_render(np.full(n, sa), np.zeros(n), le_step, np.zeros(n), s / n, lbg,
                                         variant="thesis")
     corrected = pywarp.media_volume_render(np.full(n, sa), np.zeros(n), le_step, np.zeros(n), s / n, lbg)
-    assert thesis == pytest.approx(lbg * np.exp(-sa * s) + 6.0 * (1 - np.exp(-sa * s)), rel=2e-3)
+    # the thesis reading is the same left sum with L_e = 6 everywhere: the same first-order error, doubled
+    assert float(thesis) - (lbg * np.exp(-sa * s) + 6.0 * (1 - np.exp(-sa * s))) == pytest.approx(
+        0.5 * (s / n) * sa * 6.0 * (1 - np.exp(-sa * s)), rel=0.02)
     assert corrected == pytest.approx(L + 3.0 * sa * s / n, rel=1e-5)  # one sample of weight sa dt brighter
     # pinned small case: sigma_a = [1, 2], sigma_s = [0.5, 0.5], L_e = [1, 3], L_i = [2, 4], dt = 0.5, L_bg = 1
     args = (np.array([1.0, 2.0]), np.array([0.5, 0.5]), np.array([1.0, 3.0]), np.array([2.0, 4.0]), 0.5, 1.0)
@@ -480,7 +488,7 @@ def test_media_phase_asymmetry_values_from_the_spec():
 def test_media_phase_asymmetry_bad_input():
     import pywarp
 
-    with pytest.raises(ValueError, match="odd number >= 3"):
+    with pytest.raises(ValueError, match=r"^p must hold an odd number >= 3 of samples .* got 4"):
         pywarp.media_phase_asymmetry(np.ones((2, 4), np.float32))
-    with pytest.raises(ValueError, match="p must be in"):
+    with pytest.raises(ValueError, match=r"^p must be in \[0, inf\), got -1\.0"):
         pywarp.media_phase_asymmetry(-np.ones(5, np.float32))

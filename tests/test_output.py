@@ -33,7 +33,7 @@ def test_write_png_roundtrip_and_no_partial_file_on_error(tmp_path):
     np.testing.assert_array_equal(np.asarray(Image.open(out)), to_uint8(img))
     bad = img.copy()
     bad[2, 2, 0] = np.inf
-    with pytest.raises(RuntimeError):
+    with pytest.raises(RuntimeError, match=r"1 non-finite pixels \(first at x=2, y=2\); not written"):
         write_png(tmp_path / "y.png", bad)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["x.png"]
 

@@ -39,7 +39,10 @@ def test_phase_rayleigh_normalized_and_symmetric():
 @pytest.mark.parametrize("g", [-0.95, -0.5, 0.0, 0.2, 0.76, 0.95])
 def test_phase_hg_normalized_and_mean_cosine_is_g(g):
     p = pywarp.phase_hg(MU, g)
-    # g = +-0.95 puts a peak of ~1e3 at mu = +-1: the 400-node rule still resolves it to ~1e-5
+    # The 400-node rule integrates the float64 closed form to < 1e-10 even at g = +-0.95; what remains is the float32
+    # evaluation error near the peak (cancellation in 1 + g^2 - 2 g mu: the bound of
+    # test_phase_hg_matches_float64_reference integrated over the sphere is 1.6e-5 at |g| = 0.76 and 3.7e-4 at
+    # |g| = 0.95; observed 3e-7 and 1.5e-5)
     tol = 2e-4 if abs(g) > 0.9 else INTEGRAL_TOL
     assert sphere_integral(p) == pytest.approx(1.0, abs=tol)
     assert sphere_integral(p, moment=1) == pytest.approx(g, abs=tol)
@@ -76,9 +79,12 @@ def test_phase_hg_matches_float64_reference(rng):
 @pytest.mark.spec("vc-2.15", "vc-2.8", "vc-2.14")
 @pytest.mark.parametrize("k", [-0.9, -0.3, 0.0, 0.5, 0.9])
 def test_phase_schlick_normalized_both_variants(k):
+    # float32 evaluation: relative error <= 4 eps (2 cond + 4) with cond = (1 + |k mu|) / (1 - k mu) (cancellation in
+    # 1 - k mu, then squared); integrated over the sphere <= 1.1e-5 at |k| = 0.9 (observed 1.2e-7); the quadrature
+    # error of the float64 closed form is < 1e-12
     for variant in ("corrected", "thesis"):
         p = pywarp.phase_schlick(MU, k, variant=variant)
-        assert sphere_integral(p) == pytest.approx(1.0, abs=2e-4)
+        assert sphere_integral(p) == pytest.approx(1.0, abs=INTEGRAL_TOL)
 
 
 @pytest.mark.spec("vc-2.15")

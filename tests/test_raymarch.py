@@ -180,7 +180,7 @@ def test_cloud_layer_defaults_and_validation():
         rm.CloudLayer(base_altitude=4.0, top_altitude=4.0)
     with pytest.raises(ValueError, match=r"^top_altitude must be finite"):
         rm.CloudLayer(top_altitude=float("nan"))
-    with pytest.raises(ValueError, match=r"below the float32 resolution"):
+    with pytest.raises(ValueError, match=r"^top_altitude - base_altitude \(.*\) is below the float32 resolution"):
         rm.CloudLayer(base_altitude=1.0, top_altitude=1.0001)
 
 

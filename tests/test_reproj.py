@@ -79,7 +79,7 @@ def test_reprojection_pixel_bad_input(impl):
         px(0, 0, 1.5)
     with pytest.raises(ValueError, match=r"^id_y must be <="):
         px(0, 2**29, 0)
-    with pytest.raises(ValueError, match=r"do not broadcast"):
+    with pytest.raises(ValueError, match=r"^reprojection_pixel\(\): the shapes of id_x, id_y, frame do not broadcast"):
         px([0, 1], [0, 1, 2], 0)
 
 

@@ -52,6 +52,7 @@ def test_tutorial_full_size_matches_committed_figure(path, tmp_path):
     if not getattr(module, "DETERMINISTIC", True):
         pytest.skip(f"{path.name} draws measurements (timings): not comparable run to run")
     written = module.main(tmp_path, quick=False)
+    assert written, f"{path.name} wrote nothing"
     for f in written:
         committed = ROOT / "figures" / path.parent.name / Path(f).name
         assert committed.is_file(), f"{committed} is not committed"
