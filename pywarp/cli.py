@@ -99,9 +99,12 @@ _SCENE_OPTIONS = [
     ("--sun-azimuth", "sun_azimuth_deg", float, "sun azimuth in degrees, 0 = straight ahead of the default camera"),
     ("--turbidity", "turbidity", float, "Preetham turbidity, in [2, 10]"),
     ("--sky-variant", "sky_variant", str, "errata of the sky chain (vc-2.39, 4.4, 4.5): corrected or thesis"),
+    ("--sky-exposure", "sky_exposure", float, "exposure k of the Preetham tone map 1 - exp(-k C) (vc-4.5), > 0"),
     ("--coverage", "coverage", float, "cloud coverage of the weather map, in [0, 1]"),
     ("--precipitation", "precipitation", float, "precipitation of the weather map, in [0, 1] (darker clouds)"),
     ("--cloud-type", "cloud_type", float, "mean cloud type, 0 stratus, 0.5 stratocumulus, 1 cumulus"),
+    ("--coverage-threshold", "coverage_threshold", str,
+     "reading of C in vc-2.29: one_minus_coverage (C = 1 - coverage) or coverage (C = coverage, literal)"),
     ("--seed", "seed", int, "seed of every texture; the same seed gives the same image"),
     ("--altitude", "camera_altitude_km", float, "camera altitude above the ground in km (layer: 1.5-4 km)"),
     ("--yaw", "camera_yaw_deg", float, "camera heading in degrees, 0 = -z"),
@@ -111,7 +114,7 @@ _SCENE_OPTIONS = [
     ("--wind-speed", "wind_speed_kmh", float, "wind speed in km/h"),
     ("--jitter", "jitter", str, "ray jitter against banding (vc-A23): tilt, offset or none"),
     ("--device", "device", str, "Warp device: cpu or cuda:N where present"),
-    ("--threads", "threads", int, "worker threads (default: one per core)"),
+    ("--threads", "threads", int, "worker threads"),
 ]
 
 
@@ -209,7 +212,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Render one image of the volumetric cloudscape: Preetham or gradient sky, cloud "
                                    "layer raymarch (vc chapter 4). Every option has a unit and a default.")
     _add_scene_options(r)
-    r.add_argument("--out", default="cloudscape.png", help="output PNG (default: cloudscape.png)")
+    r.add_argument("--out", default="cloudscape.png", metavar="PATH", help="output PNG (default: cloudscape.png)")
     r.add_argument("--no-progress", action="store_true", help="no progress bar")
     r.set_defaults(run=cmd_render)
 
@@ -224,7 +227,8 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("--reprojection", action=argparse.BooleanOptionalAction, default=True,
                    help="temporal reprojection (vc-A26) below the layer; full frames inside and above it "
                         "(default: on)")
-    a.add_argument("--out", default="flythrough.mp4", help="output .mp4 or .gif (default: flythrough.mp4)")
+    a.add_argument("--out", default="flythrough.mp4", metavar="PATH",
+                   help="output .mp4 or .gif (default: flythrough.mp4)")
     a.add_argument("--no-progress", action="store_true", help="no progress bar")
     a.set_defaults(run=cmd_animate)
 
