@@ -490,9 +490,10 @@ class CloudscapeTechnique:
             self.textures = RenderTextures.generate(new, self.generator)
         if any(getattr(old, f) != getattr(new, f) for f in ("sky", "sun_elevation_deg", "sun_azimuth_deg",
                                                              "turbidity", "sky_variant", "sky_exposure")):
-            self.sky = make_sky(new) if type(self.sky) in (GradientSky, PreethamSky) else self.sky
-            if type(self.sky) not in (GradientSky, PreethamSky):
-                self.sky.update(new)
+            if type(self.sky) in (GradientSky, PreethamSky):
+                self.sky = make_sky(new)  # the sky kind may have changed
+            else:
+                self.sky.update(new)  # a user's own sky model
         self.params = warp_params(param_values(new))
         if (old.width, old.height) != (new.width, new.height):
             self.resize(new.width, new.height)
