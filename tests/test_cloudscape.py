@@ -242,3 +242,40 @@ def test_more_coverage_more_cloud_with_one_minus_threshold():
         img = CloudscapeTechnique(small(coverage=c, jitter="none")).render(reprojection=False, encode=False)
         amount.append(float(np.mean(np.abs(img - clear))))
     assert amount[0] < amount[1] < amount[2]
+
+
+import warp as wp  # noqa: E402
+
+from pywarp.cloudscape import SkyModel  # noqa: E402
+
+
+@wp.kernel
+def _flat_sky_kernel(row0: int, colour: wp.vec3, frame_buffer: wp.array3d(dtype=float)):
+    i, j = wp.tid()
+    for ch in range(3):
+        frame_buffer[row0 + i, j, ch] = colour[ch]
+
+
+class FlatSky(SkyModel):
+    """A user's own sky model: one colour everywhere (full frames only, for the test)."""
+
+    kind = -1
+
+    def update(self, settings):
+        self.sun = settings.sun()
+        self.colour = wp.vec3(0.2, 0.4, 0.8)
+
+    def render(self, frame_buffer, camera, frame, reprojection, params, launcher):
+        launcher.launch(_flat_sky_kernel, frame_buffer.shape[0], frame_buffer.shape[1], [self.colour],
+                        [frame_buffer])
+
+
+@pytest.mark.spec("vc-A28")
+def test_a_user_defined_sky_model_is_used_as_background():
+    s = small(coverage=0.0)  # no clouds: the frame is the sky model's output (and the ground)
+    sky = FlatSky(s)
+    t = CloudscapeTechnique(s, sky=sky)
+    lin = t.render(reprojection=False, encode=False)
+    np.testing.assert_allclose(lin[0], np.broadcast_to([0.2, 0.4, 0.8], lin[0].shape), rtol=0, atol=1e-7)
+    t.update(time_s=5.0)  # settings changes keep the user's sky
+    assert t.sky is sky
