@@ -72,9 +72,12 @@ def cmd_figures(args) -> int:
     if not paths:
         print("no tutorials found", file=sys.stderr)
         return 1
-    written = figures.run(paths, Path(args.out), quick=args.quick, progress=not args.no_progress)
-    print(f"{len(written)} figure files from {len(paths)} tutorials written under {args.out}")
-    return 0
+    failures = []
+    written = figures.run(paths, Path(args.out), quick=args.quick, progress=not args.no_progress, failures=failures)
+    print(f"{len(written)} figure files from {len(paths) - len(failures)} tutorials written under {args.out}")
+    for path, exc in failures:
+        print(f"pywarp: error: {path.name}: {type(exc).__name__}: {exc}", file=sys.stderr)
+    return 1 if failures else 0
 
 
 def cmd_bench(args) -> int:

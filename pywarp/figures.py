@@ -63,8 +63,12 @@ def select(seed: str | None = None, only: list[str] | None = None) -> list[Path]
     return chosen
 
 
-def run(paths: list[Path], out_root: Path, quick: bool = False, progress: bool = True) -> list[Path]:
-    """Run ``main(out_dir, quick)`` of each tutorial; figures go to ``out_root/<seed>/``."""
+def run(paths: list[Path], out_root: Path, quick: bool = False, progress: bool = True,
+        failures: list | None = None) -> list[Path]:
+    """Run ``main(out_dir, quick)`` of each tutorial; figures go to ``out_root/<seed>/``.
+
+    A tutorial that raises does not stop the others: ``(path, exception)`` is appended to ``failures`` when a list
+    is given, else the exception propagates."""
     from tqdm import tqdm
 
     written = []
@@ -73,6 +77,12 @@ def run(paths: list[Path], out_root: Path, quick: bool = False, progress: bool =
         bar.set_postfix_str(p.stem)
         out_dir = out_root / p.parent.name
         out_dir.mkdir(parents=True, exist_ok=True)
-        files = load(p).main(out_dir, quick=quick) or []
+        try:
+            files = load(p).main(out_dir, quick=quick) or []
+        except Exception as exc:  # noqa: BLE001 - reported per tutorial below
+            if failures is None:
+                raise
+            failures.append((p, exc))
+            continue
         written += [Path(f) for f in files]
     return written
