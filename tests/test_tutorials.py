@@ -77,3 +77,18 @@ def test_figure_index_is_up_to_date():
     res = subprocess.run([sys.executable, str(ROOT / "tools" / "gen_figure_index.py"), "--check"],
                          capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
+
+
+def test_a_failing_tutorial_is_reported_and_the_others_run(tmp_path):
+    seed = tmp_path / "vc"
+    seed.mkdir()
+    (seed / "broken.py").write_text("def main(out_dir, quick=False):\n    raise RuntimeError('boom')\n")
+    (seed / "fine.py").write_text("from pathlib import Path\n\ndef main(out_dir, quick=False):\n"
+                                  "    p = Path(out_dir) / 'ok.txt'\n    p.write_text('x')\n    return [p]\n")
+    failures = []
+    written = figures.run([seed / "broken.py", seed / "fine.py"], tmp_path / "out", progress=False,
+                          failures=failures)
+    assert [p.name for p in written] == ["ok.txt"]
+    assert [(p.name, str(e)) for p, e in failures] == [("broken.py", "boom")]
+    with pytest.raises(RuntimeError, match="^boom$"):
+        figures.run([seed / "broken.py"], tmp_path / "out", progress=False)
