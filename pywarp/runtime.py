@@ -29,8 +29,40 @@ def init() -> None:
         wp.config.quiet = True
         wp.config.log_level = wp.LOG_WARNING  # no greeting banner on every command
         wp.config.enable_backward = False  # default of every module created after this point
-        wp.init()
+        _init_without_driver_notice()
         _initialised = True
+
+
+#: The native library prints this on every start on a machine without an NVIDIA driver -- the normal case for this
+#: project (CPU rendering), so it is filtered; every other message passes through.
+_NO_DRIVER_NOTICE = "Could not find or load the NVIDIA CUDA driver"
+
+
+def _init_without_driver_notice() -> None:
+    """``wp.init()`` with the native library's stderr captured; re-emit everything but the no-driver notice."""
+    import sys
+    import tempfile
+
+    try:
+        fd = sys.stderr.fileno()
+    except (AttributeError, OSError, ValueError):  # no real stderr (e.g. captured): nothing to filter
+        wp.init()
+        return
+    sys.stderr.flush()
+    saved = os.dup(fd)
+    with tempfile.TemporaryFile(mode="w+b") as tmp:
+        os.dup2(tmp.fileno(), fd)
+        try:
+            wp.init()
+        finally:
+            os.dup2(saved, fd)
+            os.close(saved)
+            tmp.seek(0)
+            text = tmp.read().decode("utf-8", "replace")
+    kept = [line for line in text.splitlines(keepends=True) if _NO_DRIVER_NOTICE not in line]
+    if kept:
+        sys.stderr.write("".join(kept))
+        sys.stderr.flush()
 
 
 def resolve_device(device: str | None = None) -> str:

@@ -90,3 +90,17 @@ def test_cli_bench_tiles_json_small(tmp_path):
     res = subprocess.run([sys.executable, "-m", "pywarp.cli", "bench", "tiles", "--device", "cuda:3"],
                          capture_output=True, text=True)
     assert res.returncode == 2 and "device='cuda:3' is not available" in res.stderr
+
+
+def test_init_filters_only_the_no_driver_notice(tmp_path):
+    """On a machine without an NVIDIA driver (the normal case here) Warp's native library prints a notice on every
+    start; pywarp filters that line only."""
+    import subprocess
+    import sys
+
+    code = ("import sys, pywarp.runtime as r; r.init(); "
+            "print('other message', file=sys.stderr)")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    assert "NVIDIA CUDA driver" not in res.stderr
+    assert "other message" in res.stderr
