@@ -8,15 +8,15 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version as _version
 
-from .equations import equation, missing, registry
+from .core.registry import equation, missing, registry
 
 try:
     __version__ = _version("cclouds")
 except PackageNotFoundError:  # running from a source tree
     __version__ = "0.0.0+source"
 
-_SUBMODULES = {"kernels", "runtime", "equations", "cli", "bench", "figures", "textures", "bench_textures",
-               "cloudscape", "output"}
+_SUBMODULES = {"kernels", "core", "cli", "clouds",
+}
 
 __all__ = ["equation", "registry", "missing", "__version__"]
 

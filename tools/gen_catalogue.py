@@ -3,11 +3,11 @@
 
 Sources, all in this repository:
   spec/{vc,pt,rr,oc}.md   every ID of the four texts: a heading ``### <ID> — <title>`` or a table row ``| <ID> | …``
-  tests/test_*.py         tests carry ``@pytest.mark.spec("vc-2.13", ...)``: the IDs they check
+  tests/**/test_*.py      tests carry ``@pytest.mark.spec("vc-2.13", ...)``: the IDs they check
   tutorials/*/*.py        a tutorial's title docstring names the figure it reproduces and the equations it uses
 
 Run it after adding a test or a tutorial:  python tools/gen_catalogue.py
-``tests/test_registry.py`` fails when the committed file is out of date.
+``tests/core/test_registry.py`` fails when the committed file is out of date.
 """
 from __future__ import annotations
 
@@ -61,7 +61,7 @@ def _spec_ids_of_decorators(decorators) -> list[str]:
 
 def index_tests(test_dir: Path) -> dict:
     index: dict[str, list[str]] = {}
-    for path in sorted(test_dir.glob("test_*.py")):
+    for path in sorted(test_dir.rglob("test_*.py")):
         tree = ast.parse(path.read_text(encoding="utf-8"))
         module_ids = []
         for node in tree.body:
@@ -71,7 +71,7 @@ def index_tests(test_dir: Path) -> dict:
         for node in ast.walk(tree):
             if isinstance(node, ast.FunctionDef) and node.name.startswith("test_"):
                 for cid in module_ids + _spec_ids_of_decorators(node.decorator_list):
-                    index.setdefault(cid, []).append(f"tests/{path.name}::{node.name}")
+                    index.setdefault(cid, []).append(f"{path.relative_to(test_dir.parent).as_posix()}::{node.name}")
     return {k: sorted(set(v)) for k, v in sorted(index.items())}
 
 

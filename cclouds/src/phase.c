@@ -35,7 +35,7 @@ float ccl_phase_schlick(float cos_theta, float k, ccl_variant variant)
     return CCL_INV_4PI_F * (1.0f - k * k) / (s * s);
 }
 
-float ccl_schlick_k(float g)
+float ccl_phase_schlick_k(float g)
 {
     /* vc-2.16: k = 1.55 g - 0.55 g^3 */
     return 1.55f * g - 0.55f * g * g * g;

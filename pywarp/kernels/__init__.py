@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import importlib
 
-from ..runtime import init as _init
+from ..core.runtime import init as _init
 
 _init()
 

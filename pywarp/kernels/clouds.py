@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ..equations import VARIANT, Arg, Equation, Option, _c_eval, _warp_eval, register
+from ..core.registry import VARIANT, Arg, Equation, Option, _c_eval, _warp_eval, register
 from .noise import remap
 from .phase import phase_hg
 

@@ -2,7 +2,7 @@
 
 :class:`CloudscapeParams` mirrors ``ccl_cloudscape_params``; :func:`cloudscape_density`, :func:`cloudscape_march` and
 :func:`cloudscape_pixel` mirror the C functions of the same names. The image kernels follow the
-:class:`pywarp.runtime.TileLauncher` convention (first parameter ``row0``) so a frame runs on every core:
+:class:`pywarp.core.runtime.TileLauncher` convention (first parameter ``row0``) so a frame runs on every core:
 
 * :func:`sky_kernel` writes the sky model's colour into the frame buffer (the first stage of the render chain);
 * :func:`clouds_kernel` marches the clouds of every pixel, or, with reprojection, of one pixel per 4 x 4 block

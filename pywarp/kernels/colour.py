@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ..equations import VARIANT, Arg, Equation, register
+from ..core.registry import VARIANT, Arg, Equation, register
 
 SRGB_LINEAR_LIMIT = wp.constant(0.0031308)  # IEC 61966-2-1: end of the linear segment (linear side)
 
@@ -116,7 +116,7 @@ def _eval_srgb_encode(c: wp.array(dtype=float), out: wp.array(dtype=float)):
 def srgb_encode_array(c, impl: str = "warp", device: str | None = None) -> np.ndarray:
     """Element-wise sRGB encoding (IEC 61966-2-1) of a NumPy array -- the display step of the vc-A29 chain, which has
     no catalogue ID of its own. ``impl="c"`` evaluates ``ccl_srgb_encode``. ``c`` must be finite."""
-    from ..equations import Equation as _Eq, _c_eval, _warp_eval
+    from ..core.registry import Equation as _Eq, _c_eval, _warp_eval
 
     eq = _Eq("vc-A29", "srgb_encode", "ccl_srgb_encode", srgb_encode, _eval_srgb_encode,
              args=(Arg("c", "linear channel value"),), outputs=("V",))

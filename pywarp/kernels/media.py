@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ..equations import VARIANT, Arg, Equation, register
+from ..core.registry import VARIANT, Arg, Equation, register
 
 TWO_PI = wp.constant(6.28318530717958647692)  # 2 pi
 
@@ -306,7 +306,7 @@ def _finish(rays_shape, out):
 
 
 def _make_rows_warp(eq: Equation, device):
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
 
@@ -327,7 +327,7 @@ def _make_rows_warp(eq: Equation, device):
 
 
 def _make_rows_c(eq: Equation):
-    from .._cclouds import ffi, lib, status_error
+    from ..core.binding import ffi, lib, status_error
 
     f, lb = ffi(), lib()
     fn = getattr(lb, eq.c_symbol)

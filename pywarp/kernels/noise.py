@@ -25,7 +25,7 @@ from functools import lru_cache
 import numpy as np
 import warp as wp
 
-from ..equations import VARIANT, Arg, Equation, Option, register
+from ..core.registry import VARIANT, Arg, Equation, Option, register
 
 # --- constants ----------------------------------------------------------------------------------------------------
 
@@ -120,7 +120,7 @@ _PERM_ARRAYS: dict = {}
 
 def perm_array(seed: int = 0, device: str | None = None):
     """The permutation table of ``seed`` as a ``wp.array(dtype=wp.int32)`` on ``device`` (cached)."""
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
     key = (_check_seed(seed), str(dev))
@@ -759,7 +759,7 @@ def _eval_remap(v: _F, o_min: _F, o_max: _F, n_min: _F, n_max: _F, out: _F):
 def _perlin_make_warp(eq: Equation, device):
     """Evaluator for Perlin-based entries: validates like Equation.bind, then launches the eval kernel once per
     distinct seed with that seed's permutation table (the kernel takes every array but ``seed``)."""
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
     seed_pos = [a.name for a in eq.args].index("seed")
@@ -1046,11 +1046,11 @@ def perlin2(x, y, seed: int = 0, period: int = 0, interp: str = "quintic", impl:
     xf = np.ascontiguousarray(np.broadcast_to(xa, shape).ravel())
     yf = np.ascontiguousarray(np.broadcast_to(ya, shape).ravel())
     if impl == "c":
-        from .._cclouds import vectorize
+        from ..core.binding import vectorize
 
         out = vectorize("ccl_noise_perlin2", extra=(seed, int(per), INTERP[interp]))(xf, yf)
     else:
-        from ..runtime import resolve_device
+        from ..core.runtime import resolve_device
 
         dev = resolve_device(device)
         n = xf.size
@@ -1068,16 +1068,16 @@ def perlin2(x, y, seed: int = 0, period: int = 0, interp: str = "quintic", impl:
 def interpolants(t, impl: str = "warp"):
     """The four interpolation curves of vc-fig-2.6 on ``t`` in [0, 1]: dict of 'linear' (t), 'cosine'
     ((1 - cos pi t)/2, via noise_cosine_interp(t, 0, 1)), 'cubic' (2.19) and 'quintic' (2.20)."""
-    from ..equations import equation
+    from ..core.registry import equation
 
     ta = _T.check(t, "t")
     if impl == "c":
-        from .._cclouds import vectorize
+        from ..core.binding import vectorize
 
         lin = vectorize("ccl_noise_lerp")(ta, np.float32(0), np.float32(1))
         cos = vectorize("ccl_noise_cosine_interp")(ta, np.float32(0), np.float32(1))
     elif impl == "warp":
-        from ..runtime import resolve_device
+        from ..core.runtime import resolve_device
 
         dev = resolve_device(None)
         flat = np.ascontiguousarray(ta.ravel())

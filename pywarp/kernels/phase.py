@@ -7,23 +7,36 @@ from __future__ import annotations
 
 import warp as wp
 
-from ..equations import VARIANT, Arg, Equation, register
+from ..core.registry import VARIANT, Arg, declare
 
 INV_4PI = wp.constant(0.0795774715459476679)  # 1 / (4 pi)
 
 
+_COS = Arg("cos_theta", "cosine of the scattering angle, dot(w_in, w_out); +1 = forward", lo=-1.0, hi=1.0)
+
+
+@declare("vc-2.11", c="ccl_phase_isotropic", outputs=("p",), summary="Isotropic phase function p = 1/(4 pi) [sr^-1].",
+         references=("Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed., §11.3",))
 @wp.func
 def phase_isotropic() -> float:
     """vc-2.11: p = 1 / (4 pi)."""
     return INV_4PI
 
 
+@declare("vc-2.12", c="ccl_phase_rayleigh", args=(_COS,), outputs=("p",),
+         summary="Rayleigh phase function p = 3/(16 pi) (1 + cos^2 theta) [sr^-1].",
+         references=("Chandrasekhar, Radiative Transfer, 1960",))
 @wp.func
 def phase_rayleigh(cos_theta: float) -> float:
     """vc-2.12: p = 1/(4 pi) * 3/4 * (1 + cos^2 theta)."""
     return INV_4PI * 0.75 * (1.0 + cos_theta * cos_theta)
 
 
+@declare("vc-2.13", c="ccl_phase_hg",
+         args=(_COS, Arg("g", "asymmetry parameter (mean cosine); > 0 forward", lo=-1.0, hi=1.0, lo_open=True,
+                         hi_open=True)),
+         outputs=("p",), summary="Henyey-Greenstein phase function [sr^-1].",
+         references=("Henyey & Greenstein, Diffuse radiation in the galaxy, ApJ 93:70-83, 1941",))
 @wp.func
 def phase_hg(cos_theta: float, g: float) -> float:
     """vc-2.13: Henyey-Greenstein, p = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos theta)^(3/2))."""
@@ -31,6 +44,15 @@ def phase_hg(cos_theta: float, g: float) -> float:
     return INV_4PI * (1.0 - g * g) / (denom * wp.sqrt(denom))
 
 
+@declare("vc-2.15", c="ccl_phase_schlick",
+         args=(_COS, Arg("k", "Schlick shape parameter; > 0 forward (corrected variant)", lo=-1.0, hi=1.0,
+                         lo_open=True, hi_open=True)),
+         options=(VARIANT,), outputs=("p",),
+         summary="Schlick approximation of Henyey-Greenstein [sr^-1]. variant='corrected': (1 - k cos theta)^2, k > 0 "
+                 "scatters forward; variant='thesis': (1 + k cos theta)^2 as printed, k > 0 scatters backward.",
+         references=("Blasi, Le Saec & Schlick, A rendering algorithm for discrete volume density objects, "
+                     "Computer Graphics Forum 12(3), 1993",
+                     "Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed."))
 @wp.func
 def phase_schlick(cos_theta: float, k: float, variant: int) -> float:
     """vc-2.15: Schlick, p = (1 - k^2) / (4 pi (1 - k cos theta)^2); variant 1 = as printed, (1 + k cos theta)^2."""
@@ -40,79 +62,10 @@ def phase_schlick(cos_theta: float, k: float, variant: int) -> float:
     return INV_4PI * (1.0 - k * k) / (s * s)
 
 
+@declare("vc-2.16", c="ccl_phase_schlick_k", args=(Arg("g", "Henyey-Greenstein asymmetry parameter", lo=-1.0, hi=1.0),),
+         outputs=("k",), summary="Schlick k from HG g: k = 1.55 g - 0.55 g^3. |k| exceeds 1 for 0.9381 < |g| < 1.",
+         references=("Blasi, Le Saec & Schlick 1993",))
 @wp.func
-def schlick_k(g: float) -> float:
+def phase_schlick_k(g: float) -> float:
     """vc-2.16: k = 1.55 g - 0.55 g^3."""
     return 1.55 * g - 0.55 * g * g * g
-
-
-# --- element-wise evaluation kernels (inputs, options, then outputs) -------------------------------------------------
-
-@wp.kernel
-def _eval_phase_isotropic(out: wp.array(dtype=float)):
-    i = wp.tid()
-    out[i] = phase_isotropic()
-
-
-@wp.kernel
-def _eval_phase_rayleigh(cos_theta: wp.array(dtype=float), out: wp.array(dtype=float)):
-    i = wp.tid()
-    out[i] = phase_rayleigh(cos_theta[i])
-
-
-@wp.kernel
-def _eval_phase_hg(cos_theta: wp.array(dtype=float), g: wp.array(dtype=float), out: wp.array(dtype=float)):
-    i = wp.tid()
-    out[i] = phase_hg(cos_theta[i], g[i])
-
-
-@wp.kernel
-def _eval_phase_schlick(cos_theta: wp.array(dtype=float), k: wp.array(dtype=float), variant: int,
-                        out: wp.array(dtype=float)):
-    i = wp.tid()
-    out[i] = phase_schlick(cos_theta[i], k[i], variant)
-
-
-@wp.kernel
-def _eval_schlick_k(g: wp.array(dtype=float), out: wp.array(dtype=float)):
-    i = wp.tid()
-    out[i] = schlick_k(g[i])
-
-
-# --- registry ---------------------------------------------------------------------------------------------------------
-
-_COS = Arg("cos_theta", "cosine of the scattering angle, dot(w_in, w_out); +1 = forward", lo=-1.0, hi=1.0)
-
-register(Equation(
-    "vc-2.11", "phase_isotropic", "ccl_phase_isotropic", phase_isotropic, _eval_phase_isotropic,
-    outputs=("p",), summary="Isotropic phase function p = 1/(4 pi) [sr^-1].",
-    references=("Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed., §11.3",)))
-
-register(Equation(
-    "vc-2.12", "phase_rayleigh", "ccl_phase_rayleigh", phase_rayleigh, _eval_phase_rayleigh,
-    args=(_COS,), outputs=("p",), summary="Rayleigh phase function p = 3/(16 pi) (1 + cos^2 theta) [sr^-1].",
-    references=("Chandrasekhar, Radiative Transfer, 1960",)))
-
-register(Equation(
-    "vc-2.13", "phase_hg", "ccl_phase_hg", phase_hg, _eval_phase_hg,
-    args=(_COS, Arg("g", "asymmetry parameter (mean cosine); > 0 forward", lo=-1.0, hi=1.0, lo_open=True,
-                    hi_open=True)),
-    outputs=("p",), summary="Henyey-Greenstein phase function [sr^-1].",
-    references=("Henyey & Greenstein, Diffuse radiation in the galaxy, ApJ 93:70-83, 1941",)))
-
-register(Equation(
-    "vc-2.15", "phase_schlick", "ccl_phase_schlick", phase_schlick, _eval_phase_schlick,
-    args=(_COS, Arg("k", "Schlick shape parameter; > 0 forward (corrected variant)", lo=-1.0, hi=1.0, lo_open=True,
-                    hi_open=True)),
-    options=(VARIANT,), outputs=("p",),
-    summary="Schlick approximation of Henyey-Greenstein [sr^-1]. variant='corrected': (1 - k cos theta)^2, k > 0 "
-            "scatters forward; variant='thesis': (1 + k cos theta)^2 as printed, k > 0 scatters backward.",
-    references=("Blasi, Le Saec & Schlick, A rendering algorithm for discrete volume density objects, "
-                "Computer Graphics Forum 12(3), 1993",
-                "Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed.")))
-
-register(Equation(
-    "vc-2.16", "schlick_k", "ccl_schlick_k", schlick_k, _eval_schlick_k,
-    args=(Arg("g", "Henyey-Greenstein asymmetry parameter", lo=-1.0, hi=1.0),), outputs=("k",),
-    summary="Schlick k from HG g: k = 1.55 g - 0.55 g^3. |k| exceeds 1 for 0.9381 < |g| < 1.",
-    references=("Blasi, Le Saec & Schlick 1993",)))

@@ -35,7 +35,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 import warp as wp
 
-from ..equations import Arg, Equation, Option, register
+from ..core.registry import Arg, Equation, Option, register
 
 # --- named defaults ---------------------------------------------------------------------------------------------------
 
@@ -468,7 +468,7 @@ def _eval_vc_constants(out: wp.array(dtype=VcConstantTable)):
 
 
 def _warp_vc_constants(eq, device):
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
 
@@ -482,7 +482,7 @@ def _warp_vc_constants(eq, device):
 
 
 def _c_vc_constants(eq):
-    from .._cclouds import lib
+    from ..core.binding import lib
 
     def call():
         p = lib().ccl_vc_constants()
@@ -659,7 +659,7 @@ def camera_look_at(eye, target, up=(0.0, 1.0, 0.0), fov_y: float = math.radians(
 def c_camera_look_at(eye, target, up=(0.0, 1.0, 0.0), fov_y: float = math.radians(60.0), aspect: float = 16.0 / 9.0,
                      z_near: float = 0.01, z_far: float = 1000.0) -> Camera:
     """The same camera built by the C function ``ccl_camera_look_at`` (for checking the two against each other)."""
-    from .._cclouds import ffi, lib, status_error
+    from ..core.binding import ffi, lib, status_error
 
     cam = ffi().new("ccl_camera *")
     st = lib().ccl_camera_look_at(tuple(map(float, eye)), tuple(map(float, target)), tuple(map(float, up)),
@@ -824,7 +824,7 @@ def _camera_ray_args(x, y, width, height, camera):
 
 
 def _warp_camera_ray(eq, device):
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
 
@@ -843,7 +843,7 @@ def _warp_camera_ray(eq, device):
 
 
 def _c_camera_ray(eq):
-    from .._cclouds import ffi, lib
+    from ..core.binding import ffi, lib
 
     def camera_ray(x, y, width, height, camera):
         """Unit view directions (..., 3) through pixel centres (x, y) of a width x height image (vc-A25), C."""
@@ -909,7 +909,7 @@ def _march_volume_args(origin, direction, n, centre, radius, box_min, box_max, o
 
 
 def _warp_march_volume(eq, device):
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
 
@@ -930,7 +930,7 @@ def _warp_march_volume(eq, device):
 
 
 def _c_march_volume(eq):
-    from .._cclouds import ffi, lib
+    from ..core.binding import ffi, lib
 
     def march_volume(origin, direction, n, centre=None, radius=None, box_min=None, box_max=None, offset=0.5):
         """C twin of the vc-A35 evaluator (ccl_march_sphere / ccl_march_box)."""

@@ -16,7 +16,7 @@ Choices where the thesis is silent (the header comment of ``cclouds/reproj.h`` h
   * ``history=False`` (first frame, camera cut, camera inside/above the layer) -> fallback for every pixel not
     rendered this frame.
 
-Image-level kernels follow :class:`pywarp.runtime.TileLauncher`'s convention (first parameter ``row0: int``, launched
+Image-level kernels follow :class:`pywarp.core.runtime.TileLauncher`'s convention (first parameter ``row0: int``, launched
 with ``dim=(rows, width)``).
 """
 from __future__ import annotations
@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ..equations import Arg, Equation, register
+from ..core.registry import Arg, Equation, register
 from .raymarch import Camera, CloudLayer, _check_camera, camera_ray, ray_sphere
 
 REPROJ_BLOCK = 4
@@ -258,7 +258,7 @@ def _shape_out(arrs, shape):
 
 
 def _warp_reprojection_pixel(eq, device):
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
 
@@ -276,7 +276,7 @@ def _warp_reprojection_pixel(eq, device):
 
 
 def _c_reprojection_pixel(eq):
-    from .._cclouds import ffi, lib
+    from ..core.binding import ffi, lib
 
     def reprojection_pixel(id_x, id_y, frame):
         """vc-4.1 (C): pixel (x, y) (int32) rendered by thread (id_x, id_y) in frame `frame`."""
@@ -356,7 +356,7 @@ def _make_frame_evaluator(default_neighbourhood: int, impl: str, device=None):
                                                           neighbourhood, history)
         h, w, c = cur.shape
         if impl == "warp":
-            from ..runtime import launcher
+            from ..core.runtime import launcher
 
             tl = launcher(device)
             dev = tl.device
@@ -369,7 +369,7 @@ def _make_frame_evaluator(default_neighbourhood: int, impl: str, device=None):
                       outputs=[out])
             res = out.numpy()
         else:
-            from .._cclouds import ffi, lib, status_error
+            from ..core.binding import ffi, lib, status_error
 
             F = ffi()
             res = np.empty_like(cur)

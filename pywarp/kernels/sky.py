@@ -22,7 +22,7 @@ import math
 import numpy as np
 import warp as wp
 
-from ..equations import VARIANT, Arg, Equation, Option, register
+from ..core.registry import VARIANT, Arg, Equation, Option, register
 from .colour import TONEMAP_EXPOSURE, XYZ_to_linear_srgb, srgb_encode, tonemap_exp, xyY_to_XYZ
 
 PI = wp.constant(3.14159265358979323846)
@@ -513,7 +513,7 @@ def preetham_params(turbidity, theta_s, exposure=TONEMAP_EXPOSURE, variant="corr
     for the Preetham model; ``exposure`` > 0; ``variant`` 'corrected' or 'thesis' (applies to vc-2.39, 4.4 and 4.5).
     The fields are computed by the Warp twin ``preetham_init`` (float32, the same operations as ``ccl_preetham_init``).
     """
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     T = _scalar(_TURBIDITY, turbidity)
     ts = _scalar(_THETA_S, theta_s)
@@ -542,7 +542,7 @@ def sun_direction(elevation_deg, azimuth_deg=0.0, impl: str = "warp", device: st
     e = _scalar(_SUN_ELEV, elevation_deg)
     a = _scalar(_SUN_AZ, azimuth_deg)
     if impl == "c":
-        from .._cclouds import ffi, lib
+        from ..core.binding import ffi, lib
 
         f = ffi()
         p = [f.new("float *") for _ in range(3)]
@@ -550,7 +550,7 @@ def sun_direction(elevation_deg, azimuth_deg=0.0, impl: str = "warp", device: st
         return np.array([v[0] for v in p], dtype=np.float32)
     if impl != "warp":
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
     out = wp.empty(1, dtype=wp.vec3, device=dev)
@@ -576,7 +576,7 @@ def _bind_preetham(direction, turbidity, sun_elevation_deg, sun_azimuth_deg=0.0,
 
 
 def _make_warp_preetham(eq, device):
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
 
@@ -598,7 +598,7 @@ def _make_warp_preetham(eq, device):
 
 
 def _make_c_preetham(eq):
-    from .._cclouds import ffi, lib
+    from ..core.binding import ffi, lib
 
     def sky_preetham(direction, turbidity, sun_elevation_deg, sun_azimuth_deg=0.0, exposure=TONEMAP_EXPOSURE, *,
                      variant="corrected", output="tonemapped"):
@@ -606,7 +606,7 @@ def _make_c_preetham(eq):
                                                       exposure, variant=variant, output=output)
         f, lb = ffi(), lib()
         p = f.new("ccl_preetham *")
-        from .._cclouds import status_error
+        from ..core.binding import status_error
 
         status_error(lb.ccl_preetham_init(T, theta_s, k, v, p), "ccl_preetham_init")
         sun = sun_direction(e, a, impl="c")
@@ -640,7 +640,7 @@ def _bind_gradient(direction, sun_elevation_deg, sun_azimuth_deg=0.0,
 
 
 def _make_warp_gradient(eq, device):
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
 
@@ -663,7 +663,7 @@ def _make_warp_gradient(eq, device):
 
 
 def _make_c_gradient(eq):
-    from .._cclouds import ffi, lib, status_error
+    from ..core.binding import ffi, lib, status_error
 
     def sky_gradient(direction, sun_elevation_deg, sun_azimuth_deg=0.0,
                      horizon_colour=GRADIENT_DEFAULTS["horizon_colour"],

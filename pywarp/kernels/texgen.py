@@ -8,7 +8,7 @@
   :func:`base_shape_settings_code` -- the settings validation of vc-A13 (the C ``ccl_base_shape_settings_check``).
 * :func:`sample_trilinear_wrap` -- the renderer's trilinear sampler of a periodic power-of-two RGBA volume
   (``wp.array3d(dtype=wp.vec4)`` indexed ``[z, y, x]``) with bit-mask wrap, exactly shift-invariant.
-* Tile kernels (first parameter ``row0``, launched through :class:`pywarp.runtime.TileLauncher`; for a 3-D texture
+* Tile kernels (first parameter ``row0``, launched through :class:`pywarp.core.runtime.TileLauncher`; for a 3-D texture
   row = z * size + y, so a 128^3 volume is 16384 rows x 128 columns).
 
 The readings chosen where the thesis is silent are stated in the C header (``cclouds/texgen.h``) and repeated here:
@@ -22,7 +22,7 @@ The readings chosen where the thesis is silent are stated in the C header (``ccl
 * every channel is clamped to [0, 1], then gamma-corrected (vc-4.6);
 * weather map: R coverage, G precipitation (the spec's reading of the "blue twice" erratum), B cloud type, A = 0.
 
-The Python-side generator classes, settings dataclasses and the cache are in :mod:`pywarp.textures`.
+The Python-side generator classes, settings dataclasses and the cache are in :mod:`pywarp.clouds.textures`.
 """
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ import math
 import numpy as np
 import warp as wp
 
-from ..equations import Arg, Equation, register
+from ..core.registry import Arg, Equation, register
 from .noise import (COMBINATION, COMBINATIONS, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3, noise_perlin_worley,
                     noise_worley3, perm_array)
 
@@ -372,7 +372,7 @@ def is_pow2(n) -> np.ndarray:
 def base_shape_settings_codes(size, perlin_octaves, perlin_frequency, worley_cells, worley_w0, worley_w1, worley_w2,
                               combination, gamma, device=None) -> np.ndarray:
     """Evaluate :func:`base_shape_settings_code` on NumPy arrays (no validation: any values; int32/float32)."""
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
     ints = [np.asarray(v, dtype=np.int32) for v in (size, perlin_octaves, perlin_frequency, worley_cells)]
@@ -405,7 +405,7 @@ def sample_trilinear_wrap_np(tex, p, impl: str = "warp", device=None) -> np.ndar
         raise ValueError("p must be finite with |p| * size < 2^23")
     flat = np.ascontiguousarray(p.reshape(-1, 3))
     if impl == "c":
-        from .._cclouds import ffi, lib
+        from ..core.binding import ffi, lib
 
         f, lb = ffi(), lib()
         buf = f.from_buffer("float[]", tex)
@@ -415,7 +415,7 @@ def sample_trilinear_wrap_np(tex, p, impl: str = "warp", device=None) -> np.ndar
             lb.ccl_texgen_sample_trilinear_wrap(buf, n - 1, x, y, z, outs, outs + 1, outs + 2, outs + 3)
             res[k] = (outs[0], outs[1], outs[2], outs[3])
     elif impl == "warp":
-        from ..runtime import resolve_device
+        from ..core.runtime import resolve_device
 
         dev = resolve_device(device)
         t = wp.array(tex, dtype=wp.vec4, device=dev)
@@ -471,7 +471,7 @@ _GAMMA = Arg("gamma", "gamma of vc-4.6 (> 0; 1 = identity)", lo=0.0, lo_open=Tru
 
 def _base_texel_make_warp(eq: Equation, device):
     """Validate like Equation.bind, then launch once per distinct seed with its permutation table."""
-    from ..runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
     seed_pos = [a.name for a in eq.args].index("seed")
@@ -514,7 +514,7 @@ def _texture_evaluator(kind: str, settings_cls_name: str, name: str):
     def make(impl):
         def factory(eq: Equation, device=None):
             def call(settings=None, **fields):
-                from .. import textures
+                from ..clouds import textures
 
                 cls = getattr(textures, settings_cls_name)
                 s = _settings_from_call(cls, settings, fields, name)
@@ -534,7 +534,7 @@ _weather_warp, _weather_c = _texture_evaluator("weather_map", "WeatherMapSetting
 def _settings_make(impl):
     def factory(eq: Equation, device=None):
         def call(kind: str = "base_shape", **fields):
-            from .. import textures
+            from ..clouds import textures
 
             return textures.texture_settings(kind, impl=impl, **fields)
 
@@ -571,7 +571,7 @@ register(Equation(
             "channels by a sliding fBm window (G = W0..W2, B = W1..W3, A = W2..W3 renormalised; the thesis leaves "
             "the mapping open). R: noise_perlin_worley(P, G, combination) with P = clamp(0.5 fBm_Perlin + 0.5) "
             "(vc-A8; default 'thesis' = remap(P, 0, 1, W, 1)^2). All channels clamped to [0, 1], then gamma "
-            "(vc-4.6). Exactly periodic: texel(i + size) == texel(i). Whole texture: pywarp.textures "
+            "(vc-4.6). Exactly periodic: texel(i + size) == texel(i). Whole texture: pywarp.clouds.textures "
             "(BasicTextureGenerator.base_shape, ccl_texgen_base_shape).",
     references=(_REF_SV, _REF_GPU7, _REF_HILLAIRE)))
 
@@ -601,7 +601,7 @@ register(Equation(
             "1)) of a tileable Perlin-Worley noise n and the global coverage c; G = precipitation (the spec's "
             "reading of the 'blue twice' erratum) from an independent Perlin fBm; B = cloud type = cloud_type + "
             "cloud_type_variation (2 P - 1) clamped; A = 0 (free). Call with a WeatherMapSettings or its fields; "
-            "returns float32 (size, size, 4). Images: pywarp.textures.WeatherMap.from_image.",
+            "returns float32 (size, size, 4). Images: pywarp.clouds.textures.WeatherMap.from_image.",
     references=(_REF_SV, _REF_GPU7)))
 
 register(Equation(

@@ -3,7 +3,7 @@ Perlin stream function it comes from, its two channels, a 2 x 2 tiling and its d
 
 Not a figure of the thesis: the thesis loads its curl-noise texture from a file shipped with the library (vc-A11) and
 only says it holds curl noise of Perlin noise; the library generates it with
-pywarp.textures.BasicTextureGenerator().curl_noise and the default CurlNoiseSettings (128², Perlin noise of 4 cells
+pywarp.clouds.textures.BasicTextureGenerator().curl_noise and the default CurlNoiseSettings (128², Perlin noise of 4 cells
 per texture, seed 0, central-difference step 1/256 cell). Construction: reading (i) of vc-A7, v = (∂ψ/∂y, −∂ψ/∂x)
 for the stream function ψ = tileable Perlin noise (vc-A2, drawn with pywarp.noise_perlin3_tiled), which is
 divergence-free (vc-2.25, the property of vc-2.26 as corrected). Output: figures/vc/extra-curl-texture.png.
@@ -30,7 +30,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.textures import BasicTextureGenerator, CurlNoiseSettings  # noqa: E402
+from pywarp.clouds.textures import BasicTextureGenerator, CurlNoiseSettings  # noqa: E402
 
 
 def _style(ax, extent=1):

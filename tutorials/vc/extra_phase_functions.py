@@ -55,7 +55,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     ax = axes[2]
     g = 0.5
-    k = float(pywarp.schlick_k(g))
+    k = float(pywarp.phase_schlick_k(g))
     ax.plot(theta, pywarp.phase_hg(mu, g), label=f"HG g = {g}")
     ax.plot(theta, pywarp.phase_schlick(mu, k), label=f"Schlick k(g) = {k:.3f}")
     ax.plot(theta, pywarp.phase_schlick(mu, k, variant="thesis"), "--", label="Schlick as printed (thesis)")

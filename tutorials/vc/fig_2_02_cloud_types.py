@@ -4,7 +4,7 @@ The thesis shows a photograph of low clouds (reproducible: no). The stand-in ren
 cloud type everywhere -- 0 (stratus), 0.5 (stratocumulus), 1 (cumulus), the values of the weather map's blue channel
 (vc-A12, vc-A16) -- so that only the height gradient of vc-4.7 differs between the columns; the rest is the full
 cloud pass (vc-A17 with vc-2.28, vc-2.29, vc-2.30; lighting vc-2.31, vc-A19, vc-A20; vc-A21; vc-4.8) over the
-Preetham sky (vc-A29). Renderer: pywarp.cloudscape with textures from pywarp.textures.BasicTextureGenerator, because
+Preetham sky (vc-A29). Renderer: pywarp.clouds.cloudscape with textures from pywarp.clouds.textures.BasicTextureGenerator, because
 the renderer's settings expose only the mean cloud type: the weather map is generated with cloud_type_variation = 0
 (WeatherMapSettings) so the type is exactly 0, 0.5 or 1 everywhere.
 
@@ -38,8 +38,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp import textures as T  # noqa: E402
-from pywarp.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, RenderTextures  # noqa: E402
+from pywarp.clouds import textures as T  # noqa: E402
+from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, RenderTextures  # noqa: E402
 
 TYPES = ((0.0, "stratus (type 0)"), (0.5, "stratocumulus (type 0.5)"), (1.0, "cumulus (type 1)"))
 SCENE = dict(coverage=0.5, precipitation=0.2, seed=0, sun_elevation_deg=25.0, sun_azimuth_deg=110.0,

@@ -2,7 +2,7 @@
 -- next to the composite, plus (not in the thesis) the effect of the global coverage setting.
 
 Stand-in: the thesis loads a pre-made weather-map file and gives no generation algorithm, so the map here is the
-library's procedural one, pywarp.textures.BasicTextureGenerator().weather_map with the default WeatherMapSettings
+library's procedural one, pywarp.clouds.textures.BasicTextureGenerator().weather_map with the default WeatherMapSettings
 (vc-A12: 512², seed 0; coverage from a tileable Perlin-Worley noise (vc-A8) thresholded by remap (vc-2.27),
 precipitation and cloud type from independent Perlin fBm (vc-2.21)). Channel layout: the spec's reading of the
 "blue named twice" erratum of the thesis (§3.2 gives blue to both precipitation and cloud type; we read
@@ -34,7 +34,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.colors import LinearSegmentedColormap  # noqa: E402
 
-from pywarp.textures import BasicTextureGenerator, WeatherMap, WeatherMapSettings  # noqa: E402
+from pywarp.clouds.textures import BasicTextureGenerator, WeatherMap, WeatherMapSettings  # noqa: E402
 
 # one black -> colour ramp per channel, so each panel reads as "how much of this channel"; the blue ramp continues to
 # a light blue so that the cloud types of the map (0.5 to 1) span a visible range of shades

@@ -2,7 +2,7 @@
 texture (R Perlin-Worley, G/B/A inverse-Worley fBm of increasing frequency) and a 2 x 2 tiling that shows it is
 seamless.
 
-The texture is made by the library's generator, pywarp.textures.BasicTextureGenerator with the default
+The texture is made by the library's generator, pywarp.clouds.textures.BasicTextureGenerator with the default
 BaseShapeSettings (vc-A9, vc-A13: 128³, seed 0, Perlin 3 octaves from 8 cells, inverse-Worley layers of 4, 8, 16,
 32 cells with the fBm weights 0.625 / 0.25 / 0.125, combination 'thesis', gamma 1 of vc-4.6 = identity); the thesis
 states none of these values, so the slices match its figure in kind, not texel for texel. The R channel is rebuilt
@@ -34,7 +34,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.textures import BaseShapeSettings, BasicTextureGenerator  # noqa: E402
+from pywarp.clouds.textures import BaseShapeSettings, BasicTextureGenerator  # noqa: E402
 
 
 def main(out_dir, quick: bool = False) -> list[Path]:

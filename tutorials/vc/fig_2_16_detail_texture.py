@@ -1,7 +1,7 @@
 """Figure vc-fig-2.16: the texture for cloud details -- 2-D slices of the three channels of the 32³ detail (erosion)
 texture, inverse-Worley fBm of increasing frequency in R, G and B.
 
-The texture is made by the library's generator, pywarp.textures.BasicTextureGenerator with the default
+The texture is made by the library's generator, pywarp.clouds.textures.BasicTextureGenerator with the default
 DetailShapeSettings (vc-A10, vc-A13: 32³, seed 0, inverse-Worley layers of 2, 4, 8, 16 cells, fBm weights
 0.625 / 0.25 / 0.125, gamma 1); the thesis states none of these values, so the slices match its figure in kind, not
 texel for texel. Not in the thesis: the RGB composite, a 2 x 2 tiling (seamless), the gamma correction of vc-4.6
@@ -31,7 +31,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.textures import BasicTextureGenerator, DetailShapeSettings  # noqa: E402
+from pywarp.clouds.textures import BasicTextureGenerator, DetailShapeSettings  # noqa: E402
 
 
 def _style(ax, extent=1):

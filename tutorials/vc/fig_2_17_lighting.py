@@ -5,7 +5,7 @@ The thesis shows reference photographs of the three effects its lighting model t
 stand-in isolates each term of the cloud energy E = exp(-d a) HG(theta, g) (1 - exp(-2 d)) (vc-2.31; HG is vc-2.13,
 the optical depth d towards the sun comes from the six cone samples of vc-A19, a from the precipitation, plus the
 ambient term of vc-A20) in renders of the full cloud pass (vc-A17, vc-A21, vc-4.8; Preetham sky vc-A29).
-Renderer: pywarp.cloudscape. The plots evaluate pywarp.phase_hg and pywarp.cloud_energy.
+Renderer: pywarp.clouds.cloudscape. The plots evaluate pywarp.phase_hg and pywarp.cloud_energy.
 
 Rows (the thesis gives no parameters; coverage 0.45, cloud type 0.75, seed 0, 400x225 per panel, 50° field of view):
 (1) silver lining -- camera 0.3 km up looking 15° up towards a sun 10° above the horizon, g = 0 / 0.2 (the default) /
@@ -47,7 +47,7 @@ import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
+from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
 
 SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, fov_y_deg=50.0)
 FULL = dict(width=400, height=225)

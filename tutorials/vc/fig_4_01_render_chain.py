@@ -3,7 +3,7 @@
 A diagram, not a computation: sky model -> cloud raymarch -> optional reprojection, with the reprojection flag acting on
 every stage (it selects the pixel index of vc-4.1 and launches 1/16 of the threads), and the inputs of the technique —
 the noise textures from the generator, the camera and the settings. It is drawn from the design of this implementation
-(ARCHITECTURE.md, "One frame of the cloudscape"; pywarp/cloudscape.py) with the names of the pywarp pipeline: sky
+(ARCHITECTURE.md, "One frame of the cloudscape"; pywarp/clouds/cloudscape.py) with the names of the pywarp pipeline: sky
 models GradientSky (vc-A28) and PreethamSky (vc-A29), textures from BasicTextureGenerator (vc-A9, vc-A10, vc-A11,
 vc-A12), the technique CloudscapeTechnique with init / update / render, the camera as CameraPose, the cloud density
 and light of vc-A17 and vc-A20 composited by vc-4.8, and the temporal reprojection of vc-A26 and vc-A27.
@@ -122,7 +122,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
                                         "4.7), 6 light samples, energy 2.31,\ncomposite over the sky 4.8"),
         (9.7, 3.4, "3  Reprojection", "optional (vc-A26, vc-A27): the other\n15/16 of the pixels from the previous\n"
                                       "frame via the previous camera,\nelse from the reduced buffer"),
-        (13.8, 1.7, "Display", "sRGB encode,\nuint8 → PNG,\nGIF, MP4\n(pywarp.output)"),
+        (13.8, 1.7, "Display", "sRGB encode,\nuint8 → PNG,\nGIF, MP4\n(pywarp.core.output)"),
     )
     for x, w, title, body in stages:
         _box(ax, x, y0, w, h, title, body, STAGE if title != "Display" else METHOD, body_size=8.3)

@@ -8,12 +8,12 @@ coverage and profile are applied with B_D = remap(B D_v, C, 1, 0, 1) D_h (vc-2.2
 renderer); the curl-displaced detail texture erodes the edges into the final density (vc-2.30). Each step is computed
 with the public registry functions (pywarp.clouds_relative_height, pywarp.height_gradient, pywarp.clouds_base_shape,
 pywarp.clouds_coverage, pywarp.clouds_detail_erosion) on texture values read from the renderer's own textures
-(pywarp.cloudscape.RenderTextures) with the renderer's world scales (pywarp.cloudscape.param_values), so the slice is
+(pywarp.clouds.cloudscape.RenderTextures) with the renderer's world scales (pywarp.clouds.cloudscape.param_values), so the slice is
 the density the renderer marches (up to float32 rounding: the texture lookups here are NumPy float64 re-implementations
 of the renderer's wrap-around bilinear / trilinear samplers). A render of the same clouds from above marks the slice.
 
 Parameters (none are given in the thesis): the renderer's defaults (layer 1.5-4 km, texture sizes 128^3 / 32^3 /
-128^2 / 512^2, its world scales of the textures -- read from pywarp.cloudscape.param_values and printed in the figure
+128^2 / 512^2, its world scales of the textures -- read from pywarp.clouds.cloudscape.param_values and printed in the figure
 -- and clamped height gradients), coverage 0.45, cloud type 0.75, seed 0, sun 30° up at azimuth 120°; slice
 z = -22 km, x = -20 .. 20 km; camera 12 km up at (0, -6) km looking 30° down along -z (60° vertical field of view),
 640x360. The last slice row is not what the renderer does: it shows the same step with the threshold C := 1 - D_h,
@@ -49,7 +49,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
+from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
 
 SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, sun_elevation_deg=30.0, sun_azimuth_deg=120.0)
 FULL = dict(width=640, height=360)

@@ -5,7 +5,7 @@ sky colour B is written first, then the view ray is marched through the cloud la
 density of every sample is built from the weather map and the noise textures (vc-A17: vc-4.7, vc-2.28, vc-2.29,
 vc-2.30), lit by six cone samples towards the sun (vc-A19) with the energy of vc-2.31 plus the height-dependent
 ambient term (vc-A20), accumulated front to back (vc-A21) and composited over the sky with C_f = B (1 - O_D) +
-C_clouds (vc-4.8, vc-A22). Renderer: pywarp.cloudscape (CloudscapeSettings, CloudscapeTechnique).
+C_clouds (vc-4.8, vc-A22). Renderer: pywarp.clouds.cloudscape (CloudscapeSettings, CloudscapeTechnique).
 
 The thesis gives no parameters for this figure; the ones chosen here: sky='gradient' (pywarp's default colours),
 sun 20° above the horizon at azimuth 30° (in view, so the sun lobe of the gradient model shows through the gaps),
@@ -38,7 +38,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from pywarp.cloudscape import CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique  # noqa: E402
 
 SCENE = dict(sky="gradient", sun_elevation_deg=20.0, sun_azimuth_deg=30.0, camera_altitude_km=0.3,
              camera_pitch_deg=20.0, fov_y_deg=50.0, coverage=0.45, cloud_type=0.75, precipitation=0.2, seed=0)

@@ -4,7 +4,7 @@ A thick cloud layer marched with few samples shows banding: neighbouring view ra
 same distances, so the sampled density jumps in steps that line up across the image (the Riemann sum vc-2.18 of the
 raymarch vc-A35 with the sample count of vc-A18 and the accumulation of vc-A21). The thesis' filter tilts every ray by
 a small pseudo-random angle (vc-A23, "tilt"); pywarp also offers a random start offset within the first step
-("offset"). Renderer: pywarp.cloudscape.
+("offset"). Renderer: pywarp.clouds.cloudscape.
 
 Parameters (the thesis gives none; chosen so that the artifact is obvious): the layer top raised from 4 to 12 km
 (layer_top_km; the base stays at 1.5 km), samples_min = 12 and samples_max = 16 instead of 64 / 128, cumulus
@@ -39,7 +39,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
-from pywarp.cloudscape import CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique  # noqa: E402
 
 SCENE = dict(layer_top_km=12.0, samples_min=12, samples_max=16, cloud_type=1.0, coverage=0.45, sun_elevation_deg=25.0,
              sun_azimuth_deg=110.0, camera_altitude_km=0.3, camera_pitch_deg=25.0, fov_y_deg=60.0, seed=0)

@@ -6,7 +6,7 @@ layer the march starts at the camera and ends where the ray first leaves the lay
 the march starts where the ray enters the outer sphere and ends at the inner sphere or the ground. The layer spheres
 and their intersections are vc-A14 (pywarp.ray_sphere, pywarp.layer_segment); everything else is the full cloud pass
 (vc-A17, vc-A18, vc-A19, vc-A20, vc-A21, vc-A22, vc-2.31, vc-4.8) over the Preetham sky (vc-A29). Renderer:
-pywarp.cloudscape.
+pywarp.clouds.cloudscape.
 
 Parameters (none are given in the thesis): the renderer's default layer (base 1.5 km, top 4 km, Earth radius
 6371 km), coverage 0.6 (more clouds around the camera inside the layer), cloud type 0.75, seed 0, sun 25° up at
@@ -42,7 +42,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
+from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
 
 SCENE = dict(coverage=0.6, cloud_type=0.75, seed=0, sun_elevation_deg=25.0, sun_azimuth_deg=120.0, fov_y_deg=60.0)
 FULL = dict(width=480, height=270)

@@ -10,8 +10,8 @@ and from machine to machine (DETERMINISTIC = False: the figure-regression test d
 """
 # %% [markdown]
 # A performance chart is only meaningful for the machine it was measured on, so this tutorial measures instead of
-# copying numbers. `pywarp.bench.measure_ladder` renders the same frame four times, switching the optimisations on
-# one after the other; `pywarp.bench.measure_sky` times the sky stage alone. `pywarp bench cloudscape` prints the
+# copying numbers. `pywarp.clouds.bench.measure_ladder` renders the same frame four times, switching the optimisations on
+# one after the other; `pywarp.clouds.bench.measure_sky` times the sky stage alone. `pywarp bench cloudscape` prints the
 # same numbers (and more) on the command line.
 
 # %%
@@ -24,7 +24,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from pywarp.bench import machine, measure_ladder, measure_sky  # noqa: E402
+from pywarp.clouds.bench import machine, measure_ladder, measure_sky  # noqa: E402
 
 DETERMINISTIC = False
 

@@ -5,7 +5,7 @@ One frame of the complete technique (vc-A30, classes vc-A31, vc-A32, vc-A33): Pr
 vc-2.38, vc-2.39, vc-2.40, vc-2.41, vc-2.42, vc-2.43, vc-2.44, vc-4.2, vc-4.3, vc-4.4, vc-4.5), cloud layer raymarch
 (vc-A14, vc-A18) with the density of vc-A17 (vc-4.7, vc-2.28, vc-2.29, vc-2.30), cone light samples (vc-A19),
 lighting vc-2.31 with the ambient term (vc-A20), front-to-back accumulation with early exit (vc-A21), the tilt jitter
-(vc-A23) and the composite vc-4.8. Renderer: pywarp.cloudscape (render_image).
+(vc-A23) and the composite vc-4.8. Renderer: pywarp.clouds.cloudscape (render_image).
 
 The thesis states no parameters; these were chosen by eye among a few dozen trial renders of the public settings
 (sun elevation / azimuth, coverage, cloud type, camera pitch / yaw, seed): a low morning sun 10° above the horizon at
@@ -32,7 +32,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from pywarp.cloudscape import CloudscapeSettings, render_image  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings, render_image  # noqa: E402
 
 SCENE = dict(sun_elevation_deg=10.0, sun_azimuth_deg=35.0, coverage=0.5, cloud_type=0.9, camera_altitude_km=0.3,
              camera_pitch_deg=23.0, camera_yaw_deg=0.0, fov_y_deg=50.0, seed=0)

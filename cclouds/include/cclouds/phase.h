@@ -39,7 +39,7 @@ CCL_API float ccl_phase_schlick(float cos_theta, float k, ccl_variant variant);
 /* Schlick parameter k from the Henyey-Greenstein g: k = 1.55 g - 0.55 g^3.
  * Ref: vc-2.16. g in [-1, 1]. Note: |k| > 1 for 0.9381 < |g| < 1 (max |k| ~= 1.0015), where 2.15 turns negative;
  * callers that feed k into ccl_phase_schlick should keep |g| <= 0.938. */
-CCL_API float ccl_schlick_k(float g);
+CCL_API float ccl_phase_schlick_k(float g);
 
 #ifdef __cplusplus
 }

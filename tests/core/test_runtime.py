@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import warp as wp
 
-from pywarp import runtime
-from pywarp.bench import _bench_image
+from pywarp.core import runtime
+from pywarp.clouds.bench import _bench_image
 
 
 @wp.kernel
@@ -79,15 +79,15 @@ def test_cli_bench_tiles_json_small(tmp_path):
     import subprocess
     import sys
 
-    res = subprocess.run([sys.executable, "-m", "pywarp.cli", "bench", "tiles", "--width", "64", "--height", "32",
+    res = subprocess.run([sys.executable, "-m", "pywarp", "bench", "tiles", "--width", "64", "--height", "32",
                           "--repeat", "1", "--json"], capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
     out = json.loads(res.stdout.strip().splitlines()[-1])
     assert out["identical_output"] is True and out["parallel_speedup"] > 0 and out["device"] == "cpu"
-    res = subprocess.run([sys.executable, "-m", "pywarp.cli", "bench", "tiles", "--width", "-5"],
+    res = subprocess.run([sys.executable, "-m", "pywarp", "bench", "tiles", "--width", "-5"],
                          capture_output=True, text=True)
     assert res.returncode == 2 and "--width must be >= 1, got -5" in res.stderr
-    res = subprocess.run([sys.executable, "-m", "pywarp.cli", "bench", "tiles", "--device", "cuda:3"],
+    res = subprocess.run([sys.executable, "-m", "pywarp", "bench", "tiles", "--device", "cuda:3"],
                          capture_output=True, text=True)
     assert res.returncode == 2 and "device='cuda:3' is not available" in res.stderr
 
@@ -98,7 +98,7 @@ def test_init_filters_only_the_no_driver_notice(tmp_path):
     import subprocess
     import sys
 
-    code = ("import sys, pywarp.runtime as r; r.init(); "
+    code = ("import sys, pywarp.core.runtime as r; r.init(); "
             "print('other message', file=sys.stderr)")
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path)
     assert res.returncode == 0, res.stderr

@@ -28,7 +28,7 @@ overwritten, wrong shape) is regenerated with a :class:`TextureCacheWarning`.
 
 Example::
 
-    from pywarp.textures import BasicTextureGenerator, BaseShapeSettings
+    from pywarp.clouds.textures import BasicTextureGenerator, BaseShapeSettings
     gen = BasicTextureGenerator()                      # Warp on the CPU, all cores, cached
     base = gen.base_shape(BaseShapeSettings(seed=3))   # (128, 128, 128, 4) float32, read-only
     tex = gen.textures().to_warp()                     # the four textures as Warp arrays for the renderer
@@ -52,8 +52,8 @@ from typing import Callable
 
 import numpy as np
 
-from .kernels.noise import COMBINATIONS  # Perlin-Worley combination names (vc-A8)
-from .kernels.texgen import MAX_LATTICE, MAX_OCTAVES, MAX_SIZE_2D, MAX_SIZE_3D, MIN_SIZE  # cclouds/texgen.h limits
+from ..kernels.noise import COMBINATIONS  # Perlin-Worley combination names (vc-A8)
+from ..kernels.texgen import MAX_LATTICE, MAX_OCTAVES, MAX_SIZE_2D, MAX_SIZE_3D, MIN_SIZE  # cclouds/texgen.h limits
 
 #: Version of the generated data's definition; bump it whenever a texture's content changes for the same settings.
 FORMAT_VERSION = 1
@@ -306,7 +306,7 @@ _C_TYPES = {"base_shape": "ccl_base_shape_settings", "detail_shape": "ccl_detail
 def _c_struct(kind: str, values: dict):
     """A cffi ``ccl_<kind>_settings *`` holding ``values`` (dataclass field -> value), without Python validation:
     a value that does not fit its C type raises ValueError/TypeError naming the field."""
-    from ._cclouds import ffi
+    from ..core.binding import ffi
 
     f = ffi()
     st = f.new(f"{_C_TYPES[kind]} *")
@@ -339,7 +339,7 @@ def texture_settings(kind: str = "base_shape", impl: str = "warp", **fields_):
     cls = _check_kind(kind)
     _check_impl(impl)
     if impl == "c":
-        from ._cclouds import ffi, lib
+        from ..core.binding import ffi, lib
 
         known = {fl.name for fl in fields(cls)}
         unknown = set(fields_) - known
@@ -361,7 +361,7 @@ def generate(kind: str, settings=None, impl: str = "warp", device: str | None = 
     """Generate one texture without caching: a new float32 array of ``settings.shape``.
 
     ``impl="warp"``: the Warp kernels of :mod:`pywarp.kernels.texgen` launched through ``launcher`` (a
-    :class:`pywarp.runtime.TileLauncher`; default the process-wide one of ``device``: row bands on every core).
+    :class:`pywarp.core.runtime.TileLauncher`; default the process-wide one of ``device``: row bands on every core).
     ``impl="c"``: ``ccl_texgen_<kind>`` of the C library, one thread."""
     cls = _check_kind(kind)
     _check_impl(impl)
@@ -372,7 +372,7 @@ def generate(kind: str, settings=None, impl: str = "warp", device: str | None = 
 
 
 def _generate_c(kind: str, s) -> np.ndarray:
-    from ._cclouds import ffi, lib, status_error
+    from ..core.binding import ffi, lib, status_error
 
     st = _c_struct(kind, asdict(s))
     out = np.empty(s.shape, dtype=np.float32)
@@ -384,9 +384,9 @@ def _generate_c(kind: str, s) -> np.ndarray:
 def _generate_warp(kind: str, s, device, launcher) -> np.ndarray:
     import warp as wp
 
-    from .kernels import texgen as k
-    from .kernels.noise import perm_array
-    from .runtime import launcher as shared_launcher
+    from ..kernels import texgen as k
+    from ..kernels.noise import perm_array
+    from ..core.runtime import launcher as shared_launcher
 
     lau = launcher if launcher is not None else shared_launcher(device)
     dev = lau.device
@@ -426,7 +426,7 @@ def cache_dir() -> Path:
 
 
 def _package_version() -> str:
-    from . import __version__
+    from .. import __version__
 
     return __version__
 
@@ -435,7 +435,7 @@ def _package_version() -> str:
 def _code_hash() -> str:
     """Hash of the generator's sources (Warp modules and C headers), so that a changed generator never reads
     textures cached by an older one even within one package version (a development install)."""
-    root = Path(__file__).resolve().parent
+    root = Path(__file__).resolve().parents[1]  # the pywarp package folder
     h = hashlib.sha256()
     for rel in ("kernels/texgen.py", "kernels/noise.py", "include/cclouds/texgen.h", "include/cclouds/noise.h"):
         f = root / rel
@@ -696,7 +696,7 @@ def to_warp_texture3d(arr, device: str | None = None):
     input of :func:`pywarp.kernels.texgen.sample_trilinear_wrap` (size_mask = n - 1)."""
     import warp as wp
 
-    from .runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     a = np.asarray(arr, dtype=np.float32)
     if a.ndim != 4 or a.shape[3] not in (3, 4) or not a.shape[0] == a.shape[1] == a.shape[2] or not _is_pow2(
@@ -711,7 +711,7 @@ def to_warp_texture2d(arr, device: str | None = None):
     """A (h, w, 2|4) float32 image as a ``wp.array2d`` of ``wp.vec2`` / ``wp.vec4`` indexed [y, x]."""
     import warp as wp
 
-    from .runtime import resolve_device
+    from ..core.runtime import resolve_device
 
     a = np.asarray(arr, dtype=np.float32)
     if a.ndim != 3 or a.shape[2] not in (2, 4) or not (_is_pow2(a.shape[0]) and _is_pow2(a.shape[1])):
@@ -824,7 +824,7 @@ class BasicTextureGenerator(TextureGenerator):
     def __init__(self, impl: str = "warp", device: str | None = None, workers: int | None = None,
                  cache: TextureCache | None | bool = None, weather_image: str | os.PathLike | None = None):
         self.impl = _check_impl(impl)
-        from .runtime import resolve_device
+        from ..core.runtime import resolve_device
 
         self.device = resolve_device(device) if impl == "warp" else "cpu"
         self.workers = workers
@@ -847,7 +847,7 @@ class BasicTextureGenerator(TextureGenerator):
         def make():
             lau = None
             if self.impl == "warp":
-                from .runtime import launcher
+                from ..core.runtime import launcher
 
                 lau = launcher(self.device, self.workers)
             return generate(kind, settings, impl=self.impl, device=self.device, launcher=lau)

@@ -14,7 +14,7 @@ import time
 import numpy as np
 import warp as wp
 
-from .runtime import TileLauncher, init
+from ..core.runtime import TileLauncher, init
 
 init()
 

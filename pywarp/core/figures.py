@@ -11,7 +11,7 @@ import importlib.util
 import re
 from pathlib import Path
 
-_PKG = Path(__file__).resolve().parent
+_PKG = Path(__file__).resolve().parents[1]  # the pywarp package folder
 SEEDS = ("vc", "pt", "rr", "oc")
 
 

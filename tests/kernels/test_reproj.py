@@ -11,7 +11,7 @@ import warp as wp
 import pywarp
 from pywarp.kernels import raymarch as rm
 from pywarp.kernels import reproj as rp
-from pywarp.runtime import TileLauncher
+from pywarp.core.runtime import TileLauncher
 
 IMPLS = ["warp", "c"]
 R_E, R_I = 6371.0, 6372.5

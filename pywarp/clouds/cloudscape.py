@@ -2,7 +2,7 @@
 reprojection -- the render chain of vc-A30 built from the classes of vc-A31 (sky models), vc-A32 (texture generator)
 and vc-A33 (visualization technique: init / update / render, plus resize).
 
-    from pywarp.cloudscape import CloudscapeSettings, render_image
+    from pywarp.clouds.cloudscape import CloudscapeSettings, render_image
     img = render_image(CloudscapeSettings(width=640, height=360))      # uint8 (360, 640, 3)
 
 One frame (``CloudscapeTechnique.render``):
@@ -11,7 +11,7 @@ One frame (``CloudscapeTechnique.render``):
   3. with reprojection, the other 15/16 of the pixels come from the previous frame through the inner-sphere hit
      point (vc-A26), or from the reduced buffer;
   4. sRGB encoding, uint8.
-Every stage is a Warp kernel launched as row bands on every core (:class:`pywarp.runtime.TileLauncher`). The same
+Every stage is a Warp kernel launched as row bands on every core (:class:`pywarp.core.runtime.TileLauncher`). The same
 pixel computation exists in C (``ccl_cloudscape_pixel``): :func:`render_pixels_c` runs it at chosen pixels.
 """
 from __future__ import annotations
@@ -24,14 +24,14 @@ from dataclasses import asdict, dataclass, field, fields, replace
 import numpy as np
 import warp as wp
 
-from .runtime import TileLauncher, init, launcher as shared_launcher
+from ..core.runtime import TileLauncher, init, launcher as shared_launcher
 
 init()
 
-from .kernels import cloudscape as K  # noqa: E402
-from .kernels import raymarch as R  # noqa: E402
-from .kernels import reproj as RP  # noqa: E402
-from .kernels import sky as S  # noqa: E402
+from ..kernels import cloudscape as K  # noqa: E402
+from ..kernels import raymarch as R  # noqa: E402
+from ..kernels import reproj as RP  # noqa: E402
+from ..kernels import sky as S  # noqa: E402
 from . import textures as T  # noqa: E402
 
 SKIES = ("preetham", "gradient")
@@ -77,7 +77,7 @@ class CloudscapeSettings:
     #: Weather-map precipitation in [0, 1] (darkens clouds through vc-2.31's a). Default 0.2.
     precipitation: float = 0.2
     #: Mean cloud type in [0, 1]: 0 stratus, 0.5 stratocumulus, 1 cumulus, and its spread across the weather map
-    #: in [0, 1]. Defaults 0.75 and 0.25 (types 0.5 .. 1; pywarp.textures.WeatherMapSettings).
+    #: in [0, 1]. Defaults 0.75 and 0.25 (types 0.5 .. 1; pywarp.clouds.textures.WeatherMapSettings).
     cloud_type: float = 0.75
     cloud_type_variation: float = 0.25
     #: Reading of the undefined threshold C of vc-2.29: 'one_minus_coverage' (C = 1 - D_h, default: more coverage
@@ -121,7 +121,7 @@ class CloudscapeSettings:
     #: Light samples with the detail erosion (True, the thesis' density) or the base shape only (False: cheaper).
     light_detail: bool = True
     #: Texture sizes (powers of two): base 128^3 (vc-A9) and detail 32^3 (vc-A10) as in the thesis; curl 128^2 and
-    #: weather 512^2 (not given; see pywarp.textures).
+    #: weather 512^2 (not given; see pywarp.clouds.textures).
     base_size: int = 128
     detail_size: int = 32
     curl_size: int = 128
@@ -329,7 +329,7 @@ class RenderTextures:
 
     @classmethod
     def from_textures(cls, t: T.CloudTextures, device: str = "cpu") -> "RenderTextures":
-        """From the checked textures of a :class:`pywarp.textures.TextureGenerator`."""
+        """From the checked textures of a :class:`pywarp.clouds.textures.TextureGenerator`."""
         if t.weather_map.shape[0] != t.weather_map.shape[1]:
             raise ValueError(f"the renderer needs a square weather map, got {t.weather_map.shape[:2]}")
         return cls(cls._rgba(t.base_shape), cls._rgba(t.detail_shape), cls._rgba(t.curl_noise),
@@ -337,7 +337,7 @@ class RenderTextures:
 
     @classmethod
     def generate(cls, settings: CloudscapeSettings, generator: T.TextureGenerator | None = None) -> "RenderTextures":
-        """Textures for ``settings`` from ``generator`` (default :class:`pywarp.textures.BasicTextureGenerator`, which
+        """Textures for ``settings`` from ``generator`` (default :class:`pywarp.clouds.textures.BasicTextureGenerator`, which
         caches them per settings in memory and on disk)."""
         gen = generator if generator is not None else T.BasicTextureGenerator(device=settings.device,
                                                                               workers=settings.threads)
@@ -364,7 +364,7 @@ def param_values(settings: CloudscapeSettings) -> dict:
     """The ``ccl_cloudscape_params`` fields for ``settings`` (defaults of ``ccl_cloudscape_params_default`` for
     everything the settings do not expose), as Python values -- the one source of both the Warp struct and the C
     struct."""
-    from ._cclouds import ffi, lib
+    from ..core.binding import ffi, lib
 
     f = ffi()
     p = f.new("ccl_cloudscape_params *")
@@ -401,7 +401,7 @@ def param_values(settings: CloudscapeSettings) -> dict:
 
 def _check_params(values: dict) -> None:
     """Run ccl_cloudscape_check on the parameter values alone (dummy 1-texel textures, a valid sky)."""
-    from ._cclouds import ffi, lib
+    from ..core.binding import ffi, lib
 
     f, lb = ffi(), lib()
     dummy = np.zeros(4, dtype=np.float32)
@@ -432,7 +432,7 @@ def warp_params(values: dict) -> K.CloudscapeParams:
 
 
 def c_params(values: dict):
-    from ._cclouds import ffi
+    from ..core.binding import ffi
 
     p = ffi().new("ccl_cloudscape_params *")
     p.layer.centre.x, p.layer.centre.y, p.layer.centre.z = values["centre"]
@@ -572,7 +572,7 @@ def render_image(settings: CloudscapeSettings | None = None, pose: CameraPose | 
 # --- the C reference ------------------------------------------------------------------------------------------------------
 
 def c_sky(settings: CloudscapeSettings):
-    from ._cclouds import ffi, lib, status_error
+    from ..core.binding import ffi, lib, status_error
 
     f, lb = ffi(), lib()
     sky = f.new("ccl_cloudscape_sky *")
@@ -593,7 +593,7 @@ def c_sky(settings: CloudscapeSettings):
 def c_textures(textures: RenderTextures):
     """A ``ccl_cloud_textures`` pointing into the NumPy arrays of ``textures`` (which must outlive it: the cffi
     object keeps a reference to each buffer)."""
-    from ._cclouds import ffi
+    from ..core.binding import ffi
 
     f = ffi()
     tex = f.new("ccl_cloud_textures *")
@@ -612,7 +612,7 @@ _KEEP_ALIVE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # cffi str
 
 
 def c_camera(cam: R.Camera):
-    from ._cclouds import ffi
+    from ..core.binding import ffi
 
     c = ffi().new("ccl_camera *")
     c.eye.x, c.eye.y, c.eye.z = (float(v) for v in cam.eye)
@@ -626,7 +626,7 @@ def c_camera(cam: R.Camera):
 def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, ys, pose: CameraPose | None = None,
                     frame: int = 0) -> np.ndarray:
     """``ccl_cloudscape_pixel`` (the scalar C reference) at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
-    from ._cclouds import ffi, lib
+    from ..core.binding import ffi, lib
 
     f, lb = ffi(), lib()
     s = settings.validate()
@@ -691,7 +691,7 @@ def flythrough_path(frames: int, settings: CloudscapeSettings) -> list[CameraPos
 def render_frame_c(settings: CloudscapeSettings, textures: RenderTextures, pose: CameraPose | None = None,
                    frame: int = 0) -> np.ndarray:
     """A whole frame with the C reference ``ccl_cloudscape_render`` (one thread): sRGB floats (height, width, 3)."""
-    from ._cclouds import ffi, lib, status_error
+    from ..core.binding import ffi, lib, status_error
 
     f, lb = ffi(), lib()
     s = settings.validate()

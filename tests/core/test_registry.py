@@ -11,10 +11,10 @@ from pathlib import Path
 import pytest
 
 import pywarp
-from pywarp import _cclouds
-from pywarp.equations import catalogue, missing, registry
+from pywarp.core import binding as _cclouds
+from pywarp.core.registry import catalogue, missing, registry
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_catalogue_data_is_up_to_date():
@@ -62,9 +62,9 @@ def test_registered_names_are_unique_and_exposed_on_the_package():
 def test_phase_contract_keywords():
     """The fixed keyword names of the foundation contract."""
     sig = {n: list(inspect.signature(getattr(pywarp, n)).parameters) for n in
-           ("phase_isotropic", "phase_rayleigh", "phase_hg", "phase_schlick", "schlick_k")}
+           ("phase_isotropic", "phase_rayleigh", "phase_hg", "phase_schlick", "phase_schlick_k")}
     assert sig == {"phase_isotropic": [], "phase_rayleigh": ["cos_theta"], "phase_hg": ["cos_theta", "g"],
-                   "phase_schlick": ["cos_theta", "k", "variant"], "schlick_k": ["g"]}
+                   "phase_schlick": ["cos_theta", "k", "variant"], "phase_schlick_k": ["g"]}
     assert pywarp.equation("vc-2.15").equation.variants == ("corrected", "thesis")
 
 
@@ -88,7 +88,7 @@ def test_missing_lists_exactly_the_unregistered_ids():
 
 
 def _cli(*args):
-    return subprocess.run([sys.executable, "-m", "pywarp.cli", *args], capture_output=True, text=True, cwd=ROOT / "tests")
+    return subprocess.run([sys.executable, "-m", "pywarp", *args], capture_output=True, text=True, cwd=ROOT / "tests")
 
 
 def test_cli_equations_prints_traceability_matrix():

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-_PKG = Path(__file__).resolve().parent
+_PKG = Path(__file__).resolve().parents[1]  # the pywarp package folder
 
 _DEFINE_INT = re.compile(r"^\s*#\s*define\s+(CCL_[A-Z0-9_]+)\s+(-?\d+)\s*$")
 

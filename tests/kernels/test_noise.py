@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import pywarp
-from pywarp import _cclouds
+from pywarp.core import binding as _cclouds
 from pywarp.kernels import noise as knoise
 
 EPS32 = float(np.finfo(np.float32).eps)  # 2^-23

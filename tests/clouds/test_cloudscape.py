@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from pywarp.cloudscape import (
+from pywarp.clouds.cloudscape import (
     CameraPose,
     CloudscapeSettings,
     CloudscapeTechnique,
@@ -163,7 +163,7 @@ def test_flythrough_climbs_through_the_layer():
 
 def _cli(*args, cwd):
     # cwd: never the repository root, where `python -m` would import the source folder instead of the package
-    return subprocess.run([sys.executable, "-m", "pywarp.cli", *args], capture_output=True, text=True, cwd=cwd)
+    return subprocess.run([sys.executable, "-m", "pywarp", *args], capture_output=True, text=True, cwd=cwd)
 
 
 def test_cli_render_writes_png(tmp_path):
@@ -247,7 +247,7 @@ def test_more_coverage_more_cloud_with_one_minus_threshold():
 
 import warp as wp  # noqa: E402
 
-from pywarp.cloudscape import SkyModel  # noqa: E402
+from pywarp.clouds.cloudscape import SkyModel  # noqa: E402
 
 
 @wp.kernel

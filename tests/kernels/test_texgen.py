@@ -4,7 +4,7 @@ wrap-around trilinear sampler.
 
 Independent references: the textures recomputed in float64 from the noise primitives (pywarp's vc-A3/A6/2.21/A7/A8
 entries, tested on their own in test_noise.py) with the formulas documented in cclouds/texgen.h; trilinear
-interpolation written here in float64. Sizes are small (<= 32^3): the full 128^3 runs only in pywarp.bench_textures.
+interpolation written here in float64. Sizes are small (<= 32^3): the full 128^3 runs only in pywarp.clouds.bench_textures.
 """
 from __future__ import annotations
 
@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 import pywarp
-from pywarp import _cclouds
-from pywarp import textures as T
+from pywarp.core import binding as _cclouds
+from pywarp.clouds import textures as T
 from pywarp.kernels import texgen as K
 
 EPS32 = float(np.finfo(np.float32).eps)

@@ -10,9 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pywarp import figures
+from pywarp.core import figures
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 TUTORIALS = sorted(p for p in (ROOT / "tutorials").glob("*/*.py") if not p.name.startswith("_"))
 
 
@@ -62,12 +62,12 @@ def test_tutorial_full_size_matches_committed_figure(path, tmp_path):
 
 
 def test_cli_figures_only_and_bad_selection(tmp_path):
-    res = subprocess.run([sys.executable, "-m", "pywarp.cli", "figures", "--seed", "vc", "--quick", "--out",
+    res = subprocess.run([sys.executable, "-m", "pywarp", "figures", "--seed", "vc", "--quick", "--out",
                           str(tmp_path), "--only", "extra-phase-functions", "--no-progress"],
                          capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
     assert (tmp_path / "vc" / "extra-phase-functions.png").is_file()
-    res = subprocess.run([sys.executable, "-m", "pywarp.cli", "figures", "--only", "fig-9.99", "--out", str(tmp_path)],
+    res = subprocess.run([sys.executable, "-m", "pywarp", "figures", "--only", "fig-9.99", "--out", str(tmp_path)],
                          capture_output=True, text=True)
     assert res.returncode == 2
     assert res.stderr.strip().splitlines()[-1] == "pywarp: error: --only: no tutorial reproduces fig-9.99"

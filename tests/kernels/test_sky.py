@@ -16,7 +16,7 @@ import pytest
 
 import pywarp
 from helpers import max_ulp_diff
-from pywarp._cclouds import ffi, lib
+from pywarp.core.binding import ffi, lib
 from pywarp.kernels import sky as sky_mod
 
 U = 2.0 ** -24

@@ -37,7 +37,7 @@ def _short(items, limit=2):
 
 
 def cmd_equations(args) -> int:
-    from .equations import catalogue, missing, registry
+    from ..core.registry import catalogue, missing, registry
 
     if args.missing:
         rows = missing(args.seed)
@@ -66,7 +66,7 @@ def cmd_equations(args) -> int:
 
 
 def cmd_figures(args) -> int:
-    from . import figures
+    from ..core import figures
 
     paths = figures.select(args.seed, args.only)
     if not paths:
@@ -81,7 +81,7 @@ def cmd_figures(args) -> int:
 
 
 def cmd_bench(args) -> int:
-    from . import bench
+    from ..clouds import bench
 
     repeat = args.repeat or (5 if args.name == "tiles" else 2)
     size = {} if args.name == "reprojection" else {"width": args.width or 960, "height": args.height or 540}
@@ -122,7 +122,7 @@ _SCENE_OPTIONS = [
 
 
 def _add_scene_options(p: argparse.ArgumentParser, overrides: dict | None = None) -> None:
-    from .cloudscape import CloudscapeSettings
+    from ..clouds.cloudscape import CloudscapeSettings
 
     defaults = {**{f: getattr(CloudscapeSettings, f) for _, f, _, _ in _SCENE_OPTIONS
                    if hasattr(CloudscapeSettings, f)}, **(overrides or {})}
@@ -133,7 +133,7 @@ def _add_scene_options(p: argparse.ArgumentParser, overrides: dict | None = None
 
 
 def _settings_from_args(args, **extra):
-    from .cloudscape import CloudscapeSettings
+    from ..clouds.cloudscape import CloudscapeSettings
 
     kw = {f: getattr(args, f) for _, f, _, _ in _SCENE_OPTIONS}
     kw.update(extra)
@@ -151,8 +151,8 @@ def _settings_from_args(args, **extra):
 def cmd_render(args) -> int:
     from tqdm import tqdm
 
-    from .cloudscape import CloudscapeTechnique
-    from .output import IMAGE_SUFFIXES, check_output_path, write_png
+    from ..clouds.cloudscape import CloudscapeTechnique
+    from ..core.output import IMAGE_SUFFIXES, check_output_path, write_png
 
     out = check_output_path(args.out, IMAGE_SUFFIXES)
     settings = _settings_from_args(args)
@@ -171,8 +171,8 @@ def cmd_render(args) -> int:
 def cmd_animate(args) -> int:
     from tqdm import tqdm
 
-    from .cloudscape import CloudscapeTechnique, flythrough_path
-    from .output import VIDEO_SUFFIXES, VideoWriter, check_output_path
+    from ..clouds.cloudscape import CloudscapeTechnique, flythrough_path
+    from ..core.output import VIDEO_SUFFIXES, VideoWriter, check_output_path
 
     out = check_output_path(args.out, VIDEO_SUFFIXES)
     if args.frames < 1:

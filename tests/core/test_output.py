@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from pywarp.output import VideoWriter, check_output_path, to_uint8, write_png
+from pywarp.core.output import VideoWriter, check_output_path, to_uint8, write_png
 
 
 def test_check_output_path_errors(tmp_path):

@@ -1,0 +1,1 @@
+"""The volumetric cloudscape of the vc thesis (scene ``clouds``): settings, textures, technique, benchmarks."""
