@@ -9,3 +9,45 @@ def max_ulp_diff(a, b) -> int:
     a = np.asarray(a, dtype=np.float32).ravel().view(np.int32).astype(np.int64)
     b = np.asarray(b, dtype=np.float32).ravel().view(np.int32).astype(np.int64)
     return int(np.max(np.abs(a - b))) if a.size else 0
+
+
+def ulp_distance(a, b) -> np.ndarray:
+    """Element-wise distance in float32 ulp, valid across zero (the ordered-integer mapping of IEEE floats)."""
+    def ordered(x):
+        i = np.asarray(x, dtype=np.float32).view(np.int32).astype(np.int64)
+        return np.where(i < 0, -(i & 0x7FFFFFFF), i)
+    return np.abs(ordered(a) - ordered(b))
+
+
+def assert_twins_agree(cid: str, *args, ulp: int | None = None, atol: float = 0.0, **kwargs):
+    """Evaluate catalogue entry ``cid`` with its Warp twin and its C function on the same inputs and assert that
+    they agree: the same shapes and dtypes, NaN in the same places, integers equal, floats within ``ulp`` float32
+    ulp (default: the entry's declared bound) or ``atol`` absolute (for values that cancel to near zero, where a
+    relative bound says nothing). Returns the (warp, c) results as tuples of arrays."""
+    import pywarp
+    from pywarp.core.registry import get
+
+    eq = get(cid)
+    bound = eq.ulp if ulp is None else ulp
+    w = pywarp.equation(cid)(*args, **kwargs)
+    c = pywarp.equation(cid, impl="c")(*args, **kwargs)
+    w = w if isinstance(w, tuple) else (w,)
+    c = c if isinstance(c, tuple) else (c,)
+    assert len(w) == len(c), f"{cid}: Warp gives {len(w)} outputs, C gives {len(c)}"
+    for name, x, y in zip(eq.outputs, w, c):
+        x, y = np.asarray(x), np.asarray(y)
+        assert x.shape == y.shape, f"{cid} {name}: shapes differ, Warp {x.shape} vs C {y.shape}"
+        assert x.dtype == y.dtype, f"{cid} {name}: dtypes differ, Warp {x.dtype} vs C {y.dtype}"
+        if x.dtype.kind in "iu":
+            assert np.array_equal(x, y), f"{cid} {name}: integers differ at {np.argwhere(x != y)[:5].tolist()}"
+            continue
+        nan_w, nan_c = np.isnan(x), np.isnan(y)
+        assert np.array_equal(nan_w, nan_c), f"{cid} {name}: NaN in different places"
+        ok = ~nan_w
+        d = ulp_distance(x[ok], y[ok])
+        close = (d <= bound) | (np.abs(x[ok].astype(np.float64) - y[ok]) <= atol)
+        if not np.all(close):
+            k = int(np.argmax(~close))
+            raise AssertionError(f"{cid} {name}: Warp and C differ by {int(d[k])} ulp > {bound} "
+                                 f"(Warp {x[ok][k]!r}, C {y[ok][k]!r}); max {int(d.max())} ulp")
+    return w, c

@@ -85,6 +85,9 @@ class Arg:
     nonzero: bool = False
     unit: bool = False
     unit_name: str = ""
+    #: range the contract tests draw samples from where the domain is unbounded or wider than meaningful
+    #: (default: the domain clipped to [-100, 100])
+    sample_range: tuple[float, float] | None = None
 
     def domain(self) -> str:
         lo = "-inf" if self.lo is None else f"{self.lo:g}"
@@ -206,6 +209,11 @@ class Equation:
     derived: dict = field(default_factory=dict)  # warp parameter -> (argument name, fn(value, device) -> wp.array)
     out_specs: tuple[Output, ...] = ()
     extra: dict = field(default_factory=dict)
+    #: C vs Warp agreement bound of the contract tests, in float32 ulp (2 = one differently rounded libm call)
+    ulp: int = 2
+    #: samples(rng, n) -> {arg name: array of n valid values}, for arguments tied by a cross-argument check; the
+    #: contract tests otherwise draw each argument from its own domain
+    samples: Callable | None = None
 
     @property
     def ids(self) -> tuple[str, ...]:
@@ -399,12 +407,15 @@ def _generate_kernel(func, eq: Equation):
 def declare(cid: str, *also: str, c: str | None, args: tuple[Arg, ...] = (), options: tuple[Option, ...] = (),
             outputs: tuple[str, ...] = ("value",), summary: str = "", references: tuple[str, ...] = (),
             check: Callable | None = None, derived: dict | None = None, name: str | None = None,
-            make_warp: Callable | None = None, make_c: Callable | None = None, extra: dict | None = None):
+            make_warp: Callable | None = None, make_c: Callable | None = None, extra: dict | None = None,
+            ulp: int = 2, samples: Callable | None = None):
     """Decorator of a ``@wp.func``: register it as the twin of C function ``c`` for catalogue ID(s) ``cid, *also``.
 
     For an element-wise entry (no ``make_warp``), the Warp parameters must be ``args`` then ``options`` in order
     (with each ``derived`` parameter standing in the place of its argument), and the evaluation kernel is generated
-    from the annotations. Returns the Warp function unchanged.
+    from the annotations. ``ulp`` bounds the C vs Warp difference in the contract tests (state the reason where it
+    is above 2); ``samples(rng, n)`` draws valid inputs where arguments are tied by ``check``. Returns the Warp
+    function unchanged.
     """
 
     def wrap(func):
@@ -414,7 +425,7 @@ def declare(cid: str, *also: str, c: str | None, args: tuple[Arg, ...] = (), opt
         eq = Equation(cid, name or func.key, c, func, None, args=tuple(args), options=tuple(options),
                       outputs=tuple(outputs), references=tuple(references), summary=summary, check=check,
                       make_warp=make_warp, make_c=make_c, also=tuple(also), derived=dict(derived or {}),
-                      extra=dict(extra or {}))
+                      extra=dict(extra or {}), ulp=ulp, samples=samples)
         if make_warp is None:
             params = warp_parameters(func)
             expected = [a.name for a in args] + [o.name for o in options]

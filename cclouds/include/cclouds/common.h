@@ -49,6 +49,15 @@ typedef enum ccl_variant {
     CCL_VARIANT_THESIS = 1
 } ccl_variant;
 
+/* Vectors of float32 (positions in km, directions, colours), passed and returned by value. */
+typedef struct {
+    float x, y;
+} ccl_vec2;
+
+typedef struct {
+    float x, y, z;
+} ccl_vec3;
+
 /* Short human-readable name of a status code ("ok", "invalid argument", ...); never NULL. */
 CCL_API const char *ccl_status_str(ccl_status status);
 

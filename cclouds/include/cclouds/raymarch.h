@@ -27,11 +27,6 @@
 extern "C" {
 #endif
 
-/* A 3-vector of float32 (positions in km, directions). */
-typedef struct {
-    float x, y, z;
-} ccl_vec3;
-
 /* Camera matrices, all float32 column-major (see the conventions above). Built by ccl_camera_look_at; the products
  * and the inverse are computed in double and rounded once. */
 typedef struct {
