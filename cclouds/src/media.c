@@ -53,7 +53,7 @@ float ccl_media_slab_flux(float phi_i, float optical_depth)
     return phi_i * expf(-optical_depth);
 }
 
-float ccl_transmittance(float optical_depth)
+float ccl_media_transmittance(float optical_depth)
 {
     CCL_REQUIRE(!(optical_depth < 0.0f));
     /* vc-2.6: T = exp(-tau) */

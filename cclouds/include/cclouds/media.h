@@ -50,7 +50,7 @@ CCL_API float ccl_media_slab_flux(float phi_i, float optical_depth);
 /* Transmittance from optical depth: T = Phi_o / Phi_i = exp(-tau).
  * Ref: vc-2.6. optical_depth -> tau = int_0^l sigma_t dx >= 0. Output in (0, 1] (0 once tau > ~103.3, float32
  * underflow). */
-CCL_API float ccl_transmittance(float optical_depth);
+CCL_API float ccl_media_transmittance(float optical_depth);
 
 /* Transmittance along two consecutive segments x -> x' -> x'' (x' on the straight segment from x to x'').
  * Ref: vc-2.7, spec error index item 1. t_a -> T(x, x'), t_b -> T(x', x''), both in [0, 1].
