@@ -26,7 +26,7 @@ _HELPERS = {
     "camera_look_at": ("pywarp.kernels.raymarch", "camera_look_at"),  # vc-A25 camera matrices
     "sun_direction": ("pywarp.kernels.sky", "sun_direction"),  # unit sun vector from elevation/azimuth
     "perlin2": ("pywarp.kernels.noise", "perlin2"),  # 2-D Perlin noise with a choice of interpolant (fig 2.5)
-    "interpolants": ("pywarp.kernels.noise", "interpolants"),  # linear/cosine/cubic/quintic curves (fig 2.6)
+    "interpolants": ("pywarp.kernels.interp", "interpolants"),  # linear/cosine/cubic/quintic curves (fig 2.6)
 }
 
 

@@ -29,7 +29,7 @@ void ccl_clouds_base_shape(float c_r, float c_g, float c_b, float c_a, float *ou
     /* vc-2.28 */
     l_fbm = 0.625f * c_g + 0.25f * c_b + 0.125f * c_a;
     *out_l_fbm = l_fbm;
-    *out_b = ccl_remap(c_r, l_fbm - 1.0f, 1.0f, 0.0f, 1.0f);
+    *out_b = ccl_interp_remap(c_r, l_fbm - 1.0f, 1.0f, 0.0f, 1.0f);
 }
 
 float ccl_clouds_coverage(float b, float d_v, float d_h, float coverage_threshold, int clamp)
@@ -38,7 +38,7 @@ float ccl_clouds_coverage(float b, float d_v, float d_h, float coverage_threshol
     CCL_REQUIRE(!(coverage_threshold < 0.0f || coverage_threshold > 1.0f));
     /* vc-2.29: B = B D_v; B_D = remap(B, C, 1, 0, 1) D_h. The range [C, 1] is empty at C >= 1: fully eroded. */
     if (coverage_threshold >= 1.0f) return 0.0f;
-    b_d = ccl_remap(b * d_v, coverage_threshold, 1.0f, 0.0f, 1.0f) * d_h;
+    b_d = ccl_interp_remap(b * d_v, coverage_threshold, 1.0f, 0.0f, 1.0f) * d_h;
     return clamp ? nonneg(b_d) : b_d;
 }
 
@@ -50,7 +50,7 @@ float ccl_clouds_detail_erosion(float b_d, float c_r, float c_g, float c_b, floa
     h_fbm = 0.625f * c_r + 0.25f * c_g + 0.125f * c_b;
     if (detail_direction == CCL_DETAIL_PROSE) h_fbm = 1.0f - h_fbm;
     m = h_fbm * (1.0f - h_rel) + (1.0f - h_fbm) * h_rel;
-    c = ccl_remap(b_d, 0.2f * m, 1.0f, 0.0f, 1.0f);
+    c = ccl_interp_remap(b_d, 0.2f * m, 1.0f, 0.0f, 1.0f);
     return clamp ? nonneg(c) : c;
 }
 
@@ -72,8 +72,8 @@ float ccl_clouds_type_blend(float d_stratus, float d_stratocumulus, float d_cumu
 /* One profile of vc-4.7: max(0, remap(h, lo0, lo1, 0, 1) remap(h, hi0, hi1, 1, 0)), remaps optionally saturated. */
 static float height_profile(float h, float lo0, float lo1, float hi0, float hi1, int clamp)
 {
-    float up = ccl_remap(h, lo0, lo1, 0.0f, 1.0f);
-    float down = ccl_remap(h, hi0, hi1, 1.0f, 0.0f);
+    float up = ccl_interp_remap(h, lo0, lo1, 0.0f, 1.0f);
+    float down = ccl_interp_remap(h, hi0, hi1, 1.0f, 0.0f);
     if (clamp) {
         up = saturate(up);
         down = saturate(down);

@@ -1,5 +1,7 @@
 /* Procedural noise, vc §2.3.2 and §4.3.1. See cclouds/noise.h for the conventions. */
 #include "cclouds/noise.h"
+#include "cclouds/hash.h"
+#include "cclouds/interp.h"
 #include "internal.h"
 
 #include <float.h>
@@ -62,36 +64,6 @@ static int32_t pmod(int32_t i, int32_t n)
     return r;
 }
 
-float ccl_fade_cubic(float t)
-{
-    /* vc-2.19: 3t^2 - 2t^3 */
-    return t * t * (3.0f - 2.0f * t);
-}
-
-float ccl_fade_quintic(float t)
-{
-    /* vc-2.20: 6t^5 - 15t^4 + 10t^3, Perlin's Horner form */
-    return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
-}
-
-float ccl_noise_lerp(float t, float a, float b)
-{
-    return a + t * (b - a);
-}
-
-float ccl_noise_cosine_interp(float t, float a, float b)
-{
-    float s = (1.0f - cosf(CCL_PI_F * t)) * 0.5f;
-    return a + s * (b - a);
-}
-
-uint32_t ccl_noise_hash(uint32_t v)
-{
-    uint32_t state = v * 747796405u + 2891336453u;
-    uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
 ccl_status ccl_noise_perm_table(uint32_t seed, uint8_t *out_perm)
 {
     uint32_t key;
@@ -102,9 +74,9 @@ ccl_status ccl_noise_perm_table(uint32_t seed, uint8_t *out_perm)
         return CCL_OK;
     }
     for (i = 0; i < 256; ++i) out_perm[i] = (uint8_t)i;
-    key = ccl_noise_hash(seed);
+    key = ccl_hash_pcg(seed);
     for (i = 255; i >= 1; --i) {
-        uint32_t j = ccl_noise_hash(key + (uint32_t)i) % (uint32_t)(i + 1);
+        uint32_t j = ccl_hash_pcg(key + (uint32_t)i) % (uint32_t)(i + 1);
         uint8_t tmp = out_perm[i];
         out_perm[i] = out_perm[j];
         out_perm[j] = tmp;
@@ -158,9 +130,9 @@ float ccl_noise_perlin3_perm(float x, float y, float z, const uint8_t *perm, int
     x -= fx;
     y -= fy;
     z -= fz;
-    u = ccl_fade_quintic(x);
-    v = ccl_fade_quintic(y);
-    w = ccl_fade_quintic(z);
+    u = ccl_interp_fade_quintic(x);
+    v = ccl_interp_fade_quintic(y);
+    w = ccl_interp_fade_quintic(z);
     /* hash of the 8 corners: p[p[p[i] + j] + k] */
     a0 = perm[x0] + y0;
     a1 = perm[x0] + y1;
@@ -174,11 +146,11 @@ float ccl_noise_perlin3_perm(float x, float y, float z, const uint8_t *perm, int
     ab1 = perm[perm[a1] + z1];
     ba1 = perm[perm[b0] + z1];
     bb1 = perm[perm[b1] + z1];
-    return ccl_noise_lerp(w,
-        ccl_noise_lerp(v, ccl_noise_lerp(u, grad3(aa, x, y, z), grad3(ba, x - 1.0f, y, z)),
-                          ccl_noise_lerp(u, grad3(ab, x, y - 1.0f, z), grad3(bb, x - 1.0f, y - 1.0f, z))),
-        ccl_noise_lerp(v, ccl_noise_lerp(u, grad3(aa1, x, y, z - 1.0f), grad3(ba1, x - 1.0f, y, z - 1.0f)),
-                          ccl_noise_lerp(u, grad3(ab1, x, y - 1.0f, z - 1.0f),
+    return ccl_interp_lerp(w,
+        ccl_interp_lerp(v, ccl_interp_lerp(u, grad3(aa, x, y, z), grad3(ba, x - 1.0f, y, z)),
+                          ccl_interp_lerp(u, grad3(ab, x, y - 1.0f, z), grad3(bb, x - 1.0f, y - 1.0f, z))),
+        ccl_interp_lerp(v, ccl_interp_lerp(u, grad3(aa1, x, y, z - 1.0f), grad3(ba1, x - 1.0f, y, z - 1.0f)),
+                          ccl_interp_lerp(u, grad3(ab1, x, y - 1.0f, z - 1.0f),
                                          grad3(bb1, x - 1.0f, y - 1.0f, z - 1.0f))));
 }
 
@@ -197,12 +169,12 @@ float ccl_noise_perlin3_tiled(float x, float y, float z, int32_t period, uint32_
 static float interp_weight(float t, ccl_noise_interp interp)
 {
     switch (interp) {
-    case CCL_INTERP_CUBIC: return ccl_fade_cubic(t);
+    case CCL_INTERP_CUBIC: return ccl_interp_fade_cubic(t);
     case CCL_INTERP_LINEAR: return t;
     case CCL_INTERP_COSINE: return (1.0f - cosf(CCL_PI_F * t)) * 0.5f;
     case CCL_INTERP_QUINTIC: break;
     }
-    return ccl_fade_quintic(t);
+    return ccl_interp_fade_quintic(t);
 }
 
 float ccl_noise_perlin2_perm(float x, float y, const uint8_t *perm, int32_t period, ccl_noise_interp interp)
@@ -225,10 +197,10 @@ float ccl_noise_perlin2_perm(float x, float y, const uint8_t *perm, int32_t peri
     y -= fy;
     u = interp_weight(x, interp);
     v = interp_weight(y, interp);
-    return ccl_noise_lerp(v,
-        ccl_noise_lerp(u, grad3(perm[perm[perm[x0] + y0] + z0], x, y, 0.0f),
+    return ccl_interp_lerp(v,
+        ccl_interp_lerp(u, grad3(perm[perm[perm[x0] + y0] + z0], x, y, 0.0f),
                           grad3(perm[perm[perm[x1] + y0] + z0], x - 1.0f, y, 0.0f)),
-        ccl_noise_lerp(u, grad3(perm[perm[perm[x0] + y1] + z0], x, y - 1.0f, 0.0f),
+        ccl_interp_lerp(u, grad3(perm[perm[perm[x0] + y1] + z0], x, y - 1.0f, 0.0f),
                           grad3(perm[perm[perm[x1] + y1] + z0], x - 1.0f, y - 1.0f, 0.0f)));
 }
 
@@ -245,8 +217,8 @@ float ccl_noise_perlin2(float x, float y, uint32_t seed, int32_t period, ccl_noi
 static void worley_offsets(uint32_t h0, float *ox, float *oy, float *oz)
 {
     const float scale = 1.0f / 8388608.0f; /* 2^-23 */
-    uint32_t h1 = ccl_noise_hash(h0);
-    uint32_t h2 = ccl_noise_hash(h1);
+    uint32_t h1 = ccl_hash_pcg(h0);
+    uint32_t h2 = ccl_hash_pcg(h1);
     *ox = (float)(h0 >> 9u) * scale;
     *oy = (float)(h1 >> 9u) * scale;
     *oz = (float)(h2 >> 9u) * scale;
@@ -258,9 +230,9 @@ void ccl_noise_worley_feature(int32_t ix, int32_t iy, int32_t iz, int32_t cells,
     CCL_REQUIRE(cells >= 1);
     CCL_REQUIRE(out_x != NULL && out_y != NULL && out_z != NULL);
     if (cells < 1) cells = 1;
-    worley_offsets(ccl_noise_hash((uint32_t)pmod(ix, cells) +
-                                  ccl_noise_hash((uint32_t)pmod(iy, cells) +
-                                                 ccl_noise_hash((uint32_t)pmod(iz, cells) + ccl_noise_hash(seed)))),
+    worley_offsets(ccl_hash_pcg((uint32_t)pmod(ix, cells) +
+                                  ccl_hash_pcg((uint32_t)pmod(iy, cells) +
+                                                 ccl_hash_pcg((uint32_t)pmod(iz, cells) + ccl_hash_pcg(seed)))),
                    out_x, out_y, out_z);
 }
 
@@ -270,7 +242,7 @@ float ccl_noise_worley3(float x, float y, float z, int32_t cells, uint32_t seed,
     float qx, qy, qz, fx, fy, fz, tx, ty, tz, best = FLT_MAX, f1;
     int32_t ix, iy, iz, dx, dy, dz, k;
     uint32_t wx[3], wy[3], wz[3];
-    uint32_t hseed = ccl_noise_hash(seed);
+    uint32_t hseed = ccl_hash_pcg(seed);
     CCL_REQUIRE(cells >= 1);
     if (cells < 1) cells = 1;
     if (!all_finite3(x, y, z)) return NAN;
@@ -293,12 +265,12 @@ float ccl_noise_worley3(float x, float y, float z, int32_t cells, uint32_t seed,
         wz[k] = (uint32_t)pmod(iz + k - 1, cells);
     }
     for (dz = -1; dz <= 1; ++dz) {
-        uint32_t hz = ccl_noise_hash(wz[dz + 1] + hseed);
+        uint32_t hz = ccl_hash_pcg(wz[dz + 1] + hseed);
         for (dy = -1; dy <= 1; ++dy) {
-            uint32_t hy = ccl_noise_hash(wy[dy + 1] + hz);
+            uint32_t hy = ccl_hash_pcg(wy[dy + 1] + hz);
             for (dx = -1; dx <= 1; ++dx) {
                 float ox, oy, oz, ddx, ddy, ddz, d;
-                worley_offsets(ccl_noise_hash(wx[dx + 1] + hy), &ox, &oy, &oz);
+                worley_offsets(ccl_hash_pcg(wx[dx + 1] + hy), &ox, &oy, &oz);
                 ddx = ((float)dx + ox) - tx;
                 ddy = ((float)dy + oy) - ty;
                 ddz = ((float)dz + oz) - tz;
@@ -533,14 +505,7 @@ void ccl_noise_curl2(float x, float y, uint32_t seed, int32_t period, float h, f
     ccl_noise_curl2_perm(x, y, table_for(seed, buf), period, h, out_x, out_y);
 }
 
-/* ---- Perlin-Worley and remap ----------------------------------------------------------------------------------- */
-
-float ccl_remap(float v, float o_min, float o_max, float n_min, float n_max)
-{
-    CCL_REQUIRE(o_max != o_min);
-    /* vc-2.27 */
-    return n_min + (v - o_min) / (o_max - o_min) * (n_max - n_min);
-}
+/* ---- Perlin-Worley ----------------------------------------------------------------------------------- */
 
 float ccl_noise_perlin_worley(float p, float w, ccl_perlin_worley_mode combination)
 {
@@ -548,10 +513,10 @@ float ccl_noise_perlin_worley(float p, float w, ccl_perlin_worley_mode combinati
     switch (combination) {
     case CCL_PW_GPU_PRO_7:
         if (w >= 1.0f) return 0.0f; /* (P - W) / (1 - W) is undefined at W = 1: the clamped limit for P < 1 */
-        r = ccl_remap(p, w, 1.0f, 0.0f, 1.0f);
+        r = ccl_interp_remap(p, w, 1.0f, 0.0f, 1.0f);
         return r < 0.0f ? 0.0f : (r > 1.0f ? 1.0f : r);
     case CCL_PW_HILLAIRE:
-        return ccl_remap(p, 0.0f, 1.0f, w, 1.0f);
+        return ccl_interp_remap(p, 0.0f, 1.0f, w, 1.0f);
     case CCL_PW_PRODUCT:
         return p * w;
     case CCL_PW_AVERAGE:
@@ -559,6 +524,6 @@ float ccl_noise_perlin_worley(float p, float w, ccl_perlin_worley_mode combinati
     case CCL_PW_THESIS:
         break;
     }
-    r = ccl_remap(p, 0.0f, 1.0f, w, 1.0f);
+    r = ccl_interp_remap(p, 0.0f, 1.0f, w, 1.0f);
     return r * r;
 }

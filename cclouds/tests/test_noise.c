@@ -1,46 +1,17 @@
-/* C unit tests of cclouds/noise.h: fades (vc-2.19, 2.20), Perlin noise against Ken Perlin's published value and
- * its lattice zeros (vc-A1), exact periodicity (vc-A2, vc-A5), Worley properties (vc-A3..A5), fBm (vc-2.21, A6),
- * curl-noise identities (vc-2.22..2.26, vc-A7), Perlin-Worley (vc-A8), remap (vc-2.27), NaN propagation. */
+/* C unit tests of cclouds/noise.h: permutation tables, Perlin noise against Ken Perlin's published value and its
+ * lattice zeros (vc-A1), exact periodicity (vc-A2, vc-A5), Worley properties (vc-A3..A5), fBm (vc-2.21, A6),
+ * curl-noise identities (vc-2.22..2.26, vc-A7), Perlin-Worley (vc-A8), NaN propagation. (The fades and remap are
+ * tested in test_interp.c, the hash in test_hash.c.) */
 #include "cclouds/noise.h"
 #include "ccl_test.h"
 
 #include <float.h>
 #include <string.h>
 
-static void test_fades_closed_form(void)
-{
-    float t;
-    CCL_CHECK(ccl_fade_cubic(0.0f) == 0.0f && ccl_fade_cubic(1.0f) == 1.0f && ccl_fade_cubic(0.5f) == 0.5f);
-    CCL_CHECK(ccl_fade_quintic(0.0f) == 0.0f && ccl_fade_quintic(1.0f) == 1.0f && ccl_fade_quintic(0.5f) == 0.5f);
-    for (t = 0.0f; t <= 1.0f; t += 0.0625f) {
-        double td = t;
-        CCL_CHECK_CLOSE(ccl_fade_cubic(t), 3 * td * td - 2 * td * td * td, 4e-7);
-        CCL_CHECK_CLOSE(ccl_fade_quintic(t), 6 * td * td * td * td * td - 15 * td * td * td * td + 10 * td * td * td,
-                        2e-6);
-        /* symmetry f(1 - t) = 1 - f(t) */
-        CCL_CHECK_CLOSE(ccl_fade_quintic(1.0f - t), 1.0 - ccl_fade_quintic(t), 2e-6);
-    }
-    /* cubic: f = 3 t^2 - 2 t^3 near 0 (f' = 0, f'' = 6); quintic: f = 10 t^3 - 15 t^4 + 6 t^5 (f' = f'' = 0); near 0
-     * the Horner forms keep a relative error of <= 3 (cubic) and <= 7 (quintic) roundings of FLT_EPSILON / 2 */
-    {
-        const double d = 1e-3f;
-        CCL_CHECK_REL(ccl_fade_cubic(1e-3f), 3 * d * d - 2 * d * d * d, 2.0 * FLT_EPSILON);
-        CCL_CHECK_REL(ccl_fade_quintic(1e-3f), 10 * d * d * d - 15 * d * d * d * d + 6 * d * d * d * d * d,
-                      4.0 * FLT_EPSILON);
-    }
-    CCL_CHECK_CLOSE(ccl_noise_lerp(0.25f, 2.0f, 6.0f), 3.0, 0.0);
-    CCL_CHECK_CLOSE(ccl_noise_cosine_interp(0.5f, 0.0f, 1.0f), 0.5, 1e-7);
-    CCL_CHECK_CLOSE(ccl_noise_cosine_interp(1.0f, 2.0f, 6.0f), 6.0, 1e-6);
-}
-
-static void test_hash_and_tables(void)
+static void test_perm_tables(void)
 {
     uint8_t t0[CCL_NOISE_PERM_SIZE], t1[CCL_NOISE_PERM_SIZE], t2[CCL_NOISE_PERM_SIZE];
     int seen[256], i;
-    /* PCG hash values computed by hand from the published formula (Python integers) */
-    CCL_CHECK(ccl_noise_hash(0u) == 129708002u);
-    CCL_CHECK(ccl_noise_hash(1u) == 2831084092u);
-    CCL_CHECK(ccl_noise_hash(12345u) == 4099845390u);
     CCL_CHECK(ccl_noise_perm_table(0u, NULL) == CCL_EINVAL);
     CCL_CHECK(ccl_noise_perm_table(0u, t0) == CCL_OK);
     /* Perlin's table starts 151, 160, 137, 91 and ends 156, 180 */
@@ -186,12 +157,8 @@ static void test_curl_identities(void)
     CCL_CHECK(max_curlcurl > 1.0);
 }
 
-static void test_perlin_worley_and_remap(void)
+static void test_perlin_worley(void)
 {
-    CCL_CHECK_CLOSE(ccl_remap(0.0f, 0.0f, 1.0f, 2.0f, 4.0f), 2.0, 0.0);
-    CCL_CHECK_CLOSE(ccl_remap(1.0f, 0.0f, 1.0f, 2.0f, 4.0f), 4.0, 0.0);
-    CCL_CHECK_CLOSE(ccl_remap(2.0f, 0.0f, 1.0f, 2.0f, 4.0f), 6.0, 0.0); /* unclamped */
-    CCL_CHECK_CLOSE(ccl_remap(0.25f, 0.0f, 1.0f, 1.0f, 0.0f), 0.75, 0.0); /* reversed */
     CCL_CHECK_CLOSE(ccl_noise_perlin_worley(0.5f, 0.2f, CCL_PW_THESIS), 0.36, 1e-7);     /* (0.2 + 0.5*0.8)^2 */
     CCL_CHECK_CLOSE(ccl_noise_perlin_worley(0.5f, 0.2f, CCL_PW_HILLAIRE), 0.6, 1e-7);
     CCL_CHECK_CLOSE(ccl_noise_perlin_worley(0.6f, 0.2f, CCL_PW_GPU_PRO_7), 0.5, 1e-7);  /* (0.6-0.2)/0.8 */
@@ -213,22 +180,19 @@ static void test_noise_nan_propagates(void)
     CCL_CHECK(isnan(ccl_noise_fbm_worley3(nan, 0.5f, 0.5f, 3, 2, 0u, CCL_WORLEY_EUCLIDEAN, 1)));
     ccl_noise_curl3(nan, 0.0f, 0.0f, 0u, 0, 0.01f, &a, &b, &c);
     CCL_CHECK(isnan(a) && isnan(b) && isnan(c));
-    CCL_CHECK(isnan(ccl_fade_quintic(nan)) && isnan(ccl_fade_cubic(nan)));
-    CCL_CHECK(isnan(ccl_remap(nan, 0.0f, 1.0f, 0.0f, 1.0f)));
     CCL_CHECK(isnan(ccl_noise_perlin_worley(nan, 0.5f, CCL_PW_THESIS)));
     CCL_CHECK(isnan(ccl_noise_perlin_worley(0.5f, nan, CCL_PW_GPU_PRO_7)));
 }
 
 int main(void)
 {
-    CCL_RUN(test_fades_closed_form);
-    CCL_RUN(test_hash_and_tables);
+    CCL_RUN(test_perm_tables);
     CCL_RUN(test_perlin_reference_value_and_lattice_zeros);
     CCL_RUN(test_perlin_periodic_exact);
     CCL_RUN(test_worley_properties);
     CCL_RUN(test_fbm);
     CCL_RUN(test_curl_identities);
-    CCL_RUN(test_perlin_worley_and_remap);
+    CCL_RUN(test_perlin_worley);
     CCL_RUN(test_noise_nan_propagates);
     return ccl_test_report();
 }

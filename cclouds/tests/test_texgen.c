@@ -294,7 +294,7 @@ static void test_texgen_sample_trilinear_wrap(void)
     double max_err = 0.0;
     uint32_t state = 12345u;
     for (i = 0; i < n * n * n * 4; ++i) {
-        state = ccl_noise_hash(state);
+        state = ccl_hash_pcg(state);
         tex[i] = (float)(state >> 8) / 16777216.0f;
     }
     /* at a texel centre the sample is the texel */
@@ -310,7 +310,7 @@ static void test_texgen_sample_trilinear_wrap(void)
         float p[3], o[4], o2[4];
         int k;
         for (k = 0; k < 3; ++k) {
-            state = ccl_noise_hash(state);
+            state = ccl_hash_pcg(state);
             p[k] = 1.0f + (float)(state >> 8) / 16777216.0f; /* [1, 2): p - 1 is exact */
         }
         ccl_texgen_sample_trilinear_wrap(tex, n - 1, p[0], p[1], p[2], &o[0], &o[1], &o[2], &o[3]);

@@ -13,7 +13,8 @@ from ..core.runtime import init as _init
 _init()
 
 #: Topic modules, in the order of the C umbrella header.
-TOPICS = ("phase", "media", "noise", "texgen", "clouds", "raymarch", "colour", "sky", "reproj", "cloudscape")
+TOPICS = ("phase", "media", "hash", "interp", "noise", "texgen", "clouds",
+          "raymarch", "colour", "sky", "reproj", "cloudscape")
 
 
 def load_all() -> None:

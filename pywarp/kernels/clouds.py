@@ -1,8 +1,8 @@
 """Cloud density and lighting model (vc §2.3.3, §2.3.4, §4.3.2) -- Warp twins of ``cclouds/clouds.h``.
 
 Every function is a pure scalar function of already-sampled texture and weather-map values, so the renderer's pixel
-kernel calls them per raymarch sample. ``remap`` is vc-2.27 (``pywarp.kernels.noise.remap``), linear and unclamped;
-the phase function is ``phase_hg`` (vc-2.13).
+kernel calls them per raymarch sample. ``remap`` is vc-2.27 (``pywarp.kernels.interp.interp_remap``), linear and
+unclamped; the phase function is ``phase_hg`` (vc-2.13).
 
 Readings chosen where the thesis is ambiguous (spec §7; the C header says the same):
 
@@ -34,7 +34,7 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, Equation, Option, _c_eval, _warp_eval, register
-from .noise import remap
+from .interp import interp_remap
 from .phase import phase_hg
 
 DEFAULT_G = 0.2
@@ -73,7 +73,7 @@ def _lerp_exact(a: float, b: float, s: float) -> float:
 def clouds_base_shape(c_r: float, c_g: float, c_b: float, c_a: float):
     """vc-2.28: returns (L_FBM, B), L_FBM = 0.625 C_G + 0.25 C_B + 0.125 C_A, B = remap(C_R, L_FBM - 1, 1, 0, 1)."""
     l_fbm = 0.625 * c_g + 0.25 * c_b + 0.125 * c_a
-    return l_fbm, remap(c_r, l_fbm - 1.0, 1.0, 0.0, 1.0)
+    return l_fbm, interp_remap(c_r, l_fbm - 1.0, 1.0, 0.0, 1.0)
 
 
 @wp.func
@@ -81,7 +81,7 @@ def clouds_coverage(b: float, d_v: float, d_h: float, coverage_threshold: float,
     """vc-2.29: B_D = remap(B D_v, C, 1, 0, 1) D_h; 0 at C >= 1; clamp != 0 clamps negatives to 0."""
     if coverage_threshold >= 1.0:
         return 0.0
-    b_d = remap(b * d_v, coverage_threshold, 1.0, 0.0, 1.0) * d_h
+    b_d = interp_remap(b * d_v, coverage_threshold, 1.0, 0.0, 1.0) * d_h
     if clamp != 0:
         return _nonneg(b_d)
     return b_d
@@ -96,7 +96,7 @@ def clouds_detail_erosion(b_d: float, c_r: float, c_g: float, c_b: float, h_rel:
     if detail_direction == 1:
         h_fbm = 1.0 - h_fbm
     m = h_fbm * (1.0 - h_rel) + (1.0 - h_fbm) * h_rel
-    c = remap(b_d, 0.2 * m, 1.0, 0.0, 1.0)
+    c = interp_remap(b_d, 0.2 * m, 1.0, 0.0, 1.0)
     if clamp != 0:
         return _nonneg(c)
     return c
@@ -118,8 +118,8 @@ def clouds_type_blend(d_stratus: float, d_stratocumulus: float, d_cumulus: float
 
 @wp.func
 def _height_profile(h: float, lo0: float, lo1: float, hi0: float, hi1: float, clamp: int) -> float:
-    up = remap(h, lo0, lo1, 0.0, 1.0)
-    down = remap(h, hi0, hi1, 1.0, 0.0)
+    up = interp_remap(h, lo0, lo1, 0.0, 1.0)
+    down = interp_remap(h, hi0, hi1, 1.0, 0.0)
     if clamp != 0:
         up = _saturate(up)
         down = _saturate(down)

@@ -1,7 +1,7 @@
 """Procedural noise (vc §2.3.2, §4.3.1) -- Warp twins of ``cclouds/noise.h``.
 
-* Interpolants: :func:`fade_cubic` (vc-2.19), :func:`fade_quintic` (vc-2.20), :func:`noise_lerp`,
-  :func:`noise_cosine_interp` (the linear and cosine interpolation the thesis compares them with, vc-fig-2.6).
+* The interpolants (vc-2.19, vc-2.20, lerp, cosine) and remap (vc-2.27) are in :mod:`pywarp.kernels.interp`, the PCG
+  hash in :mod:`pywarp.kernels.hash`.
 * Perlin gradient noise (vc-A1, vc-A2): with seed 0 it is Ken Perlin's 2002 "Improved Noise" reference implementation
   (ImprovedNoise.java) evaluated in float32. The Warp functions take the 512-entry permutation table as an
   ``wp.array(dtype=wp.int32)`` argument: build it once with :func:`perm_array` (``seed`` -> device array) or
@@ -13,7 +13,7 @@
 * fBm (vc-2.21, vc-A6): f_i = 2 f_{i-1}, w_i = w_{i-1} / 2, normalised by the sum of the weights.
 * Curl noise (vc-2.22 .. 2.26, vc-A7): central differences with step ``h`` (default 1/256), 2-D stream-function and
   3-D vector-potential readings.
-* :func:`noise_perlin_worley` (vc-A8) and :func:`remap` (vc-2.27, the signature other topics import).
+* :func:`noise_perlin_worley` (vc-A8).
 
 Every ``@wp.func`` mirrors the C function of the same name (minus ``ccl_``) operation by operation.
 """
@@ -26,6 +26,8 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, Equation, Option, register
+from .hash import hash_pcg, hash_pcg_py
+from .interp import interp_fade_cubic, interp_fade_quintic, interp_lerp, interp_remap
 
 # --- constants ----------------------------------------------------------------------------------------------------
 
@@ -66,24 +68,10 @@ _OFF_SCALE = wp.constant(1.0 / 8388608.0)  # 2^-23
 _O1X, _O1Y, _O1Z = (wp.constant(v) for v in CURL_OFFSET_1)
 _O2X, _O2Y, _O2Z = (wp.constant(v) for v in CURL_OFFSET_2)
 
-# PCG hash constants (Jarzynski & Olano 2020); > 2^31 values must be uint32 constants, not bare literals
-_PCG_MUL = wp.constant(wp.uint32(747796405))
-_PCG_INC = wp.constant(wp.uint32(2891336453))
-_PCG_MUL2 = wp.constant(wp.uint32(277803737))
-_U4 = wp.constant(wp.uint32(4))
 _U9 = wp.constant(wp.uint32(9))
-_U22 = wp.constant(wp.uint32(22))
-_U28 = wp.constant(wp.uint32(28))
 
 
 # --- NumPy-side tables --------------------------------------------------------------------------------------------
-
-def _hash_py(v: int) -> int:
-    """ccl_noise_hash in Python integers (mod 2^32)."""
-    state = (v * 747796405 + 2891336453) & 0xFFFFFFFF
-    word = (((state >> ((state >> 28) + 4)) ^ state) * 277803737) & 0xFFFFFFFF
-    return ((word >> 22) ^ word) & 0xFFFFFFFF
-
 
 @lru_cache(maxsize=64)
 def _perm_tuple(seed: int) -> tuple:
@@ -91,9 +79,9 @@ def _perm_tuple(seed: int) -> tuple:
         base = list(PERLIN_PERMUTATION)
     else:
         base = list(range(256))
-        key = _hash_py(seed)
+        key = hash_pcg_py(seed)
         for i in range(255, 0, -1):
-            j = _hash_py((key + i) & 0xFFFFFFFF) % (i + 1)
+            j = hash_pcg_py((key + i) & 0xFFFFFFFF) % (i + 1)
             base[i], base[j] = base[j], base[i]
     return tuple(base + base)
 
@@ -133,42 +121,7 @@ def perm_array(seed: int = 0, device: str | None = None):
     return arr
 
 
-# --- interpolants (vc-2.19, vc-2.20, vc-A1) -----------------------------------------------------------------------
-
-@wp.func
-def fade_cubic(t: float) -> float:
-    """vc-2.19: 3t^2 - 2t^3 as t*t*(3 - 2t)."""
-    return t * t * (3.0 - 2.0 * t)
-
-
-@wp.func
-def fade_quintic(t: float) -> float:
-    """vc-2.20: 6t^5 - 15t^4 + 10t^3 in Perlin's Horner form."""
-    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
-
-
-@wp.func
-def noise_lerp(t: float, a: float, b: float) -> float:
-    """Perlin's lerp: a + t (b - a)."""
-    return a + t * (b - a)
-
-
-@wp.func
-def noise_cosine_interp(t: float, a: float, b: float) -> float:
-    """Cosine interpolation lerp((1 - cos(pi t)) / 2, a, b)."""
-    s = (1.0 - wp.cos(_PI * t)) * 0.5
-    return a + s * (b - a)
-
-
-# --- hashing -------------------------------------------------------------------------------------------------------
-
-@wp.func
-def noise_hash(v: wp.uint32) -> wp.uint32:
-    """PCG hash (Jarzynski & Olano 2020), as ccl_noise_hash."""
-    state = v * _PCG_MUL + _PCG_INC
-    word = ((state >> ((state >> _U28) + _U4)) ^ state) * _PCG_MUL2
-    return (word >> _U22) ^ word
-
+# --- lattice helpers -----------------------------------------------------------------------------------------------
 
 @wp.func
 def _floor_to_int(f: float) -> int:
@@ -236,9 +189,9 @@ def noise_perlin3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), 
     rx = x - fx
     ry = y - fy
     rz = z - fz
-    u = fade_quintic(rx)
-    v = fade_quintic(ry)
-    w = fade_quintic(rz)
+    u = interp_fade_quintic(rx)
+    v = interp_fade_quintic(ry)
+    w = interp_fade_quintic(rz)
     a0 = perm[x0] + y0
     a1 = perm[x0] + y1
     b0 = perm[x1] + y0
@@ -251,12 +204,12 @@ def noise_perlin3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), 
     ab1 = perm[perm[a1] + z1]
     ba1 = perm[perm[b0] + z1]
     bb1 = perm[perm[b1] + z1]
-    return noise_lerp(
+    return interp_lerp(
         w,
-        noise_lerp(v, noise_lerp(u, _grad3(aa, rx, ry, rz), _grad3(ba, rx - 1.0, ry, rz)),
-                   noise_lerp(u, _grad3(ab, rx, ry - 1.0, rz), _grad3(bb, rx - 1.0, ry - 1.0, rz))),
-        noise_lerp(v, noise_lerp(u, _grad3(aa1, rx, ry, rz - 1.0), _grad3(ba1, rx - 1.0, ry, rz - 1.0)),
-                   noise_lerp(u, _grad3(ab1, rx, ry - 1.0, rz - 1.0), _grad3(bb1, rx - 1.0, ry - 1.0, rz - 1.0))))
+        interp_lerp(v, interp_lerp(u, _grad3(aa, rx, ry, rz), _grad3(ba, rx - 1.0, ry, rz)),
+                   interp_lerp(u, _grad3(ab, rx, ry - 1.0, rz), _grad3(bb, rx - 1.0, ry - 1.0, rz))),
+        interp_lerp(v, interp_lerp(u, _grad3(aa1, rx, ry, rz - 1.0), _grad3(ba1, rx - 1.0, ry, rz - 1.0)),
+                   interp_lerp(u, _grad3(ab1, rx, ry - 1.0, rz - 1.0), _grad3(bb1, rx - 1.0, ry - 1.0, rz - 1.0))))
 
 
 @wp.func
@@ -268,12 +221,12 @@ def noise_perlin3_tiled(x: float, y: float, z: float, period: int, perm: wp.arra
 @wp.func
 def _interp_weight(t: float, interp: int) -> float:
     if interp == 1:
-        return fade_cubic(t)
+        return interp_fade_cubic(t)
     if interp == 2:
         return t
     if interp == 3:
         return (1.0 - wp.cos(_PI * t)) * 0.5
-    return fade_quintic(t)
+    return interp_fade_quintic(t)
 
 
 @wp.func
@@ -294,11 +247,11 @@ def noise_perlin2(x: float, y: float, perm: wp.array(dtype=wp.int32), period: in
     ry = y - fy
     u = _interp_weight(rx, interp)
     v = _interp_weight(ry, interp)
-    return noise_lerp(
+    return interp_lerp(
         v,
-        noise_lerp(u, _grad3(perm[perm[perm[x0] + y0] + z0], rx, ry, 0.0),
+        interp_lerp(u, _grad3(perm[perm[perm[x0] + y0] + z0], rx, ry, 0.0),
                    _grad3(perm[perm[perm[x1] + y0] + z0], rx - 1.0, ry, 0.0)),
-        noise_lerp(u, _grad3(perm[perm[perm[x0] + y1] + z0], rx, ry - 1.0, 0.0),
+        interp_lerp(u, _grad3(perm[perm[perm[x0] + y1] + z0], rx, ry - 1.0, 0.0),
                    _grad3(perm[perm[perm[x1] + y1] + z0], rx - 1.0, ry - 1.0, 0.0)))
 
 
@@ -306,8 +259,8 @@ def noise_perlin2(x: float, y: float, perm: wp.array(dtype=wp.int32), period: in
 
 @wp.func
 def _worley_offsets(h0: wp.uint32) -> wp.vec3:
-    h1 = noise_hash(h0)
-    h2 = noise_hash(h1)
+    h1 = hash_pcg(h0)
+    h2 = hash_pcg(h1)
     return wp.vec3(float(h0 >> _U9) * _OFF_SCALE, float(h1 >> _U9) * _OFF_SCALE, float(h2 >> _U9) * _OFF_SCALE)
 
 
@@ -315,8 +268,8 @@ def _worley_offsets(h0: wp.uint32) -> wp.vec3:
 def noise_worley_feature(ix: int, iy: int, iz: int, cells: int, seed: wp.uint32) -> wp.vec3:
     """Feature-point offset (cell units, [0, 1)^3) of cell (ix, iy, iz), indices wrapped modulo ``cells``."""
     c = wp.max(cells, 1)
-    h0 = noise_hash(wp.uint32(_pmod(ix, c)) + noise_hash(wp.uint32(_pmod(iy, c)) +
-                                                        noise_hash(wp.uint32(_pmod(iz, c)) + noise_hash(seed))))
+    h0 = hash_pcg(wp.uint32(_pmod(ix, c)) + hash_pcg(wp.uint32(_pmod(iy, c)) +
+                                                        hash_pcg(wp.uint32(_pmod(iz, c)) + hash_pcg(seed))))
     return _worley_offsets(h0)
 
 
@@ -326,7 +279,7 @@ def noise_worley3(x: float, y: float, z: float, cells: int, seed: wp.uint32, met
     c = wp.max(cells, 1)
     if not (wp.isfinite(x) and wp.isfinite(y) and wp.isfinite(z)):
         return wp.nan
-    hseed = noise_hash(seed)
+    hseed = hash_pcg(seed)
     qx = x * float(c)
     qy = y * float(c)
     qz = z * float(c)
@@ -341,11 +294,11 @@ def noise_worley3(x: float, y: float, z: float, cells: int, seed: wp.uint32, met
     tz = qz - fz
     best = _BIG
     for dz in range(-1, 2):
-        hz = noise_hash(wp.uint32(_pmod(iz + dz, c)) + hseed)
+        hz = hash_pcg(wp.uint32(_pmod(iz + dz, c)) + hseed)
         for dy in range(-1, 2):
-            hy = noise_hash(wp.uint32(_pmod(iy + dy, c)) + hz)
+            hy = hash_pcg(wp.uint32(_pmod(iy + dy, c)) + hz)
             for dx in range(-1, 2):
-                o = _worley_offsets(noise_hash(wp.uint32(_pmod(ix + dx, c)) + hy))
+                o = _worley_offsets(hash_pcg(wp.uint32(_pmod(ix + dx, c)) + hy))
                 ddx = (float(dx) + o[0]) - tx
                 ddy = (float(dy) + o[1]) - ty
                 ddz = (float(dz) + o[2]) - tz
@@ -566,13 +519,7 @@ def noise_curl2(x: float, y: float, perm: wp.array(dtype=wp.int32), period: int,
     return wp.vec2(_dnoise(perm, period, x, y, 0.0, 1, h), -_dnoise(perm, period, x, y, 0.0, 0, h))
 
 
-# --- Perlin-Worley (vc-A8) and remap (vc-2.27) ---------------------------------------------------------------------
-
-@wp.func
-def remap(v: float, o_min: float, o_max: float, n_min: float, n_max: float) -> float:
-    """vc-2.27: n_min + (v - o_min) / (o_max - o_min) * (n_max - n_min), unclamped."""
-    return n_min + (v - o_min) / (o_max - o_min) * (n_max - n_min)
-
+# --- Perlin-Worley (vc-A8) ---------------------------------------------------------------------------------------
 
 @wp.func
 def noise_perlin_worley(p: float, w: float, combination: int) -> float:
@@ -581,19 +528,19 @@ def noise_perlin_worley(p: float, w: float, combination: int) -> float:
     if combination == 1:
         if w >= 1.0:
             return 0.0
-        r = remap(p, w, 1.0, 0.0, 1.0)
+        r = interp_remap(p, w, 1.0, 0.0, 1.0)
         if r < 0.0:
             return 0.0
         if r > 1.0:
             return 1.0
         return r
     if combination == 2:
-        return remap(p, 0.0, 1.0, w, 1.0)
+        return interp_remap(p, 0.0, 1.0, w, 1.0)
     if combination == 3:
         return p * w
     if combination == 4:
         return (p + w) * 0.5
-    r = remap(p, 0.0, 1.0, w, 1.0)
+    r = interp_remap(p, 0.0, 1.0, w, 1.0)
     return r * r
 
 
@@ -605,35 +552,6 @@ _F = wp.array(dtype=float)
 _I = wp.array(dtype=wp.int32)
 _U = wp.array(dtype=wp.uint32)
 
-
-@wp.kernel
-def _eval_fade_cubic(t: _F, out: _F):
-    i = wp.tid()
-    out[i] = fade_cubic(t[i])
-
-
-@wp.kernel
-def _eval_fade_quintic(t: _F, out: _F):
-    i = wp.tid()
-    out[i] = fade_quintic(t[i])
-
-
-@wp.kernel
-def _eval_noise_lerp(t: _F, a: _F, b: _F, out: _F):
-    i = wp.tid()
-    out[i] = noise_lerp(t[i], a[i], b[i])
-
-
-@wp.kernel
-def _eval_noise_cosine_interp(t: _F, a: _F, b: _F, out: _F):
-    i = wp.tid()
-    out[i] = noise_cosine_interp(t[i], a[i], b[i])
-
-
-@wp.kernel
-def _eval_noise_hash(v: _U, out: _U):
-    i = wp.tid()
-    out[i] = noise_hash(v[i])
 
 
 @wp.kernel
@@ -748,11 +666,6 @@ def _eval_noise_perlin_worley(p: _F, w: _F, combination: int, out: _F):
     out[i] = noise_perlin_worley(p[i], w[i], combination)
 
 
-@wp.kernel
-def _eval_remap(v: _F, o_min: _F, o_max: _F, n_min: _F, n_max: _F, out: _F):
-    i = wp.tid()
-    out[i] = remap(v[i], o_min[i], o_max[i], n_min[i], n_max[i])
-
 
 # --- NumPy-level evaluators ----------------------------------------------------------------------------------------
 
@@ -847,13 +760,6 @@ def _check_fbm_worley(x, y, z, octaves, cells, **_):
         raise ValueError("cells * 2^(octaves - 1) * |x|, |y|, |z| must be < 2^24 (float32 position precision)")
 
 
-def _check_remap(v, o_min, o_max, n_min, n_max, **_):
-    same = np.asarray(o_max == o_min)
-    if np.any(same):
-        bad = np.broadcast_to(o_max, same.shape)[same].flat[0]
-        raise ValueError(f"o_max must differ from o_min (empty original range), got o_max = o_min = {bad!r}")
-
-
 # --- registry ------------------------------------------------------------------------------------------------------
 
 _PERLIN_REF = ("K. Perlin, Improving Noise, SIGGRAPH 2002 (reference code ImprovedNoise.java, "
@@ -862,20 +768,6 @@ _PERLIN_REF = ("K. Perlin, Improving Noise, SIGGRAPH 2002 (reference code Improv
 _WORLEY_REF = ("S. Worley, A Cellular Texture Basis Function, SIGGRAPH 1996",)
 _PCG_REF = "M. Jarzynski & M. Olano, Hash Functions for GPU Rendering, JCGT 9(3), 2020 (PCG hash)"
 _CURL_REF = ("R. Bridson, J. Hourihan & M. Nordenstam, Curl-Noise for Procedural Fluid Flow, SIGGRAPH 2007",)
-_T = Arg("t", "fractional position in a lattice cell", lo=0.0, hi=1.0)
-
-register(Equation(
-    "vc-2.19", "fade_cubic", "ccl_fade_cubic", fade_cubic, _eval_fade_cubic, args=(_T,), outputs=("f",),
-    summary="Fade (smoothstep) 3t^2 - 2t^3 = t*t*(3 - 2t); f(0)=0, f(1)=1, f'(0)=f'(1)=0. The linear (t) and "
-            "cosine ((1 - cos pi t)/2) interpolants it replaces are ccl_noise_lerp / ccl_noise_cosine_interp "
-            "(Warp noise_lerp / noise_cosine_interp), see vc-A1.",
-    references=_PERLIN_REF[1:]))
-
-register(Equation(
-    "vc-2.20", "fade_quintic", "ccl_fade_quintic", fade_quintic, _eval_fade_quintic, args=(_T,), outputs=("f",),
-    summary="Improved fade 6t^5 - 15t^4 + 10t^3 in Perlin's Horner form t*t*t*(t*(t*6 - 15) + 10); also f''=0 at "
-            "t = 0, 1. The thesis cites it as 'see formula [25]' (a citation printed for the equation number).",
-    references=_PERLIN_REF[:1]))
 
 register(Equation(
     "vc-A1", "noise_perlin3", "ccl_noise_perlin3", noise_perlin3, _eval_noise_perlin3,
@@ -886,8 +778,8 @@ register(Equation(
             "Output about [-1, 1], 0 at lattice points. period 0 = Perlin's lattice, period >= 1 = exactly "
             "periodic (vc-A2). Also: 2-D noise ccl_noise_perlin2 / noise_perlin2 (= perlin3(x, y, 0), with a "
             "choice of interpolant quintic/cubic/linear/cosine for vc-fig-2.5, NumPy helper perlin2()), the "
-            "table-taking fast forms ccl_noise_perlin3_perm, and the interpolants ccl_noise_lerp, "
-            "ccl_noise_cosine_interp (vc-fig-2.6). Warp functions take the permutation table (perm_array(seed)).",
+            "table-taking fast forms ccl_noise_perlin3_perm, and the interpolants ccl_interp_lerp, "
+            "ccl_interp_cosine (vc-fig-2.6). Warp functions take the permutation table (perm_array(seed)).",
     references=_PERLIN_REF + (_PCG_REF,)))
 
 register(Equation(
@@ -1017,16 +909,6 @@ register(Equation(
                 "A. Schneider, Real-Time Volumetric Cloudscapes, GPU Pro 7, 2016",
                 "S. Hillaire, TileableVolumeNoise, https://github.com/sebh/TileableVolumeNoise, 2016")))
 
-register(Equation(
-    "vc-2.27", "remap", "ccl_remap", remap, _eval_remap,
-    args=(Arg("v", "value"), Arg("o_min", "start of the original range"), Arg("o_max", "end of the original range"),
-          Arg("n_min", "start of the new range"), Arg("n_max", "end of the new range")),
-    outputs=("r",), check=_check_remap,
-    summary="remap(v, o_min, o_max, n_min, n_max) = n_min + (v - o_min)/(o_max - o_min) (n_max - n_min); unclamped "
-            "(extrapolates linearly), reversed ranges allowed, o_max != o_min.",
-    references=()))
-
-
 # --- NumPy helpers for functions without their own catalogue ID ------------------------------------------------------
 
 def perlin2(x, y, seed: int = 0, period: int = 0, interp: str = "quintic", impl: str = "warp", device=None):
@@ -1063,36 +945,3 @@ def perlin2(x, y, seed: int = 0, period: int = 0, interp: str = "quintic", impl:
         out = res.numpy()
     out = np.asarray(out, dtype=np.float32).reshape(shape)
     return out[()] if shape == () else out
-
-
-def interpolants(t, impl: str = "warp"):
-    """The four interpolation curves of vc-fig-2.6 on ``t`` in [0, 1]: dict of 'linear' (t), 'cosine'
-    ((1 - cos pi t)/2, via noise_cosine_interp(t, 0, 1)), 'cubic' (2.19) and 'quintic' (2.20)."""
-    from ..core.registry import equation
-
-    ta = _T.check(t, "t")
-    if impl == "c":
-        from ..core.binding import vectorize
-
-        lin = vectorize("ccl_noise_lerp")(ta, np.float32(0), np.float32(1))
-        cos = vectorize("ccl_noise_cosine_interp")(ta, np.float32(0), np.float32(1))
-    elif impl == "warp":
-        from ..core.runtime import resolve_device
-
-        dev = resolve_device(None)
-        flat = np.ascontiguousarray(ta.ravel())
-        outs = []
-        for k in (_eval_noise_lerp, _eval_noise_cosine_interp):
-            r = wp.empty(flat.size, dtype=wp.float32, device=dev)
-            if flat.size:
-                wp.launch(k, dim=flat.size, inputs=[wp.array(flat, device=dev),
-                                                    wp.array(np.zeros_like(flat), device=dev),
-                                                    wp.array(np.ones_like(flat), device=dev)], outputs=[r],
-                          device=dev)
-            outs.append(r.numpy().reshape(ta.shape))
-        lin, cos = outs
-    else:
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    return {"linear": np.asarray(lin, np.float32), "cosine": np.asarray(cos, np.float32),
-            "cubic": np.asarray(equation("vc-2.19", impl=impl)(ta)),
-            "quintic": np.asarray(equation("vc-2.20", impl=impl)(ta))}

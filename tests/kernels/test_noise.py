@@ -206,7 +206,7 @@ def test_noise_hash_matches_pcg_transcription(rng):
     v = rng.integers(0, 2 ** 32, 4000, dtype=np.uint64).astype(np.uint32)
     ref = pcg_hash(v)
     ffi, lib = c_lib()
-    assert all(lib.ccl_noise_hash(int(a)) == int(b) for a, b in zip(v[:500], ref[:500]))
+    assert all(lib.ccl_hash_pcg(int(a)) == int(b) for a, b in zip(v[:500], ref[:500]))
     import warp as wp
     out = wp.empty(v.size, dtype=wp.uint32, device="cpu")
     wp.launch(knoise._eval_noise_hash, dim=v.size, inputs=[wp.array(v, dtype=wp.uint32, device="cpu")],

@@ -1,7 +1,7 @@
 """Figure vc-fig-2.14: visualization of the remap function (vc-2.27) applied to trigonometric functions.
 
 The thesis does not give its functions; this uses the catalogue's example: v = sin x, o_min = 0.3 sin(8x) - 0.3,
-result remap(v, o_min, 1, 0, 1), evaluated with pywarp.remap (unclamped, as catalogued). Panel (c), not in the
+result remap(v, o_min, 1, 0, 1), evaluated with pywarp.interp_remap (unclamped, as catalogued). Panel (c), not in the
 thesis, uses a non-negative o_min = 0.3 sin(8x) + 0.3 instead: the erosion of eq. 2.30 rather than the outward push of
 eq. 2.28. Output: figures/vc/fig-2.14.png.
 """
@@ -52,7 +52,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # The remap itself, by the library (Warp, float32, unclamped).
 
     # %%
-    r = pywarp.remap(v, o_min, 1.0, 0.0, 1.0)
+    r = pywarp.interp_remap(v, o_min, 1.0, 0.0, 1.0)
 
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6), dpi=90 if quick else 130)
     ax = axes[0]
@@ -73,7 +73,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # %%
     ax = axes[2]
     o_ero = 0.3 * np.sin(8.0 * x) + 0.3
-    r_ero = pywarp.remap(v, o_ero, 1.0, 0.0, 1.0)
+    r_ero = pywarp.interp_remap(v, o_ero, 1.0, 0.0, 1.0)
     ax.plot(x, v, color="C0", lw=1.2, ls="--", label="v = sin x")
     ax.plot(x, o_ero, color="C1", lw=1.0, alpha=0.8, label="o_min = 0.3 sin 8x + 0.3")
     ax.plot(x, r_ero, color="C4", lw=2, label="remap(v, o_min, 1, 0, 1)")

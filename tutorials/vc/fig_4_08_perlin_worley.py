@@ -5,8 +5,8 @@ Every combination option of pywarp.noise_perlin_worley (vc-A8), as 2-D slices (z
 three more that the library offers ('hillaire' remap(P, 0, 1, W, 1), 'product' P W, 'average' (P + W)/2). The thesis
 names only the first two; its other panels are not listed, so those three are stand-ins. Inputs: P = fBm Perlin
 (vc-2.21, pywarp.noise_fbm_perlin3: 3 octaves, frequency 8, period 8, seed 0) remapped from [-1, 1] to [0, 1] with
-pywarp.remap (vc-2.27); W = inverse-Worley fBm (vc-A6, pywarp.noise_fbm_worley3: 3 octaves, 4 cells, seed 0) -- the
-octave counts and frequencies of the base-shape texture defaults (the A9 texture, Hillaire's generator). Both are
+pywarp.interp_remap (vc-2.27); W = inverse-Worley fBm (vc-A6, pywarp.noise_fbm_worley3: 3 octaves, 4 cells, seed 0) --
+the octave counts and frequencies of the base-shape texture defaults (the A9 texture, Hillaire's generator). Both are
 periodic with period 1, so every panel tiles. Output: figures/vc/fig-4.8.png.
 """
 # %% [markdown]
@@ -59,7 +59,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     # %%
     fbm = pywarp.noise_fbm_perlin3(x, y, z, 3, 8.0, 0, 8)  # octaves, frequency, seed, period
-    P = np.clip(pywarp.remap(fbm, -1.0, 1.0, 0.0, 1.0), 0.0, 1.0)
+    P = np.clip(pywarp.interp_remap(fbm, -1.0, 1.0, 0.0, 1.0), 0.0, 1.0)
     W = pywarp.noise_fbm_worley3(x, y, z, 3, 4, 0, inverse=True)  # octaves, cells, seed
 
     # %% [markdown]

@@ -8,6 +8,8 @@
 #include "cclouds/common.h"
 #include "cclouds/phase.h"
 #include "cclouds/media.h"
+#include "cclouds/hash.h"
+#include "cclouds/interp.h"
 #include "cclouds/noise.h"
 #include "cclouds/texgen.h"
 #include "cclouds/clouds.h"

@@ -3,8 +3,8 @@
  * "The real-time volumetric cloudscapes of Horizon: Zero Dawn", SIGGRAPH 2015, and Schneider, GPU Pro 7, 2016).
  *
  * Every function is a pure scalar function of already-sampled texture and weather-map values, so the renderer's
- * pixel kernel (Warp) and its C reference call the same code per raymarch sample. remap is vc-2.27 (ccl_remap in
- * cclouds/noise.h): linear, NOT clamped.
+ * pixel kernel (Warp) and its C reference call the same code per raymarch sample. remap is vc-2.27
+ * (ccl_interp_remap in cclouds/interp.h): linear, NOT clamped.
  *
  * Readings chosen where the thesis is ambiguous (spec §7):
  *   - vc-2.29: the threshold C is undefined; it is an explicit argument coverage_threshold, and the reading the spec

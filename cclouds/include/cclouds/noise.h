@@ -1,6 +1,7 @@
 /*
- * cclouds/noise.h -- procedural noise of vc §2.3.2: interpolants, Perlin gradient noise, Worley cellular noise, fBm,
- * curl noise and its vector operators, the Perlin-Worley combinations of vc §4.3.1 and remap (vc-2.27).
+ * cclouds/noise.h -- procedural noise of vc §2.3.2: Perlin gradient noise, Worley cellular noise, fBm, curl noise and
+ * its vector operators, and the Perlin-Worley combinations of vc §4.3.1. The interpolants and remap (vc-2.19, vc-2.20,
+ * vc-2.27) are in cclouds/interp.h, the PCG hash in cclouds/hash.h.
  *
  * Conventions shared by every function of this header:
  *   - Perlin noise with seed 0 is Ken Perlin's 2002 "Improved Noise" reference implementation (his Java class
@@ -23,6 +24,8 @@
 #define CCLOUDS_NOISE_H
 
 #include "cclouds/common.h"
+#include "cclouds/hash.h"
+#include "cclouds/interp.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -59,32 +62,11 @@ typedef enum ccl_perlin_worley_mode {
  * gradient) against the O(eps / h) float32 cancellation error (~1e-4). */
 #define CCL_NOISE_FD_STEP_INV 256
 
-/* ---- interpolants (vc-2.19, vc-2.20, vc-A1 step 3) --------------------------------------------------------------- */
-
-/* Fade (smoothstep) 3t^2 - 2t^3, evaluated as t*t*(3 - 2t). Ref: vc-2.19 (Perlin 1985).
- * t: fractional position in a lattice cell, domain [0, 1]; output [0, 1]; f'(0) = f'(1) = 0. */
-CCL_API float ccl_fade_cubic(float t);
-
-/* Improved fade 6t^5 - 15t^4 + 10t^3, evaluated as Perlin's t*t*t*(t*(t*6 - 15) + 10). Ref: vc-2.20 (Perlin,
- * "Improving Noise", SIGGRAPH 2002). t in [0, 1]; output [0, 1]; f' = f'' = 0 at t = 0 and t = 1. */
-CCL_API float ccl_fade_quintic(float t);
-
-/* Linear interpolation a + t (b - a) (Perlin's lerp, argument order (t, a, b)). Ref: vc-A1 step 3. */
-CCL_API float ccl_noise_lerp(float t, float a, float b);
-
-/* Cosine interpolation: lerp((1 - cos(pi t)) / 2, a, b). Ref: vc-A1 step 3 ("cosine interpolation looks best";
- * the formula is not printed in the thesis -- the usual form is used), vc-fig-2.6. */
-CCL_API float ccl_noise_cosine_interp(float t, float a, float b);
-
-/* ---- hashing and permutation tables ------------------------------------------------------------------------------ */
-
-/* PCG hash of one uint32 (Jarzynski & Olano, "Hash Functions for GPU Rendering", JCGT 9(3), 2020):
- * s = v * 747796405 + 2891336453; w = ((s >> ((s >> 28) + 4)) ^ s) * 277803737; return (w >> 22) ^ w. */
-CCL_API uint32_t ccl_noise_hash(uint32_t v);
+/* ---- permutation tables ------------------------------------------------------------------------------------------ */
 
 /* Fill out_perm[0..511] with the permutation table of `seed`: entries 0..255 are a permutation of 0..255 and
  * out_perm[256 + i] = out_perm[i]. Seed 0: Perlin's published table. Seed s != 0: the identity shuffled by
- * Fisher-Yates, i = 255 .. 1, j = ccl_noise_hash(ccl_noise_hash(s) + i) % (i + 1) (the modulo bias, < 2^-24, is
+ * Fisher-Yates, i = 255 .. 1, j = ccl_hash_pcg(ccl_hash_pcg(s) + i) % (i + 1) (the modulo bias, < 2^-24, is
  * irrelevant here). Returns CCL_EINVAL if out_perm is NULL. */
 CCL_API ccl_status ccl_noise_perm_table(uint32_t seed, uint8_t *out_perm);
 
@@ -115,7 +97,7 @@ CCL_API float ccl_noise_perlin2(float x, float y, uint32_t seed, int32_t period,
 
 /* Feature point of lattice cell (ix, iy, iz) of a Worley lattice with `cells` cells per unit: the cell index is
  * wrapped modulo `cells` and hashed with the seed, h0 = H(wx + H(wy + H(wz + H(seed)))), h1 = H(h0), h2 = H(h1)
- * (H = ccl_noise_hash); the offsets inside the cell are (h >> 8) / 2^24 in [0, 1). Writes the offsets (cell units)
+ * (H = ccl_hash_pcg); the offsets inside the cell are (h >> 9) / 2^23 in [0, 1). Writes the offsets (cell units)
  * through out_x, out_y, out_z; the feature point lies at ((ix + out_x) / cells, ...) in noise coordinates.
  * Ref: vc-A3 step 1 (one feature point per cell). cells >= 1. */
 CCL_API void ccl_noise_worley_feature(int32_t ix, int32_t iy, int32_t iz, int32_t cells, uint32_t seed,
@@ -205,16 +187,11 @@ CCL_API void ccl_noise_curl2_perm(float x, float y, const uint8_t *perm, int32_t
                                   float *out_y);
 CCL_API void ccl_noise_curl2(float x, float y, uint32_t seed, int32_t period, float h, float *out_x, float *out_y);
 
-/* ---- Perlin-Worley combination (vc-A8) and remap (vc-2.27) -------------------------------------------------------- */
+/* ---- Perlin-Worley combination (vc-A8) ------------------------------------------------------------------------- */
 
 /* Combination of fBm Perlin P and inverse-Worley fBm W, both in [0, 1], for the R channel of the base texture.
  * Ref: vc-A8. combination: ccl_perlin_worley_mode (see the enum). Output [0, 1] for inputs in [0, 1]. */
 CCL_API float ccl_noise_perlin_worley(float p, float w, ccl_perlin_worley_mode combination);
-
-/* remap(v, o_min, o_max, n_min, n_max) = n_min + (v - o_min) / (o_max - o_min) * (n_max - n_min). Ref: vc-2.27.
- * No clamping: values outside [o_min, o_max] extrapolate linearly; reversed ranges allowed; o_max != o_min
- * (o_max == o_min gives +-Inf or NaN). */
-CCL_API float ccl_remap(float v, float o_min, float o_max, float n_min, float n_max);
 
 #ifdef __cplusplus
 }

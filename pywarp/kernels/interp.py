@@ -1,0 +1,116 @@
+"""Interpolants and remap -- Warp twins of ``cclouds/interp.h``.
+
+* Fade curves of Perlin noise: :func:`interp_fade_cubic` (vc-2.19, Perlin 1985) and :func:`interp_fade_quintic`
+  (vc-2.20, Perlin 2002).
+* :func:`interp_lerp` (Perlin's lerp, argument order (t, a, b)) and :func:`interp_cosine` (cosine interpolation),
+  the curves vc-fig-2.6 compares the fades with; they have no catalogue ID of their own (vc-A1 step 3 names them
+  without a formula), so they are helpers, not registry entries. :func:`interpolants` evaluates all four curves on
+  NumPy arrays.
+* :func:`interp_remap` (vc-2.27), the linear range remap used by the cloud density model.
+"""
+from __future__ import annotations
+
+import numpy as np
+import warp as wp
+
+from ..core.registry import Arg, declare
+
+_PI = wp.constant(3.14159265358979323846)
+
+_PERLIN_2002 = ("K. Perlin, Improving Noise, SIGGRAPH 2002 (reference code ImprovedNoise.java, "
+                "https://mrl.cs.nyu.edu/~perlin/noise/)")
+_PERLIN_1985 = "K. Perlin, An Image Synthesizer, SIGGRAPH 1985"
+_T = Arg("t", "fractional position in a lattice cell", lo=0.0, hi=1.0)
+
+
+@declare("vc-2.19", c="ccl_interp_fade_cubic", args=(_T,), outputs=("f",),
+         summary="Fade (smoothstep) 3t^2 - 2t^3 = t*t*(3 - 2t); f(0)=0, f(1)=1, f'(0)=f'(1)=0. The linear (t) and "
+                 "cosine ((1 - cos pi t)/2) interpolants it replaces are ccl_interp_lerp / ccl_interp_cosine "
+                 "(Warp interp_lerp / interp_cosine), see vc-A1.",
+         references=(_PERLIN_1985,))
+@wp.func
+def interp_fade_cubic(t: float) -> float:
+    """vc-2.19: 3t^2 - 2t^3 as t*t*(3 - 2t)."""
+    return t * t * (3.0 - 2.0 * t)
+
+
+@declare("vc-2.20", c="ccl_interp_fade_quintic", args=(_T,), outputs=("f",),
+         summary="Improved fade 6t^5 - 15t^4 + 10t^3 in Perlin's Horner form t*t*t*(t*(t*6 - 15) + 10); also f''=0 "
+                 "at t = 0, 1. The thesis cites it as 'see formula [25]' (a citation printed for the equation "
+                 "number).",
+         references=(_PERLIN_2002,))
+@wp.func
+def interp_fade_quintic(t: float) -> float:
+    """vc-2.20: 6t^5 - 15t^4 + 10t^3 in Perlin's Horner form."""
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+
+
+@wp.func
+def interp_lerp(t: float, a: float, b: float) -> float:
+    """Perlin's lerp: a + t (b - a), as ``ccl_interp_lerp``."""
+    return a + t * (b - a)
+
+
+@wp.func
+def interp_cosine(t: float, a: float, b: float) -> float:
+    """Cosine interpolation lerp((1 - cos(pi t)) / 2, a, b), as ``ccl_interp_cosine``."""
+    s = (1.0 - wp.cos(_PI * t)) * 0.5
+    return a + s * (b - a)
+
+
+def _check_remap(v, o_min, o_max, n_min, n_max, **_):
+    same = np.asarray(o_max == o_min)
+    if np.any(same):
+        bad = np.broadcast_to(o_max, same.shape)[same].flat[0]
+        raise ValueError(f"o_max must differ from o_min (empty original range), got o_max = o_min = {bad!r}")
+
+
+@declare("vc-2.27", c="ccl_interp_remap",
+         args=(Arg("v", "value"), Arg("o_min", "start of the original range"),
+               Arg("o_max", "end of the original range"), Arg("n_min", "start of the new range"),
+               Arg("n_max", "end of the new range")),
+         outputs=("r",), check=_check_remap,
+         summary="remap(v, o_min, o_max, n_min, n_max) = n_min + (v - o_min)/(o_max - o_min) (n_max - n_min); "
+                 "unclamped (extrapolates linearly), reversed ranges allowed, o_max != o_min.")
+@wp.func
+def interp_remap(v: float, o_min: float, o_max: float, n_min: float, n_max: float) -> float:
+    """vc-2.27: n_min + (v - o_min) / (o_max - o_min) * (n_max - n_min), unclamped."""
+    return n_min + (v - o_min) / (o_max - o_min) * (n_max - n_min)
+
+
+@wp.kernel
+def _lerp_cosine_curves(t: wp.array(dtype=float), lin: wp.array(dtype=float), cos: wp.array(dtype=float)):
+    # the two helper curves of vc-fig-2.6 on [0, 1] (no registry entry, so no generated kernel)
+    i = wp.tid()
+    lin[i] = interp_lerp(t[i], 0.0, 1.0)
+    cos[i] = interp_cosine(t[i], 0.0, 1.0)
+
+
+def interpolants(t, impl: str = "warp"):
+    """The four interpolation curves of vc-fig-2.6 on ``t`` in [0, 1]: dict of 'linear' (t, via
+    interp_lerp(t, 0, 1)), 'cosine' ((1 - cos pi t)/2, via interp_cosine(t, 0, 1)), 'cubic' (2.19) and
+    'quintic' (2.20). ``impl="c"`` evaluates the C functions."""
+    from ..core.registry import equation
+
+    ta = _T.check(t, "t")
+    if impl == "c":
+        from ..core.binding import vectorize
+
+        lin = vectorize("ccl_interp_lerp")(ta, np.float32(0), np.float32(1))
+        cos = vectorize("ccl_interp_cosine")(ta, np.float32(0), np.float32(1))
+    elif impl == "warp":
+        from ..core.runtime import resolve_device
+
+        dev = resolve_device(None)
+        flat = np.ascontiguousarray(ta.ravel())
+        lin_w = wp.empty(flat.size, dtype=wp.float32, device=dev)
+        cos_w = wp.empty(flat.size, dtype=wp.float32, device=dev)
+        if flat.size:
+            wp.launch(_lerp_cosine_curves, dim=flat.size, inputs=[wp.array(flat, device=dev)],
+                      outputs=[lin_w, cos_w], device=dev)
+        lin, cos = lin_w.numpy().reshape(ta.shape), cos_w.numpy().reshape(ta.shape)
+    else:
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    return {"linear": np.asarray(lin, np.float32), "cosine": np.asarray(cos, np.float32),
+            "cubic": np.asarray(equation("vc-2.19", impl=impl)(ta)),
+            "quintic": np.asarray(equation("vc-2.20", impl=impl)(ta))}
