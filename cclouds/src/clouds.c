@@ -54,7 +54,7 @@ float ccl_clouds_detail_erosion(float b_d, float c_r, float c_g, float c_b, floa
     return clamp ? nonneg(c) : c;
 }
 
-float ccl_cloud_energy(float d, float a, float cos_theta, float g)
+float ccl_clouds_energy(float d, float a, float cos_theta, float g)
 {
     CCL_REQUIRE(!(d < 0.0f || a < 0.0f));
     /* vc-2.31: Beer * HG * powder */
@@ -81,7 +81,7 @@ static float height_profile(float h, float lo0, float lo1, float hi0, float hi1,
     return nonneg(up * down);
 }
 
-float ccl_height_gradient(float h, float cloud_type, int clamp)
+float ccl_clouds_height_gradient(float h, float cloud_type, int clamp)
 {
     float st, sc, cu;
     /* vc-4.7 */
@@ -114,7 +114,7 @@ float ccl_clouds_density(float coverage, float cloud_type, float h, float base_r
 {
     float d_v, l_fbm, b, b_d;
     /* vc-A17 */
-    d_v = ccl_height_gradient(h, cloud_type, gradient_clamp);
+    d_v = ccl_clouds_height_gradient(h, cloud_type, gradient_clamp);
     ccl_clouds_base_shape(base_r, base_g, base_b, base_a, &l_fbm, &b);
     b_d = ccl_clouds_coverage(b, d_v, coverage, coverage_threshold, density_clamp);
     return ccl_clouds_detail_erosion(b_d, detail_r, detail_g, detail_b, h_detail, detail_direction, density_clamp);
@@ -125,5 +125,5 @@ float ccl_clouds_sample_light(float d, float a, float cos_theta, float h, float 
 {
     /* vc-A20: direct light (vc-2.31) + ambient interpolated by relative height */
     float ambient = lerp(ambient_bottom, ambient_top, saturate(h));
-    return sun_intensity * ccl_cloud_energy(d, a, cos_theta, g) + ambient;
+    return sun_intensity * ccl_clouds_energy(d, a, cos_theta, g) + ambient;
 }

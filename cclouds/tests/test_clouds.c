@@ -13,7 +13,7 @@ static void gradient_peak(float cloud_type, int clamp, double *peak, double *whe
     *where = -1.0;
     for (i = 0; i <= 100000; ++i) {
         float h = (float)(i / 100000.0);
-        float v = ccl_height_gradient(h, cloud_type, clamp);
+        float v = ccl_clouds_height_gradient(h, cloud_type, clamp);
         if (v > *peak) {
             *peak = v;
             *where = h;
@@ -75,15 +75,15 @@ static void test_cloud_energy(void)
     const double a = 0.5;
     double dstar = 0.5 * log(1.0 + 2.0 / a), best = -1.0, best_d = -1.0;
     int i;
-    CCL_CHECK_CLOSE(ccl_cloud_energy(0.0f, 1.0f, 0.3f, 0.2f), 0.0, 0.0); /* E = 0 at d = 0 */
+    CCL_CHECK_CLOSE(ccl_clouds_energy(0.0f, 1.0f, 0.3f, 0.2f), 0.0, 0.0); /* E = 0 at d = 0 */
     {
         /* the closed form in double: e^{-d a} HG(mu, g) (1 - e^{-2d}) at the float32 inputs mu = 0.3f, g = 0.2f */
         const double mu = 0.3f, g = 0.2f;
         const double hg = (1.0 - g * g) / (4.0 * 3.14159265358979323846 * pow(1.0 + g * g - 2.0 * g * mu, 1.5));
-        CCL_CHECK_REL(ccl_cloud_energy(1.0f, 0.5f, 0.3f, 0.2f), exp(-0.5) * hg * (1.0 - exp(-2.0)), 1e-6);
+        CCL_CHECK_REL(ccl_clouds_energy(1.0f, 0.5f, 0.3f, 0.2f), exp(-0.5) * hg * (1.0 - exp(-2.0)), 1e-6);
     }
     for (i = 1; i <= 4000; ++i) {
-        double e = ccl_cloud_energy((float)(i * 0.001), (float)a, 1.0f, 0.5f);
+        double e = ccl_clouds_energy((float)(i * 0.001), (float)a, 1.0f, 0.5f);
         if (e > best) {
             best = e;
             best_d = i * 0.001;
@@ -108,16 +108,18 @@ static void test_height_gradient_spec_values(void)
     CCL_CHECK_CLOSE(peak, 0.75, 1e-6);
     CCL_CHECK_CLOSE(where, 0.05, 1e-5);
     /* clamped plateaus */
-    CCL_CHECK_CLOSE(ccl_height_gradient(0.45f, 1.0f, 1), 1.0, 0.0);
-    CCL_CHECK_CLOSE(ccl_height_gradient(0.27f, 0.5f, 1), 1.0, 0.0);
+    CCL_CHECK_CLOSE(ccl_clouds_height_gradient(0.45f, 1.0f, 1), 1.0, 0.0);
+    CCL_CHECK_CLOSE(ccl_clouds_height_gradient(0.27f, 0.5f, 1), 1.0, 0.0);
     /* support (0.01, 0.95) for every type */
-    CCL_CHECK_CLOSE(ccl_height_gradient(0.005f, 1.0f, 0), 0.0, 0.0);
-    CCL_CHECK_CLOSE(ccl_height_gradient(0.97f, 1.0f, 0), 0.0, 0.0);
-    CCL_CHECK_CLOSE(ccl_height_gradient(0.7f, 0.5f, 0), 0.0, 0.0);
-    CCL_CHECK_CLOSE(ccl_height_gradient(0.25f, 0.0f, 0), 0.0, 0.0);
+    CCL_CHECK_CLOSE(ccl_clouds_height_gradient(0.005f, 1.0f, 0), 0.0, 0.0);
+    CCL_CHECK_CLOSE(ccl_clouds_height_gradient(0.97f, 1.0f, 0), 0.0, 0.0);
+    CCL_CHECK_CLOSE(ccl_clouds_height_gradient(0.7f, 0.5f, 0), 0.0, 0.0);
+    CCL_CHECK_CLOSE(ccl_clouds_height_gradient(0.25f, 0.0f, 0), 0.0, 0.0);
     /* type 0.25: the mean of stratus and stratocumulus */
-    CCL_CHECK_REL(ccl_height_gradient(0.1f, 0.25f, 0),
-                  0.5 * ((double)ccl_height_gradient(0.1f, 0.0f, 0) + ccl_height_gradient(0.1f, 0.5f, 0)), 1e-6);
+    CCL_CHECK_REL(ccl_clouds_height_gradient(0.1f, 0.25f, 0),
+                  0.5 * ((double)ccl_clouds_height_gradient(0.1f, 0.0f, 0) +
+                         ccl_clouds_height_gradient(0.1f, 0.5f, 0)),
+                  1e-6);
 }
 
 static void test_type_blend_and_composite(void)
@@ -145,7 +147,7 @@ static void test_density_pipeline_and_light(void)
 {
     float l, b, d_v, b_d, expect;
     /* the pipeline equals its parts */
-    d_v = ccl_height_gradient(0.4f, 1.0f, 0);
+    d_v = ccl_clouds_height_gradient(0.4f, 1.0f, 0);
     ccl_clouds_base_shape(0.9f, 0.3f, 0.3f, 0.3f, &l, &b);
     b_d = ccl_clouds_coverage(b, d_v, 0.5f, 0.5f, 1);
     expect = ccl_clouds_detail_erosion(b_d, 0.2f, 0.2f, 0.2f, 0.4f, CCL_DETAIL_FORMULA, 1);
@@ -162,7 +164,7 @@ static void test_density_pipeline_and_light(void)
     CCL_CHECK_CLOSE(ccl_clouds_sample_light(0.0f, 1.0f, 0.5f, 1.0f, 0.2f, 1.0f, 0.006f, 0.012f), 0.012f, 0.0);
     CCL_CHECK_CLOSE(ccl_clouds_sample_light(0.0f, 1.0f, 0.5f, 0.5f, 0.2f, 1.0f, 0.006f, 0.012f), 0.009, 1e-9);
     CCL_CHECK_REL(ccl_clouds_sample_light(0.7f, 1.0f, 0.5f, 0.5f, 0.2f, 3.0f, 0.0f, 0.0f),
-                  3.0 * ccl_cloud_energy(0.7f, 1.0f, 0.5f, 0.2f), 1e-6);
+                  3.0 * ccl_clouds_energy(0.7f, 1.0f, 0.5f, 0.2f), 1e-6);
 }
 
 static void test_clouds_nan_propagates(void)
@@ -172,8 +174,8 @@ static void test_clouds_nan_propagates(void)
     CCL_CHECK(isnan(b));
     CCL_CHECK(isnan(ccl_clouds_coverage(nan, 1.0f, 0.5f, 0.5f, 1)));
     CCL_CHECK(isnan(ccl_clouds_detail_erosion(nan, 0.5f, 0.5f, 0.5f, 0.5f, CCL_DETAIL_FORMULA, 1)));
-    CCL_CHECK(isnan(ccl_cloud_energy(nan, 1.0f, 0.5f, 0.2f)));
-    CCL_CHECK(isnan(ccl_height_gradient(nan, 0.5f, 1)));
+    CCL_CHECK(isnan(ccl_clouds_energy(nan, 1.0f, 0.5f, 0.2f)));
+    CCL_CHECK(isnan(ccl_clouds_height_gradient(nan, 0.5f, 1)));
     CCL_CHECK(isnan(ccl_clouds_type_blend(0.1f, 0.2f, 0.3f, nan)));
     CCL_CHECK(isnan(ccl_clouds_composite(nan, 0.5f, 0.1f)));
     CCL_CHECK(isnan(ccl_clouds_relative_height(nan, 1.0f, 2.0f, CCL_VARIANT_CORRECTED)));

@@ -6,10 +6,12 @@ unclamped; the phase function is ``phase_hg`` (vc-2.13).
 
 Readings chosen where the thesis is ambiguous (spec §7; the C header says the same):
 
-* vc-2.29: the threshold ``C`` is undefined -> argument ``coverage_threshold``; its default ``None`` means
-  ``C := D_h`` (the weather-map coverage, the reading the spec recommends and GPU Pro 7's form). At ``C >= 1`` the
-  remap range [C, 1] is empty (division by zero): the result is 0 (fully eroded; the clamped limit for B < 1).
-  Option ``clamp`` (default True) clamps negative densities (B < C) to 0.
+* vc-2.29: the threshold ``C`` is undefined -> the required argument ``coverage_threshold``; pass the coverage
+  ``D_h`` itself for ``C := D_h`` (the reading the spec recommends and GPU Pro 7's form), ``1 - D_h`` for the other
+  reading the renderer offers. (It used to default to ``D_h``; a default that depends on another argument cannot be
+  declared element-wise, and the explicit argument is what the C function takes.) At ``C >= 1`` the remap range
+  [C, 1] is empty (division by zero): the result is 0 (fully eroded; the clamped limit for B < 1). Option ``clamp``
+  (default True) clamps negative densities (B < C) to 0.
 * vc-2.30: option ``detail_direction``: ``"formula"`` (default, as printed, M = H (1 - h) + (1 - H) h) or ``"prose"``
   (M = (1 - H)(1 - h) + H h: classic Worley low, inverse high for an inverse-Worley texture). Option ``clamp``.
 * vc-4.7: option ``clamp`` default **False**: the printed ``max(0, .)`` only matters when the remaps are unclamped
@@ -33,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ..core.registry import VARIANT, Arg, Equation, Option, _c_eval, _warp_eval, register
+from ..core.registry import VARIANT, Arg, Option, declare
 from .interp import interp_remap
 from .phase import phase_hg
 
@@ -67,47 +69,109 @@ def _lerp_exact(a: float, b: float, s: float) -> float:
     return a * (1.0 - s) + b * s
 
 
-# --- twins ------------------------------------------------------------------------------------------------------------
+# --- twins (element-wise; the evaluation kernels are generated) -------------------------------------------------------
 
+_REF_SV = "Schneider & Vos, The real-time volumetric cloudscapes of Horizon: Zero Dawn, SIGGRAPH 2015 course"
+_REF_GPU7 = "Schneider, Real-time volumetric cloudscapes, GPU Pro 7, 2016"
+
+
+def _unit(name, doc):
+    return Arg(name, doc + ", in [0, 1]", lo=0.0, hi=1.0)
+
+
+_CLAMP_DENSITY = Option("clamp", {True: 1, False: 0}, True,
+                        "True (default): negative densities are clamped to 0 (not stated in the text); "
+                        "False: as printed")
+_DETAIL_DIRECTION = Option("detail_direction", {"formula": 0, "prose": 1}, "formula",
+                           "'formula' (default): M = H (1 - h_rel) + (1 - H) h_rel as printed; 'prose': "
+                           "M = (1 - H)(1 - h_rel) + H h_rel, classic Worley at the base for an inverse-Worley texture")
+_CLAMP_GRADIENT_DOC = ("False (default): remaps unclamped as printed (the printed max(0, .) implies it; peaks 2.1764, "
+                       "1.2190, 1.1281); True: each remap saturated to [0, 1] (stratus peaks at 0.75)")
+_COVERAGE_THRESHOLD = Arg("coverage_threshold", "C of vc-2.29, undefined in the text: pass the coverage D_h for the "
+                          "recommended reading C := D_h, 1 - D_h for the other; 1 erodes everything", lo=0.0, hi=1.0)
+_G = Arg("g", f"HG asymmetry parameter; default {DEFAULT_G} (not given in the text, see the module docstring)",
+         lo=-1.0, hi=1.0, lo_open=True, hi_open=True, default=DEFAULT_G)
+_COS = Arg("cos_theta", "cosine of the angle between the view ray and the direction to the light (+1 = towards the "
+           "sun, forward scattering)", lo=-1.0, hi=1.0)
+_D = Arg("d", "optical thickness towards the light (vc-A19) >= 0", lo=0.0)
+_A = Arg("a", "precipitation (extinction) coefficient of the Beer term >= 0", lo=0.0)
+
+
+@declare("vc-2.28", c="ccl_clouds_base_shape",
+         args=(_unit("C_R", "base texture red: Perlin-Worley"),
+               _unit("C_G", "base texture green: Worley fBm, low freq."),
+               _unit("C_B", "base texture blue: Worley fBm"),
+               _unit("C_A", "base texture alpha: Worley fBm, high freq.")),
+         outputs=("L_FBM", "B"),
+         summary="Base cloud shape: L_FBM = 0.625 C_G + 0.25 C_B + 0.125 C_A, B = remap(C_R, L_FBM - 1, 1, 0, 1).",
+         references=(_REF_GPU7,))
 @wp.func
-def clouds_base_shape(c_r: float, c_g: float, c_b: float, c_a: float):
+def clouds_base_shape(C_R: float, C_G: float, C_B: float, C_A: float) -> tuple[float, float]:
     """vc-2.28: returns (L_FBM, B), L_FBM = 0.625 C_G + 0.25 C_B + 0.125 C_A, B = remap(C_R, L_FBM - 1, 1, 0, 1)."""
-    l_fbm = 0.625 * c_g + 0.25 * c_b + 0.125 * c_a
-    return l_fbm, interp_remap(c_r, l_fbm - 1.0, 1.0, 0.0, 1.0)
+    l_fbm = 0.625 * C_G + 0.25 * C_B + 0.125 * C_A
+    return l_fbm, interp_remap(C_R, l_fbm - 1.0, 1.0, 0.0, 1.0)
 
 
+@declare("vc-2.29", c="ccl_clouds_coverage",
+         args=(Arg("B", "base shape of vc-2.28 >= 0", lo=0.0),
+               Arg("D_v", "vertical density: height gradient of vc-4.7 >= 0", lo=0.0),
+               _unit("D_h", "horizontal density: weather-map coverage (red)"), _COVERAGE_THRESHOLD),
+         options=(_CLAMP_DENSITY,), outputs=("B_D",),
+         summary="Vertical profile and coverage: B_D = remap(B D_v, C, 1, 0, 1) D_h with C = coverage_threshold "
+                 "(pass D_h for the recommended C := D_h); 0 at C = 1; negatives clamped to 0 unless clamp=False.",
+         references=(_REF_GPU7,))
 @wp.func
-def clouds_coverage(b: float, d_v: float, d_h: float, coverage_threshold: float, clamp: int) -> float:
+def clouds_coverage(B: float, D_v: float, D_h: float, coverage_threshold: float, clamp: int) -> float:
     """vc-2.29: B_D = remap(B D_v, C, 1, 0, 1) D_h; 0 at C >= 1; clamp != 0 clamps negatives to 0."""
     if coverage_threshold >= 1.0:
         return 0.0
-    b_d = interp_remap(b * d_v, coverage_threshold, 1.0, 0.0, 1.0) * d_h
+    b_d = interp_remap(B * D_v, coverage_threshold, 1.0, 0.0, 1.0) * D_h
     if clamp != 0:
         return _nonneg(b_d)
     return b_d
 
 
+@declare("vc-2.30", c="ccl_clouds_detail_erosion",
+         args=(Arg("B_D", "base shape with coverage, vc-2.29 (may be negative when not clamped)"),
+               _unit("C_R", "detail texture red"), _unit("C_G", "detail texture green"),
+               _unit("C_B", "detail texture blue"),
+               _unit("h_rel", "relative height of the curl-displaced sample point")),
+         options=(_DETAIL_DIRECTION, _CLAMP_DENSITY), outputs=("C",),
+         summary="Detail erosion: H = 0.625 C_R + 0.25 C_G + 0.125 C_B, M = H (1 - h_rel) + (1 - H) h_rel, "
+                 "C = remap(B_D, 0.2 M, 1, 0, 1).",
+         references=(_REF_GPU7,))
 @wp.func
-def clouds_detail_erosion(b_d: float, c_r: float, c_g: float, c_b: float, h_rel: float, detail_direction: int,
+def clouds_detail_erosion(B_D: float, C_R: float, C_G: float, C_B: float, h_rel: float, detail_direction: int,
                           clamp: int) -> float:
     """vc-2.30: H = 0.625 C_R + 0.25 C_G + 0.125 C_B, M = H (1 - h) + (1 - H) h, C = remap(B_D, 0.2 M, 1, 0, 1);
     detail_direction 1 replaces H by 1 - H; clamp != 0 clamps negatives to 0."""
-    h_fbm = 0.625 * c_r + 0.25 * c_g + 0.125 * c_b
+    h_fbm = 0.625 * C_R + 0.25 * C_G + 0.125 * C_B
     if detail_direction == 1:
         h_fbm = 1.0 - h_fbm
     m = h_fbm * (1.0 - h_rel) + (1.0 - h_fbm) * h_rel
-    c = interp_remap(b_d, 0.2 * m, 1.0, 0.0, 1.0)
+    c = interp_remap(B_D, 0.2 * m, 1.0, 0.0, 1.0)
     if clamp != 0:
         return _nonneg(c)
     return c
 
 
+@declare("vc-2.31", c="ccl_clouds_energy", args=(_D, _A, _COS, _G), outputs=("E",),
+         summary="Cloud lighting energy as printed: E = exp(-d a) HG(theta, g) (1 - exp(-2 d)) [sr^-1]; 0 at d = 0.",
+         references=(_REF_SV,))
 @wp.func
-def cloud_energy(d: float, a: float, cos_theta: float, g: float) -> float:
+def clouds_energy(d: float, a: float, cos_theta: float, g: float) -> float:
     """vc-2.31: E = exp(-d a) HG(theta, g) (1 - exp(-2 d))."""
     return wp.exp(-d * a) * phase_hg(cos_theta, g) * (1.0 - wp.exp(-2.0 * d))
 
 
+@declare("vc-A16", c="ccl_clouds_type_blend",
+         args=(Arg("d_stratus", "stratus profile value >= 0", lo=0.0),
+               Arg("d_stratocumulus", "stratocumulus profile value >= 0", lo=0.0),
+               Arg("d_cumulus", "cumulus profile value >= 0", lo=0.0),
+               _unit("cloud_type", "0 stratus, 0.5 stratocumulus, 1 cumulus")),
+         outputs=("D_v",),
+         summary="Cloud type -> vertical profile: piecewise-linear blend stratus (0) -> stratocumulus (0.5) -> "
+                 "cumulus (1).")
 @wp.func
 def clouds_type_blend(d_stratus: float, d_stratocumulus: float, d_cumulus: float, cloud_type: float) -> float:
     """vc-A16: piecewise-linear blend, 0 stratus, 0.5 stratocumulus, 1 cumulus."""
@@ -126,8 +190,14 @@ def _height_profile(h: float, lo0: float, lo1: float, hi0: float, hi1: float, cl
     return _nonneg(up * down)
 
 
+@declare("vc-4.7", c="ccl_clouds_height_gradient",
+         args=(_unit("h", "relative height in the cloud layer (vc-A15)"),
+               _unit("cloud_type", "0 stratus, 0.5 stratocumulus, 1 cumulus, blended in between (vc-A16)")),
+         options=(Option("clamp", {True: 1, False: 0}, False, _CLAMP_GRADIENT_DOC),), outputs=("D_v",),
+         summary="Height (vertical density) gradient of the cloud types, blended by type (vc-A16).",
+         references=(_REF_GPU7,))
 @wp.func
-def height_gradient(h: float, cloud_type: float, clamp: int) -> float:
+def clouds_height_gradient(h: float, cloud_type: float, clamp: int) -> float:
     """vc-4.7 + vc-A16: the height gradient of the three cloud types, blended by type."""
     cu = _height_profile(h, 0.01, 0.30, 0.6, 0.95, clamp)
     sc = _height_profile(h, 0.01, 0.25, 0.3, 0.65, clamp)
@@ -135,217 +205,15 @@ def height_gradient(h: float, cloud_type: float, clamp: int) -> float:
     return clouds_type_blend(st, sc, cu, cloud_type)
 
 
+@declare("vc-4.8", c="ccl_clouds_composite",
+         args=(Arg("B", "background (sky) colour channel >= 0", lo=0.0),
+               _unit("O_D", "cloud opacity along the view ray (1 - view transmittance)"),
+               Arg("C_clouds", "accumulated cloud colour channel (premultiplied by opacity) >= 0", lo=0.0)),
+         outputs=("C_f",), summary="Clouds over the sky, one colour channel: C_f = B (1 - O_D) + C_clouds.")
 @wp.func
-def clouds_composite(b: float, o_d: float, c_clouds: float) -> float:
+def clouds_composite(B: float, O_D: float, C_clouds: float) -> float:
     """vc-4.8: C_f = B (1 - O_D) + C_clouds."""
-    return b * (1.0 - o_d) + c_clouds
-
-
-@wp.func
-def clouds_relative_height(r: float, r_inner: float, r_outer: float, variant: int) -> float:
-    """vc-A15: (r - R_inner) / (R_outer - R_inner); variant 1 = the printed (R_outer - r)/(R_outer - R_inner) - 1."""
-    thickness = r_outer - r_inner
-    if variant == 1:
-        return (r_outer - r) / thickness - 1.0
-    return (r - r_inner) / thickness
-
-
-@wp.func
-def clouds_density(coverage: float, cloud_type: float, h: float, base_r: float, base_g: float, base_b: float,
-                   base_a: float, detail_r: float, detail_g: float, detail_b: float, h_detail: float,
-                   coverage_threshold: float, gradient_clamp: int, density_clamp: int, detail_direction: int) -> float:
-    """vc-A17: height gradient (4.7, A16) -> base shape (2.28) -> coverage (2.29) -> detail erosion (2.30)."""
-    d_v = height_gradient(h, cloud_type, gradient_clamp)
-    l_fbm, b = clouds_base_shape(base_r, base_g, base_b, base_a)
-    b_d = clouds_coverage(b, d_v, coverage, coverage_threshold, density_clamp)
-    return clouds_detail_erosion(b_d, detail_r, detail_g, detail_b, h_detail, detail_direction, density_clamp)
-
-
-@wp.func
-def clouds_sample_light(d: float, a: float, cos_theta: float, h: float, g: float, sun_intensity: float,
-                        ambient_bottom: float, ambient_top: float) -> float:
-    """vc-A20: sun_intensity E(d, a, cos_theta, g) + lerp(ambient_bottom, ambient_top, clamp(h, 0, 1))."""
-    ambient = _lerp_exact(ambient_bottom, ambient_top, _saturate(h))
-    return sun_intensity * cloud_energy(d, a, cos_theta, g) + ambient
-
-
-# --- element-wise evaluation kernels (inputs, options, then outputs) -------------------------------------------------
-
-_F = wp.array(dtype=float)
-
-
-@wp.kernel
-def _eval_clouds_base_shape(c_r: _F, c_g: _F, c_b: _F, c_a: _F, out_l_fbm: _F, out_b: _F):
-    i = wp.tid()
-    l_fbm, b = clouds_base_shape(c_r[i], c_g[i], c_b[i], c_a[i])
-    out_l_fbm[i] = l_fbm
-    out_b[i] = b
-
-
-@wp.kernel
-def _eval_clouds_coverage(b: _F, d_v: _F, d_h: _F, coverage_threshold: _F, clamp: int, out: _F):
-    i = wp.tid()
-    out[i] = clouds_coverage(b[i], d_v[i], d_h[i], coverage_threshold[i], clamp)
-
-
-@wp.kernel
-def _eval_clouds_detail_erosion(b_d: _F, c_r: _F, c_g: _F, c_b: _F, h_rel: _F, detail_direction: int, clamp: int,
-                                out: _F):
-    i = wp.tid()
-    out[i] = clouds_detail_erosion(b_d[i], c_r[i], c_g[i], c_b[i], h_rel[i], detail_direction, clamp)
-
-
-@wp.kernel
-def _eval_cloud_energy(d: _F, a: _F, cos_theta: _F, g: _F, out: _F):
-    i = wp.tid()
-    out[i] = cloud_energy(d[i], a[i], cos_theta[i], g[i])
-
-
-@wp.kernel
-def _eval_clouds_type_blend(d_stratus: _F, d_stratocumulus: _F, d_cumulus: _F, cloud_type: _F, out: _F):
-    i = wp.tid()
-    out[i] = clouds_type_blend(d_stratus[i], d_stratocumulus[i], d_cumulus[i], cloud_type[i])
-
-
-@wp.kernel
-def _eval_height_gradient(h: _F, cloud_type: _F, clamp: int, out: _F):
-    i = wp.tid()
-    out[i] = height_gradient(h[i], cloud_type[i], clamp)
-
-
-@wp.kernel
-def _eval_clouds_composite(b: _F, o_d: _F, c_clouds: _F, out: _F):
-    i = wp.tid()
-    out[i] = clouds_composite(b[i], o_d[i], c_clouds[i])
-
-
-@wp.kernel
-def _eval_clouds_relative_height(r: _F, r_inner: _F, r_outer: _F, variant: int, out: _F):
-    i = wp.tid()
-    out[i] = clouds_relative_height(r[i], r_inner[i], r_outer[i], variant)
-
-
-@wp.kernel
-def _eval_clouds_density(coverage: _F, cloud_type: _F, h: _F, base_r: _F, base_g: _F, base_b: _F, base_a: _F,
-                         detail_r: _F, detail_g: _F, detail_b: _F, h_detail: _F, coverage_threshold: _F,
-                         gradient_clamp: int, density_clamp: int, detail_direction: int, out: _F):
-    i = wp.tid()
-    out[i] = clouds_density(coverage[i], cloud_type[i], h[i], base_r[i], base_g[i], base_b[i], base_a[i],
-                            detail_r[i], detail_g[i], detail_b[i], h_detail[i], coverage_threshold[i],
-                            gradient_clamp, density_clamp, detail_direction)
-
-
-@wp.kernel
-def _eval_clouds_sample_light(d: _F, a: _F, cos_theta: _F, h: _F, g: _F, sun_intensity: _F, ambient_bottom: _F,
-                              ambient_top: _F, out: _F):
-    i = wp.tid()
-    out[i] = clouds_sample_light(d[i], a[i], cos_theta[i], h[i], g[i], sun_intensity[i], ambient_bottom[i],
-                                 ambient_top[i])
-
-
-# --- coverage_threshold=None (C := D_h) on top of the generic evaluators ----------------------------------------------
-
-def _threshold_defaults_to(source: str):
-    """make_warp / make_c that replace coverage_threshold=None by the argument ``source`` (the coverage D_h), then
-    evaluate element-wise like the registry's generic evaluators."""
-
-    def wrap(eq: Equation, inner):
-        sig = eq.signature()
-
-        def call(*args, **kwargs):
-            try:
-                bound = sig.bind(*args, **kwargs)
-            except TypeError as exc:
-                raise TypeError(f"{eq.name}(): {exc}") from None
-            bound.apply_defaults()
-            if bound.arguments["coverage_threshold"] is None:
-                bound.arguments["coverage_threshold"] = bound.arguments[source]
-            return inner(**bound.arguments)
-
-        call.__signature__ = sig
-        return call
-
-    return (lambda eq, device: wrap(eq, _warp_eval(eq, device)), lambda eq: wrap(eq, _c_eval(eq)))
-
-
-# --- registry ---------------------------------------------------------------------------------------------------------
-
-_REF_SV = "Schneider & Vos, The real-time volumetric cloudscapes of Horizon: Zero Dawn, SIGGRAPH 2015 course"
-_REF_GPU7 = "Schneider, Real-time volumetric cloudscapes, GPU Pro 7, 2016"
-
-
-def _unit(name, doc):
-    return Arg(name, doc + ", in [0, 1]", lo=0.0, hi=1.0)
-
-
-_CLAMP_DENSITY = Option("clamp", {True: 1, False: 0}, True,
-                        "True (default): negative densities are clamped to 0 (not stated in the text); "
-                        "False: as printed")
-_DETAIL_DIRECTION = Option("detail_direction", {"formula": 0, "prose": 1}, "formula",
-                           "'formula' (default): M = H (1 - h_rel) + (1 - H) h_rel as printed; 'prose': "
-                           "M = (1 - H)(1 - h_rel) + H h_rel, classic Worley at the base for an inverse-Worley texture")
-_CLAMP_GRADIENT_DOC = ("False (default): remaps unclamped as printed (the printed max(0, .) implies it; peaks 2.1764, "
-                       "1.2190, 1.1281); True: each remap saturated to [0, 1] (stratus peaks at 0.75)")
-_COVERAGE_THRESHOLD = Arg("coverage_threshold", "C of vc-2.29, undefined in the text; None (default) means C := D_h, "
-                          "the coverage; 1 erodes everything", lo=0.0, hi=1.0, default=None)
-_G = Arg("g", f"HG asymmetry parameter; default {DEFAULT_G} (not given in the text, see the module docstring)",
-         lo=-1.0, hi=1.0, lo_open=True, hi_open=True, default=DEFAULT_G)
-_COS = Arg("cos_theta", "cosine of the angle between the view ray and the direction to the light (+1 = towards the "
-           "sun, forward scattering)", lo=-1.0, hi=1.0)
-_D = Arg("d", "optical thickness towards the light (vc-A19) >= 0", lo=0.0)
-_A = Arg("a", "precipitation (extinction) coefficient of the Beer term >= 0", lo=0.0)
-
-register(Equation(
-    "vc-2.28", "clouds_base_shape", "ccl_clouds_base_shape", clouds_base_shape, _eval_clouds_base_shape,
-    args=(_unit("C_R", "base texture red: Perlin-Worley"), _unit("C_G", "base texture green: Worley fBm, low freq."),
-          _unit("C_B", "base texture blue: Worley fBm"), _unit("C_A", "base texture alpha: Worley fBm, high freq.")),
-    outputs=("L_FBM", "B"),
-    summary="Base cloud shape: L_FBM = 0.625 C_G + 0.25 C_B + 0.125 C_A, B = remap(C_R, L_FBM - 1, 1, 0, 1).",
-    references=(_REF_GPU7,)))
-
-_cov_warp, _cov_c = _threshold_defaults_to("D_h")
-register(Equation(
-    "vc-2.29", "clouds_coverage", "ccl_clouds_coverage", clouds_coverage, _eval_clouds_coverage,
-    args=(Arg("B", "base shape of vc-2.28 >= 0", lo=0.0),
-          Arg("D_v", "vertical density: height gradient of vc-4.7 >= 0", lo=0.0),
-          _unit("D_h", "horizontal density: weather-map coverage (red)"), _COVERAGE_THRESHOLD),
-    options=(_CLAMP_DENSITY,), outputs=("B_D",), make_warp=_cov_warp, make_c=_cov_c,
-    summary="Vertical profile and coverage: B_D = remap(B D_v, C, 1, 0, 1) D_h with C = coverage_threshold "
-            "(default C := D_h); 0 at C = 1; negatives clamped to 0 unless clamp=False.",
-    references=(_REF_GPU7,)))
-
-register(Equation(
-    "vc-2.30", "clouds_detail_erosion", "ccl_clouds_detail_erosion", clouds_detail_erosion,
-    _eval_clouds_detail_erosion,
-    args=(Arg("B_D", "base shape with coverage, vc-2.29 (may be negative when not clamped)"),
-          _unit("C_R", "detail texture red"), _unit("C_G", "detail texture green"),
-          _unit("C_B", "detail texture blue"),
-          _unit("h_rel", "relative height of the curl-displaced sample point")),
-    options=(_DETAIL_DIRECTION, _CLAMP_DENSITY), outputs=("C",),
-    summary="Detail erosion: H = 0.625 C_R + 0.25 C_G + 0.125 C_B, M = H (1 - h_rel) + (1 - H) h_rel, "
-            "C = remap(B_D, 0.2 M, 1, 0, 1).",
-    references=(_REF_GPU7,)))
-
-register(Equation(
-    "vc-2.31", "cloud_energy", "ccl_cloud_energy", cloud_energy, _eval_cloud_energy,
-    args=(_D, _A, _COS, _G), outputs=("E",),
-    summary="Cloud lighting energy as printed: E = exp(-d a) HG(theta, g) (1 - exp(-2 d)) [sr^-1]; 0 at d = 0.",
-    references=(_REF_SV,)))
-
-register(Equation(
-    "vc-4.7", "height_gradient", "ccl_height_gradient", height_gradient, _eval_height_gradient,
-    args=(_unit("h", "relative height in the cloud layer (vc-A15)"),
-          _unit("cloud_type", "0 stratus, 0.5 stratocumulus, 1 cumulus, blended in between (vc-A16)")),
-    options=(Option("clamp", {True: 1, False: 0}, False, _CLAMP_GRADIENT_DOC),), outputs=("D_v",),
-    summary="Height (vertical density) gradient of the cloud types, blended by type (vc-A16).",
-    references=(_REF_GPU7,)))
-
-register(Equation(
-    "vc-4.8", "clouds_composite", "ccl_clouds_composite", clouds_composite, _eval_clouds_composite,
-    args=(Arg("B", "background (sky) colour channel >= 0", lo=0.0),
-          _unit("O_D", "cloud opacity along the view ray (1 - view transmittance)"),
-          Arg("C_clouds", "accumulated cloud colour channel (premultiplied by opacity) >= 0", lo=0.0)),
-    outputs=("C_f",), summary="Clouds over the sky: C_f = B (1 - O_D) + C_clouds."))
+    return B * (1.0 - O_D) + C_clouds
 
 
 def _check_radii(r_inner, r_outer, **_):
@@ -356,60 +224,81 @@ def _check_radii(r_inner, r_outer, **_):
         raise ValueError(f"r_outer must be > r_inner, got r_inner = {ri!r}, r_outer = {ro!r}")
 
 
-register(Equation(
-    "vc-A15", "clouds_relative_height", "ccl_clouds_relative_height", clouds_relative_height,
-    _eval_clouds_relative_height,
-    args=(Arg("r", "distance |p - c| of the sample from the Earth's centre (any length unit) >= 0", lo=0.0),
-          Arg("r_inner", "radius of the inner bounding sphere > 0", lo=0.0, lo_open=True),
-          Arg("r_outer", "radius of the outer bounding sphere > r_inner", lo=0.0, lo_open=True)),
-    options=(VARIANT,), outputs=("h",), check=_check_radii,
-    summary="Relative height in the cloud layer. variant='corrected': (r - R_inner)/(R_outer - R_inner), 0 at the "
-            "inner sphere, 1 at the outer; variant='thesis': the printed 'subtract one', d - 1 = -h in [-1, 0]."))
+def _radii_samples(rng, n):
+    """Valid (r, r_inner, r_outer) for the contract tests: a layer [r_inner, r_outer] and r around it."""
+    r_inner = rng.uniform(1.0, 100.0, n)
+    r_outer = r_inner + rng.uniform(0.1, 20.0, n)
+    return {"r": rng.uniform(0.0, 130.0, n), "r_inner": r_inner, "r_outer": r_outer}
 
-register(Equation(
-    "vc-A16", "clouds_type_blend", "ccl_clouds_type_blend", clouds_type_blend, _eval_clouds_type_blend,
-    args=(Arg("d_stratus", "stratus profile value >= 0", lo=0.0),
-          Arg("d_stratocumulus", "stratocumulus profile value >= 0", lo=0.0),
-          Arg("d_cumulus", "cumulus profile value >= 0", lo=0.0),
-          _unit("cloud_type", "0 stratus, 0.5 stratocumulus, 1 cumulus")),
-    outputs=("D_v",),
-    summary="Cloud type -> vertical profile: piecewise-linear blend stratus (0) -> stratocumulus (0.5) -> "
-            "cumulus (1)."))
 
-_den_warp, _den_c = _threshold_defaults_to("coverage")
-register(Equation(
-    "vc-A17", "clouds_density", "ccl_clouds_density", clouds_density, _eval_clouds_density,
-    args=(_unit("coverage", "weather-map coverage D_h (red)"), _unit("cloud_type", "weather-map cloud type (blue)"),
-          _unit("h", "relative height of the sample (vc-A15)"),
-          _unit("base_r", "base texture red"), _unit("base_g", "base texture green"),
-          _unit("base_b", "base texture blue"), _unit("base_a", "base texture alpha"),
-          _unit("detail_r", "detail texture red at the curl-displaced point"),
-          _unit("detail_g", "detail texture green"), _unit("detail_b", "detail texture blue"),
-          _unit("h_detail", "relative height of the curl-displaced point"), _COVERAGE_THRESHOLD),
-    options=(Option("gradient_clamp", {True: 1, False: 0}, False, "clamp of height_gradient (vc-4.7); " +
-                    _CLAMP_GRADIENT_DOC),
-             Option("density_clamp", {True: 1, False: 0}, True, "clamp of vc-2.29 and vc-2.30: " +
-                    _CLAMP_DENSITY.doc),
-             _DETAIL_DIRECTION),
-    outputs=("density",), make_warp=_den_warp, make_c=_den_c,
-    summary="Cloud density at a raymarch sample from the sampled weather and texture values: height gradient "
-            "(4.7, A16) -> base shape (2.28) -> coverage (2.29) -> detail erosion (2.30).",
-    references=(_REF_GPU7,)))
+@declare("vc-A15", c="ccl_clouds_relative_height",
+         args=(Arg("r", "distance |p - c| of the sample from the Earth's centre (any length unit) >= 0", lo=0.0),
+               Arg("r_inner", "radius of the inner bounding sphere > 0", lo=0.0, lo_open=True),
+               # > 0 through r_outer > r_inner (the check); no bound of its own, whose edge would contradict it
+               Arg("r_outer", "radius of the outer bounding sphere > r_inner")),
+         options=(VARIANT,), outputs=("h",), check=_check_radii, samples=_radii_samples,
+         summary="Relative height in the cloud layer. variant='corrected': (r - R_inner)/(R_outer - R_inner), 0 at "
+                 "the inner sphere, 1 at the outer; variant='thesis': the printed 'subtract one', d - 1 = -h in "
+                 "[-1, 0].")
+@wp.func
+def clouds_relative_height(r: float, r_inner: float, r_outer: float, variant: int) -> float:
+    """vc-A15: (r - R_inner) / (R_outer - R_inner); variant 1 = the printed (R_outer - r)/(R_outer - R_inner) - 1."""
+    thickness = r_outer - r_inner
+    if variant == 1:
+        return (r_outer - r) / thickness - 1.0
+    return (r - r_inner) / thickness
 
-register(Equation(
-    "vc-A20", "clouds_sample_light", "ccl_clouds_sample_light", clouds_sample_light, _eval_clouds_sample_light,
-    args=(_D, _A, _COS, _unit("h", "relative height of the sample (ambient interpolation; clamped to [0, 1])"), _G,
-          Arg("sun_intensity", f"sun irradiance in this channel >= 0; default {DEFAULT_SUN_INTENSITY}", lo=0.0,
-              default=DEFAULT_SUN_INTENSITY),
-          Arg("ambient_bottom", f"ambient radiance at the layer base >= 0; default {DEFAULT_AMBIENT_BOTTOM}", lo=0.0,
-              default=DEFAULT_AMBIENT_BOTTOM),
-          Arg("ambient_top", f"ambient radiance at the layer top >= 0; default {DEFAULT_AMBIENT_TOP}", lo=0.0,
-              default=DEFAULT_AMBIENT_TOP)),
-    outputs=("L",),
-    summary="Per-sample lighting, one colour channel: sun_intensity * cloud_energy(d, a, cos_theta, g) + ambient "
-            "interpolated between ambient_bottom (h = 0) and ambient_top (h = 1). Defaults (the text gives none): "
-            "g = 0.2, a mild forward lobe (silver lining without a black far side in a single-scattering model); "
-            "sun_intensity = 1, radiances in units of the sun's irradiance; ambient_top = 0.012 ~ 0.15 / (4 pi), "
-            "clear-sky diffuse irradiance ~15 % of the direct sun scattered isotropically; ambient_bottom = 0.006, "
-            "half: the base faces the ground and is shadowed by the cloud above.",
-    references=(_REF_SV,)))
+
+@declare("vc-A17", c="ccl_clouds_density",
+         args=(_unit("coverage", "weather-map coverage D_h (red)"),
+               _unit("cloud_type", "weather-map cloud type (blue)"),
+               _unit("h", "relative height of the sample (vc-A15)"),
+               _unit("base_r", "base texture red"), _unit("base_g", "base texture green"),
+               _unit("base_b", "base texture blue"), _unit("base_a", "base texture alpha"),
+               _unit("detail_r", "detail texture red at the curl-displaced point"),
+               _unit("detail_g", "detail texture green"), _unit("detail_b", "detail texture blue"),
+               _unit("h_detail", "relative height of the curl-displaced point"), _COVERAGE_THRESHOLD),
+         options=(Option("gradient_clamp", {True: 1, False: 0}, False, "clamp of clouds_height_gradient (vc-4.7); "
+                         + _CLAMP_GRADIENT_DOC),
+                  Option("density_clamp", {True: 1, False: 0}, True, "clamp of vc-2.29 and vc-2.30: "
+                         + _CLAMP_DENSITY.doc),
+                  _DETAIL_DIRECTION),
+         outputs=("density",),
+         summary="Cloud density at a raymarch sample from the sampled weather and texture values: height gradient "
+                 "(4.7, A16) -> base shape (2.28) -> coverage (2.29, C = coverage_threshold; pass coverage for "
+                 "C := D_h) -> detail erosion (2.30).",
+         references=(_REF_GPU7,))
+@wp.func
+def clouds_density(coverage: float, cloud_type: float, h: float, base_r: float, base_g: float, base_b: float,
+                   base_a: float, detail_r: float, detail_g: float, detail_b: float, h_detail: float,
+                   coverage_threshold: float, gradient_clamp: int, density_clamp: int, detail_direction: int) -> float:
+    """vc-A17: height gradient (4.7, A16) -> base shape (2.28) -> coverage (2.29) -> detail erosion (2.30)."""
+    d_v = clouds_height_gradient(h, cloud_type, gradient_clamp)
+    l_fbm, b = clouds_base_shape(base_r, base_g, base_b, base_a)
+    b_d = clouds_coverage(b, d_v, coverage, coverage_threshold, density_clamp)
+    return clouds_detail_erosion(b_d, detail_r, detail_g, detail_b, h_detail, detail_direction, density_clamp)
+
+
+@declare("vc-A20", c="ccl_clouds_sample_light",
+         args=(_D, _A, _COS, _unit("h", "relative height of the sample (ambient interpolation; clamped to [0, 1])"), _G,
+               Arg("sun_intensity", f"sun irradiance in this channel >= 0; default {DEFAULT_SUN_INTENSITY}", lo=0.0,
+                   default=DEFAULT_SUN_INTENSITY),
+               Arg("ambient_bottom", f"ambient radiance at the layer base >= 0; default {DEFAULT_AMBIENT_BOTTOM}",
+                   lo=0.0, default=DEFAULT_AMBIENT_BOTTOM),
+               Arg("ambient_top", f"ambient radiance at the layer top >= 0; default {DEFAULT_AMBIENT_TOP}", lo=0.0,
+                   default=DEFAULT_AMBIENT_TOP)),
+         outputs=("L",),
+         summary="Per-sample lighting, one colour channel: sun_intensity * clouds_energy(d, a, cos_theta, g) + "
+                 "ambient interpolated between ambient_bottom (h = 0) and ambient_top (h = 1). Defaults (the text "
+                 "gives none): g = 0.2, a mild forward lobe (silver lining without a black far side in a "
+                 "single-scattering model); sun_intensity = 1, radiances in units of the sun's irradiance; "
+                 "ambient_top = 0.012 ~ 0.15 / (4 pi), clear-sky diffuse irradiance ~15 % of the direct sun scattered "
+                 "isotropically; ambient_bottom = 0.006, half: the base faces the ground and is shadowed by the "
+                 "cloud above.",
+         references=(_REF_SV,))
+@wp.func
+def clouds_sample_light(d: float, a: float, cos_theta: float, h: float, g: float, sun_intensity: float,
+                        ambient_bottom: float, ambient_top: float) -> float:
+    """vc-A20: sun_intensity E(d, a, cos_theta, g) + lerp(ambient_bottom, ambient_top, clamp(h, 0, 1))."""
+    ambient = _lerp_exact(ambient_bottom, ambient_top, _saturate(h))
+    return sun_intensity * clouds_energy(d, a, cos_theta, g) + ambient

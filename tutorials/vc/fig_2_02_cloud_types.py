@@ -12,7 +12,7 @@ Rows: (1) the renderer's defaults, whose height gradients clamp each remap of vc
 printed in the thesis (unclamped, advanced={'gradient_clamp': 0}); (3) the same as (2) seen from 5 km, 12° down.
 Other parameters (the thesis gives none): coverage 0.5, precipitation 0.2, seed 0, sun 25° up at azimuth 110°, camera
 0.3 km up looking 22° up with a 50° vertical field of view (rows 1-2); 400x225 per panel. The right-hand plot shows
-the three height gradients (pywarp.height_gradient) in both readings. Output: figures/vc/fig-2.2.png.
+the three height gradients (pywarp.clouds_height_gradient) in both readings. Output: figures/vc/fig-2.2.png.
 """
 # %% [markdown]
 # Low clouds come in three families that the renderer distinguishes only by their vertical profile: **stratus**, a
@@ -81,7 +81,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         images.append(row)
 
     # %% [markdown]
-    # The profiles themselves, in both readings: pywarp.height_gradient(h, type, clamp=...).
+    # The profiles themselves, in both readings: pywarp.clouds_height_gradient(h, type, clamp=...).
 
     # %%
     h = np.linspace(0.0, 1.0, 101 if quick else 401, dtype=np.float32)
@@ -102,8 +102,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax = fig.add_subplot(gs_plot[0, 0])
     colours = ("tab:blue", "tab:orange", "tab:green")
     for (cloud_type, _), colour in zip(TYPES, colours):
-        ax.plot(pywarp.height_gradient(h, cloud_type, clamp=True), h, color=colour)
-        ax.plot(pywarp.height_gradient(h, cloud_type, clamp=False), h, "--", color=colour, lw=1.0)
+        ax.plot(pywarp.clouds_height_gradient(h, cloud_type, clamp=True), h, color=colour)
+        ax.plot(pywarp.clouds_height_gradient(h, cloud_type, clamp=False), h, "--", color=colour, lw=1.0)
     handles = [plt.Line2D([], [], color=c, label=n.split(" (")[0]) for (_, n), c in zip(TYPES, colours)]
     handles += [plt.Line2D([], [], color="k", label="clamped (renderer)"),
                 plt.Line2D([], [], color="k", ls="--", lw=1.0, label="as printed")]

@@ -1,6 +1,6 @@
 """Figures vc-fig-2.15 (gradients by cloud type) and vc-fig-4.9 (height gradients of clouds with formula 4.7).
 
-Both figures plot the vertical density profiles of vc-4.7 (``pywarp.height_gradient``), blended over the weather map's
+Both figures plot the vertical density profiles of vc-4.7 (``pywarp.clouds_height_gradient``), blended over the weather map's
 cloud type by vc-A16, as functions of the relative height h in the cloud layer (vc-A15). The remap inside them is
 vc-2.27. The thesis does not say whether its remap clamps (spec vc-4.7 note), so both variants are drawn: unclamped as
 printed (the default, clamp=False) and each remap saturated to [0, 1] (clamp=True), with the peak values the
@@ -67,7 +67,7 @@ def fig_2_15(out_dir: Path, quick: bool) -> Path:
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.6), dpi=90 if quick else 150, sharey=True)
     vmax = 2.2  # shared colour scale: the unclamped cumulus peak (2.18) fits, and the two panels compare directly
     for ax, (clamp, label) in zip(axes, VARIANTS):
-        d_v = pywarp.height_gradient(h[:, None], cloud_type[None, :], clamp=clamp)
+        d_v = pywarp.clouds_height_gradient(h[:, None], cloud_type[None, :], clamp=clamp)
         im = ax.imshow(d_v, origin="lower", extent=(0.0, 1.0, 0.0, 1.0), aspect="auto", cmap="cividis",
                        vmin=0.0, vmax=vmax, interpolation="bilinear")
         ax.contour(cloud_type, h, d_v, levels=[1.0], colors="white", linewidths=1.0)
@@ -117,7 +117,7 @@ def fig_4_9(out_dir: Path, quick: bool) -> Path:
     styles = {False: {"ls": "-", "lw": 2.0}, True: {"ls": "--", "lw": 1.6}}
     for ax, (name, t, (a, b), (c, d)) in zip(axes, TYPES):
         for clamp, label in VARIANTS:
-            d_v = pywarp.height_gradient(h, t, clamp=clamp)
+            d_v = pywarp.clouds_height_gradient(h, t, clamp=clamp)
             ax.plot(h, d_v, color="C0" if not clamp else "C3", label=label, **styles[clamp])
             top, h_top = _peak(h, d_v)
             ax.plot([h_top], [top], "o", color="C0" if not clamp else "C3", ms=5)
@@ -139,7 +139,7 @@ def fig_4_9(out_dir: Path, quick: bool) -> Path:
     axes[0].set_ylabel("vertical density $D_v$")
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", bbox_to_anchor=(0.5, 0.065), ncol=2, fontsize=9, frameon=False)
-    fig.suptitle("Height gradients of clouds, formula 4.7 (pywarp.height_gradient); markers: maxima computed by "
+    fig.suptitle("Height gradients of clouds, formula 4.7 (pywarp.clouds_height_gradient); markers: maxima computed by "
                  "pywarp", fontsize=11)
     fig.text(0.5, 0.015, "Difference: solid = printed, unclamped remap (default; peaks 2.1764, 1.2190, 1.1281); "
              "dashed = each remap clamped to [0, 1] (plateaus at 1, stratus only 0.75).", ha="center", fontsize=9)

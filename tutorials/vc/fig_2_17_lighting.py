@@ -5,7 +5,7 @@ The thesis shows reference photographs of the three effects its lighting model t
 stand-in isolates each term of the cloud energy E = exp(-d a) HG(theta, g) (1 - exp(-2 d)) (vc-2.31; HG is vc-2.13,
 the optical depth d towards the sun comes from the six cone samples of vc-A19, a from the precipitation, plus the
 ambient term of vc-A20) in renders of the full cloud pass (vc-A17, vc-A21, vc-4.8; Preetham sky vc-A29).
-Renderer: pywarp.clouds.cloudscape. The plots evaluate pywarp.phase_hg and pywarp.cloud_energy.
+Renderer: pywarp.clouds.cloudscape. The plots evaluate pywarp.phase_hg and pywarp.clouds_energy.
 
 Rows (the thesis gives no parameters; coverage 0.45, cloud type 0.75, seed 0, 400x225 per panel, 50° field of view):
 (1) silver lining -- camera 0.3 km up looking 15° up towards a sun 10° above the horizon, g = 0 / 0.2 (the default) /
@@ -142,11 +142,11 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     ax = fig.add_subplot(gp[2, 0])
     for a_ in (1.0, 3.0):
-        ax.plot(d, pywarp.cloud_energy(d, a_, 0.0, 0.2), label=f"E(d), a = {a_:g}, θ = 90°, g = 0.2")
+        ax.plot(d, pywarp.clouds_energy(d, a_, 0.0, 0.2), label=f"E(d), a = {a_:g}, θ = 90°, g = 0.2")
     ax.set_xlabel("optical depth towards the sun d", fontsize=8)
     ax.set_ylabel("E [sr⁻¹]", fontsize=8)
     ax.legend(fontsize=7, frameon=False)
-    ax.set_title("energy E (2.31, pywarp.cloud_energy)", fontsize=10)
+    ax.set_title("energy E (2.31, pywarp.clouds_energy)", fontsize=10)
     ax.tick_params(labelsize=7)
 
     fig.suptitle("Fig 2.17 stand-in (the thesis shows photographs): the three lighting effects of eq. 2.31, one "

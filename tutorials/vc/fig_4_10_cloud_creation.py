@@ -6,7 +6,7 @@ coverage D_h (red channel, vc-A12) times the height gradient D_v of the local cl
 vc-A16, at the relative height vc-A15) restricts where clouds may exist; the base-shape texture gives B (vc-2.28);
 coverage and profile are applied with B_D = remap(B D_v, C, 1, 0, 1) D_h (vc-2.29, remap vc-2.27, C := D_h as in the
 renderer); the curl-displaced detail texture erodes the edges into the final density (vc-2.30). Each step is computed
-with the public registry functions (pywarp.clouds_relative_height, pywarp.height_gradient, pywarp.clouds_base_shape,
+with the public registry functions (pywarp.clouds_relative_height, pywarp.clouds_height_gradient, pywarp.clouds_base_shape,
 pywarp.clouds_coverage, pywarp.clouds_detail_erosion) on texture values read from the renderer's own textures
 (pywarp.clouds.cloudscape.RenderTextures) with the renderer's world scales (pywarp.clouds.cloudscape.param_values), so the slice is
 the density the renderer marches (up to float32 rounding: the texture lookups here are NumPy float64 re-implementations
@@ -113,7 +113,7 @@ def density_slice(tex, p: dict, nx: int, ny: int) -> dict:
     wm = bilinear_wrap(tex.weather, (X + p["weather_offset"][0]) / p["weather_scale_km"],
                        (Z + p["weather_offset"][1]) / p["weather_scale_km"])
     d_h = f32(wm[..., 0])
-    d_v = pywarp.height_gradient(f32(np.clip(h, 0.0, 1.0)), f32(wm[..., 2]), clamp=bool(p["gradient_clamp"]))
+    d_v = pywarp.clouds_height_gradient(f32(np.clip(h, 0.0, 1.0)), f32(wm[..., 2]), clamp=bool(p["gradient_clamp"]))
     # base shape (vc-2.28)
     s = p["base_scale_km"]
     bs = trilinear_wrap(tex.base, X / s, Y / s, Z / s)

@@ -8,7 +8,7 @@
  *
  * Readings chosen where the thesis is ambiguous (spec §7):
  *   - vc-2.29: the threshold C is undefined; it is an explicit argument coverage_threshold, and the reading the spec
- *     recommends is C := D_h (the weather-map coverage; the Python default). At C >= 1 the remap range [C, 1] is
+ *     recommends is C := D_h (pass the weather-map coverage itself). At C >= 1 the remap range [C, 1] is
  *     empty (division by zero): the result is defined as 0 (the limit of the clamped value for B < 1: the cloud is
  *     fully eroded). Negative results (B < C) are clamped to 0 when clamp != 0 (default on in Python).
  *   - vc-2.30: the direction of the height blend is configurable (ccl_detail_direction); the default follows the
@@ -69,7 +69,7 @@ CCL_API float ccl_clouds_detail_erosion(float b_d, float c_r, float c_g, float c
  * view ray and the direction to the light, in [-1, 1] (convention of vc-2.13, ccl_phase_hg); g -> HG asymmetry in
  * (-1, 1). Output [0, HG) sr^-1; E = 0 at d = 0 (spec ambiguity item 19: the lit surface itself gets no energy); for
  * a > 0 the maximum over d is at d* = ln(1 + 2 / a) / 2. NaN propagates. */
-CCL_API float ccl_cloud_energy(float d, float a, float cos_theta, float g);
+CCL_API float ccl_clouds_energy(float d, float a, float cos_theta, float g);
 
 /* Piecewise-linear blend of the three vertical profiles by cloud type:
  *   t in [0, 0.5]: lerp(D_stratus, D_stratocumulus, 2 t);  t in (0.5, 1]: lerp(D_stratocumulus, D_cumulus, 2 t - 1),
@@ -87,7 +87,7 @@ CCL_API float ccl_clouds_type_blend(float d_stratus, float d_stratocumulus, floa
  * cloud_type in [0, 1]; clamp = 0: remaps unclamped as printed (cumulus peaks 2.1764 at h = 0.48, stratocumulus
  * 1.2190 at 0.33, stratus 1.1281 at 0.105); clamp != 0: each remap saturated to [0, 1] (peaks 1, 1, and 0.75 for
  * stratus at h = 0.05). Output >= 0; 0 outside (0.01, 0.95) for every type. NaN propagates. */
-CCL_API float ccl_height_gradient(float h, float cloud_type, int clamp);
+CCL_API float ccl_clouds_height_gradient(float h, float cloud_type, int clamp);
 
 /* Clouds composited over the sky: C_f = B (1 - O_D) + C_clouds (per colour channel).
  * Ref: vc-4.8 (spec ambiguity item 22). b -> B, the background (sky) colour >= 0; o_d -> O_D, the opacity of the
@@ -105,14 +105,16 @@ CCL_API float ccl_clouds_composite(float b, float o_d, float c_clouds);
  * Outside the layer both extrapolate linearly. NaN propagates. */
 CCL_API float ccl_clouds_relative_height(float r, float r_inner, float r_outer, ccl_variant variant);
 
-/* Cloud density at one raymarch sample (the pipeline of vc-A17): D_v = ccl_height_gradient(h, type, gradient_clamp);
- * (L_FBM, B) = ccl_clouds_base_shape(base); B_D = ccl_clouds_coverage(B, D_v, coverage, coverage_threshold,
- * density_clamp); C = ccl_clouds_detail_erosion(B_D, detail, h_detail, detail_direction, density_clamp).
+/* Cloud density at one raymarch sample (the pipeline of vc-A17):
+ * D_v = ccl_clouds_height_gradient(h, type, gradient_clamp); (L_FBM, B) = ccl_clouds_base_shape(base);
+ * B_D = ccl_clouds_coverage(B, D_v, coverage, coverage_threshold, density_clamp);
+ * C = ccl_clouds_detail_erosion(B_D, detail, h_detail, detail_direction, density_clamp).
  * Ref: vc-A17 (vc-2.28, 2.29, 2.30, 4.7, A16). coverage -> D_h (weather map red) in [0, 1]; cloud_type -> weather
  * map blue in [0, 1]; h -> relative height of the sample (vc-A15) in [0, 1]; base_r .. base_a -> base texture RGBA at
  * the sample; detail_r .. detail_b -> detail texture RGB at the curl-displaced sample; h_detail -> relative height of
  * the displaced point in [0, 1]; coverage_threshold -> C of vc-2.29 (pass coverage for C := D_h); gradient_clamp,
- * density_clamp: flags as in ccl_height_gradient and ccl_clouds_coverage; detail_direction: ccl_detail_direction.
+ * density_clamp: flags as in ccl_clouds_height_gradient and ccl_clouds_coverage; detail_direction:
+ * ccl_detail_direction.
  * Output: the density C (>= 0 when density_clamp != 0). Not specified by the text and left to the caller: texture
  * scales, curl displacement, wind, the "Perlin-Worley intensity" parameter. NaN propagates. */
 CCL_API float ccl_clouds_density(float coverage, float cloud_type, float h, float base_r, float base_g, float base_b,
@@ -123,7 +125,7 @@ CCL_API float ccl_clouds_density(float coverage, float cloud_type, float h, floa
 /* Light scattered towards the eye at one sample, one colour channel (vc-A20):
  *   L = sun_intensity E(d, a, cos_theta, g) + ambient(h),
  *   ambient(h) = ambient_bottom (1 - t) + ambient_top t,  t = clamp(h, 0, 1).
- * Ref: vc-A20, vc-2.31. d, a, cos_theta, g as in ccl_cloud_energy; h -> relative height of the sample (vc-A15);
+ * Ref: vc-A20, vc-2.31. d, a, cos_theta, g as in ccl_clouds_energy; h -> relative height of the sample (vc-A15);
  * sun_intensity -> the sun's irradiance in this channel (>= 0); ambient_bottom, ambient_top -> the ambient radiance at
  * the base and the top of the layer (>= 0). The thesis gives no values; the Python defaults (documented there) are
  * g = 0.2, sun_intensity = 1, ambient_bottom = 0.006, ambient_top = 0.012. Output >= 0. NaN propagates. */
