@@ -25,7 +25,7 @@ static float perez_arr(float cos_theta, float gamma, float cos_gamma, const floa
     return perez_cg(cos_theta, gamma, cos_gamma, c[0], c[1], c[2], c[3], c[4]);
 }
 
-float ccl_turbidity(float t_m, float t_h)
+float ccl_sky_turbidity(float t_m, float t_h)
 {
     CCL_REQUIRE(!(t_m <= 0.0f) && !(t_h < 0.0f));
     /* vc-2.33 */
@@ -39,7 +39,7 @@ static float cie_indicatrix(float g)
     return 0.91f + 10.0f * expf(-3.0f * g) + 0.45f * c * c;
 }
 
-float ccl_cie_clear_sky(float theta, float gamma, float theta_s, float Y_z)
+float ccl_sky_cie_clear(float theta, float gamma, float theta_s, float Y_z)
 {
     float num, den;
     CCL_REQUIRE(!(theta < 0.0f || theta > CCL_PI_F) && !(gamma < 0.0f || gamma > CCL_PI_F));
@@ -50,14 +50,14 @@ float ccl_cie_clear_sky(float theta, float gamma, float theta_s, float Y_z)
     return (num / den) * Y_z;
 }
 
-float ccl_perez(float theta, float gamma, float A, float B, float C, float D, float E)
+float ccl_sky_perez(float theta, float gamma, float A, float B, float C, float D, float E)
 {
     CCL_REQUIRE(!(theta < 0.0f || theta > CCL_PI_F) && !(gamma < 0.0f || gamma > CCL_PI_F));
     /* vc-2.36 */
     return perez_cg(cosf(theta), gamma, cosf(gamma), A, B, C, D, E);
 }
 
-float ccl_perez_cie(float theta, float gamma, float A, float B, float C, float D, float E, ccl_variant variant)
+float ccl_sky_perez_cie(float theta, float gamma, float A, float B, float C, float D, float E, ccl_variant variant)
 {
     float ct, cg, sub;
     CCL_REQUIRE(!(theta < 0.0f || theta > CCL_PI_F) && !(gamma < 0.0f || gamma > CCL_PI_F));
@@ -68,14 +68,14 @@ float ccl_perez_cie(float theta, float gamma, float A, float B, float C, float D
     return (1.0f + A * expf(B / ct)) * (1.0f + C * (expf(D * gamma) - sub) + E * cg * cg);
 }
 
-float ccl_perez_zenith_factor(float theta_s, float Y_z, float A, float B, float C, float D, float E)
+float ccl_sky_perez_zenith_factor(float theta_s, float Y_z, float A, float B, float C, float D, float E)
 {
     CCL_REQUIRE(!(theta_s < 0.0f || theta_s > SKY_HALF_PI_F));
     /* vc-4.2: Y_z / F(0, theta_s); at the zenith cos theta = 1 and gamma = theta_s */
     return Y_z / perez_cg(1.0f, theta_s, cosf(theta_s), A, B, C, D, E);
 }
 
-float ccl_perez_normalized(float theta, float gamma, float theta_s, float Y_z, float A, float B, float C, float D,
+float ccl_sky_perez_normalized(float theta, float gamma, float theta_s, float Y_z, float A, float B, float C, float D,
                            float E)
 {
     float f, f0;
@@ -95,7 +95,7 @@ static float zenith_Y(float T, float theta_s, ccl_variant variant)
     return (k * T - 4.9710f) * tanf(chi) - 0.2155f * T + 2.4192f;
 }
 
-float ccl_preetham_zenith_x(float turbidity, float theta_s)
+float ccl_sky_preetham_zenith_x(float turbidity, float theta_s)
 {
     const float T = turbidity, t = theta_s;
     float t2, t3, r0, r1, r2;
@@ -109,7 +109,7 @@ float ccl_preetham_zenith_x(float turbidity, float theta_s)
     return T * T * r0 + T * r1 + r2;
 }
 
-float ccl_preetham_zenith_y(float turbidity, float theta_s)
+float ccl_sky_preetham_zenith_y(float turbidity, float theta_s)
 {
     const float T = turbidity, t = theta_s;
     float t2, t3, r0, r1, r2;
@@ -123,17 +123,17 @@ float ccl_preetham_zenith_y(float turbidity, float theta_s)
     return T * T * r0 + T * r1 + r2;
 }
 
-void ccl_preetham_zenith(float turbidity, float theta_s, ccl_variant variant, float *out_Y, float *out_x,
-                         float *out_y)
+ccl_vec3 ccl_sky_preetham_zenith(float turbidity, float theta_s, ccl_variant variant)
 {
-    CCL_REQUIRE(out_Y != NULL && out_x != NULL && out_y != NULL);
+    ccl_vec3 xyY;
     CCL_REQUIRE(!(theta_s < 0.0f || theta_s > SKY_HALF_PI_F));
-    *out_Y = zenith_Y(turbidity, theta_s, variant);
-    *out_x = ccl_preetham_zenith_x(turbidity, theta_s);
-    *out_y = ccl_preetham_zenith_y(turbidity, theta_s);
+    xyY.x = ccl_sky_preetham_zenith_x(turbidity, theta_s);
+    xyY.y = ccl_sky_preetham_zenith_y(turbidity, theta_s);
+    xyY.z = zenith_Y(turbidity, theta_s, variant);
+    return xyY;
 }
 
-void ccl_preetham_perez_Y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
+void ccl_sky_preetham_perez_Y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
 {
     const float T = turbidity;
     CCL_REQUIRE(out_A != NULL && out_B != NULL && out_C != NULL && out_D != NULL && out_E != NULL);
@@ -145,7 +145,7 @@ void ccl_preetham_perez_Y(float turbidity, float *out_A, float *out_B, float *ou
     *out_E = -0.0670f * T + 0.3703f;
 }
 
-void ccl_preetham_perez_x(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
+void ccl_sky_preetham_perez_x(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
 {
     const float T = turbidity;
     CCL_REQUIRE(out_A != NULL && out_B != NULL && out_C != NULL && out_D != NULL && out_E != NULL);
@@ -157,7 +157,7 @@ void ccl_preetham_perez_x(float turbidity, float *out_A, float *out_B, float *ou
     *out_E = -0.0033f * T + 0.0452f;
 }
 
-void ccl_preetham_perez_y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
+void ccl_sky_preetham_perez_y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D, float *out_E)
 {
     const float T = turbidity;
     CCL_REQUIRE(out_A != NULL && out_B != NULL && out_C != NULL && out_D != NULL && out_E != NULL);
@@ -169,87 +169,129 @@ void ccl_preetham_perez_y(float turbidity, float *out_A, float *out_B, float *ou
     *out_E = -0.0109f * T + 0.0529f;
 }
 
-void ccl_sky_sun_direction(float elevation_deg, float azimuth_deg, float *out_x, float *out_y, float *out_z)
+ccl_vec3 ccl_sky_sun_direction(float elevation_deg, float azimuth_deg)
 {
+    ccl_vec3 s;
     float e, a, ce;
-    CCL_REQUIRE(out_x != NULL && out_y != NULL && out_z != NULL);
     CCL_REQUIRE(!(elevation_deg < -90.0f || elevation_deg > 90.0f));
     e = elevation_deg * SKY_DEG2RAD_F;
     a = azimuth_deg * SKY_DEG2RAD_F;
     ce = cosf(e);
-    *out_x = ce * sinf(a);
-    *out_y = sinf(e);
-    *out_z = -ce * cosf(a);
+    s.x = ce * sinf(a);
+    s.y = sinf(e);
+    s.z = -ce * cosf(a);
+    return s;
 }
 
-ccl_status ccl_preetham_init(float turbidity, float theta_s, float exposure, ccl_variant variant, ccl_preetham *out)
+/* The per-frame constants without validation: 2.42-2.44 -> 2.39-2.41 -> 4.2 (the order of
+ * PreethamSkyModel::update). Shared by ccl_sky_preetham_init and ccl_sky_preetham. */
+static ccl_preetham preetham_fill(float turbidity, float theta_s, float exposure, ccl_variant variant)
 {
     ccl_preetham p;
+    ccl_vec3 z;
     float zY, zx, zy;
+    ccl_sky_preetham_perez_Y(turbidity, &p.perez_Y[0], &p.perez_Y[1], &p.perez_Y[2], &p.perez_Y[3], &p.perez_Y[4]);
+    ccl_sky_preetham_perez_x(turbidity, &p.perez_x[0], &p.perez_x[1], &p.perez_x[2], &p.perez_x[3], &p.perez_x[4]);
+    ccl_sky_preetham_perez_y(turbidity, &p.perez_y[0], &p.perez_y[1], &p.perez_y[2], &p.perez_y[3], &p.perez_y[4]);
+    z = ccl_sky_preetham_zenith(turbidity, theta_s, variant);
+    zx = z.x;
+    zy = z.y;
+    zY = z.z;
+    p.zenith_Y = zY;
+    p.zenith_x = zx;
+    p.zenith_y = zy;
+    p.factor_Y = ccl_sky_perez_zenith_factor(theta_s, zY, p.perez_Y[0], p.perez_Y[1], p.perez_Y[2], p.perez_Y[3],
+                                         p.perez_Y[4]);
+    p.factor_x = ccl_sky_perez_zenith_factor(theta_s, zx, p.perez_x[0], p.perez_x[1], p.perez_x[2], p.perez_x[3],
+                                         p.perez_x[4]);
+    p.factor_y = ccl_sky_perez_zenith_factor(theta_s, zy, p.perez_y[0], p.perez_y[1], p.perez_y[2], p.perez_y[3],
+                                         p.perez_y[4]);
+    p.turbidity = turbidity;
+    p.theta_s = theta_s;
+    p.exposure = exposure;
+    p.variant = (int)variant;
+    return p;
+}
+
+ccl_status ccl_sky_preetham_init(float turbidity, float theta_s, float exposure, ccl_variant variant, ccl_preetham *out)
+{
     if (out == NULL) return CCL_EINVAL;
     if (!(turbidity >= (float)CCL_PREETHAM_TURBIDITY_MIN && turbidity <= (float)CCL_PREETHAM_TURBIDITY_MAX))
         return CCL_EINVAL;
     if (!(theta_s >= 0.0f && theta_s <= SKY_HALF_PI_F)) return CCL_EINVAL; /* sun below the horizon */
     if (!(exposure > 0.0f && isfinite(exposure))) return CCL_EINVAL;
     if (variant != CCL_VARIANT_CORRECTED && variant != CCL_VARIANT_THESIS) return CCL_EINVAL;
-    /* 2.42-2.44 -> 2.39-2.41 -> 4.2 (the order of PreethamSkyModel::update) */
-    ccl_preetham_perez_Y(turbidity, &p.perez_Y[0], &p.perez_Y[1], &p.perez_Y[2], &p.perez_Y[3], &p.perez_Y[4]);
-    ccl_preetham_perez_x(turbidity, &p.perez_x[0], &p.perez_x[1], &p.perez_x[2], &p.perez_x[3], &p.perez_x[4]);
-    ccl_preetham_perez_y(turbidity, &p.perez_y[0], &p.perez_y[1], &p.perez_y[2], &p.perez_y[3], &p.perez_y[4]);
-    ccl_preetham_zenith(turbidity, theta_s, variant, &zY, &zx, &zy);
-    p.zenith_Y = zY;
-    p.zenith_x = zx;
-    p.zenith_y = zy;
-    p.factor_Y = ccl_perez_zenith_factor(theta_s, zY, p.perez_Y[0], p.perez_Y[1], p.perez_Y[2], p.perez_Y[3],
-                                         p.perez_Y[4]);
-    p.factor_x = ccl_perez_zenith_factor(theta_s, zx, p.perez_x[0], p.perez_x[1], p.perez_x[2], p.perez_x[3],
-                                         p.perez_x[4]);
-    p.factor_y = ccl_perez_zenith_factor(theta_s, zy, p.perez_y[0], p.perez_y[1], p.perez_y[2], p.perez_y[3],
-                                         p.perez_y[4]);
-    p.turbidity = turbidity;
-    p.theta_s = theta_s;
-    p.exposure = exposure;
-    p.variant = (int)variant;
-    *out = p;
+    *out = preetham_fill(turbidity, theta_s, exposure, variant);
     return CCL_OK;
 }
 
-void ccl_sky_preetham_xyY(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
-                          const ccl_preetham *p, float *out_x, float *out_y, float *out_Y)
+ccl_vec3 ccl_sky_preetham_xyY(ccl_vec3 dir, ccl_vec3 sun, const ccl_preetham *p)
 {
+    ccl_vec3 c;
     float cos_g, gamma;
-    CCL_REQUIRE(p != NULL && out_x != NULL && out_y != NULL && out_Y != NULL);
+    CCL_REQUIRE(p != NULL);
     /* theta from cos theta = d_y (Y up), gamma = angle(d, s) */
-    cos_g = dir_x * sun_x + dir_y * sun_y + dir_z * sun_z;
+    cos_g = dir.x * sun.x + dir.y * sun.y + dir.z * sun.z;
     if (cos_g > 1.0f) cos_g = 1.0f;
     if (cos_g < -1.0f) cos_g = -1.0f;
     gamma = acosf(cos_g);
     /* 2.36 x 4.2 = 2.38, per channel */
-    *out_x = p->factor_x * perez_arr(dir_y, gamma, cos_g, p->perez_x);
-    *out_y = p->factor_y * perez_arr(dir_y, gamma, cos_g, p->perez_y);
-    *out_Y = p->factor_Y * perez_arr(dir_y, gamma, cos_g, p->perez_Y);
+    c.x = p->factor_x * perez_arr(dir.y, gamma, cos_g, p->perez_x);
+    c.y = p->factor_y * perez_arr(dir.y, gamma, cos_g, p->perez_y);
+    c.z = p->factor_Y * perez_arr(dir.y, gamma, cos_g, p->perez_Y);
+    return c;
 }
 
-void ccl_sky_preetham_hdr(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
-                          const ccl_preetham *p, float *out_r, float *out_g, float *out_b)
+ccl_vec3 ccl_sky_preetham_hdr(ccl_vec3 dir, ccl_vec3 sun, const ccl_preetham *p)
 {
-    float x, y, Y, X, Y2, Z;
-    CCL_REQUIRE(p != NULL && out_r != NULL && out_g != NULL && out_b != NULL);
-    ccl_sky_preetham_xyY(dir_x, dir_y, dir_z, sun_x, sun_y, sun_z, p, &x, &y, &Y);
-    ccl_xyY_to_XYZ(x, y, Y, &X, &Y2, &Z);                                   /* 4.3 */
-    ccl_XYZ_to_linear_srgb(X, Y2, Z, (ccl_variant)p->variant, out_r, out_g, out_b); /* 4.4 */
+    CCL_REQUIRE(p != NULL);
+    /* xyY -> XYZ (4.3) -> linear sRGB (4.4) */
+    return ccl_colour_XYZ_to_linear_srgb(ccl_colour_xyY_to_XYZ(ccl_sky_preetham_xyY(dir, sun, p)),
+                                         (ccl_variant)p->variant);
 }
 
-void ccl_sky_preetham_rgb(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
-                          const ccl_preetham *p, float *out_r, float *out_g, float *out_b)
+ccl_vec3 ccl_sky_preetham_rgb(ccl_vec3 dir, ccl_vec3 sun, const ccl_preetham *p)
 {
-    float r, g, b;
-    CCL_REQUIRE(p != NULL && out_r != NULL && out_g != NULL && out_b != NULL);
-    ccl_sky_preetham_hdr(dir_x, dir_y, dir_z, sun_x, sun_y, sun_z, p, &r, &g, &b);
+    ccl_vec3 c;
+    CCL_REQUIRE(p != NULL);
+    c = ccl_sky_preetham_hdr(dir, sun, p);
     /* 4.5 per channel */
-    *out_r = ccl_tonemap_exp(r, p->exposure, (ccl_variant)p->variant);
-    *out_g = ccl_tonemap_exp(g, p->exposure, (ccl_variant)p->variant);
-    *out_b = ccl_tonemap_exp(b, p->exposure, (ccl_variant)p->variant);
+    c.x = ccl_colour_tonemap_exp(c.x, p->exposure, (ccl_variant)p->variant);
+    c.y = ccl_colour_tonemap_exp(c.y, p->exposure, (ccl_variant)p->variant);
+    c.z = ccl_colour_tonemap_exp(c.z, p->exposure, (ccl_variant)p->variant);
+    return c;
+}
+
+/* d / |d| in float, the same operations as the Warp twin */
+static ccl_vec3 normalize3(ccl_vec3 d)
+{
+    const float l = sqrtf(d.x * d.x + d.y * d.y + d.z * d.z);
+    d.x = d.x / l;
+    d.y = d.y / l;
+    d.z = d.z / l;
+    return d;
+}
+
+static ccl_vec3 srgb_encode3(ccl_vec3 c)
+{
+    c.x = ccl_colour_srgb_encode(c.x);
+    c.y = ccl_colour_srgb_encode(c.y);
+    c.z = ccl_colour_srgb_encode(c.z);
+    return c;
+}
+
+ccl_vec3 ccl_sky_preetham_colour(ccl_vec3 direction, float turbidity, float sun_elevation_deg,
+                                 float sun_azimuth_deg, float exposure, ccl_variant variant,
+                                 ccl_sky_preetham_output output)
+{
+    const float theta_s = (90.0f - sun_elevation_deg) * SKY_DEG2RAD_F;
+    const ccl_preetham p = preetham_fill(turbidity, theta_s, exposure, variant);
+    const ccl_vec3 sun = ccl_sky_sun_direction(sun_elevation_deg, sun_azimuth_deg);
+    const ccl_vec3 d = normalize3(direction);
+    if (output == CCL_SKY_PREETHAM_XYY) return ccl_sky_preetham_xyY(d, sun, &p);
+    if (output == CCL_SKY_PREETHAM_HDR) return ccl_sky_preetham_hdr(d, sun, &p);
+    if (output == CCL_SKY_PREETHAM_SRGB) return srgb_encode3(ccl_sky_preetham_rgb(d, sun, &p));
+    return ccl_sky_preetham_rgb(d, sun, &p);
 }
 
 void ccl_sky_gradient_defaults(ccl_sky_gradient *out)
@@ -272,42 +314,64 @@ static int valid_colour(float v)
     return v >= 0.0f && isfinite(v);
 }
 
-ccl_status ccl_sky_gradient_init(float horizon_r, float horizon_g, float horizon_b, float zenith_r, float zenith_g,
-                                 float zenith_b, float sun_r, float sun_g, float sun_b, float sun_exponent,
+static int valid_colour3(ccl_vec3 c)
+{
+    return valid_colour(c.x) && valid_colour(c.y) && valid_colour(c.z);
+}
+
+ccl_status ccl_sky_gradient_init(ccl_vec3 horizon, ccl_vec3 zenith, ccl_vec3 sun, float sun_exponent,
                                  ccl_sky_gradient *out)
 {
     if (out == NULL) return CCL_EINVAL;
-    if (!(valid_colour(horizon_r) && valid_colour(horizon_g) && valid_colour(horizon_b) && valid_colour(zenith_r) &&
-          valid_colour(zenith_g) && valid_colour(zenith_b) && valid_colour(sun_r) && valid_colour(sun_g) &&
-          valid_colour(sun_b)))
-        return CCL_EINVAL;
+    if (!(valid_colour3(horizon) && valid_colour3(zenith) && valid_colour3(sun))) return CCL_EINVAL;
     if (!(sun_exponent > 0.0f && isfinite(sun_exponent))) return CCL_EINVAL;
-    out->horizon[0] = horizon_r;
-    out->horizon[1] = horizon_g;
-    out->horizon[2] = horizon_b;
-    out->zenith[0] = zenith_r;
-    out->zenith[1] = zenith_g;
-    out->zenith[2] = zenith_b;
-    out->sun[0] = sun_r;
-    out->sun[1] = sun_g;
-    out->sun[2] = sun_b;
+    out->horizon[0] = horizon.x;
+    out->horizon[1] = horizon.y;
+    out->horizon[2] = horizon.z;
+    out->zenith[0] = zenith.x;
+    out->zenith[1] = zenith.y;
+    out->zenith[2] = zenith.z;
+    out->sun[0] = sun.x;
+    out->sun[1] = sun.y;
+    out->sun[2] = sun.z;
     out->sun_exponent = sun_exponent;
     return CCL_OK;
 }
 
-void ccl_sky_gradient_rgb(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
-                          const ccl_sky_gradient *g, float *out_r, float *out_g, float *out_b)
+ccl_vec3 ccl_sky_gradient_rgb(ccl_vec3 dir, ccl_vec3 sun, const ccl_sky_gradient *g)
 {
+    ccl_vec3 r;
     float t, c, s;
-    CCL_REQUIRE(g != NULL && out_r != NULL && out_g != NULL && out_b != NULL);
+    CCL_REQUIRE(g != NULL);
     /* vc-A28: lerp(horizon, zenith, clamp(d_y, 0, 1)) + sun * max(d . s, 0)^n */
-    t = dir_y;
+    t = dir.y;
     if (t < 0.0f) t = 0.0f;
     if (t > 1.0f) t = 1.0f;
-    c = dir_x * sun_x + dir_y * sun_y + dir_z * sun_z;
+    c = dir.x * sun.x + dir.y * sun.y + dir.z * sun.z;
     if (c < 0.0f) c = 0.0f;
     s = powf(c, g->sun_exponent);
-    *out_r = g->horizon[0] + t * (g->zenith[0] - g->horizon[0]) + g->sun[0] * s;
-    *out_g = g->horizon[1] + t * (g->zenith[1] - g->horizon[1]) + g->sun[1] * s;
-    *out_b = g->horizon[2] + t * (g->zenith[2] - g->horizon[2]) + g->sun[2] * s;
+    r.x = g->horizon[0] + t * (g->zenith[0] - g->horizon[0]) + g->sun[0] * s;
+    r.y = g->horizon[1] + t * (g->zenith[1] - g->horizon[1]) + g->sun[1] * s;
+    r.z = g->horizon[2] + t * (g->zenith[2] - g->horizon[2]) + g->sun[2] * s;
+    return r;
+}
+
+ccl_vec3 ccl_sky_gradient_colour(ccl_vec3 direction, float sun_elevation_deg, float sun_azimuth_deg,
+                                 ccl_vec3 horizon_colour, ccl_vec3 zenith_colour, ccl_vec3 sun_colour,
+                                 float sun_exponent, ccl_sky_gradient_output output)
+{
+    ccl_sky_gradient g;
+    ccl_vec3 c;
+    g.horizon[0] = horizon_colour.x;
+    g.horizon[1] = horizon_colour.y;
+    g.horizon[2] = horizon_colour.z;
+    g.zenith[0] = zenith_colour.x;
+    g.zenith[1] = zenith_colour.y;
+    g.zenith[2] = zenith_colour.z;
+    g.sun[0] = sun_colour.x;
+    g.sun[1] = sun_colour.y;
+    g.sun[2] = sun_colour.z;
+    g.sun_exponent = sun_exponent;
+    c = ccl_sky_gradient_rgb(normalize3(direction), ccl_sky_sun_direction(sun_elevation_deg, sun_azimuth_deg), &g);
+    return output == CCL_SKY_GRADIENT_SRGB ? srgb_encode3(c) : c;
 }

@@ -14,6 +14,9 @@ For a renderer: :func:`preetham_params` and :func:`gradient_params` validate the
 Warp structs :class:`Preetham` / :class:`SkyGradient`; the per-pixel functions are the ``@wp.func``
 :func:`sky_preetham_rgb` (tone-mapped linear RGB, the thesis' frame-buffer value), :func:`sky_preetham_hdr`,
 :func:`sky_preetham_xyY` and :func:`sky_gradient_rgb`, all allocation-free, with the C twins ``ccl_sky_*``.
+The registered entries of vc-A28 / vc-A29, :func:`sky_gradient_colour` and :func:`sky_preetham_colour`, are the
+element-wise forms: one view direction (``wp.vec3``) and the sky parameters themselves per element, from which each
+call derives the per-frame constants (cheap next to the per-pixel work of a NumPy call; a renderer uses the structs).
 """
 from __future__ import annotations
 
@@ -22,8 +25,14 @@ import math
 import numpy as np
 import warp as wp
 
-from ..core.registry import VARIANT, Arg, Equation, Option, register
-from .colour import TONEMAP_EXPOSURE, XYZ_to_linear_srgb, srgb_encode, tonemap_exp, xyY_to_XYZ
+from ..core.registry import VARIANT, Arg, Option, declare
+from .colour import (
+    TONEMAP_EXPOSURE,
+    colour_srgb_encode,
+    colour_tonemap_exp,
+    colour_xyY_to_XYZ,
+    colour_XYZ_to_linear_srgb,
+)
 
 PI = wp.constant(3.14159265358979323846)
 HALF_PI = wp.constant(1.57079632679489662)
@@ -93,8 +102,30 @@ def _perez_vec(cos_theta: float, gamma: float, cos_gamma: float, c: vec5) -> flo
     return perez_cg(cos_theta, gamma, cos_gamma, c[0], c[1], c[2], c[3], c[4])
 
 
+_THETA = Arg("theta", "zenith angle of the view direction [rad]; cos(theta) clamped to >= 0.01 at and below the "
+             "horizon", lo=0.0, hi=PI_F32)
+_GAMMA = Arg("gamma", "angle between the view direction and the sun [rad]", lo=0.0, hi=PI_F32)
+_THETA_S = Arg("theta_s", "sun zenith angle [rad]; the Preetham model needs the sun above the horizon", lo=0.0,
+               hi=HALF_PI_F32)
+_TURBIDITY = Arg("turbidity", "atmospheric turbidity T of the Preetham fits", lo=TURBIDITY_RANGE[0],
+                 hi=TURBIDITY_RANGE[1])
+# Perez coefficients: any finite value is valid; the contract tests draw them from the range of the Preetham fits
+# (|A..E| <= 6; exp(B / 0.01) overflows for B > 0.88, as the formula does)
+_PEREZ = tuple(Arg(n, f"Perez coefficient {n}", sample_range=r) for n, r in
+               zip("ABCDE", ((-2.0, 0.0), (-4.0, 0.0), (0.0, 6.0), (-3.0, 0.0), (-0.5, 0.5))))
+_YZ = Arg("Y_z", "zenith value of the channel (Y_Z, or x_z / y_z for the chromaticities)")
+_PREETHAM_REFS = ("Preetham, Shirley & Smits, A practical analytic model for daylight, SIGGRAPH 1999, appendix A.2",
+                  "Zotti, Wilkie & Purgathofer, A critical review of the Preetham skylight model, WSCG 2007")
+
+
+@declare("vc-2.33", c="ccl_sky_turbidity",
+         args=(Arg("t_m", "optical thickness of the purely molecular atmosphere", lo=0.0, lo_open=True,
+                   sample_range=(0.01, 10.0)),
+               Arg("t_h", "optical thickness of the haze", lo=0.0)),
+         outputs=("T",), summary="Turbidity T = (t_m + t_h) / t_m >= 1 (T = 1: pure air).",
+         references=("McCartney, Optics of the Atmosphere, 1976", _PREETHAM_REFS[0]))
 @wp.func
-def turbidity(t_m: float, t_h: float) -> float:
+def sky_turbidity(t_m: float, t_h: float) -> float:
     """vc-2.33: T = (t_m + t_h) / t_m."""
     return (t_m + t_h) / t_m
 
@@ -105,22 +136,41 @@ def _cie_indicatrix(g: float) -> float:
     return 0.91 + 10.0 * wp.exp(-3.0 * g) + 0.45 * c * c
 
 
+@declare("vc-2.35", c="ccl_sky_cie_clear",
+         args=(_THETA, _GAMMA, _THETA_S, Arg("Y_z", "zenith luminance (any unit)")), outputs=("Y",),
+         summary="CIE clear-sky luminance Y = Y_z (0.91 + 10 e^(-3 gamma) + 0.45 cos^2 gamma)(1 - e^(-0.32/cos "
+                 "theta)) / ((0.91 + 10 e^(-3 theta_s) + 0.45 cos^2 theta_s)(1 - e^(-0.32))). Equals the Perez form "
+                 "2.38 with A = -1, B = -0.32, C = 10/0.91, D = -3, E = 0.45/0.91.",
+         references=("CIE 1973 standard clear sky (Kittler 1967)", "Radiance skybright.cal (G. Ward)"))
 @wp.func
-def cie_clear_sky(theta: float, gamma: float, theta_s: float, Y_z: float) -> float:
+def sky_cie_clear(theta: float, gamma: float, theta_s: float, Y_z: float) -> float:
     """vc-2.35: CIE clear sky Y = Y_z f(gamma) phi(theta) / (f(theta_s) phi(0))."""
     num = _cie_indicatrix(gamma) * (1.0 - wp.exp(-0.32 / _clamp_cos_theta(wp.cos(theta))))
     den = _cie_indicatrix(theta_s) * (1.0 - wp.exp(-0.32))
     return (num / den) * Y_z
 
 
+@declare("vc-2.36", c="ccl_sky_perez", args=(_THETA, _GAMMA, *_PEREZ), outputs=("F",),
+         summary="Perez all-weather relative luminance F = (1 + A e^(B/cos theta))(1 + C e^(D gamma) + E cos^2 "
+                 "gamma); cos(theta) is clamped to >= 0.01 (Radiance perezlum.cal) so horizon and below-horizon "
+                 "directions get the horizon limit.",
+         references=("Perez, Seals & Michalsky, All-weather model for sky luminance distribution, Solar Energy "
+                     "50(3), 1993", "Radiance perezlum.cal (G. Ward)"))
 @wp.func
-def perez(theta: float, gamma: float, A: float, B: float, C: float, D: float, E: float) -> float:
+def sky_perez(theta: float, gamma: float, A: float, B: float, C: float, D: float, E: float) -> float:
     """vc-2.36: F = (1 + A exp(B / cos theta)) (1 + C exp(D gamma) + E cos^2 gamma)."""
     return perez_cg(wp.cos(theta), gamma, wp.cos(gamma), A, B, C, D, E)
 
 
+@declare("vc-2.37", c="ccl_sky_perez_cie", args=(_THETA, _GAMMA, *_PEREZ), options=(VARIANT,), outputs=("F",),
+         summary="CIE-adopted modified Perez function. variant='corrected': indicatrix 1 + C (e^(D gamma) - "
+                 "e^(D pi/2)) + E cos^2 gamma (CIE standard general sky, exactly 1 at gamma = pi/2); "
+                 "variant='thesis': e^(D gamma pi/2) as printed.",
+         references=("CIE S 011/E:2003 Spatial distribution of daylight -- CIE standard general sky",
+                     "Darula & Kittler, CIE general sky standard defining luminance distributions, 2002"))
 @wp.func
-def perez_cie(theta: float, gamma: float, A: float, B: float, C: float, D: float, E: float, variant: int) -> float:
+def sky_perez_cie(theta: float, gamma: float, A: float, B: float, C: float, D: float, E: float,
+                  variant: int) -> float:
     """vc-2.37: CIE modified Perez; corrected subtracts exp(D pi/2), variant 1 = exp(D gamma pi/2) as printed."""
     ct = _clamp_cos_theta(wp.cos(theta))
     cg = wp.cos(gamma)
@@ -130,15 +180,23 @@ def perez_cie(theta: float, gamma: float, A: float, B: float, C: float, D: float
     return (1.0 + A * wp.exp(B / ct)) * (1.0 + C * (wp.exp(D * gamma) - sub) + E * cg * cg)
 
 
+@declare("vc-4.2", c="ccl_sky_perez_zenith_factor", args=(_THETA_S, _YZ, *_PEREZ), outputs=("factor",),
+         summary="Zenith normalisation Y_z / F(0, theta_s), precomputed per channel (Y, x and y, each with its own "
+                 "A..E; the text writes it for Y only) and multiplied by F(theta, gamma) per pixel (= 2.38).",
+         references=_PREETHAM_REFS[:1])
 @wp.func
-def perez_zenith_factor(theta_s: float, Y_z: float, A: float, B: float, C: float, D: float, E: float) -> float:
+def sky_perez_zenith_factor(theta_s: float, Y_z: float, A: float, B: float, C: float, D: float, E: float) -> float:
     """vc-4.2: Y_z / F(0, theta_s)."""
     return Y_z / perez_cg(1.0, theta_s, wp.cos(theta_s), A, B, C, D, E)
 
 
+@declare("vc-2.38", c="ccl_sky_perez_normalized", args=(_THETA, _GAMMA, _THETA_S, _YZ, *_PEREZ), outputs=("Y",),
+         summary="Normalised distribution Y = F(theta, gamma) / F(0, theta_s) * Y_z; exactly Y_z at theta = 0, "
+                 "gamma = theta_s.",
+         references=_PREETHAM_REFS[:1])
 @wp.func
-def perez_normalized(theta: float, gamma: float, theta_s: float, Y_z: float, A: float, B: float, C: float, D: float,
-                     E: float) -> float:
+def sky_perez_normalized(theta: float, gamma: float, theta_s: float, Y_z: float, A: float, B: float, C: float,
+                         D: float, E: float) -> float:
     """vc-2.38: F(theta, gamma) / F(0, theta_s) * Y_z (exactly Y_z at theta = 0, gamma = theta_s)."""
     f = perez_cg(wp.cos(theta), gamma, wp.cos(gamma), A, B, C, D, E)
     f0 = perez_cg(1.0, theta_s, wp.cos(theta_s), A, B, C, D, E)
@@ -156,8 +214,11 @@ def _zenith_Y(T: float, theta_s: float, variant: int) -> float:
     return (k * T - 4.9710) * wp.tan(chi) - 0.2155 * T + 2.4192
 
 
+@declare("vc-2.40", c="ccl_sky_preetham_zenith_x", args=(_TURBIDITY, _THETA_S), outputs=("x",),
+         summary="Preetham zenith chromaticity x_z = [T^2 T 1] M_x [theta_s^3 theta_s^2 theta_s 1]^T.",
+         references=_PREETHAM_REFS[:1])
 @wp.func
-def preetham_zenith_x(turbidity: float, theta_s: float) -> float:
+def sky_preetham_zenith_x(turbidity: float, theta_s: float) -> float:
     """vc-2.40: x_z = [T^2 T 1] M_x [theta_s^3 theta_s^2 theta_s 1]^T."""
     T = turbidity
     t = theta_s
@@ -169,8 +230,11 @@ def preetham_zenith_x(turbidity: float, theta_s: float) -> float:
     return T * T * r0 + T * r1 + r2
 
 
+@declare("vc-2.41", c="ccl_sky_preetham_zenith_y", args=(_TURBIDITY, _THETA_S), outputs=("y",),
+         summary="Preetham zenith chromaticity y_z = [T^2 T 1] M_y [theta_s^3 theta_s^2 theta_s 1]^T.",
+         references=_PREETHAM_REFS[:1])
 @wp.func
-def preetham_zenith_y(turbidity: float, theta_s: float) -> float:
+def sky_preetham_zenith_y(turbidity: float, theta_s: float) -> float:
     """vc-2.41: y_z = [T^2 T 1] M_y [theta_s^3 theta_s^2 theta_s 1]^T."""
     T = turbidity
     t = theta_s
@@ -182,35 +246,52 @@ def preetham_zenith_y(turbidity: float, theta_s: float) -> float:
     return T * T * r0 + T * r1 + r2
 
 
+@declare("vc-2.39", c="ccl_sky_preetham_zenith", args=(_TURBIDITY, _THETA_S), options=(VARIANT,), outputs=("xyY",),
+         summary="Preetham zenith colour in xyY: chromaticities x_z, y_z (2.40, 2.41) and luminance Y_Z [kcd/m^2] "
+                 "(2.39). variant='corrected': Y_Z = (4.0453 T - 4.9710) tan chi - 0.2155 T + 2.4192 (Preetham); "
+                 "variant='thesis': 6.0453 T as printed. chi = (4/9 - T/120)(pi - 2 theta_s).",
+         references=_PREETHAM_REFS)
 @wp.func
-def preetham_zenith(turbidity: float, theta_s: float, variant: int):
-    """vc-2.39-2.41: (Y_Z [kcd/m^2], x_z, y_z); variant 1 = 6.0453 T as printed instead of Preetham's 4.0453 T."""
-    return (_zenith_Y(turbidity, theta_s, variant), preetham_zenith_x(turbidity, theta_s),
-            preetham_zenith_y(turbidity, theta_s))
+def sky_preetham_zenith(turbidity: float, theta_s: float, variant: int) -> wp.vec3:
+    """vc-2.39-2.41: (x_z, y_z, Y_Z [kcd/m^2]); variant 1 = 6.0453 T as printed instead of Preetham's 4.0453 T."""
+    return wp.vec3(sky_preetham_zenith_x(turbidity, theta_s), sky_preetham_zenith_y(turbidity, theta_s),
+                   _zenith_Y(turbidity, theta_s, variant))
 
 
+_F5 = tuple[float, float, float, float, float]
+
+
+@declare("vc-2.42", c="ccl_sky_preetham_perez_Y", args=(_TURBIDITY,), outputs=("A", "B", "C", "D", "E"),
+         summary="Preetham's Perez coefficients A..E of the luminance Y, linear in the turbidity T.",
+         references=_PREETHAM_REFS[:1])
 @wp.func
-def preetham_perez_Y(turbidity: float) -> vec5:
+def sky_preetham_perez_Y(turbidity: float) -> _F5:
     """vc-2.42: Perez A..E of the luminance Y."""
     T = turbidity
-    return vec5(0.1787 * T - 1.4630, -0.3554 * T + 0.4275, -0.0227 * T + 5.3251, 0.1206 * T - 2.5771,
-                -0.0670 * T + 0.3703)
+    return (0.1787 * T - 1.4630, -0.3554 * T + 0.4275, -0.0227 * T + 5.3251, 0.1206 * T - 2.5771,
+            -0.0670 * T + 0.3703)
 
 
+@declare("vc-2.43", c="ccl_sky_preetham_perez_x", args=(_TURBIDITY,), outputs=("A", "B", "C", "D", "E"),
+         summary="Preetham's Perez coefficients A..E of the chromaticity x, linear in the turbidity T.",
+         references=_PREETHAM_REFS[:1])
 @wp.func
-def preetham_perez_x(turbidity: float) -> vec5:
+def sky_preetham_perez_x(turbidity: float) -> _F5:
     """vc-2.43: Perez A..E of the chromaticity x."""
     T = turbidity
-    return vec5(-0.0193 * T - 0.2592, -0.0665 * T + 0.0008, -0.0004 * T + 0.2125, -0.0641 * T - 0.8989,
-                -0.0033 * T + 0.0452)
+    return (-0.0193 * T - 0.2592, -0.0665 * T + 0.0008, -0.0004 * T + 0.2125, -0.0641 * T - 0.8989,
+            -0.0033 * T + 0.0452)
 
 
+@declare("vc-2.44", c="ccl_sky_preetham_perez_y", args=(_TURBIDITY,), outputs=("A", "B", "C", "D", "E"),
+         summary="Preetham's Perez coefficients A..E of the chromaticity y, linear in the turbidity T.",
+         references=_PREETHAM_REFS[:1])
 @wp.func
-def preetham_perez_y(turbidity: float) -> vec5:
+def sky_preetham_perez_y(turbidity: float) -> _F5:
     """vc-2.44: Perez A..E of the chromaticity y."""
     T = turbidity
-    return vec5(-0.0167 * T - 0.2608, -0.0950 * T + 0.0092, -0.0079 * T + 0.2102, -0.0441 * T - 1.6537,
-                -0.0109 * T + 0.0529)
+    return (-0.0167 * T - 0.2608, -0.0950 * T + 0.0092, -0.0079 * T + 0.2102, -0.0441 * T - 1.6537,
+            -0.0109 * T + 0.0529)
 
 
 # --- per-frame constants and per-direction sky functions ----------------------------------------------------------
@@ -225,22 +306,28 @@ def sky_sun_direction(elevation_deg: float, azimuth_deg: float) -> wp.vec3:
 
 
 @wp.func
-def preetham_init(turbidity: float, theta_s: float, exposure: float, variant: int) -> Preetham:
+def sky_preetham_init(turbidity: float, theta_s: float, exposure: float, variant: int) -> Preetham:
     """Per-frame constants (vc-A29 update): 2.42-2.44 -> 2.39-2.41 -> 4.2. No validation (see preetham_params)."""
     p = Preetham()
-    p.perez_Y = preetham_perez_Y(turbidity)
-    p.perez_x = preetham_perez_x(turbidity)
-    p.perez_y = preetham_perez_y(turbidity)
-    zY, zx, zy = preetham_zenith(turbidity, theta_s, variant)
+    A, B, C, D, E = sky_preetham_perez_Y(turbidity)
+    p.perez_Y = vec5(A, B, C, D, E)
+    A, B, C, D, E = sky_preetham_perez_x(turbidity)
+    p.perez_x = vec5(A, B, C, D, E)
+    A, B, C, D, E = sky_preetham_perez_y(turbidity)
+    p.perez_y = vec5(A, B, C, D, E)
+    z = sky_preetham_zenith(turbidity, theta_s, variant)
+    zx = z[0]
+    zy = z[1]
+    zY = z[2]
     p.zenith_Y = zY
     p.zenith_x = zx
     p.zenith_y = zy
     cY = p.perez_Y
     cx = p.perez_x
     cy = p.perez_y
-    p.factor_Y = perez_zenith_factor(theta_s, zY, cY[0], cY[1], cY[2], cY[3], cY[4])
-    p.factor_x = perez_zenith_factor(theta_s, zx, cx[0], cx[1], cx[2], cx[3], cx[4])
-    p.factor_y = perez_zenith_factor(theta_s, zy, cy[0], cy[1], cy[2], cy[3], cy[4])
+    p.factor_Y = sky_perez_zenith_factor(theta_s, zY, cY[0], cY[1], cY[2], cY[3], cY[4])
+    p.factor_x = sky_perez_zenith_factor(theta_s, zx, cx[0], cx[1], cx[2], cx[3], cx[4])
+    p.factor_y = sky_perez_zenith_factor(theta_s, zy, cy[0], cy[1], cy[2], cy[3], cy[4])
     p.turbidity = turbidity
     p.theta_s = theta_s
     p.exposure = exposure
@@ -266,19 +353,16 @@ def sky_preetham_xyY(d: wp.vec3, sun: wp.vec3, p: Preetham) -> wp.vec3:
 @wp.func
 def sky_preetham_hdr(d: wp.vec3, sun: wp.vec3, p: Preetham) -> wp.vec3:
     """Preetham sky (vc-A29) as linear sRGB before the tone map: xyY -> XYZ (4.3) -> RGB (4.4)."""
-    c = sky_preetham_xyY(d, sun, p)
-    X, Y, Z = xyY_to_XYZ(c[0], c[1], c[2])
-    r, g, b = XYZ_to_linear_srgb(X, Y, Z, p.variant)
-    return wp.vec3(r, g, b)
+    return colour_XYZ_to_linear_srgb(colour_xyY_to_XYZ(sky_preetham_xyY(d, sun, p)), p.variant)
 
 
 @wp.func
 def sky_preetham_rgb(d: wp.vec3, sun: wp.vec3, p: Preetham) -> wp.vec3:
     """Preetham sky (vc-A29) as the thesis writes it to the frame buffer: HDR RGB, tone map 4.5 per channel.
-    Linear (apply srgb_encode for display), not clamped."""
+    Linear (apply colour_srgb_encode for display), not clamped."""
     c = sky_preetham_hdr(d, sun, p)
-    return wp.vec3(tonemap_exp(c[0], p.exposure, p.variant), tonemap_exp(c[1], p.exposure, p.variant),
-                   tonemap_exp(c[2], p.exposure, p.variant))
+    return wp.vec3(colour_tonemap_exp(c[0], p.exposure, p.variant), colour_tonemap_exp(c[1], p.exposure, p.variant),
+                   colour_tonemap_exp(c[2], p.exposure, p.variant))
 
 
 @wp.func
@@ -298,159 +382,30 @@ def sky_gradient_rgb(d: wp.vec3, sun: wp.vec3, g: SkyGradient) -> wp.vec3:
                    g.horizon[2] + t * (g.zenith[2] - g.horizon[2]) + g.sun[2] * s)
 
 
-# --- element-wise evaluation kernels (inputs, options, then outputs) -------------------------------------------------
-
-_F = wp.array(dtype=float)
-
-
-@wp.kernel
-def _eval_turbidity(t_m: _F, t_h: _F, out: _F):
-    i = wp.tid()
-    out[i] = turbidity(t_m[i], t_h[i])
-
-
-@wp.kernel
-def _eval_cie_clear_sky(theta: _F, gamma: _F, theta_s: _F, Y_z: _F, out: _F):
-    i = wp.tid()
-    out[i] = cie_clear_sky(theta[i], gamma[i], theta_s[i], Y_z[i])
-
-
-@wp.kernel
-def _eval_perez(theta: _F, gamma: _F, A: _F, B: _F, C: _F, D: _F, E: _F, out: _F):
-    i = wp.tid()
-    out[i] = perez(theta[i], gamma[i], A[i], B[i], C[i], D[i], E[i])
-
-
-@wp.kernel
-def _eval_perez_cie(theta: _F, gamma: _F, A: _F, B: _F, C: _F, D: _F, E: _F, variant: int, out: _F):
-    i = wp.tid()
-    out[i] = perez_cie(theta[i], gamma[i], A[i], B[i], C[i], D[i], E[i], variant)
-
-
-@wp.kernel
-def _eval_perez_zenith_factor(theta_s: _F, Y_z: _F, A: _F, B: _F, C: _F, D: _F, E: _F, out: _F):
-    i = wp.tid()
-    out[i] = perez_zenith_factor(theta_s[i], Y_z[i], A[i], B[i], C[i], D[i], E[i])
-
-
-@wp.kernel
-def _eval_perez_normalized(theta: _F, gamma: _F, theta_s: _F, Y_z: _F, A: _F, B: _F, C: _F, D: _F, E: _F, out: _F):
-    i = wp.tid()
-    out[i] = perez_normalized(theta[i], gamma[i], theta_s[i], Y_z[i], A[i], B[i], C[i], D[i], E[i])
-
-
-@wp.kernel
-def _eval_preetham_zenith(turbidity: _F, theta_s: _F, variant: int, out_Y: _F, out_x: _F, out_y: _F):
-    i = wp.tid()
-    Y, x, y = preetham_zenith(turbidity[i], theta_s[i], variant)
-    out_Y[i] = Y
-    out_x[i] = x
-    out_y[i] = y
-
-
-@wp.kernel
-def _eval_preetham_zenith_x(turbidity: _F, theta_s: _F, out: _F):
-    i = wp.tid()
-    out[i] = preetham_zenith_x(turbidity[i], theta_s[i])
-
-
-@wp.kernel
-def _eval_preetham_zenith_y(turbidity: _F, theta_s: _F, out: _F):
-    i = wp.tid()
-    out[i] = preetham_zenith_y(turbidity[i], theta_s[i])
+@wp.func
+def _normalize3(d: wp.vec3) -> wp.vec3:
+    """d / |d| with the operations of the C twin."""
+    length = wp.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
+    return wp.vec3(d[0] / length, d[1] / length, d[2] / length)
 
 
 @wp.func
-def _store5(c: vec5, i: int, A: _F, B: _F, C: _F, D: _F, E: _F):
-    A[i] = c[0]
-    B[i] = c[1]
-    C[i] = c[2]
-    D[i] = c[3]
-    E[i] = c[4]
+def _srgb_encode3(c: wp.vec3) -> wp.vec3:
+    return wp.vec3(colour_srgb_encode(c[0]), colour_srgb_encode(c[1]), colour_srgb_encode(c[2]))
 
 
-@wp.kernel
-def _eval_preetham_perez_Y(turbidity: _F, A: _F, B: _F, C: _F, D: _F, E: _F):
-    i = wp.tid()
-    _store5(preetham_perez_Y(turbidity[i]), i, A, B, C, D, E)
-
-
-@wp.kernel
-def _eval_preetham_perez_x(turbidity: _F, A: _F, B: _F, C: _F, D: _F, E: _F):
-    i = wp.tid()
-    _store5(preetham_perez_x(turbidity[i]), i, A, B, C, D, E)
-
-
-@wp.kernel
-def _eval_preetham_perez_y(turbidity: _F, A: _F, B: _F, C: _F, D: _F, E: _F):
-    i = wp.tid()
-    _store5(preetham_perez_y(turbidity[i]), i, A, B, C, D, E)
-
-
-@wp.kernel
-def _k_preetham_init(turbidity: float, theta_s: float, exposure: float, variant: int,
-                     out: wp.array(dtype=Preetham)):
-    out[0] = preetham_init(turbidity, theta_s, exposure, variant)
-
-
-@wp.kernel
-def _k_sun_direction(elevation_deg: float, azimuth_deg: float, out: wp.array(dtype=wp.vec3)):
-    out[0] = sky_sun_direction(elevation_deg, azimuth_deg)
-
-
-@wp.kernel
-def _eval_sky_preetham(d: wp.array(dtype=wp.vec3), sun: wp.vec3, p: Preetham, output: int, out_0: _F, out_1: _F,
-                       out_2: _F):
-    i = wp.tid()
-    c = wp.vec3()
-    if output == 2:
-        c = sky_preetham_xyY(d[i], sun, p)
-    elif output == 1:
-        c = sky_preetham_hdr(d[i], sun, p)
-    else:
-        c = sky_preetham_rgb(d[i], sun, p)
-        if output == 3:
-            c = wp.vec3(srgb_encode(c[0]), srgb_encode(c[1]), srgb_encode(c[2]))
-    out_0[i] = c[0]
-    out_1[i] = c[1]
-    out_2[i] = c[2]
-
-
-@wp.kernel
-def _eval_sky_gradient(d: wp.array(dtype=wp.vec3), sun: wp.vec3, g: SkyGradient, output: int, out_0: _F, out_1: _F,
-                       out_2: _F):
-    i = wp.tid()
-    c = sky_gradient_rgb(d[i], sun, g)
-    if output == 1:
-        c = wp.vec3(srgb_encode(c[0]), srgb_encode(c[1]), srgb_encode(c[2]))
-    out_0[i] = c[0]
-    out_1[i] = c[1]
-    out_2[i] = c[2]
-
-
-# --- host-side parameters (validation, then the same float32 code as the kernels) --------------------------------
-
-def _scalar(arg: Arg, value) -> float:
-    a = arg.check(value)
-    if a.ndim != 0:
-        raise ValueError(f"{arg.name} must be a scalar (a per-frame constant), got an array of shape {a.shape}")
-    return float(a)
-
-
-_TURBIDITY = Arg("turbidity", "atmospheric turbidity T of the Preetham fits", lo=TURBIDITY_RANGE[0],
-                 hi=TURBIDITY_RANGE[1])
-_THETA_S = Arg("theta_s", "sun zenith angle [rad]; the Preetham model needs the sun above the horizon", lo=0.0,
-               hi=HALF_PI_F32)
+_DIRECTION = Arg("direction", "view direction, Y up (any non-zero length; normalised here)", nonzero=True,
+                 sample_range=(-1.0, 1.0))
 _SUN_ELEV_PREETHAM = Arg("sun_elevation_deg", "sun elevation above the horizon [deg]; the Preetham model needs the "
                          "sun above the horizon (theta_s = 90 - elevation <= 90 deg)", lo=0.0, hi=90.0)
 _SUN_ELEV = Arg("sun_elevation_deg", "sun elevation above the horizon [deg]", lo=-90.0, hi=90.0)
 _SUN_AZ = Arg("sun_azimuth_deg", "sun azimuth [deg], 0 = -Z (ahead of a default OpenGL camera), 90 = +X",
-              default=0.0)
+              default=0.0, sample_range=(-360.0, 360.0))
 _EXPOSURE = Arg("exposure", "tone-map exposure k of vc-4.5 (> 0); 0.03 = the thesis' constant", lo=0.0,
-                lo_open=True, default=TONEMAP_EXPOSURE)
+                lo_open=True, default=TONEMAP_EXPOSURE, sample_range=(0.001, 1.0))
 _OUTPUT_PREETHAM = Option("output", {"tonemapped": 0, "hdr": 1, "xyY": 2, "srgb": 3}, "tonemapped",
                           "'tonemapped' (default): the thesis' frame-buffer value, linear RGB after the tone map 4.5; "
-                          "'hdr': linear sRGB before the tone map (4.4); 'xyY': the Perez stage, outputs (x, y, Y); "
+                          "'hdr': linear sRGB before the tone map (4.4); 'xyY': the Perez stage, (x, y, Y); "
                           "'srgb': tonemapped and sRGB-encoded (IEC 61966-2-1) for display")
 _OUTPUT_GRADIENT = Option("output", {"linear": 0, "srgb": 1}, "linear",
                           "'linear' (default): the colour as the thesis writes it; 'srgb': sRGB-encoded for display")
@@ -469,22 +424,88 @@ GRADIENT_DEFAULTS = {
 }
 
 
-def _directions(direction) -> np.ndarray:
-    """Validate (..., 3) directions and normalise them in float64; returns float32 (..., 3)."""
-    if isinstance(direction, (str, bytes)) or direction is None:
-        raise TypeError(f"direction must be an array of shape (..., 3), got {direction!r}")
-    d = np.asarray(direction)
-    if d.dtype == object or d.dtype.kind not in "biuf":
-        raise TypeError(f"direction must be numeric, got dtype {d.dtype}")
-    if d.ndim == 0 or d.shape[-1] != 3:
-        raise ValueError(f"direction must have shape (..., 3), got {d.shape}")
-    d = d.astype(np.float64)
-    if not np.all(np.isfinite(d)):
-        raise ValueError(f"direction must be finite (no NaN or Inf), got {d[~np.isfinite(d)].flat[0]}")
-    n = np.linalg.norm(d, axis=-1, keepdims=True)
-    if np.any(n == 0):
-        raise ValueError("direction must not contain zero-length vectors")
-    return (d / n).astype(np.float32)
+@declare("vc-A29", c="ccl_sky_preetham_colour",
+         args=(_DIRECTION, _TURBIDITY, _SUN_ELEV_PREETHAM, _SUN_AZ, _EXPOSURE),
+         options=(VARIANT, _OUTPUT_PREETHAM), outputs=("colour",),
+         summary="Preetham sky per view direction: theta = acos(d_y), gamma = angle to the sun -> Perez 2.36 for Y, "
+                 "x, y x the zenith factors 4.2 (= 2.38) -> xyY -> XYZ (4.3) -> linear sRGB (4.4) -> tone map (4.5). "
+                 "variant applies to all three errata (2.39 6.0453, 4.4 -0.9392660, 4.5 sign). Below-horizon "
+                 "directions: cos(theta) clamped to 0.01 (horizon limit). output='srgb' adds the IEC 61966-2-1 sRGB "
+                 "encoding (colour_srgb_encode), the display step of the render chain. Element-wise: the per-frame "
+                 "constants are derived per call; a renderer uses @wp.func sky_preetham_rgb(d, sun, Preetham) with "
+                 "preetham_params(...) / ccl_sky_preetham_rgb with ccl_sky_preetham_init(...).",
+         references=(*_PREETHAM_REFS, "IEC 61966-2-1:1999 (sRGB transfer function)"))
+@wp.func
+def sky_preetham_colour(direction: wp.vec3, turbidity: float, sun_elevation_deg: float, sun_azimuth_deg: float,
+                        exposure: float, variant: int, output: int) -> wp.vec3:
+    """vc-A29 for one direction: per-frame constants from the parameters, then the per-pixel chain."""
+    theta_s = (90.0 - sun_elevation_deg) * DEG2RAD
+    p = sky_preetham_init(turbidity, theta_s, exposure, variant)
+    sun = sky_sun_direction(sun_elevation_deg, sun_azimuth_deg)
+    d = _normalize3(direction)
+    if output == 2:
+        return sky_preetham_xyY(d, sun, p)
+    if output == 1:
+        return sky_preetham_hdr(d, sun, p)
+    if output == 3:
+        return _srgb_encode3(sky_preetham_rgb(d, sun, p))
+    return sky_preetham_rgb(d, sun, p)
+
+
+def _colour_arg(name, doc):
+    return Arg(name, f"{doc} (linear RGB, components >= 0), default {GRADIENT_DEFAULTS[name]}", lo=0.0,
+               default=GRADIENT_DEFAULTS[name], sample_range=(0.0, 2.0))
+
+
+@declare("vc-A28", c="ccl_sky_gradient_colour",
+         args=(_DIRECTION, _SUN_ELEV, _SUN_AZ, _colour_arg("horizon_colour", "colour at and below the horizon"),
+               _colour_arg("zenith_colour", "colour at the zenith"),
+               _colour_arg("sun_colour", "colour added at the sun"),
+               Arg("sun_exponent", "n of max(cos gamma, 0)^n; default 64 = half intensity at 8.4 deg", lo=0.0,
+                   lo_open=True, default=GRADIENT_DEFAULTS["sun_exponent"], sample_range=(1.0, 256.0))),
+         options=(_OUTPUT_GRADIENT,), outputs=("colour",),
+         summary="Gradient sky: lerp(horizon_colour, zenith_colour, clamp(d_y, 0, 1)) + sun_colour max(d . s, 0)^n, "
+                 "the sun direction s from its elevation and azimuth in degrees. The thesis gives no colours: the "
+                 "defaults (pywarp.kernels.sky.GRADIENT_DEFAULTS) are a light and a medium-dark blue in the "
+                 "tone-mapped linear space of the Preetham sky, a warm white sun and n = 64. Element-wise; a renderer "
+                 "uses @wp.func sky_gradient_rgb(d, sun, SkyGradient) / ccl_sky_gradient_rgb.",
+         references=("Spec vc-A28 (thesis §4.2.1)",))
+@wp.func
+def sky_gradient_colour(direction: wp.vec3, sun_elevation_deg: float, sun_azimuth_deg: float,
+                        horizon_colour: wp.vec3, zenith_colour: wp.vec3, sun_colour: wp.vec3, sun_exponent: float,
+                        output: int) -> wp.vec3:
+    """vc-A28 for one direction, from the sky parameters."""
+    g = SkyGradient()
+    g.horizon = horizon_colour
+    g.zenith = zenith_colour
+    g.sun = sun_colour
+    g.sun_exponent = sun_exponent
+    c = sky_gradient_rgb(_normalize3(direction), sky_sun_direction(sun_elevation_deg, sun_azimuth_deg), g)
+    if output == 1:
+        return _srgb_encode3(c)
+    return c
+
+
+# --- host-side parameters of the struct path (validation, then the same float32 code as the kernels) ---------------
+
+@wp.kernel
+def _k_preetham_init(turbidity: float, theta_s: float, exposure: float, variant: int,
+                     out: wp.array(dtype=Preetham)):
+    # builds the struct of preetham_params (a struct-valued helper, not a registry entry)
+    out[0] = sky_preetham_init(turbidity, theta_s, exposure, variant)
+
+
+@wp.kernel
+def _k_sun_direction(elevation_deg: float, azimuth_deg: float, out: wp.array(dtype=wp.vec3)):
+    # one sun vector for sun_direction (a helper, not a registry entry)
+    out[0] = sky_sun_direction(elevation_deg, azimuth_deg)
+
+
+def _scalar(arg: Arg, value) -> float:
+    a = arg.check(value)
+    if a.ndim != 0:
+        raise ValueError(f"{arg.name} must be a scalar (a per-frame constant), got an array of shape {a.shape}")
+    return float(a)
 
 
 def _colour(name: str, value) -> tuple[float, float, float]:
@@ -511,7 +532,8 @@ def preetham_params(turbidity, theta_s, exposure=TONEMAP_EXPOSURE, variant="corr
 
     ``turbidity`` in [2, 10]; ``theta_s`` (sun zenith angle, rad) in [0, pi/2] -- a sun below the horizon is invalid
     for the Preetham model; ``exposure`` > 0; ``variant`` 'corrected' or 'thesis' (applies to vc-2.39, 4.4 and 4.5).
-    The fields are computed by the Warp twin ``preetham_init`` (float32, the same operations as ``ccl_preetham_init``).
+    The fields are computed by the Warp twin ``sky_preetham_init`` (float32, the same operations as
+    ``ccl_sky_preetham_init``).
     """
     from ..core.runtime import resolve_device
 
@@ -542,12 +564,10 @@ def sun_direction(elevation_deg, azimuth_deg=0.0, impl: str = "warp", device: st
     e = _scalar(_SUN_ELEV, elevation_deg)
     a = _scalar(_SUN_AZ, azimuth_deg)
     if impl == "c":
-        from ..core.binding import ffi, lib
+        from ..core.binding import lib
 
-        f = ffi()
-        p = [f.new("float *") for _ in range(3)]
-        lib().ccl_sky_sun_direction(e, a, *p)
-        return np.array([v[0] for v in p], dtype=np.float32)
+        s = lib().ccl_sky_sun_direction(e, a)
+        return np.array([s.x, s.y, s.z], dtype=np.float32)
     if impl != "warp":
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
     from ..core.runtime import resolve_device
@@ -556,256 +576,3 @@ def sun_direction(elevation_deg, azimuth_deg=0.0, impl: str = "warp", device: st
     out = wp.empty(1, dtype=wp.vec3, device=dev)
     wp.launch(_k_sun_direction, dim=1, inputs=[e, a], outputs=[out], device=dev)
     return out.numpy()[0].astype(np.float32)
-
-
-def _split3(res: np.ndarray, shape) -> tuple:
-    return tuple(res[..., k].reshape(shape) for k in range(3))
-
-
-def _bind_preetham(direction, turbidity, sun_elevation_deg, sun_azimuth_deg=0.0, exposure=TONEMAP_EXPOSURE, *,
-                   variant="corrected", output="tonemapped"):
-    d = _directions(direction)
-    T = _scalar(_TURBIDITY, turbidity)
-    e = _scalar(_SUN_ELEV_PREETHAM, sun_elevation_deg)
-    a = _scalar(_SUN_AZ, sun_azimuth_deg)
-    k = _scalar(_EXPOSURE, exposure)
-    v = VARIANT.check(variant)
-    o = _OUTPUT_PREETHAM.check(output)
-    theta_s = float(np.float32(math.radians(90.0 - e)))  # one float32 theta_s for both implementations
-    return d, T, e, a, k, v, o, theta_s
-
-
-def _make_warp_preetham(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def sky_preetham(direction, turbidity, sun_elevation_deg, sun_azimuth_deg=0.0, exposure=TONEMAP_EXPOSURE, *,
-                     variant="corrected", output="tonemapped"):
-        d, T, e, a, k, v, o, theta_s = _bind_preetham(direction, turbidity, sun_elevation_deg, sun_azimuth_deg,
-                                                      exposure, variant=variant, output=output)
-        p = preetham_params(T, theta_s, k, variant, device=dev)
-        sun = wp.vec3(*sun_direction(e, a, device=dev).tolist())
-        flat = np.ascontiguousarray(d.reshape(-1, 3))
-        n = flat.shape[0]
-        outs = [wp.empty(n, dtype=wp.float32, device=dev) for _ in range(3)]
-        if n:
-            wp.launch(_eval_sky_preetham, dim=n, inputs=[wp.array(flat, dtype=wp.vec3, device=dev), sun, p, o],
-                      outputs=outs, device=dev)
-        return tuple(x.numpy().reshape(d.shape[:-1]) for x in outs)
-
-    return sky_preetham
-
-
-def _make_c_preetham(eq):
-    from ..core.binding import ffi, lib
-
-    def sky_preetham(direction, turbidity, sun_elevation_deg, sun_azimuth_deg=0.0, exposure=TONEMAP_EXPOSURE, *,
-                     variant="corrected", output="tonemapped"):
-        d, T, e, a, k, v, o, theta_s = _bind_preetham(direction, turbidity, sun_elevation_deg, sun_azimuth_deg,
-                                                      exposure, variant=variant, output=output)
-        f, lb = ffi(), lib()
-        p = f.new("ccl_preetham *")
-        from ..core.binding import status_error
-
-        status_error(lb.ccl_preetham_init(T, theta_s, k, v, p), "ccl_preetham_init")
-        sun = sun_direction(e, a, impl="c")
-        fn = {0: lb.ccl_sky_preetham_rgb, 1: lb.ccl_sky_preetham_hdr, 2: lb.ccl_sky_preetham_xyY,
-              3: lb.ccl_sky_preetham_rgb}[o]
-        flat = d.reshape(-1, 3)
-        res = np.empty(flat.shape, dtype=np.float32)
-        ptr = [f.new("float *") for _ in range(3)]
-        sx, sy, sz = (float(s) for s in sun)
-        for i, (x, y, z) in enumerate(flat.tolist()):
-            fn(x, y, z, sx, sy, sz, p, *ptr)
-            res[i] = [q[0] for q in ptr]
-        if o == 3:
-            enc = lb.ccl_srgb_encode
-            res = np.array([[enc(c) for c in row] for row in res.tolist()], dtype=np.float32).reshape(flat.shape)
-        return _split3(res, d.shape[:-1])
-
-    return sky_preetham
-
-
-def _bind_gradient(direction, sun_elevation_deg, sun_azimuth_deg=0.0,
-                   horizon_colour=GRADIENT_DEFAULTS["horizon_colour"], zenith_colour=GRADIENT_DEFAULTS["zenith_colour"],
-                   sun_colour=GRADIENT_DEFAULTS["sun_colour"], sun_exponent=GRADIENT_DEFAULTS["sun_exponent"], *,
-                   output="linear"):
-    d = _directions(direction)
-    e = _scalar(_SUN_ELEV, sun_elevation_deg)
-    a = _scalar(_SUN_AZ, sun_azimuth_deg)
-    g = gradient_params(horizon_colour, zenith_colour, sun_colour, sun_exponent)
-    o = _OUTPUT_GRADIENT.check(output)
-    return d, e, a, g, o
-
-
-def _make_warp_gradient(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def sky_gradient(direction, sun_elevation_deg, sun_azimuth_deg=0.0,
-                     horizon_colour=GRADIENT_DEFAULTS["horizon_colour"],
-                     zenith_colour=GRADIENT_DEFAULTS["zenith_colour"], sun_colour=GRADIENT_DEFAULTS["sun_colour"],
-                     sun_exponent=GRADIENT_DEFAULTS["sun_exponent"], *, output="linear"):
-        d, e, a, g, o = _bind_gradient(direction, sun_elevation_deg, sun_azimuth_deg, horizon_colour, zenith_colour,
-                                       sun_colour, sun_exponent, output=output)
-        sun = wp.vec3(*sun_direction(e, a, device=dev).tolist())
-        flat = np.ascontiguousarray(d.reshape(-1, 3))
-        n = flat.shape[0]
-        outs = [wp.empty(n, dtype=wp.float32, device=dev) for _ in range(3)]
-        if n:
-            wp.launch(_eval_sky_gradient, dim=n, inputs=[wp.array(flat, dtype=wp.vec3, device=dev), sun, g, o],
-                      outputs=outs, device=dev)
-        return tuple(x.numpy().reshape(d.shape[:-1]) for x in outs)
-
-    return sky_gradient
-
-
-def _make_c_gradient(eq):
-    from ..core.binding import ffi, lib, status_error
-
-    def sky_gradient(direction, sun_elevation_deg, sun_azimuth_deg=0.0,
-                     horizon_colour=GRADIENT_DEFAULTS["horizon_colour"],
-                     zenith_colour=GRADIENT_DEFAULTS["zenith_colour"], sun_colour=GRADIENT_DEFAULTS["sun_colour"],
-                     sun_exponent=GRADIENT_DEFAULTS["sun_exponent"], *, output="linear"):
-        d, e, a, g, o = _bind_gradient(direction, sun_elevation_deg, sun_azimuth_deg, horizon_colour, zenith_colour,
-                                       sun_colour, sun_exponent, output=output)
-        f, lb = ffi(), lib()
-        gc = f.new("ccl_sky_gradient *")
-        status_error(lb.ccl_sky_gradient_init(*g.horizon, *g.zenith, *g.sun, g.sun_exponent, gc),
-                     "ccl_sky_gradient_init")
-        sx, sy, sz = (float(s) for s in sun_direction(e, a, impl="c"))
-        flat = d.reshape(-1, 3)
-        res = np.empty(flat.shape, dtype=np.float32)
-        ptr = [f.new("float *") for _ in range(3)]
-        for i, (x, y, z) in enumerate(flat.tolist()):
-            lb.ccl_sky_gradient_rgb(x, y, z, sx, sy, sz, gc, *ptr)
-            res[i] = [q[0] for q in ptr]
-        if o == 1:
-            enc = lb.ccl_srgb_encode
-            res = np.array([[enc(c) for c in row] for row in res.tolist()], dtype=np.float32).reshape(flat.shape)
-        return _split3(res, d.shape[:-1])
-
-    return sky_gradient
-
-
-# --- registry ---------------------------------------------------------------------------------------------------------
-
-_THETA = Arg("theta", "zenith angle of the view direction [rad]; cos(theta) clamped to >= 0.01 at and below the "
-             "horizon", lo=0.0, hi=PI_F32)
-_GAMMA = Arg("gamma", "angle between the view direction and the sun [rad]", lo=0.0, hi=PI_F32)
-_PEREZ = tuple(Arg(n, f"Perez coefficient {n}") for n in "ABCDE")
-_YZ = Arg("Y_z", "zenith value of the channel (Y_Z, or x_z / y_z for the chromaticities)")
-_PREETHAM_REFS = ("Preetham, Shirley & Smits, A practical analytic model for daylight, SIGGRAPH 1999, appendix A.2",
-                  "Zotti, Wilkie & Purgathofer, A critical review of the Preetham skylight model, WSCG 2007")
-
-register(Equation(
-    "vc-2.33", "turbidity", "ccl_turbidity", turbidity, _eval_turbidity,
-    args=(Arg("t_m", "optical thickness of the purely molecular atmosphere", lo=0.0, lo_open=True),
-          Arg("t_h", "optical thickness of the haze", lo=0.0)),
-    outputs=("T",), summary="Turbidity T = (t_m + t_h) / t_m >= 1 (T = 1: pure air).",
-    references=("McCartney, Optics of the Atmosphere, 1976", _PREETHAM_REFS[0])))
-
-register(Equation(
-    "vc-2.35", "cie_clear_sky", "ccl_cie_clear_sky", cie_clear_sky, _eval_cie_clear_sky,
-    args=(_THETA, _GAMMA, _THETA_S, Arg("Y_z", "zenith luminance (any unit)")),
-    outputs=("Y",),
-    summary="CIE clear-sky luminance Y = Y_z (0.91 + 10 e^(-3 gamma) + 0.45 cos^2 gamma)(1 - e^(-0.32/cos theta)) / "
-            "((0.91 + 10 e^(-3 theta_s) + 0.45 cos^2 theta_s)(1 - e^(-0.32))). Equals the Perez form 2.38 with "
-            "A = -1, B = -0.32, C = 10/0.91, D = -3, E = 0.45/0.91.",
-    references=("CIE 1973 standard clear sky (Kittler 1967)", "Radiance skybright.cal (G. Ward)")))
-
-register(Equation(
-    "vc-2.36", "perez", "ccl_perez", perez, _eval_perez,
-    args=(_THETA, _GAMMA, *_PEREZ), outputs=("F",),
-    summary="Perez all-weather relative luminance F = (1 + A e^(B/cos theta))(1 + C e^(D gamma) + E cos^2 gamma); "
-            "cos(theta) is clamped to >= 0.01 (Radiance perezlum.cal) so horizon and below-horizon directions get the "
-            "horizon limit.",
-    references=("Perez, Seals & Michalsky, All-weather model for sky luminance distribution, Solar Energy 50(3), "
-                "1993", "Radiance perezlum.cal (G. Ward)")))
-
-register(Equation(
-    "vc-2.37", "perez_cie", "ccl_perez_cie", perez_cie, _eval_perez_cie,
-    args=(_THETA, _GAMMA, *_PEREZ), options=(VARIANT,), outputs=("F",),
-    summary="CIE-adopted modified Perez function. variant='corrected': indicatrix 1 + C (e^(D gamma) - e^(D pi/2)) + "
-            "E cos^2 gamma (CIE standard general sky, exactly 1 at gamma = pi/2); variant='thesis': e^(D gamma pi/2) "
-            "as printed.",
-    references=("CIE S 011/E:2003 Spatial distribution of daylight -- CIE standard general sky",
-                "Darula & Kittler, CIE general sky standard defining luminance distributions, 2002")))
-
-register(Equation(
-    "vc-2.38", "perez_normalized", "ccl_perez_normalized", perez_normalized, _eval_perez_normalized,
-    args=(_THETA, _GAMMA, _THETA_S, _YZ, *_PEREZ), outputs=("Y",),
-    summary="Normalised distribution Y = F(theta, gamma) / F(0, theta_s) * Y_z; exactly Y_z at theta = 0, "
-            "gamma = theta_s.",
-    references=_PREETHAM_REFS[:1]))
-
-register(Equation(
-    "vc-4.2", "perez_zenith_factor", "ccl_perez_zenith_factor", perez_zenith_factor, _eval_perez_zenith_factor,
-    args=(_THETA_S, _YZ, *_PEREZ), outputs=("factor",),
-    summary="Zenith normalisation Y_z / F(0, theta_s), precomputed per channel (Y, x and y, each with its own A..E; "
-            "the text writes it for Y only) and multiplied by F(theta, gamma) per pixel (= 2.38).",
-    references=_PREETHAM_REFS[:1]))
-
-register(Equation(
-    "vc-2.39", "preetham_zenith", "ccl_preetham_zenith", preetham_zenith, _eval_preetham_zenith,
-    args=(_TURBIDITY, _THETA_S), options=(VARIANT,), outputs=("Y", "x", "y"),
-    summary="Preetham zenith luminance Y_Z [kcd/m^2] and chromaticities x_z, y_z (2.39-2.41). variant='corrected': "
-            "Y_Z = (4.0453 T - 4.9710) tan chi - 0.2155 T + 2.4192 (Preetham); variant='thesis': 6.0453 T as printed. "
-            "chi = (4/9 - T/120)(pi - 2 theta_s).",
-    references=_PREETHAM_REFS))
-
-register(Equation(
-    "vc-2.40", "preetham_zenith_x", "ccl_preetham_zenith_x", preetham_zenith_x, _eval_preetham_zenith_x,
-    args=(_TURBIDITY, _THETA_S), outputs=("x",),
-    summary="Preetham zenith chromaticity x_z = [T^2 T 1] M_x [theta_s^3 theta_s^2 theta_s 1]^T.",
-    references=_PREETHAM_REFS[:1]))
-
-register(Equation(
-    "vc-2.41", "preetham_zenith_y", "ccl_preetham_zenith_y", preetham_zenith_y, _eval_preetham_zenith_y,
-    args=(_TURBIDITY, _THETA_S), outputs=("y",),
-    summary="Preetham zenith chromaticity y_z = [T^2 T 1] M_y [theta_s^3 theta_s^2 theta_s 1]^T.",
-    references=_PREETHAM_REFS[:1]))
-
-for _cid, _ch, _fn, _k in (("vc-2.42", "Y", preetham_perez_Y, _eval_preetham_perez_Y),
-                           ("vc-2.43", "x", preetham_perez_x, _eval_preetham_perez_x),
-                           ("vc-2.44", "y", preetham_perez_y, _eval_preetham_perez_y)):
-    register(Equation(
-        _cid, f"preetham_perez_{_ch}", f"ccl_preetham_perez_{_ch}", _fn, _k,
-        args=(_TURBIDITY,), outputs=("A", "B", "C", "D", "E"),
-        summary=f"Preetham's Perez coefficients A..E of the {'luminance' if _ch == 'Y' else 'chromaticity'} {_ch}, "
-                "linear in the turbidity T.",
-        references=_PREETHAM_REFS[:1]))
-
-register(Equation(
-    "vc-A28", "sky_gradient", "ccl_sky_gradient_rgb", sky_gradient_rgb, _eval_sky_gradient,
-    args=(Arg("direction", "view directions, shape (..., 3), Y up; normalised here"), _SUN_ELEV, _SUN_AZ,
-          Arg("horizon_colour", f"linear RGB at and below the horizon, default {GRADIENT_DEFAULTS['horizon_colour']}"),
-          Arg("zenith_colour", f"linear RGB at the zenith, default {GRADIENT_DEFAULTS['zenith_colour']}"),
-          Arg("sun_colour", f"linear RGB added at the sun, default {GRADIENT_DEFAULTS['sun_colour']}"),
-          Arg("sun_exponent", "n of max(cos gamma, 0)^n; default 64 = half intensity at 8.4 deg", lo=0.0,
-              lo_open=True, default=GRADIENT_DEFAULTS["sun_exponent"])),
-    options=(_OUTPUT_GRADIENT,), outputs=("R", "G", "B"),
-    summary="Gradient sky: lerp(horizon_colour, zenith_colour, clamp(d_y, 0, 1)) + sun_colour max(d . s, 0)^n, the "
-            "sun direction s from its elevation and azimuth in degrees. The thesis gives no colours: the defaults "
-            "(pywarp.kernels.sky.GRADIENT_DEFAULTS) are a light and a medium-dark blue in the tone-mapped linear "
-            "space of the Preetham sky, a warm white sun and n = 64. Per pixel: @wp.func sky_gradient_rgb(d, sun, "
-            "SkyGradient) / ccl_sky_gradient_rgb.",
-    references=("Spec vc-A28 (thesis §4.2.1)",),
-    make_warp=_make_warp_gradient, make_c=_make_c_gradient))
-
-register(Equation(
-    "vc-A29", "sky_preetham", "ccl_sky_preetham_rgb", sky_preetham_rgb, _eval_sky_preetham,
-    args=(Arg("direction", "view directions, shape (..., 3), Y up; normalised here"), _TURBIDITY, _SUN_ELEV_PREETHAM,
-          _SUN_AZ, _EXPOSURE),
-    options=(VARIANT, _OUTPUT_PREETHAM), outputs=("R", "G", "B"),
-    summary="Preetham sky per view direction: theta = acos(d_y), gamma = angle to the sun -> Perez 2.36 for Y, x, y "
-            "x the zenith factors 4.2 (= 2.38) -> xyY -> XYZ (4.3) -> linear sRGB (4.4) -> tone map (4.5). "
-            "variant applies to all three errata (2.39 6.0453, 4.4 -0.9392660, 4.5 sign). Below-horizon "
-            "directions: cos(theta) clamped to 0.01 (horizon limit). output='srgb' adds the IEC 61966-2-1 sRGB "
-            "encoding (colour.srgb_encode / ccl_srgb_encode), the display step of the render chain. Per pixel: "
-            "@wp.func sky_preetham_rgb(d, sun, Preetham) with preetham_params(...) / ccl_sky_preetham_rgb with "
-            "ccl_preetham_init(...).",
-    references=(*_PREETHAM_REFS, "IEC 61966-2-1:1999 (sRGB transfer function)"),
-    make_warp=_make_warp_preetham, make_c=_make_c_preetham))

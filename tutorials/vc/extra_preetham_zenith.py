@@ -46,15 +46,15 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     n = 91 if quick else 361
 
     # %% [markdown]
-    # Evaluate. pywarp.preetham_zenith(T, θ_s) returns (Y_z, x_z, y_z) and broadcasts: a column of turbidities
+    # Evaluate. pywarp.sky_preetham_zenith(T, θ_s) returns the xyY vector (x_z, y_z, Y_z) and broadcasts: a column of turbidities
     # against a row of angles gives the whole family of curves in one call. θ_s runs over [0, π/2]: the fits are made
     # for the sun above the horizon, and pywarp rejects a sun below it.
 
     # %%
     theta_s = np.linspace(0.0, np.float32(np.pi / 2), n, dtype=np.float32)
     T = np.array(TURBIDITIES, dtype=np.float32)[:, None]
-    Yc, xz, yz = pywarp.preetham_zenith(T, theta_s[None, :])
-    Yt = pywarp.preetham_zenith(T, theta_s[None, :], variant="thesis")[0]
+    xz, yz, Yc = np.moveaxis(pywarp.sky_preetham_zenith(T, theta_s[None, :]), -1, 0)
+    Yt = pywarp.sky_preetham_zenith(T, theta_s[None, :], variant="thesis")[..., 2]
     deg = np.degrees(theta_s)
 
     # %% [markdown]
@@ -64,8 +64,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # %%
     pts_T = np.array([k[0] for k in CHECK_Y], dtype=np.float32)
     pts_t = np.radians(np.array([k[1] for k in CHECK_Y])).astype(np.float32)
-    got_c, got_x, got_y = pywarp.preetham_zenith(pts_T, pts_t)
-    got_t = pywarp.preetham_zenith(pts_T, pts_t, variant="thesis")[0]
+    got_x, got_y, got_c = np.moveaxis(pywarp.sky_preetham_zenith(pts_T, pts_t), -1, 0)
+    got_t = pywarp.sky_preetham_zenith(pts_T, pts_t, variant="thesis")[..., 2]
     want_c = np.array([v[0] for v in CHECK_Y.values()])
     want_t = np.array([v[1] for v in CHECK_Y.values()])
     assert np.allclose(got_c, want_c, rtol=0, atol=2e-4) and np.allclose(got_t, want_t, rtol=0, atol=2e-4)

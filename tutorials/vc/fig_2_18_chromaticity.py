@@ -5,8 +5,8 @@ CIE 1931 colour-matching data, which the thesis does not contain (spec: reproduc
 stand-in draws it with colour-science (``colour.plotting``; **requires the package colour-science**, import name
 ``colour``): the spectral locus, the sRGB gamut our renderer outputs (vc-4.4), the CIE RGB gamut, the triangle of the
 XYZ primaries, and the chromaticities of the Preetham sky computed by pywarp — the zenith x_z, y_z (vc-2.39, vc-2.40, vc-2.41,
-``pywarp.preetham_zenith``) over sun elevations and turbidities, and every direction of one whole sky (vc-A29,
-``pywarp.sky_preetham(output="xyY")``) — with the chromaticity coordinates of vc-2.32. The errata of vc-2.39 change
+``pywarp.sky_preetham_zenith``) over sun elevations and turbidities, and every direction of one whole sky (vc-A29,
+``pywarp.sky_preetham_colour(output="xyY")``) — with the chromaticity coordinates of vc-2.32. The errata of vc-2.39 change
 only the luminance Y, not x and y, so this figure has no 'thesis' variant. Output: figures/vc/fig-2.18.png.
 """
 # %% [markdown]
@@ -73,14 +73,15 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     theta_s = np.clip(theta_s, 0.0, np.float32(np.pi / 2))  # float32(pi/2) is the horizon, accepted by the Arg
     curves = {}
     for t in TURBIDITIES:
-        _, x, y = pywarp.preetham_zenith(np.full_like(theta_s, t), theta_s)
+        x, y, _ = np.moveaxis(pywarp.sky_preetham_zenith(np.full_like(theta_s, t), theta_s), -1, 0)
         curves[t] = (x, y)
     n_dir = 40 if quick else 120  # dome directions per axis (azimuth x elevation above the horizon)
     az = np.radians(np.linspace(0.0, 360.0, 2 * n_dir, endpoint=False))
     el = np.radians(np.linspace(0.5, 89.5, n_dir))
     A, E = np.meshgrid(az, el)
     dirs = np.stack([np.cos(E) * np.sin(A), np.sin(E), -np.cos(E) * np.cos(A)], axis=-1).astype(np.float32)
-    dome_x, dome_y, _ = pywarp.sky_preetham(dirs.reshape(-1, 3), DOME_T, DOME_ELEVATION, output="xyY")
+    dome_x, dome_y, _ = np.moveaxis(pywarp.sky_preetham_colour(dirs.reshape(-1, 3), DOME_T, DOME_ELEVATION,
+                                                               output="xyY"), -1, 0)
 
     fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(14, 6.8), dpi=80 if quick else 130,
                                    gridspec_kw={"width_ratios": [1.0, 1.15]})
@@ -138,7 +139,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax1.set_xlim(ZOOM[0], ZOOM[1])
     ax1.set_ylim(ZOOM[2], ZOOM[3])
     ax1.set_aspect("equal")
-    ax1.set_title("Preetham sky chromaticities (pywarp.preetham_zenith, 2.40/2.41)", fontsize=11)
+    ax1.set_title("Preetham sky chromaticities (pywarp.sky_preetham_zenith, 2.40/2.41)", fontsize=11)
     ax1.legend(loc="center left", bbox_to_anchor=(1.02, 0.5), fontsize=8, frameon=False, markerscale=1.2)
     fig.suptitle("Colour models: the visible colours (spectral locus), the sRGB and CIE RGB gamuts, the imaginary XYZ "
                  "primaries, and the colours of the Preetham sky", fontsize=11.5)

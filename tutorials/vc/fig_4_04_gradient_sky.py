@@ -86,16 +86,16 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     n_fish = 128 if quick else 400
 
     # %% [markdown]
-    # Evaluate the model. pywarp.sky_gradient takes any array of directions (..., 3) and returns R, G, B arrays of the
-    # same shape. The model itself writes linear RGB (what the thesis puts in the frame buffer); output='srgb' adds the
+    # Evaluate the model. pywarp.sky_gradient_colour takes any array of directions (..., 3) and returns their RGB
+    # colours, shape (..., 3). The model itself writes linear RGB (what the thesis puts in the frame buffer); output='srgb' adds the
     # standard sRGB encoding a display expects (the thesis does not mention this step). The default colours are
     # defined so that their sRGB encodings are a light blue (0.84, 0.90, 0.97) and a medium blue (0.44, 0.62, 0.87).
 
     # %%
     view = pinhole_directions(w, h, FOV_Y_DEG, 0.0, PITCH_DEG)
-    img = np.stack(pywarp.sky_gradient(view, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="srgb"), axis=-1)
+    img = pywarp.sky_gradient_colour(view, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="srgb")
     fish_d, inside = fisheye_directions(n_fish)
-    fish = np.stack(pywarp.sky_gradient(fish_d, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="srgb"), axis=-1)
+    fish = pywarp.sky_gradient_colour(fish_d, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="srgb")
     fish[~inside] = 1.0  # white outside the horizon circle
 
     # %% [markdown]
@@ -111,8 +111,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     e = np.radians(elev)
     towards = np.stack([np.zeros_like(e), np.sin(e), -np.cos(e)], axis=-1)  # azimuth 0, through the sun
     away = towards * np.array([1.0, 1.0, -1.0])  # azimuth 180
-    prof_sun = pywarp.sky_gradient(towards, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG)  # linear, as the model writes it
-    prof_away = pywarp.sky_gradient(away, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG)
+    prof_sun = np.moveaxis(pywarp.sky_gradient_colour(towards, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG), -1, 0)  # linear
+    prof_away = np.moveaxis(pywarp.sky_gradient_colour(away, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG), -1, 0)
 
     # %%
     fig = plt.figure(figsize=(16.0, 5.0), dpi=80 if quick else 120)

@@ -8,8 +8,8 @@ states no turbidity, sun position, camera or resolution: here T = 3, the sun 12�
 the result is sRGB-encoded for display (a step the thesis does not mention).
 
 Three misprints of the thesis change the image; the second output shows each one alone (built from the lower-level
-public functions pywarp.xyY_to_XYZ, pywarp.XYZ_to_linear_srgb and pywarp.tonemap_exp) and all three together
-(pywarp.sky_preetham(variant="thesis")). The third output is a grid of skies over sun elevations and turbidities;
+public functions pywarp.colour_xyY_to_XYZ, pywarp.colour_XYZ_to_linear_srgb and pywarp.colour_tonemap_exp) and all three together
+(pywarp.sky_preetham_colour(variant="thesis")). The third output is a grid of skies over sun elevations and turbidities;
 the thesis shows a single sky and states neither. Outputs: figures/vc/fig-4.6.png, figures/vc/fig-4.6-errata.png,
 figures/vc/fig-4.6-conditions.png.
 """
@@ -96,26 +96,27 @@ def srgb_encode(c: np.ndarray) -> np.ndarray:
 
 def preetham_image(d, turbidity, elevation_deg, variant="corrected") -> np.ndarray:
     """The whole pipeline in one call, sRGB-encoded for display: (..., 3) in [0, 1]."""
-    rgb = pywarp.sky_preetham(d, turbidity, elevation_deg, SUN_AZIMUTH_DEG, EXPOSURE, variant=variant, output="srgb")
-    return np.clip(np.stack(rgb, axis=-1), 0.0, 1.0)
+    rgb = pywarp.sky_preetham_colour(d, turbidity, elevation_deg, SUN_AZIMUTH_DEG, EXPOSURE, variant=variant,
+                                     output="srgb")
+    return np.clip(rgb, 0.0, 1.0)
 
 
 # %% [markdown]
-# One erratum at a time. pywarp.sky_preetham has a single switch, variant = "corrected" | "thesis", which flips all
+# One erratum at a time. pywarp.sky_preetham_colour has a single switch, variant = "corrected" | "thesis", which flips all
 # three misprints together. To isolate one of them, stop the pipeline at the xyY stage (output="xyY"; the only
 # erratum before that stage is the zenith luminance 2.39, so variant there selects 4.0453 vs 6.0453) and run the
 # remaining three steps with the public per-equation functions, each with its own variant:
 #
-#     xyY --(4.3 xyY_to_XYZ)--> XYZ --(4.4 XYZ_to_linear_srgb)--> linear RGB --(4.5 tonemap_exp)--> displayed
+#     xyY --(4.3 colour_xyY_to_XYZ)--> XYZ --(4.4 colour_XYZ_to_linear_srgb)--> linear RGB
+#         --(4.5 colour_tonemap_exp)--> displayed
 
 # %%
 def chain_image(d, zenith_variant: str, matrix_variant: str, tonemap_variant: str) -> np.ndarray:
-    x, y, Y = pywarp.sky_preetham(d, TURBIDITY, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, EXPOSURE,
-                                  variant=zenith_variant, output="xyY")
-    X, Y, Z = pywarp.xyY_to_XYZ(x, y, Y)
-    rgb = pywarp.XYZ_to_linear_srgb(X, Y, Z, variant=matrix_variant)
-    shown = [pywarp.tonemap_exp(c, EXPOSURE, variant=tonemap_variant) for c in rgb]
-    return srgb_encode(np.stack(shown, axis=-1))
+    xyY = pywarp.sky_preetham_colour(d, TURBIDITY, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, EXPOSURE,
+                                     variant=zenith_variant, output="xyY")
+    rgb = pywarp.colour_XYZ_to_linear_srgb(pywarp.colour_xyY_to_XYZ(xyY), variant=matrix_variant)
+    shown = pywarp.colour_tonemap_exp(rgb, EXPOSURE, variant=tonemap_variant)
+    return srgb_encode(shown)
 
 
 def _camera_axes(ax, h, title, fontsize=9):
@@ -155,7 +156,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     #
     # The brightness of the displayed image depends entirely on the tone-map exposure k of C = 1 − exp(−k·C_HDR).
     # We keep the thesis' k = 0.03 with Y in kcd/m² (Preetham's unit), which gives a rather dim, grey-blue sky at this
-    # low sun; pywarp.sky_preetham(..., exposure=k) takes any k > 0. The thesis' own picture cannot have been made with
+    # low sun; pywarp.sky_preetham_colour(..., exposure=k) takes any k > 0. The thesis' own picture cannot have been made with
     # the tone map as printed (see (d) below), so its exposure is unknown.
 
     # %%
@@ -169,8 +170,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     e = np.radians(elev)
     towards = np.stack([np.zeros_like(e), np.sin(e), -np.cos(e)], axis=-1)
     away = towards * np.array([1.0, 1.0, -1.0])
-    Y_sun = pywarp.sky_preetham(towards, TURBIDITY, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="xyY")[2]
-    Y_away = pywarp.sky_preetham(away, TURBIDITY, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="xyY")[2]
+    Y_sun = pywarp.sky_preetham_colour(towards, TURBIDITY, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="xyY")[..., 2]
+    Y_away = pywarp.sky_preetham_colour(away, TURBIDITY, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="xyY")[..., 2]
 
     fig = plt.figure(figsize=(16.0, 5.0), dpi=dpi)
     gs = fig.add_gridspec(1, 3, width_ratios=[16 / 9, 1.0, 1.05], wspace=0.22, left=0.045, right=0.985, top=0.80,
@@ -229,19 +230,19 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     imgs = {k: chain_image(small, *v) for k, v in variants.items()}
     for k, v in (("a", "corrected"), ("e", "thesis")):
         whole = preetham_image(small, TURBIDITY, SUN_ELEVATION_DEG, variant=v)
-        assert np.max(np.abs(whole - imgs[k])) < 1e-5, f"the chain ({k}) differs from sky_preetham(variant={v!r})"
+        assert np.max(np.abs(whole - imgs[k])) < 1e-5, f"the chain ({k}) differs from sky_preetham_colour(variant={v!r})"
     theta_s = np.float32(np.radians(90.0 - SUN_ELEVATION_DEG))
-    yz_c = float(pywarp.preetham_zenith(TURBIDITY, theta_s)[0])
-    yz_t = float(pywarp.preetham_zenith(TURBIDITY, theta_s, variant="thesis")[0])
-    zen_ratio = float(pywarp.preetham_zenith(TURBIDITY, 0.0, variant="thesis")[0]
-                      / pywarp.preetham_zenith(TURBIDITY, 0.0)[0])
+    yz_c = float(pywarp.sky_preetham_zenith(TURBIDITY, theta_s)[2])
+    yz_t = float(pywarp.sky_preetham_zenith(TURBIDITY, theta_s, variant="thesis")[2])
+    zen_ratio = float(pywarp.sky_preetham_zenith(TURBIDITY, 0.0, variant="thesis")[2]
+                      / pywarp.sky_preetham_zenith(TURBIDITY, 0.0)[2])
     captions = {
         "a": "(a) corrected: 4.0453·T (2.39), −0.9692660 (4.4),\n1 − exp(−0.03·C) (4.5)",
         "b": f"(b) only 2.39 as printed, 6.0453·T: Y_z {yz_c:.2f} → {yz_t:.2f} kcd/m²\n"
              f"(×{yz_t / yz_c:.2f}; ×{zen_ratio:.2f} with the sun overhead): a brighter, paler sky",
         "c": "(c) only 4.4 as printed, −0.9392660: G += 0.03·X,\na faint green cast (white → G = 1.0285)",
         "d": "(d) only 4.5 as printed, 1 − exp(+0.03·C) ≤ 0:\nevery pixel black after clamping",
-        "e": "(e) all three as printed:\npywarp.sky_preetham(..., variant=\"thesis\")",
+        "e": "(e) all three as printed:\npywarp.sky_preetham_colour(..., variant=\"thesis\")",
     }
     fig, axes = plt.subplots(2, 3, figsize=(15.0, 6.9), dpi=dpi)
     for ax, k in zip(axes.flat, "abcde"):

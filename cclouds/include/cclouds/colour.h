@@ -19,23 +19,23 @@ extern "C" {
 #endif
 
 /* CIE xy chromaticity of a tristimulus value: x = X / (X + Y + Z), y = Y / (X + Y + Z).
- * Ref: vc-2.32 (CIE 1931). X, Y, Z -> X, Y, Z >= 0 with X + Y + Z > 0 (undefined for a zero sum: the result is NaN).
- * Outputs through out_x, out_y, in [0, 1] for non-negative input. NaN propagates. */
-CCL_API void ccl_XYZ_to_xy(float X, float Y, float Z, float *out_x, float *out_y);
+ * Ref: vc-2.32 (CIE 1931). XYZ -> (X, Y, Z), components >= 0 with X + Y + Z > 0 (undefined for a zero sum: the
+ * result is NaN). Output (x, y), in [0, 1] for non-negative input. NaN propagates. */
+CCL_API ccl_vec2 ccl_colour_XYZ_to_xy(ccl_vec3 XYZ);
 
 /* CIE xyY -> XYZ: X = x * (Y / y), Y = Y, Z = (1 - x - y) * (Y / y).
- * Ref: vc-4.3. x, y -> chromaticity, y > 0 (y = 0 divides by zero: Inf/NaN); Y -> luminance >= 0, any unit (the
- * output has the unit of Y). Outputs through out_X, out_Y, out_Z. The inverse of ccl_XYZ_to_xy for Y > 0. */
-CCL_API void ccl_xyY_to_XYZ(float x, float y, float Y, float *out_X, float *out_Y, float *out_Z);
+ * Ref: vc-4.3. xyY -> (x, y, Y): chromaticity x, y with y > 0 (y = 0 divides by zero: Inf/NaN) and luminance
+ * Y >= 0, any unit (the output has the unit of Y). Output (X, Y, Z). The inverse of ccl_colour_XYZ_to_xy for
+ * Y > 0. */
+CCL_API ccl_vec3 ccl_colour_xyY_to_XYZ(ccl_vec3 xyY);
 
 /* CIE XYZ -> linear sRGB (D65) by the 3x3 matrix of vc-4.4 (Lindbloom's XYZ -> sRGB matrix, 7 digits).
- * Ref: vc-4.4; IEC 61966-2-1:1999; B. Lindbloom, "RGB/XYZ matrices". X, Y, Z any finite values.
+ * Ref: vc-4.4; IEC 61966-2-1:1999; B. Lindbloom, "RGB/XYZ matrices". XYZ -> (X, Y, Z), any finite values.
  * variant CCL_VARIANT_CORRECTED: row 2, column 1 is -0.9692660 (Lindbloom): D65 white (0.95047, 1, 1.08883) maps to
  * (1.0000, 1.0000, 1.0000) within 1e-6. variant CCL_VARIANT_THESIS: -0.9392660 as printed (spec error index item 10):
  * the same white maps to G = 1.02851, a ~2.9 % green cast. All other entries are identical in both variants.
- * Output: linear RGB (unbounded: out-of-gamut colours give negative components), through out_R, out_G, out_B. */
-CCL_API void ccl_XYZ_to_linear_srgb(float X, float Y, float Z, ccl_variant variant, float *out_R, float *out_G,
-                                    float *out_B);
+ * Output: linear (R, G, B) (unbounded: out-of-gamut colours give negative components). */
+CCL_API ccl_vec3 ccl_colour_XYZ_to_linear_srgb(ccl_vec3 XYZ, ccl_variant variant);
 
 /* Exponential tone map of one HDR channel: C = 1 - exp(-k C_hdr).
  * Ref: vc-4.5. c_hdr -> C_HDR, linear HDR value (any finite value; >= 0 for in-gamut colours); exposure -> k > 0
@@ -43,7 +43,7 @@ CCL_API void ccl_XYZ_to_linear_srgb(float X, float Y, float Z, ccl_variant varia
  * variant CCL_VARIANT_CORRECTED: 1 - exp(-k C_hdr), maps [0, inf) onto [0, 1), monotonic, slope k at 0.
  * variant CCL_VARIANT_THESIS: 1 - exp(+k C_hdr) as printed (spec error index item 11): <= 0 for every C_hdr >= 0,
  * i.e. a black image once clamped to [0, 1]. NaN propagates. */
-CCL_API float ccl_tonemap_exp(float c_hdr, float exposure, ccl_variant variant);
+CCL_API float ccl_colour_tonemap_exp(float c_hdr, float exposure, ccl_variant variant);
 
 /* sRGB encoding (opto-electronic transfer function) of one linear channel:
  * V = 12.92 c for c <= 0.0031308, V = 1.055 c^(1/2.4) - 0.055 otherwise.
@@ -51,7 +51,7 @@ CCL_API float ccl_tonemap_exp(float c_hdr, float exposure, ccl_variant variant);
  * thesis does not mention it -- see vc-4.4 note). c any finite value: negative input stays on the linear segment
  * (as colour-science's eotf_inverse_sRGB), input above 1 follows the power segment. [0, 1] maps onto [0, 1].
  * NaN propagates. */
-CCL_API float ccl_srgb_encode(float c);
+CCL_API float ccl_colour_srgb_encode(float c);
 
 #ifdef __cplusplus
 }

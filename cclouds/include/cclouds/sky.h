@@ -29,13 +29,13 @@
 extern "C" {
 #endif
 
-/* Valid turbidity range of the Preetham fits, enforced by ccl_preetham_init and the Python boundary: 2 <= T <= 10
+/* Valid turbidity range of the Preetham fits, enforced by ccl_sky_preetham_init and the Python boundary: 2 <= T <= 10
  * (Preetham et al. 1999 fitted roughly this range; Zotti, Wilkie & Purgathofer 2007 document the model's failures
  * outside it -- e.g. B_Y > 0 for T < 1.21 makes the luminance grow towards the horizon without bound). */
 #define CCL_PREETHAM_TURBIDITY_MIN 2
 #define CCL_PREETHAM_TURBIDITY_MAX 10
 
-/* Per-frame constants of the Preetham sky (vc-A29, "PreethamSkyModel::update"), filled by ccl_preetham_init. */
+/* Per-frame constants of the Preetham sky (vc-A29, "PreethamSkyModel::update"), filled by ccl_sky_preetham_init. */
 typedef struct ccl_preetham {
     float perez_Y[5];  /* Perez A..E of the luminance Y (vc-2.42) */
     float perez_x[5];  /* Perez A..E of the chromaticity x (vc-2.43) */
@@ -63,7 +63,7 @@ typedef struct ccl_sky_gradient {
 /* Turbidity T = (t_m + t_h) / t_m.
  * Ref: vc-2.33 (Preetham et al. 1999, after McCartney 1976). t_m -> optical thickness of the purely molecular
  * atmosphere, > 0; t_h -> optical thickness of the haze, >= 0. Output T >= 1 (T = 1: pure air). */
-CCL_API float ccl_turbidity(float t_m, float t_h);
+CCL_API float ccl_sky_turbidity(float t_m, float t_h);
 
 /* CIE clear-sky luminance Y = Y_z * f(gamma) phi(theta) / (f(theta_s) phi(0)) with
  * f(g) = 0.91 + 10 exp(-3 g) + 0.45 cos^2 g and phi(t) = 1 - exp(-0.32 / cos t).
@@ -72,73 +72,73 @@ CCL_API float ccl_turbidity(float t_m, float t_h);
  * gamma = theta_s the output is Y_z. Equal to Y_z F(theta, gamma) / F(0, theta_s) with the Perez function 2.36 and
  * A = -1, B = -0.32, C = 10/0.91, D = -3, E = 0.45/0.91 (the spec's derivation; the text's C = 10, E = 0.45 are off
  * by the factor 0.91). */
-CCL_API float ccl_cie_clear_sky(float theta, float gamma, float theta_s, float Y_z);
+CCL_API float ccl_sky_cie_clear(float theta, float gamma, float theta_s, float Y_z);
 
 /* Perez all-weather relative luminance F = (1 + A exp(B / cos theta)) (1 + C exp(D gamma) + E cos^2 gamma).
  * Ref: vc-2.36 (Perez, Seals & Michalsky 1993). theta in [0, pi] (cos theta clamped to >= 0.01, see the file
  * comment), gamma in [0, pi]; A..E any finite coefficients. Output: relative luminance (dimensionless); > 0 for the
  * Preetham coefficients of 2 <= T <= 10. NaN propagates. */
-CCL_API float ccl_perez(float theta, float gamma, float A, float B, float C, float D, float E);
+CCL_API float ccl_sky_perez(float theta, float gamma, float A, float B, float C, float D, float E);
 
 /* CIE-adopted modified Perez function (CIE standard general sky, CIE S 011/E:2003):
  * F = (1 + A exp(B / cos theta)) (1 + C (exp(D gamma) - exp(D pi/2)) + E cos^2 gamma).
- * Ref: vc-2.37. Arguments as ccl_perez. variant CCL_VARIANT_CORRECTED: the subtracted term is the constant
+ * Ref: vc-2.37. Arguments as ccl_sky_perez. variant CCL_VARIANT_CORRECTED: the subtracted term is the constant
  * exp(D pi/2), so the indicatrix is exactly 1 at gamma = pi/2. variant CCL_VARIANT_THESIS: exp(D gamma pi/2) as
  * printed (spec error index item 8). */
-CCL_API float ccl_perez_cie(float theta, float gamma, float A, float B, float C, float D, float E, ccl_variant variant);
+CCL_API float ccl_sky_perez_cie(float theta, float gamma, float A, float B, float C, float D, float E,
+                                ccl_variant variant);
 
 /* Zenith normalisation factor Y_z / F(0, theta_s) of one channel.
  * Ref: vc-4.2 (applied to Y, x and y alike, each with its own A..E: spec error index item 21). theta_s in [0, pi/2];
  * Y_z -> the channel's zenith value (Y_Z, x_z or y_z); A..E -> that channel's Perez coefficients. */
-CCL_API float ccl_perez_zenith_factor(float theta_s, float Y_z, float A, float B, float C, float D, float E);
+CCL_API float ccl_sky_perez_zenith_factor(float theta_s, float Y_z, float A, float B, float C, float D, float E);
 
 /* Normalised Perez distribution Y = F(theta, gamma) / F(0, theta_s) * Y_z (evaluated in this order, so the zenith
  * theta = 0, gamma = theta_s returns Y_z exactly).
  * Ref: vc-2.38. theta, gamma in [0, pi]; theta_s in [0, pi/2]; Y_z -> zenith value of the channel; A..E -> Perez
  * coefficients. */
-CCL_API float ccl_perez_normalized(float theta, float gamma, float theta_s, float Y_z, float A, float B, float C,
-                                   float D, float E);
+CCL_API float ccl_sky_perez_normalized(float theta, float gamma, float theta_s, float Y_z, float A, float B, float C,
+                                       float D, float E);
 
-/* Preetham zenith luminance and chromaticity (Y_Z [kcd/m^2], x_z, y_z).
+/* Preetham zenith colour in xyY: chromaticity x_z, y_z and luminance Y_Z [kcd/m^2].
  * Y_Z = (4.0453 T - 4.9710) tan chi - 0.2155 T + 2.4192, chi = (4/9 - T/120)(pi - 2 theta_s); x_z, y_z as
- * ccl_preetham_zenith_x / _y. Ref: vc-2.39, 2.40, 2.41 (Preetham, Shirley & Smits 1999, appendix A.2).
+ * ccl_sky_preetham_zenith_x / _y. Ref: vc-2.39, 2.40, 2.41 (Preetham, Shirley & Smits 1999, appendix A.2).
  * turbidity -> T in [2, 10]; theta_s -> sun zenith angle in [0, pi/2].
  * variant CCL_VARIANT_CORRECTED: Preetham's 4.0453 T; CCL_VARIANT_THESIS: 6.0453 T as printed (spec error index
- * item 9). Check values (corrected / thesis): T = 2, theta_s = 0 -> 15.5007 / 32.8266; T = 2, 30 deg -> 5.8867 /
- * 10.8855; T = 3, 60 deg -> 5.1392 / 7.9583. Outputs through out_Y, out_x, out_y. */
-CCL_API void ccl_preetham_zenith(float turbidity, float theta_s, ccl_variant variant, float *out_Y, float *out_x,
-                                 float *out_y);
+ * item 9). Check values of Y_Z (corrected / thesis): T = 2, theta_s = 0 -> 15.5007 / 32.8266; T = 2, 30 deg ->
+ * 5.8867 / 10.8855; T = 3, 60 deg -> 5.1392 / 7.9583. Output (x_z, y_z, Y_Z), the xyY of ccl_colour_xyY_to_XYZ. */
+CCL_API ccl_vec3 ccl_sky_preetham_zenith(float turbidity, float theta_s, ccl_variant variant);
 
 /* Preetham zenith chromaticity x_z = [T^2 T 1] M_x [theta_s^3 theta_s^2 theta_s 1]^T.
  * Ref: vc-2.40 (Preetham et al. 1999). turbidity in [2, 10], theta_s in [0, pi/2]. T = 2, theta_s = 0 -> 0.26674. */
-CCL_API float ccl_preetham_zenith_x(float turbidity, float theta_s);
+CCL_API float ccl_sky_preetham_zenith_x(float turbidity, float theta_s);
 
 /* Preetham zenith chromaticity y_z = [T^2 T 1] M_y [theta_s^3 theta_s^2 theta_s 1]^T.
  * Ref: vc-2.41 (Preetham et al. 1999). turbidity in [2, 10], theta_s in [0, pi/2]. T = 2, theta_s = 0 -> 0.27720. */
-CCL_API float ccl_preetham_zenith_y(float turbidity, float theta_s);
+CCL_API float ccl_sky_preetham_zenith_y(float turbidity, float theta_s);
 
 /* Perez coefficients of the luminance Y from the turbidity: A_Y = 0.1787 T - 1.4630, B_Y = -0.3554 T + 0.4275,
  * C_Y = -0.0227 T + 5.3251, D_Y = 0.1206 T - 2.5771, E_Y = -0.0670 T + 0.3703.
  * Ref: vc-2.42 (Preetham et al. 1999). turbidity in [2, 10]. Outputs through out_A .. out_E. */
-CCL_API void ccl_preetham_perez_Y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D,
-                                  float *out_E);
+CCL_API void ccl_sky_preetham_perez_Y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D,
+                                      float *out_E);
 
 /* Perez coefficients of the chromaticity x: A_x = -0.0193 T - 0.2592, B_x = -0.0665 T + 0.0008,
  * C_x = -0.0004 T + 0.2125, D_x = -0.0641 T - 0.8989, E_x = -0.0033 T + 0.0452.
  * Ref: vc-2.43 (Preetham et al. 1999). turbidity in [2, 10]. */
-CCL_API void ccl_preetham_perez_x(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D,
-                                  float *out_E);
+CCL_API void ccl_sky_preetham_perez_x(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D,
+                                      float *out_E);
 
 /* Perez coefficients of the chromaticity y: A_y = -0.0167 T - 0.2608, B_y = -0.0950 T + 0.0092,
  * C_y = -0.0079 T + 0.2102, D_y = -0.0441 T - 1.6537, E_y = -0.0109 T + 0.0529.
  * Ref: vc-2.44 (Preetham et al. 1999). turbidity in [2, 10]. */
-CCL_API void ccl_preetham_perez_y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D,
-                                  float *out_E);
+CCL_API void ccl_sky_preetham_perez_y(float turbidity, float *out_A, float *out_B, float *out_C, float *out_D,
+                                      float *out_E);
 
 /* Unit direction towards the sun from its elevation and azimuth in degrees (the thesis' "two angles in degrees"):
  * (cos e sin a, sin e, -cos e cos a), Y up, azimuth 0 = -Z, 90 = +X (see the file comment).
- * Ref: vc-A28, vc-A29. elevation_deg in [-90, 90], azimuth_deg any finite value. */
-CCL_API void ccl_sky_sun_direction(float elevation_deg, float azimuth_deg, float *out_x, float *out_y, float *out_z);
+ * Ref: vc-A28, vc-A29. elevation_deg in [-90, 90], azimuth_deg any finite value. Output: the unit vector. */
+CCL_API ccl_vec3 ccl_sky_sun_direction(float elevation_deg, float azimuth_deg);
 
 /* Per-frame constants of the Preetham sky: Perez coefficients (2.42-2.44), zenith values (2.39-2.41) and their
  * normalisation factors (4.2) for turbidity T and sun zenith angle theta_s; exposure is the tone-map k of 4.5.
@@ -146,45 +146,76 @@ CCL_API void ccl_sky_sun_direction(float elevation_deg, float azimuth_deg, float
  * 2 <= turbidity <= 10, 0 <= theta_s <= pi/2 (sun above the horizon), 0 < exposure < inf, variant is a ccl_variant,
  * out != NULL; NaN is invalid. variant: CCL_VARIANT_CORRECTED (Preetham's 4.0453, Lindbloom's -0.9692660,
  * 1 - exp(-k C)) or CCL_VARIANT_THESIS (6.0453, -0.9392660, 1 - exp(+k C), all as printed). */
-CCL_API ccl_status ccl_preetham_init(float turbidity, float theta_s, float exposure, ccl_variant variant,
-                                     ccl_preetham *out);
+CCL_API ccl_status ccl_sky_preetham_init(float turbidity, float theta_s, float exposure, ccl_variant variant,
+                                         ccl_preetham *out);
 
 /* Preetham sky in CIE xyY for one unit view direction d and the unit direction s towards the sun (whose zenith
  * angle must be p->theta_s): theta = acos(d_y), gamma = acos(clamp(d . s, -1, 1)); each channel is
- * factor * F(theta, gamma) (2.36 x 4.2 = 2.38). Outputs x, y (chromaticity) and Y [kcd/m^2].
+ * factor * F(theta, gamma) (2.36 x 4.2 = 2.38). Output (x, y, Y): chromaticity and luminance [kcd/m^2].
  * Ref: vc-A29 (GPU part up to xyY). Directions below the horizon use the horizon limit (file comment). */
-CCL_API void ccl_sky_preetham_xyY(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
-                                  const ccl_preetham *p, float *out_x, float *out_y, float *out_Y);
+CCL_API ccl_vec3 ccl_sky_preetham_xyY(ccl_vec3 dir, ccl_vec3 sun, const ccl_preetham *p);
 
 /* Preetham sky as linear sRGB before the tone map: xyY (above) -> XYZ (4.3) -> RGB (4.4, matrix of p->variant).
  * Ref: vc-A29. Output in kcd/m^2-scaled linear RGB (HDR). */
-CCL_API void ccl_sky_preetham_hdr(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
-                                  const ccl_preetham *p, float *out_r, float *out_g, float *out_b);
+CCL_API ccl_vec3 ccl_sky_preetham_hdr(ccl_vec3 dir, ccl_vec3 sun, const ccl_preetham *p);
 
 /* Preetham sky colour as written by the thesis to the frame buffer: ccl_sky_preetham_hdr, then the tone map 4.5
- * per channel with p->exposure and p->variant. Linear, not sRGB-encoded (apply ccl_srgb_encode for display); not
- * clamped (out-of-gamut colours can be slightly negative; the thesis variant is <= 0 everywhere).
+ * per channel with p->exposure and p->variant. Linear, not sRGB-encoded (apply ccl_colour_srgb_encode for display);
+ * not clamped (out-of-gamut colours can be slightly negative; the thesis variant is <= 0 everywhere).
  * Ref: vc-A29. Allocation-free; the per-pixel function of the renderer. */
-CCL_API void ccl_sky_preetham_rgb(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
-                                  const ccl_preetham *p, float *out_r, float *out_g, float *out_b);
+CCL_API ccl_vec3 ccl_sky_preetham_rgb(ccl_vec3 dir, ccl_vec3 sun, const ccl_preetham *p);
+
+/* What ccl_sky_preetham_colour returns. */
+typedef enum ccl_sky_preetham_output {
+    CCL_SKY_PREETHAM_TONEMAPPED = 0, /* ccl_sky_preetham_rgb: linear RGB after the tone map 4.5 (the thesis) */
+    CCL_SKY_PREETHAM_HDR = 1,        /* ccl_sky_preetham_hdr: linear sRGB before the tone map */
+    CCL_SKY_PREETHAM_XYY = 2,        /* ccl_sky_preetham_xyY: (x, y, Y) */
+    CCL_SKY_PREETHAM_SRGB = 3        /* tonemapped, then ccl_colour_srgb_encode per channel (for display) */
+} ccl_sky_preetham_output;
+
+/* Preetham sky of one view direction from the sky parameters themselves (the element-wise form of vc-A29; a
+ * renderer calls ccl_sky_sun_direction and ccl_sky_preetham_init once per frame and ccl_sky_preetham_rgb per pixel,
+ * which this function does in one call): theta_s = (90 - sun_elevation_deg) in radians,
+ * s = ccl_sky_sun_direction(sun_elevation_deg, sun_azimuth_deg), d = direction / |direction|.
+ * Ref: vc-A29 (vc-2.36, 2.38-2.44, 4.2-4.5). direction -> any non-zero view vector (Y up), normalised here;
+ * turbidity in [2, 10]; sun_elevation_deg in [0, 90] (the model needs the sun above the horizon); sun_azimuth_deg
+ * any finite value; exposure > 0; variant applies to all three errata (2.39, 4.4, 4.5); output: see
+ * ccl_sky_preetham_output. Parameters are not validated here (ccl_sky_preetham_init validates them). */
+CCL_API ccl_vec3 ccl_sky_preetham_colour(ccl_vec3 direction, float turbidity, float sun_elevation_deg,
+                                         float sun_azimuth_deg, float exposure, ccl_variant variant,
+                                         ccl_sky_preetham_output output);
 
 /* The documented default parameters of the gradient sky (the thesis gives no values; see the Python docstring of
  * sky_gradient for the reasons): horizon (0.66, 0.78, 0.94), zenith (0.16, 0.34, 0.72), sun (1.0, 0.9, 0.7),
  * sun_exponent 64. */
 CCL_API void ccl_sky_gradient_defaults(ccl_sky_gradient *out);
 
-/* Fill a gradient sky from its colours (linear RGB, each component finite and >= 0) and the sun exponent (> 0, finite).
- * Ref: vc-A28. Returns CCL_EINVAL (leaving *out untouched) for any invalid value or out == NULL. */
-CCL_API ccl_status ccl_sky_gradient_init(float horizon_r, float horizon_g, float horizon_b, float zenith_r,
-                                         float zenith_g, float zenith_b, float sun_r, float sun_g, float sun_b,
-                                         float sun_exponent, ccl_sky_gradient *out);
+/* Fill a gradient sky from its colours (linear RGB, each component finite and >= 0) and the sun exponent (> 0,
+ * finite). Ref: vc-A28. Returns CCL_EINVAL (leaving *out untouched) for any invalid value or out == NULL. */
+CCL_API ccl_status ccl_sky_gradient_init(ccl_vec3 horizon, ccl_vec3 zenith, ccl_vec3 sun, float sun_exponent,
+                                         ccl_sky_gradient *out);
 
 /* Gradient sky colour of a unit view direction d with unit sun direction s:
  * t = clamp(d_y, 0, 1); rgb = horizon + t (zenith - horizon) + sun * max(d . s, 0)^sun_exponent.
  * Ref: vc-A28 (linear interpolation between a light and a dark blue by the ray's Y component plus a sun colour by
  * the angle to the sun). Output linear RGB >= 0 for non-negative colours. Allocation-free. */
-CCL_API void ccl_sky_gradient_rgb(float dir_x, float dir_y, float dir_z, float sun_x, float sun_y, float sun_z,
-                                  const ccl_sky_gradient *g, float *out_r, float *out_g, float *out_b);
+CCL_API ccl_vec3 ccl_sky_gradient_rgb(ccl_vec3 dir, ccl_vec3 sun, const ccl_sky_gradient *g);
+
+/* What ccl_sky_gradient_colour returns. */
+typedef enum ccl_sky_gradient_output {
+    CCL_SKY_GRADIENT_LINEAR = 0, /* ccl_sky_gradient_rgb: the colour as the thesis writes it */
+    CCL_SKY_GRADIENT_SRGB = 1    /* then ccl_colour_srgb_encode per channel (for display) */
+} ccl_sky_gradient_output;
+
+/* Gradient sky of one view direction from the sky parameters themselves (the element-wise form of vc-A28):
+ * s = ccl_sky_sun_direction(sun_elevation_deg, sun_azimuth_deg), d = direction / |direction|, then
+ * ccl_sky_gradient_rgb with the given colours and exponent.
+ * Ref: vc-A28. direction -> any non-zero view vector (Y up), normalised here; sun_elevation_deg in [-90, 90];
+ * sun_azimuth_deg any finite value; horizon_colour, zenith_colour, sun_colour -> linear RGB, components >= 0;
+ * sun_exponent > 0; output: see ccl_sky_gradient_output. Not validated here (ccl_sky_gradient_init validates). */
+CCL_API ccl_vec3 ccl_sky_gradient_colour(ccl_vec3 direction, float sun_elevation_deg, float sun_azimuth_deg,
+                                         ccl_vec3 horizon_colour, ccl_vec3 zenith_colour, ccl_vec3 sun_colour,
+                                         float sun_exponent, ccl_sky_gradient_output output);
 
 #ifdef __cplusplus
 }
