@@ -1,20 +1,22 @@
-"""Benchmarks of pywarp. Every number is measured in one run and reported as a ratio where it compares two things,
-because machines (this one included) are noisy; no test asserts on wall time.
+"""Benchmarks of the clouds scene. Every number is measured in one run and reported as a ratio where it compares two
+things, because machines (this one included) are noisy; no test asserts on wall time. Every timing goes through
+:mod:`pywarp.core.timing` (best of N after a warm-up, in ms).
 
-    pywarp bench tiles [--width 960 --height 540 --repeat 5 --json]
+    pywarp bench [clouds] tiles|cloudscape|textures|reprojection [--width W --height H --repeat N --workers N
+                                                                  --device D --json]
+
+``pywarp.clouds.scene`` registers them with the scene (name -> :class:`pywarp.core.scenes.Benchmark`); the command
+line is built from there.
 """
 from __future__ import annotations
 
-import json
 import math
-import os
-import platform
-import time
 
 import numpy as np
 import warp as wp
 
 from ..core.runtime import TileLauncher, init
+from ..core.timing import best_ms, interleaved_ms, machine, median_ms  # noqa: F401  (machine: re-exported)
 
 init()
 
@@ -33,28 +35,6 @@ def _bench_image(row0: int, octaves: int, out: wp.array2d(dtype=float)):
     out[y, j] = acc
 
 
-def machine() -> dict:
-    model = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    model = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return {"cores": os.cpu_count(), "cpu": model, "python": platform.python_version(), "warp": wp.__version__}
-
-
-def _best(fn, repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return min(times)
-
-
 def bench_tiles(width: int = 960, height: int = 540, repeat: int = 5, octaves: int = 48,
                 workers: int | None = None, device: str | None = None) -> dict:
     """Speedup of the tile-parallel launcher over one launch, for a frame-sized kernel (same kernel, same pixels)."""
@@ -69,11 +49,10 @@ def bench_tiles(width: int = 960, height: int = 540, repeat: int = 5, octaves: i
     ref = out.numpy().copy()
     tiled.launch(_bench_image, height, width, [octaves], [out])
     identical = bool(np.array_equal(ref, out.numpy()))
-    # interleave the two so that both see the same machine state
-    t1, tn = [], []
-    for _ in range(repeat):
-        t1.append(_best(lambda: single.launch(_bench_image, height, width, [octaves], [out]), 1))
-        tn.append(_best(lambda: tiled.launch(_bench_image, height, width, [octaves], [out]), 1))
+    # interleaved so that both see the same machine state
+    ms = interleaved_ms({"single": lambda: single.launch(_bench_image, height, width, [octaves], [out]),
+                         "tiled": lambda: tiled.launch(_bench_image, height, width, [octaves], [out])},
+                        repeat, warmup=0)
     tiled.close()
     return {
         "benchmark": "tiles",
@@ -81,17 +60,17 @@ def bench_tiles(width: int = 960, height: int = 540, repeat: int = 5, octaves: i
         "device": single.device,
         "workers": tiled.workers,
         "bands": len(tiled.bands(height)),
-        "ms_single_launch": round(1e3 * min(t1), 2),
-        "ms_tile_parallel": round(1e3 * min(tn), 2),
-        "parallel_speedup": round(min(t1) / min(tn), 3),
+        "ms_single_launch": round(ms["single"], 2),
+        "ms_tile_parallel": round(ms["tiled"], 2),
+        "parallel_speedup": round(ms["single"] / ms["tiled"], 3),
         "identical_output": identical,
         "machine": machine(),
     }
 
 
 def _timed(fn, repeat: int) -> float:
-    """Best of ``repeat`` runs of fn(), in ms."""
-    return 1e3 * _best(fn, repeat)
+    """Best of ``repeat`` runs of fn() in ms, after one warm-up run."""
+    return best_ms(fn, repeat, warmup=1)
 
 
 def _reprojected_ms(t, n_frames: int = 16) -> float:
@@ -99,15 +78,16 @@ def _reprojected_ms(t, n_frames: int = 16) -> float:
     from .cloudscape import CameraPose
 
     p = CameraPose.from_settings(t.settings)
-    t.render(p, reprojection=True)
-    times = []
-    for k in range(n_frames):
-        q = CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * (k + 1), p.yaw_deg + 0.02 * (k + 1), p.pitch_deg,
-                       p.fov_y_deg)
-        t0 = time.perf_counter()
+    step = [0]
+
+    def next_frame():
+        step[0] += 1
+        k = step[0]
+        q = CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * k, p.yaw_deg + 0.02 * k, p.pitch_deg, p.fov_y_deg)
         t.render(q, reprojection=True)
-        times.append(time.perf_counter() - t0)
-    return 1e3 * float(np.median(times))
+
+    t.render(p, reprojection=True)  # the frame without history
+    return median_ms(next_frame, n_frames, warmup=0)
 
 
 def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers: int | None = None,
@@ -123,7 +103,6 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
     tech = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, device=device or "cpu",
                                                   threads=workers, **settings))
     pose = CameraPose.from_settings(tech.settings)
-    tech.render(pose, reprojection=False)  # compile / warm up
 
     def full(**changes):
         tech.update(**changes)
@@ -158,7 +137,6 @@ def measure_sky(tech, repeat: int = 2) -> dict:
         sky = make_sky(replace(s, sky=kind).validate())
         res = {}
         for name, rep in (("full", False), ("reprojection", True)):
-            sky.render(buf, cam, 0, rep, tech.params, tech.launcher)
             res[name] = _timed(lambda: sky.render(buf, cam, 0, rep, tech.params, tech.launcher), repeat)
         out[kind] = res
     return out
@@ -189,35 +167,39 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
     pose = CameraPose.from_settings(tech.settings)
     # the proposed cheaper option (not the default): light samples from the base shape only (no detail erosion)
     tech.update(light_detail=False)
-    tech.render(pose, reprojection=False)
     option_light_base_only = _timed(lambda: tech.render(pose, reprojection=False), repeat)
     tech.update(light_detail=True)
     sky = measure_sky(tech, repeat)
     sky_ms = {k: v["full"] for k, v in sky.items()}
     sky_reprojected_ms = {k: v["reprojection"] for k, v in sky.items()}
 
-    one = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, threads=1), textures=textures)
-    one.render(pose, reprojection=False)
+    dev = tech.settings.device
+    one = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, threads=1, device=dev),
+                              textures=textures)
     t_one = _timed(lambda: one.render(pose, reprojection=False), repeat)
     t_all = ladder["early_exit"]
 
     sw, sh = small
-    s_small = CloudscapeSettings(width=sw, height=sh, threads=1)
-    w_small = CloudscapeTechnique(s_small, textures=textures)
-    w_small.render(reprojection=False)
-    t_w = _timed(lambda: w_small.render(reprojection=False), repeat)
-    t_c = _timed(lambda: render_frame_c(s_small, textures), repeat)
+    warp_over_c = None  # Warp per thread over C per thread: a CPU comparison
+    if dev.startswith("cpu"):
+        s_small = CloudscapeSettings(width=sw, height=sh, threads=1)
+        w_small = CloudscapeTechnique(s_small, textures=textures)
+        t_w = _timed(lambda: w_small.render(reprojection=False), repeat)
+        t_c = _timed(lambda: render_frame_c(s_small, textures), repeat)
+        warp_over_c = round(t_w / t_c, 3)
 
-    t640 = CloudscapeTechnique(CloudscapeSettings(width=640, height=360, threads=workers), textures=textures)
+    t640 = CloudscapeTechnique(CloudscapeSettings(width=640, height=360, threads=workers, device=dev),
+                               textures=textures)
     ms_640_reproj = _reprojected_ms(t640)
-    t1280 = CloudscapeTechnique(CloudscapeSettings(width=1280, height=720, threads=workers), textures=textures)
-    t1280.render(reprojection=False)
+    t1280 = CloudscapeTechnique(CloudscapeSettings(width=1280, height=720, threads=workers, device=dev),
+                                textures=textures)
     ms_1280_full = _timed(lambda: t1280.render(reprojection=False), 1)
 
     r = lambda v: round(v, 2)  # noqa: E731
     return {
         "benchmark": "cloudscape",
         "size": [width, height],
+        "device": dev,
         "ladder_ms": {k: r(v) for k, v in ladder.items() if k != "dense_clouds_cut_percent"},
         "ladder_cut_percent": {**{k: round(100.0 * (1.0 - v / ladder["unoptimised"]), 1) for k, v in ladder.items()
                                   if k != "dense_clouds_cut_percent"},
@@ -227,7 +209,7 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         "sky_ms": {k: r(v) for k, v in sky_ms.items()},
         "sky_reprojected_ms": {k: r(v) for k, v in sky_reprojected_ms.items()},
         "parallel_speedup": round(t_one / t_all, 3),
-        "warp_over_c_per_thread": round(t_w / t_c, 3),
+        "warp_over_c_per_thread": warp_over_c,
         "reprojected_over_full": round(ladder["reprojection"] / ladder["early_exit"], 4),
         "ms_640x360_reprojected": r(ms_640_reproj),
         "fps_640x360_reprojected": round(1e3 / ms_640_reproj, 1),
@@ -284,54 +266,51 @@ def bench_reprojection(width: int = 640, height: int = 360, frames: int = 48, ne
     }
 
 
-def main(name: str, as_json: bool = False, **kw) -> dict:
-    if name == "reprojection":
-        res = {n: bench_reprojection(width=kw.get("width") or 640, height=kw.get("height") or 360,
-                                     neighbourhood=n, device=kw.get("device"))
-               for n in (1, 3)}
-        if as_json:
-            print(json.dumps(res))
-        else:
-            for n, r in res.items():
-                print(f"reprojection {r['size'][0]}x{r['size'][1]}, neighbourhood {n}: SSIM mean {r['ssim_mean']} "
-                      f"(min {r['ssim_min']}), PSNR mean {r['psnr_mean_db']} dB (min {r['psnr_min_db']} dB) "
-                      f"over {r['frames_compared']} frames")
-        return res
-    if name == "cloudscape":
-        res = bench_cloudscape(**{k: v for k, v in kw.items() if k in ("width", "height", "repeat", "workers",
-                                                                          "device")})
-        if as_json:
-            print(json.dumps(res))
-        else:
-            print(f"cloudscape {res['size'][0]}x{res['size'][1]} on {res['machine']['cores']} cores "
-                  f"({res['machine']['cpu']})")
-            for k, v in res["ladder_ms"].items():
-                print(f"  ladder {k:<18} {v:10.1f} ms   cut {res['ladder_cut_percent'][k]:5.1f} %"
-                      f"   (thesis {res['thesis_cut_percent'].get(k, 0)} %)")
-            print(f"  early exit, clouds twice as dense: cut {res['ladder_cut_percent']['early_exit_dense_clouds']} %"
-                  f"   (thesis up to 85 %)")
-            for k, v in res["sky_ms"].items():
-                print(f"  sky {k:<21} {v:10.1f} ms")
-            for k in ("parallel_speedup", "warp_over_c_per_thread", "reprojected_over_full",
-                      "ms_640x360_reprojected", "fps_640x360_reprojected", "ms_1280x720_full"):
-                print(f"  {k:<25} {res[k]}")
-        return res
-    if name == "textures":
-        from .bench_textures import bench_textures, report
+def report_tiles(res: dict) -> str:
+    return "\n".join([
+        f"tile-parallel launcher, {res['size'][0]}x{res['size'][1]} frame, {res['device']}, {res['workers']} workers, "
+        f"{res['bands']} bands",
+        f"  one launch     {res['ms_single_launch']:9.2f} ms",
+        f"  tile-parallel  {res['ms_tile_parallel']:9.2f} ms",
+        f"  speedup        {res['parallel_speedup']:9.3f} x   (identical output: {res['identical_output']})",
+        f"  machine        {res['machine']['cores']} cores, {res['machine']['cpu']}"])
 
-        res = bench_textures(repeat=kw.get("repeat", 3), workers=kw.get("workers"))
-        print(json.dumps(res) if as_json else report(res))
-        return res
-    if name != "tiles":
-        raise ValueError(f"unknown benchmark {name!r}; available: tiles, cloudscape, textures")
-    res = bench_tiles(**kw)
-    if as_json:
-        print(json.dumps(res))
-    else:
-        print(f"tile-parallel launcher, {res['size'][0]}x{res['size'][1]} frame, {res['workers']} workers, "
-              f"{res['bands']} bands")
-        print(f"  one launch     {res['ms_single_launch']:9.2f} ms")
-        print(f"  tile-parallel  {res['ms_tile_parallel']:9.2f} ms")
-        print(f"  speedup        {res['parallel_speedup']:9.3f} x   (identical output: {res['identical_output']})")
-        print(f"  machine        {res['machine']['cores']} cores, {res['machine']['cpu']}")
+
+def report_cloudscape(res: dict) -> str:
+    lines = [f"cloudscape {res['size'][0]}x{res['size'][1]} on {res['device']}, {res['machine']['cores']} cores "
+             f"({res['machine']['cpu']})"]
+    for k, v in res["ladder_ms"].items():
+        lines.append(f"  ladder {k:<18} {v:10.1f} ms   cut {res['ladder_cut_percent'][k]:5.1f} %"
+                     f"   (thesis {res['thesis_cut_percent'].get(k, 0)} %)")
+    lines.append(f"  early exit, clouds twice as dense: cut {res['ladder_cut_percent']['early_exit_dense_clouds']} %"
+                 f"   (thesis up to 85 %)")
+    for k, v in res["sky_ms"].items():
+        lines.append(f"  sky {k:<21} {v:10.1f} ms")
+    for k in ("parallel_speedup", "warp_over_c_per_thread", "reprojected_over_full", "ms_640x360_reprojected",
+              "fps_640x360_reprojected", "ms_1280x720_full"):
+        lines.append(f"  {k:<25} {res[k]}")
+    return "\n".join(lines)
+
+
+def run_reprojection(width: int = 640, height: int = 360, device: str | None = None) -> dict:
+    """:func:`bench_reprojection` with neighbourhoods 1 and 3."""
+    res = {str(n): bench_reprojection(width=width, height=height, neighbourhood=n, device=device) for n in (1, 3)}
+    return {"benchmark": "reprojection", "size": [width, height], "device": device or "cpu", "neighbourhoods": res}
+
+
+def report_reprojection(res: dict) -> str:
+    return "\n".join(
+        f"reprojection {r['size'][0]}x{r['size'][1]}, neighbourhood {n}: SSIM mean {r['ssim_mean']} "
+        f"(min {r['ssim_min']}), PSNR mean {r['psnr_mean_db']} dB (min {r['psnr_min_db']} dB) "
+        f"over {r['frames_compared']} frames" for n, r in res["neighbourhoods"].items())
+
+
+def main(name: str, as_json: bool = False, **kw) -> dict:
+    """Run benchmark ``name`` with the options it takes (others are ignored); print the report, or one JSON object
+    (``as_json``)."""
+    from .scene import SCENE
+
+    b = SCENE.benchmark(name)
+    res = b.run(**{k: v for k, v in kw.items() if k in b.defaults or k == "device"})
+    b.print(res, as_json)
     return res

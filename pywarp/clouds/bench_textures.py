@@ -9,21 +9,14 @@ from __future__ import annotations
 
 import argparse
 import json
-import time
 
 import numpy as np
 
-from .bench import machine
 from ..core.runtime import TileLauncher, init
+from ..core.timing import interleaved_ms, machine
 from .textures import BaseShapeSettings, DetailShapeSettings, generate
 
 init()
-
-
-def _time(fn) -> tuple[float, np.ndarray]:
-    t = time.perf_counter()
-    out = fn()
-    return time.perf_counter() - t, out
 
 
 def bench_textures(repeat: int = 3, workers: int | None = None, base_size: int = 128, detail_size: int = 32,
@@ -48,12 +41,9 @@ def bench_textures(repeat: int = 3, workers: int | None = None, base_size: int =
             }
             generate(kind, DetailShapeSettings(size=4) if kind == "detail_shape" else BaseShapeSettings(size=4),
                      launcher=single)  # compile / load the Warp module outside the timing
-            best = {name: float("inf") for name in runs}
             outs = {}
-            for _ in range(repeat):  # interleaved: every implementation sees the same machine state
-                for name, fn in runs.items():
-                    dt, outs[name] = _time(fn)
-                    best[name] = min(best[name], dt)
+            # interleaved: every implementation sees the same machine state (best of repeat, in ms)
+            best = {k: 1e-3 * v for k, v in interleaved_ms(runs, repeat, warmup=0, keep=outs).items()}
             ref = outs["c"]
             res[kind] = {
                 "size": settings.size,
@@ -97,7 +87,7 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--workers", type=int, default=None, help="tile workers (default: one per core)")
     ap.add_argument("--base-size", type=int, default=128)
     ap.add_argument("--detail-size", type=int, default=32)
-    ap.add_argument("--device", default=None)
+    ap.add_argument("--device", default=None, help="Warp device: cpu (default) or cuda:N where present")
     ap.add_argument("--json", action="store_true", help="print the result as one JSON object")
     a = ap.parse_args(argv)
     res = bench_textures(repeat=a.repeat, workers=a.workers, base_size=a.base_size, detail_size=a.detail_size,

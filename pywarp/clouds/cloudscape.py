@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import weakref
 from abc import ABC, abstractmethod
-from dataclasses import asdict, dataclass, field, fields, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import warp as wp
@@ -28,196 +28,16 @@ from ..core.runtime import TileLauncher, init, launcher as shared_launcher
 
 init()
 
+from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import cloudscape as K  # noqa: E402
 from ..kernels import raymarch as R  # noqa: E402
 from ..kernels import reproj as RP  # noqa: E402
 from ..kernels import sky as S  # noqa: E402
 from . import textures as T  # noqa: E402
+from .settings import SKIES, CloudscapeSettings  # noqa: E402,F401  (re-exported)
 
-SKIES = ("preetham", "gradient")
 JITTERS = {"tilt": K.JITTER_TILT, "offset": K.JITTER_OFFSET, "none": K.JITTER_NONE}
 COVERAGE_THRESHOLDS = {"coverage": 0, "one_minus_coverage": 1}
-
-
-def _check(cond: bool, name: str, rng: str, value) -> None:
-    if not cond:
-        raise ValueError(f"{name} must be {rng}, got {value!r}")
-
-
-def _finite(v) -> bool:
-    return isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool) and math.isfinite(v)
-
-
-@dataclass
-class CloudscapeSettings:
-    """Every parameter of a cloudscape render, with its unit and default. The thesis gives no values for any of
-    them (spec vc-A36, "Not given"); each default says why it was chosen. ``validate()`` (called by every render)
-    raises ValueError naming the field and its valid range."""
-
-    #: Image size in pixels (default 960 x 540: a quarter of the thesis' Full HD, fast on a laptop CPU).
-    width: int = 960
-    height: int = 540
-    #: Sky model: 'preetham' (the thesis' default, vc-A29) or 'gradient' (vc-A28).
-    sky: str = "preetham"
-    #: Sun elevation above the horizon and azimuth (degrees; azimuth 0 = -z, the default view direction).
-    #: Default 35 deg, azimuth 150 deg: a mid-morning sun behind the viewer's right shoulder, so the sky in view is
-    #: blue and the clouds are lit from the side (sunlit tops, grey bases).
-    sun_elevation_deg: float = 35.0
-    sun_azimuth_deg: float = 150.0
-    #: Preetham turbidity in [2, 10] (the range of Preetham's fit). Default 2.5: a clear day.
-    turbidity: float = 2.5
-    #: Variant of the sky chain's errata (vc-2.39, 4.4, 4.5): 'corrected' or 'thesis'.
-    sky_variant: str = "corrected"
-    #: Exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5), > 0. Default 0.05: with the thesis'
-    #: constant 0.03 and luminance in kcd/m^2 the corrected sky is a dim grey-blue; 0.05 gives a mid-blue zenith at
-    #: T = 2.5 without saturating the sky around the sun (figures/vc/fig-4.6.png uses the thesis' 0.03).
-    sky_exposure: float = 0.05
-    #: Weather-map coverage in [0, 1] (fraction of the sky the cloud fields may occupy). Default 0.45.
-    coverage: float = 0.45
-    #: Weather-map precipitation in [0, 1] (darkens clouds through vc-2.31's a). Default 0.2.
-    precipitation: float = 0.2
-    #: Mean cloud type in [0, 1]: 0 stratus, 0.5 stratocumulus, 1 cumulus, and its spread across the weather map
-    #: in [0, 1]. Defaults 0.75 and 0.25 (types 0.5 .. 1; pywarp.clouds.textures.WeatherMapSettings).
-    cloud_type: float = 0.75
-    cloud_type_variation: float = 0.25
-    #: Reading of the undefined threshold C of vc-2.29: 'one_minus_coverage' (C = 1 - D_h, default: more coverage
-    #: gives more cloud) or 'coverage' (C = D_h, the literal reading: clouds survive only where 0 < D_h < B D_v,
-    #: as rings around covered areas). See cclouds/cloudscape.c.
-    coverage_threshold: str = "one_minus_coverage"
-    #: Terms of the lighting energy vc-2.31 (Beer's law, powder effect); switching one off replaces it by 1, to show
-    #: what each contributes (fig 2.17). Default: both on, the formula as printed.
-    beer: bool = True
-    powder: bool = True
-    #: Seed of every texture (uint32). The same seed gives the same image.
-    seed: int = 0
-    #: Camera position: altitude above the ground (km) and horizontal position (km); view: yaw (deg, 0 = -z,
-    #: positive towards +x) and pitch (deg above the horizon); vertical field of view (deg).
-    #: Default: 0.3 km above the ground, looking 20 deg up with a 60 deg field of view (the horizon near the bottom
-    #: edge, the cloud bases overhead).
-    camera_altitude_km: float = 0.3
-    camera_x_km: float = 0.0
-    camera_z_km: float = 0.0
-    camera_yaw_deg: float = 0.0
-    camera_pitch_deg: float = 20.0
-    fov_y_deg: float = 60.0
-    #: Cloud layer (vc-A14): Earth radius, base and top altitude (km). See pywarp.kernels.raymarch for the reasons.
-    earth_radius_km: float = R.EARTH_RADIUS_KM
-    layer_base_km: float = R.LAYER_BASE_KM
-    layer_top_km: float = R.LAYER_TOP_KM
-    #: Wind: speed (km/h) and the direction it blows towards (deg, 0 = -z); time (s) moves the weather map and the
-    #: detail noise (detail at 1.5x the speed, plus a slow rise: billowing). Default 30 km/h, t = 0.
-    wind_speed_kmh: float = 30.0
-    wind_direction_deg: float = 60.0
-    time_s: float = 0.0
-    #: The optimisations of vc fig 4.17: adaptive view-sample count (vc-A18), early termination (vc-A21),
-    #: temporal reprojection (vc-A26). Default: adaptive and early exit on, reprojection off (single images).
-    adaptive_samples: bool = True
-    early_exit: bool = True
-    reprojection: bool = False
-    #: vc-A27 neighbourhood averaging of reprojected pixels: 1 (exact sampling) or an odd n (n x n box). Default 1.
-    reprojection_neighbourhood: int = 1
-    #: Ray jitter against banding (vc-A23): 'tilt' (the thesis), 'offset', 'none'.
-    jitter: str = "tilt"
-    #: Light samples with the detail erosion (True, the thesis' density) or the base shape only (False: cheaper).
-    light_detail: bool = True
-    #: Texture sizes (powers of two): base 128^3 (vc-A9) and detail 32^3 (vc-A10) as in the thesis; curl 128^2 and
-    #: weather 512^2 (not given; see pywarp.clouds.textures).
-    base_size: int = 128
-    detail_size: int = 32
-    curl_size: int = 128
-    weather_size: int = 512
-    #: Henyey-Greenstein g of vc-2.31 and the extinction per unit density (1/km). See cclouds/cloudscape.c.
-    g: float = 0.2
-    sigma_per_km: float = 30.0
-    #: View samples at the zenith / horizon (vc-A18: 64 / 128).
-    samples_min: int = 64
-    samples_max: int = 128
-    #: Warp device ('cpu' or 'cuda:N') and worker threads (None: one per core).
-    device: str = "cpu"
-    threads: int | None = None
-    #: Advanced: any other field of ``ccl_cloudscape_params`` by name (e.g. {"base_scale_km": 8.0,
-    #: "sun_colour": (30, 29, 27)}); defaults and reasons in cclouds/cloudscape.c. Checked by ccl_cloudscape_check.
-    advanced: dict = field(default_factory=dict)
-
-    def validate(self) -> "CloudscapeSettings":
-        for name in ("width", "height"):
-            v = getattr(self, name)
-            _check(isinstance(v, (int, np.integer)) and not isinstance(v, bool) and 1 <= v <= 8192, name,
-                   "an integer in [1, 8192] pixels", v)
-        _check(self.sky in SKIES, "sky", f"one of {', '.join(SKIES)}", self.sky)
-        _check(_finite(self.sun_elevation_deg) and -90.0 <= self.sun_elevation_deg <= 90.0, "sun_elevation_deg",
-               "in [-90, 90] degrees", self.sun_elevation_deg)
-        if self.sky == "preetham":
-            _check(self.sun_elevation_deg >= 0.0, "sun_elevation_deg",
-                   "in [0, 90] degrees for the Preetham sky (the model is not defined for a sun below the horizon)",
-                   self.sun_elevation_deg)
-        _check(_finite(self.sun_azimuth_deg), "sun_azimuth_deg", "a finite angle in degrees", self.sun_azimuth_deg)
-        _check(_finite(self.turbidity) and 2.0 <= self.turbidity <= 10.0, "turbidity",
-               "in [2, 10] (the range of Preetham's fit)", self.turbidity)
-        _check(self.sky_variant in ("corrected", "thesis"), "sky_variant", "'corrected' or 'thesis'", self.sky_variant)
-        _check(_finite(self.sky_exposure) and 0.0 < self.sky_exposure <= 10.0, "sky_exposure", "in (0, 10]",
-               self.sky_exposure)
-        _check(self.coverage_threshold in COVERAGE_THRESHOLDS, "coverage_threshold",
-               f"one of {', '.join(COVERAGE_THRESHOLDS)}", self.coverage_threshold)
-        for name in ("coverage", "precipitation", "cloud_type", "cloud_type_variation"):
-            v = getattr(self, name)
-            _check(_finite(v) and 0.0 <= v <= 1.0, name, "in [0, 1]", v)
-        _check(isinstance(self.seed, (int, np.integer)) and not isinstance(self.seed, bool)
-               and 0 <= self.seed <= 0xFFFFFFFF, "seed", "an integer in [0, 2^32 - 1]", self.seed)
-        _check(_finite(self.earth_radius_km) and self.earth_radius_km > 0, "earth_radius_km", "> 0 km",
-               self.earth_radius_km)
-        _check(_finite(self.layer_base_km) and self.layer_base_km >= 0, "layer_base_km", ">= 0 km", self.layer_base_km)
-        _check(_finite(self.layer_top_km) and self.layer_top_km > self.layer_base_km, "layer_top_km",
-               f"> layer_base_km ({self.layer_base_km} km)", self.layer_top_km)
-        _check(_finite(self.camera_altitude_km) and -0.0 <= self.camera_altitude_km <= 1000.0, "camera_altitude_km",
-               "in [0, 1000] km (above the ground)", self.camera_altitude_km)
-        for name in ("camera_x_km", "camera_z_km", "camera_yaw_deg", "time_s", "wind_direction_deg"):
-            _check(_finite(getattr(self, name)), name, "finite", getattr(self, name))
-        _check(_finite(self.camera_pitch_deg) and -89.0 <= self.camera_pitch_deg <= 89.0, "camera_pitch_deg",
-               "in [-89, 89] degrees", self.camera_pitch_deg)
-        _check(_finite(self.fov_y_deg) and 1.0 <= self.fov_y_deg <= 170.0, "fov_y_deg", "in [1, 170] degrees",
-               self.fov_y_deg)
-        _check(_finite(self.wind_speed_kmh) and 0.0 <= self.wind_speed_kmh <= 1000.0, "wind_speed_kmh",
-               "in [0, 1000] km/h", self.wind_speed_kmh)
-        _check(_finite(self.reprojection_neighbourhood) and int(self.reprojection_neighbourhood) % 2 == 1
-               and 1 <= self.reprojection_neighbourhood <= 9, "reprojection_neighbourhood", "an odd integer in [1, 9]",
-               self.reprojection_neighbourhood)
-        _check(self.jitter in JITTERS, "jitter", f"one of {', '.join(JITTERS)}", self.jitter)
-        for name, lo, hi in (("base_size", 4, 512), ("detail_size", 4, 512), ("curl_size", 4, 8192),
-                             ("weather_size", 4, 8192)):
-            v = getattr(self, name)
-            _check(isinstance(v, (int, np.integer)) and lo <= v <= hi and (v & (v - 1)) == 0, name,
-                   f"a power of two in [{lo}, {hi}]", v)
-        _check(_finite(self.g) and -1.0 < self.g < 1.0, "g", "in (-1, 1)", self.g)
-        _check(_finite(self.sigma_per_km) and 0.0 < self.sigma_per_km <= 1000.0, "sigma_per_km", "in (0, 1000] 1/km",
-               self.sigma_per_km)
-        _check(isinstance(self.samples_min, (int, np.integer)) and 1 <= self.samples_min <= 4096, "samples_min",
-               "an integer in [1, 4096]", self.samples_min)
-        _check(isinstance(self.samples_max, (int, np.integer)) and self.samples_min <= self.samples_max <= 4096,
-               "samples_max", f"an integer in [samples_min ({self.samples_min}), 4096]", self.samples_max)
-        _check(self.threads is None or (isinstance(self.threads, int) and self.threads >= 1), "threads",
-               "None or an integer >= 1", self.threads)
-        _check(isinstance(self.advanced, dict), "advanced", "a dict", self.advanced)
-        if self.advanced:
-            _check_params(param_values(self))
-        return self
-
-    # --- derived quantities ------------------------------------------------------------------------------------------
-    def layer(self) -> R.CloudLayer:
-        return R.CloudLayer(self.earth_radius_km, self.layer_base_km, self.layer_top_km)
-
-    def wind_offsets(self) -> tuple[tuple[float, float], tuple[float, float, float]]:
-        """(weather offset (x, z), detail offset (x, y, z)) in km after ``time_s`` seconds of wind."""
-        dist = self.wind_speed_kmh * self.time_s / 3600.0
-        a = math.radians(self.wind_direction_deg)
-        dx, dz = math.sin(a), -math.cos(a)
-        # the lookup moves against the wind so that the clouds move with it
-        weather = (-dx * dist, -dz * dist)
-        detail = (-1.5 * dx * dist, -0.1 * dist, -1.5 * dz * dist)
-        return weather, detail
-
-    def sun(self) -> np.ndarray:
-        return S.sun_direction(self.sun_elevation_deg, self.sun_azimuth_deg)
 
 
 # --- camera -------------------------------------------------------------------------------------------------------------
@@ -242,10 +62,10 @@ class CameraPose:
         y, p = math.radians(self.yaw_deg), math.radians(self.pitch_deg)
         return np.array([math.sin(y) * math.cos(p), math.sin(p), -math.cos(y) * math.cos(p)])
 
-    def camera(self, width: int, height: int) -> R.Camera:
-        """The vc-A25 camera matrices (``pywarp.kernels.raymarch.camera_look_at``)."""
+    def camera(self, width: int, height: int) -> CAM.Camera:
+        """The vc-A25 camera matrices (``pywarp.kernels.camera.camera_look_at``)."""
         eye = np.array([self.x_km, self.altitude_km, self.z_km])
-        return R.camera_look_at(eye, eye + self.forward(), (0.0, 1.0, 0.0), math.radians(self.fov_y_deg),
+        return CAM.camera_look_at(eye, eye + self.forward(), (0.0, 1.0, 0.0), math.radians(self.fov_y_deg),
                                 width / height, 0.01, 1000.0)
 
 
@@ -267,10 +87,10 @@ class SkyModel(ABC):
     def update(self, settings: CloudscapeSettings) -> None:
         ...
 
-    def render(self, frame_buffer: wp.array, camera: R.Camera, frame: int, reprojection: bool,
+    def render(self, frame_buffer: wp.array, camera: CAM.Camera, frame: int, reprojection: bool,
                params: K.CloudscapeParams, launcher: TileLauncher) -> None:
         h, w = frame_buffer.shape[0], frame_buffer.shape[1]
-        rows, cols = (RP.reprojection_grid(w, h)[::-1]) if reprojection else (h, w)
+        rows, cols = (RP.reproj_grid(w, h)[::-1]) if reprojection else (h, w)
         launcher.launch(K.sky_kernel, rows, cols,
                         [self.kind, wp.vec3(*self.sun.tolist()), self.preetham, self.gradient, params,
                          camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), frame, int(reprojection)],
@@ -341,13 +161,7 @@ class RenderTextures:
         caches them per settings in memory and on disk)."""
         gen = generator if generator is not None else T.BasicTextureGenerator(device=settings.device,
                                                                               workers=settings.threads)
-        t = gen.textures(T.BaseShapeSettings(size=settings.base_size, seed=settings.seed),
-                         T.DetailShapeSettings(size=settings.detail_size, seed=settings.seed),
-                         T.CurlNoiseSettings(size=settings.curl_size, seed=settings.seed),
-                         T.WeatherMapSettings(size=settings.weather_size, seed=settings.seed,
-                                              coverage=settings.coverage, precipitation=settings.precipitation,
-                                              cloud_type=settings.cloud_type,
-                                              cloud_type_variation=settings.cloud_type_variation))
+        t = gen.textures(**settings.textures())
         return cls.from_textures(t, settings.device)
 
     def warp(self) -> tuple:
@@ -479,29 +293,31 @@ class CloudscapeTechnique:
         self.resize(self.settings.width, self.settings.height)
 
     def update(self, **changes) -> None:
-        """Change settings (e.g. ``time_s``, ``sun_elevation_deg``); textures are regenerated only when a texture
-        setting changes."""
+        """Change settings (e.g. ``time_s``, ``sun_elevation_deg``); the settings' specs say what each change
+        invalidates: textures are regenerated only when a texture setting changes, the sky only when a sky setting
+        does, the buffers when the size does."""
         old = self.settings
-        new = replace(old, **changes).validate()
-        tex_fields = ("seed", "coverage", "precipitation", "cloud_type", "cloud_type_variation", "base_size",
-                      "detail_size", "curl_size", "weather_size")
+        new = replace(old, **changes)
+        stale = new.invalidated(old)
         self.settings = new
-        if any(getattr(old, f) != getattr(new, f) for f in tex_fields):
+        if "device" in stale:
+            self.launcher = shared_launcher(new.device, new.threads)
+            self.device = self.launcher.device
+        if "textures" in stale or ("device" in stale and self.textures.device != self.device):
             self.textures = RenderTextures.generate(new, self.generator)
-        if any(getattr(old, f) != getattr(new, f) for f in ("sky", "sun_elevation_deg", "sun_azimuth_deg",
-                                                             "turbidity", "sky_variant", "sky_exposure")):
+        if "sky" in stale:
             if type(self.sky) in (GradientSky, PreethamSky):
                 self.sky = make_sky(new)  # the sky kind may have changed
             else:
                 self.sky.update(new)  # a user's own sky model
         self.params = warp_params(param_values(new))
-        if (old.width, old.height) != (new.width, new.height):
+        if stale & {"size", "device"}:
             self.resize(new.width, new.height)
 
     def resize(self, width: int, height: int) -> None:
-        self.settings.width, self.settings.height = int(width), int(height)
-        self.settings.validate()
-        gw, gh = RP.reprojection_grid(width, height)
+        if (width, height) != (self.settings.width, self.settings.height):
+            self.settings = replace(self.settings, width=width, height=height)
+        gw, gh = RP.reproj_grid(width, height)
         dev = self.device
         self._buffers = {
             "current": wp.zeros((height, width, 3), dtype=float, device=dev),
@@ -517,10 +333,12 @@ class CloudscapeTechnique:
         return pose.altitude_km >= self.settings.layer_base_km
 
     def render(self, pose: CameraPose | None = None, reprojection: bool | None = None,
-               encode: bool = True) -> np.ndarray:
+               encode: bool = True, progress=None) -> np.ndarray:
         """Render one frame; returns uint8 sRGB (height, width, 3), or the display-linear float frame when
         ``encode=False``. Reprojection (default: the setting) falls back to a full render when the camera is inside
-        or above the layer (vc-A24) and on the first frame."""
+        or above the layer (vc-A24) and on the first frame. ``progress``: optional callable, called with a fraction
+        of the frame (the fractions add up to 1) as each band of the cloud pass -- nearly all of the time --
+        finishes."""
         s = self.settings
         pose = pose or CameraPose.from_settings(s)
         cam = pose.camera(s.width, s.height)
@@ -534,10 +352,12 @@ class CloudscapeTechnique:
         sun = wp.vec3(*self.sky.sun.tolist())
         target = b["current"] if reproj else b["out"]
         self.sky.render(target, cam, self.frame, reproj, self.params, self.launcher)
-        rows, cols = (RP.reprojection_grid(w, h)[::-1]) if reproj else (h, w)
+        rows, cols = (RP.reproj_grid(w, h)[::-1]) if reproj else (h, w)
+        band_done = None if progress is None else (lambda n, total=rows: progress(n / total))
         self.launcher.launch(K.clouds_kernel, rows, cols,
                              [self.params, base, detail, curl, weather, sun, cam.mat44("inv_view_proj_rot"),
-                              cam.eye_vec3(), self.frame, int(reproj)], [target, b["reduced"], b["samples"]])
+                              cam.eye_vec3(), self.frame, int(reproj)], [target, b["reduced"], b["samples"]],
+                             progress=band_done)
         if reproj:
             history = int(self._prev_camera is not None)
             prev = self._prev_camera or cam
@@ -581,9 +401,9 @@ def c_sky(settings: CloudscapeSettings):
     if settings.sky == "preetham":
         sky.kind = lb.CCL_SKY_PREETHAM
         theta_s = min(math.radians(90.0 - settings.sun_elevation_deg), float(np.float32(math.pi / 2)))
-        status_error(lb.ccl_preetham_init(settings.turbidity, theta_s, settings.sky_exposure,
+        status_error(lb.ccl_sky_preetham_init(settings.turbidity, theta_s, settings.sky_exposure,
                                           0 if settings.sky_variant == "corrected" else 1, f.addressof(sky.preetham)),
-                     "ccl_preetham_init")
+                     "ccl_sky_preetham_init")
     else:
         sky.kind = lb.CCL_SKY_GRADIENT
         lb.ccl_sky_gradient_defaults(f.addressof(sky.gradient))
@@ -611,7 +431,7 @@ def c_textures(textures: RenderTextures):
 _KEEP_ALIVE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # cffi struct -> the buffers it points into
 
 
-def c_camera(cam: R.Camera):
+def c_camera(cam: CAM.Camera):
     from ..core.binding import ffi
 
     c = ffi().new("ccl_camera *")

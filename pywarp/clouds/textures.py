@@ -14,8 +14,9 @@ weather map        (n, n, 4) [y, x, c], [0, 1]            R coverage, G precipit
 Class design (vc-A32): :class:`TextureGenerator` is the interface (``base_shape``, ``detail_shape``, ``curl_noise``,
 ``weather_map``); :class:`BasicTextureGenerator` implements it with the Warp kernels (tile-parallel) or the C library,
 and a cache; write your own subclass to feed the renderer other textures (:class:`CloudTextures` checks them).
-Settings (vc-A13) are frozen dataclasses whose every default is documented where it is defined, with the reason (the
-thesis gives none); invalid fields raise ``ValueError`` (``TypeError`` for a wrong type) naming the field.
+Settings (vc-A13) are frozen dataclasses with parameter specs (:mod:`pywarp.clouds.settings`): every default is
+documented with its reason (the thesis gives none); invalid fields raise ``ValueError`` (``TypeError`` for a wrong
+type) naming the field.
 
 The readings chosen for what the thesis leaves open are in ``cclouds/texgen.h`` and :mod:`pywarp.kernels.texgen`.
 
@@ -40,7 +41,6 @@ import hashlib
 from functools import lru_cache
 import io
 import json
-import math
 import os
 import tempfile
 import threading
@@ -53,7 +53,7 @@ from typing import Callable
 import numpy as np
 
 from ..kernels.noise import COMBINATIONS  # Perlin-Worley combination names (vc-A8)
-from ..kernels.texgen import MAX_LATTICE, MAX_OCTAVES, MAX_SIZE_2D, MAX_SIZE_3D, MIN_SIZE  # cclouds/texgen.h limits
+from ..kernels.texgen import MAX_SIZE_2D, MIN_SIZE  # cclouds/texgen.h limits
 
 #: Version of the generated data's definition; bump it whenever a texture's content changes for the same settings.
 FORMAT_VERSION = 1
@@ -65,221 +65,14 @@ class TextureCacheWarning(UserWarning):
     """A cache entry was unreadable or corrupt (it is regenerated) or the cache directory is not writable."""
 
 
-# --- settings (vc-A13) -----------------------------------------------------------------------------------------------
+# --- settings (vc-A13): declared once, with their parameter specs, in pywarp.clouds.settings ----------------------
 
-def _int(obj, name: str, lo: int, hi: int, pow2: bool = False) -> int:
-    v = getattr(obj, name)
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-        raise TypeError(f"{name} must be an integer, got {v!r}")
-    v = int(v)
-    if pow2 and not (lo <= v <= hi and v & (v - 1) == 0):
-        raise ValueError(f"{name} must be a power of two in [{lo}, {hi}], got {v}")
-    if not lo <= v <= hi:
-        raise ValueError(f"{name} must be in [{lo}, {hi}], got {v}")
-    object.__setattr__(obj, name, v)
-    return v
-
-
-def _float(obj, name: str, lo: float, hi: float | None = None, lo_open: bool = False) -> float:
-    v = getattr(obj, name)
-    if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
-        raise TypeError(f"{name} must be a number, got {v!r}")
-    v = float(v)
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {v}")
-    if (v <= lo if lo_open else v < lo) or (hi is not None and v > hi):
-        dom = f"{'(' if lo_open else '['}{lo:g}, " + ("inf)" if hi is None else f"{hi:g}]")
-        raise ValueError(f"{name} must be in {dom}, got {v}")
-    object.__setattr__(obj, name, v)
-    return v
-
-
-def _lattice(obj, name: str, octaves: int, what: str = "octaves") -> int:
-    """Lattice frequency of the lowest octave/layer: the highest one, v * 2^(octaves - 1), must stay <= 4096."""
-    v = _int(obj, name, 1, MAX_LATTICE)
-    if v * 2 ** (octaves - 1) > MAX_LATTICE:
-        raise ValueError(f"{name} * 2^({what} - 1) must be <= {MAX_LATTICE}, got {v} * 2^{octaves - 1} = "
-                         f"{v * 2 ** (octaves - 1)}")
-    return v
-
-
-def _seed(obj) -> None:
-    _int(obj, "seed", 0, 0xFFFFFFFF)
-
-
-def _weights(obj) -> None:
-    w = obj.worley_weights
-    try:
-        w = tuple(w)
-    except TypeError:
-        raise TypeError(f"worley_weights must be a sequence of 3 numbers, got {w!r}") from None
-    if len(w) != 3:
-        raise ValueError(f"worley_weights must hold 3 weights (lowest-frequency first), got {len(w)}")
-    for v in w:
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
-            raise TypeError(f"worley_weights must hold numbers, got {v!r}")
-    w = tuple(float(v) for v in w)
-    if not all(math.isfinite(v) and v >= 0.0 for v in w) or not w[0] > 0.0:
-        raise ValueError(f"worley_weights must be finite and >= 0 with worley_weights[0] > 0 (every channel's window "
-                         f"needs a positive weight sum), got {w}")
-    object.__setattr__(obj, "worley_weights", w)
-
-
-def _combination(obj) -> None:
-    if obj.combination not in COMBINATIONS or not isinstance(obj.combination, str):
-        raise ValueError(f"combination must be one of {', '.join(map(repr, COMBINATIONS))}, got {obj.combination!r}")
-
-
-@dataclass(frozen=True)
-class BaseShapeSettings:
-    """Settings of the base-shape texture (vc-A9, vc-A13 ``BaseShapeSettings``). The thesis names the parameters
-    (Perlin octaves and frequency, Worley grid size, the weights of the Worley fBm, the Perlin-Worley combination,
-    gamma) but gives no values; each default below says where it comes from."""
-
-    #: Texture edge in texels, a power of two in [4, 512]. Default 128: the 128^3 of vc-A9.
-    size: int = 128
-    #: Seed (uint32). Default 0: the Perlin part then uses Ken Perlin's reference permutation.
-    seed: int = 0
-    #: Octaves of the Perlin fBm, in [1, 8]. Default 3: Hillaire's TileableVolumeNoise (the Electronic Arts code the
-    #: thesis says it adopted) uses 3.
-    perlin_octaves: int = 3
-    #: Perlin lattice cells per texture (octave 0; also the period). Default 8: Hillaire's value; the top octave
-    #: (8 * 4 = 32 cells) keeps 4 texels per cell at 128^3.
-    perlin_frequency: int = 8
-    #: "Worley grid size": cells per texture of the lowest of the four inverse-Worley layers (cells * 1, 2, 4, 8).
-    #: Default 4: Hillaire's cell count; the finest layer (32 cells) keeps 4 texels per cell at 128^3.
-    worley_cells: int = 4
-    #: Weights of the Worley fBm window (lowest frequency first). Default (0.625, 0.25, 0.125): the only fBm weights
-    #: the thesis prints (eq 2.28) and Hillaire's generator weights.
-    worley_weights: tuple = (0.625, 0.25, 0.125)
-    #: Perlin-Worley combination for R (vc-A8): 'thesis', 'gpu_pro_7', 'hillaire', 'product', 'average'.
-    #: Default 'thesis': remap(P, 0, 1, W, 1)^2, the combination the thesis chose (§4.3.1).
-    combination: str = "thesis"
-    #: Gamma of vc-4.6 (C^(1/gamma)), > 0. Default 1: the identity -- the thesis gives no value.
-    gamma: float = 1.0
-
-    def __post_init__(self):  # the order of ccl_base_shape_settings_check
-        _int(self, "size", MIN_SIZE, MAX_SIZE_3D, pow2=True)
-        _seed(self)
-        octaves = _int(self, "perlin_octaves", 1, MAX_OCTAVES)
-        _lattice(self, "perlin_frequency", octaves)
-        _lattice(self, "worley_cells", 4, "layers")
-        _weights(self)
-        _combination(self)
-        _float(self, "gamma", 0.0, lo_open=True)
-
-    @property
-    def shape(self) -> tuple:
-        return (self.size, self.size, self.size, 4)
-
-
-@dataclass(frozen=True)
-class DetailShapeSettings:
-    """Settings of the detail (erosion) texture (vc-A10, vc-A13 ``DetailShapeSettings``: fBm weights, base frequency,
-    gamma; values not given in the thesis)."""
-
-    #: Texture edge, a power of two in [4, 512]. Default 32: the 32^3 of vc-A10.
-    size: int = 32
-    #: Seed (uint32) of the Worley feature points (layer j uses seed + j). Default 0.
-    seed: int = 0
-    #: Base frequency: cells per texture of the lowest layer (layers cells * 1, 2, 4, 8). Default 2: Hillaire's
-    #: detail texture (layers 2, 4, 8, 16; the finest keeps 2 texels per cell at 32^3).
-    worley_cells: int = 2
-    #: Weights of the fBm layers (lowest first). Default (0.625, 0.25, 0.125): eq 2.30's weights, Hillaire's too.
-    worley_weights: tuple = (0.625, 0.25, 0.125)
-    #: Gamma of vc-4.6, > 0. Default 1: the identity.
-    gamma: float = 1.0
-
-    def __post_init__(self):
-        _int(self, "size", MIN_SIZE, MAX_SIZE_3D, pow2=True)
-        _seed(self)
-        _lattice(self, "worley_cells", 4, "layers")
-        _weights(self)
-        _float(self, "gamma", 0.0, lo_open=True)
-
-    @property
-    def shape(self) -> tuple:
-        return (self.size, self.size, self.size, 3)
-
-
-@dataclass(frozen=True)
-class CurlNoiseSettings:
-    """Settings of the generated 2-D curl-noise texture (vc-A11; the thesis ships a file and states only that it holds
-    curl noise of Perlin noise)."""
-
-    #: Texture edge, a power of two in [4, 8192]. Default 128: not given; 128^2 x 2 floats samples the default 4 cells
-    #: with 32 texels per cell, far finer than the swirls.
-    size: int = 128
-    #: Seed (uint32) of the Perlin permutation. Default 0 (Perlin's reference).
-    seed: int = 0
-    #: Perlin lattice cells per texture (= the period). Default 4: a few swirls per tile, like the usual curl textures.
-    frequency: int = 4
-    #: Central-difference step in lattice units, in (0, 0.25]. Default 1/256: the noise module's default
-    #: (CCL_NOISE_FD_STEP_INV), a power of two so that p +- h is exact.
-    fd_step: float = 1.0 / 256.0
-
-    def __post_init__(self):
-        _int(self, "size", MIN_SIZE, MAX_SIZE_2D, pow2=True)
-        _seed(self)
-        _int(self, "frequency", 1, MAX_LATTICE)
-        _float(self, "fd_step", 0.0, 0.25, lo_open=True)
-
-    @property
-    def shape(self) -> tuple:
-        return (self.size, self.size, 2)
-
-
-@dataclass(frozen=True)
-class WeatherMapSettings:
-    """Settings of the procedural weather map (vc-A12; the thesis ships a file). R = coverage, G = precipitation,
-    B = cloud type, A = 0 (free). See ``cclouds/texgen.h`` for the formulas."""
-
-    #: Map edge, a power of two in [4, 8192]. Default 512: not given; 4 MiB of float32 RGBA, finer than any cloud.
-    size: int = 512
-    #: Seed (uint32): Perlin tables of seed (coverage), seed + 1 (precipitation), seed + 2 (type); Worley seed.
-    #: Default 0: Perlin's reference permutation for the coverage noise.
-    seed: int = 0
-    #: Perlin lattice cells per map. Default 4: a few cloud systems per tile.
-    perlin_frequency: int = 4
-    #: Perlin fBm octaves, in [1, 8]. Default 4: ragged cloud-field edges down to 1/32 of the map.
-    perlin_octaves: int = 4
-    #: Gain of the Perlin fBm before clamping to [0, 1] (P = clamp(0.5 + contrast * fbm)). Default 2: the fBm has a
-    #: standard deviation of ~0.15 and |fbm| < 0.45, so 2 spreads it over ~[0.1, 0.9]; then the covered fraction
-    #: (R > 0) of the default map is 0.24 / 0.61 / 0.91 at coverage 0.25 / 0.5 / 0.75 ("coverage ~ fraction of sky").
-    perlin_contrast: float = 2.0
-    #: Worley fBm octaves, in [1, 8]. Default 3: cells down to 1/16 of the map give clustered cumulus cells.
-    worley_octaves: int = 3
-    #: Worley cells per map (octave 0). Default 4: the same scale as the Perlin blobs.
-    worley_cells: int = 4
-    #: Perlin-Worley combination of the coverage noise (vc-A8 names). Default 'thesis', the thesis' cloud noise.
-    combination: str = "thesis"
-    #: Global coverage in [0, 1]: 0 clear sky, 1 the raw noise everywhere. Default 0.5 (about 60 % of the sky).
-    coverage: float = 0.5
-    #: Global precipitation in [0, 1] (the same remap on an independent noise). Default 0.2: mostly dry clouds, the
-    #: fair-weather cumulus of the thesis' scenes.
-    precipitation: float = 0.2
-    #: Mean cloud type in [0, 1] (0 stratus, 0.5 stratocumulus, 1 cumulus). Default 0.75: the low clouds the layer
-    #: models (§2.3.1), between stratocumulus and cumulus.
-    cloud_type: float = 0.75
-    #: Spread of the cloud type around its mean, in [0, 1]. Default 0.25: types from 0.5 to 1.
-    cloud_type_variation: float = 0.25
-
-    def __post_init__(self):  # the order of ccl_weather_map_settings_check
-        _int(self, "size", MIN_SIZE, MAX_SIZE_2D, pow2=True)
-        _seed(self)
-        octaves = _int(self, "perlin_octaves", 1, MAX_OCTAVES)
-        _lattice(self, "perlin_frequency", octaves)
-        _float(self, "perlin_contrast", 0.0, lo_open=True)
-        w_oct = _int(self, "worley_octaves", 1, MAX_OCTAVES)
-        _lattice(self, "worley_cells", w_oct)
-        _combination(self)
-        for name in ("coverage", "precipitation", "cloud_type", "cloud_type_variation"):
-            _float(self, name, 0.0, 1.0)
-
-    @property
-    def shape(self) -> tuple:
-        return (self.size, self.size, 4)
-
+from .settings import (  # noqa: E402  (re-exported: pywarp.clouds.textures.BaseShapeSettings etc.)
+    BaseShapeSettings,
+    CurlNoiseSettings,
+    DetailShapeSettings,
+    WeatherMapSettings,
+)
 
 SETTINGS = {"base_shape": BaseShapeSettings, "detail_shape": DetailShapeSettings, "curl_noise": CurlNoiseSettings,
             "weather_map": WeatherMapSettings}
@@ -335,7 +128,7 @@ def texture_settings(kind: str = "base_shape", impl: str = "warp", **fields_):
     """The validated settings dataclass of ``kind`` (vc-A13) with ``fields_`` overriding the defaults.
 
     ``impl="warp"``: validated in Python (what the Warp generator uses); ``impl="c"``: validated by
-    ``ccl_<kind>_settings_check`` first (the C generator's validation), which names the first invalid field."""
+    ``ccl_texgen_<kind>_settings_check`` first (the C generator's validation), which names the first invalid field."""
     cls = _check_kind(kind)
     _check_impl(impl)
     if impl == "c":
@@ -348,10 +141,10 @@ def texture_settings(kind: str = "base_shape", impl: str = "warp", **fields_):
         values = {**asdict(cls()), **fields_}
         st = _c_struct(kind, values)
         out = ffi().new("const char **")
-        status = getattr(lib(), f"ccl_{kind}_settings_check")(st, out)
+        status = getattr(lib(), f"ccl_texgen_{kind}_settings_check")(st, out)
         if status != 0:
             name = ffi().string(out[0]).decode()
-            raise ValueError(f"{name} is invalid (ccl_{kind}_settings_check), got {values.get(name)!r}")
+            raise ValueError(f"{name} is invalid (ccl_texgen_{kind}_settings_check), got {values.get(name)!r}")
     return cls(**fields_)
 
 
@@ -437,7 +230,8 @@ def _code_hash() -> str:
     textures cached by an older one even within one package version (a development install)."""
     root = Path(__file__).resolve().parents[1]  # the pywarp package folder
     h = hashlib.sha256()
-    for rel in ("kernels/texgen.py", "kernels/noise.py", "include/cclouds/texgen.h", "include/cclouds/noise.h"):
+    for rel in ("kernels/texgen.py", "kernels/noise.py", "kernels/interp.py", "kernels/hash.py", "include/cclouds/texgen.h",
+                "include/cclouds/noise.h", "include/cclouds/interp.h", "include/cclouds/hash.h"):
         f = root / rel
         if f.is_file():
             h.update(f.read_bytes())

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import os
 import threading
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor, as_completed
 
 import warp as wp
 
@@ -129,25 +129,54 @@ class TileLauncher:
         edges = [round(k * height / n) for k in range(n + 1)]
         return [(edges[k], edges[k + 1] - edges[k]) for k in range(n) if edges[k + 1] > edges[k]]
 
-    def launch(self, kernel, height: int, width: int, inputs: list, outputs: list | None = None) -> None:
-        """Run ``kernel(row0, *inputs, *outputs)`` over a ``height`` x ``width`` image and wait for it."""
+    #: bands a single-worker CPU launch is split into when progress is reported (launched one after the other from
+    #: the caller, so that a progress bar advances; the pixels are the same as one launch's)
+    PROGRESS_BANDS = 16
+
+    def launch(self, kernel, height: int, width: int, inputs: list, outputs: list | None = None,
+               progress=None) -> None:
+        """Run ``kernel(row0, *inputs, *outputs)`` over a ``height`` x ``width`` image and wait for it.
+
+        ``progress``: optional callable, called from the caller's thread with the number of rows of each band as
+        the band finishes (the rows add up to ``height``) -- a progress bar advances per band."""
         if height < 1 or width < 1:
             raise ValueError(f"image size must be at least 1x1, got {width}x{height}")
         self._ensure_loaded(kernel)
         outputs = outputs or []
         bands = self.bands(height)
+        if progress is not None and len(bands) == 1 and self.device.startswith("cpu"):
+            n = max(1, min(self.PROGRESS_BANDS, height))
+            edges = [round(k * height / n) for k in range(n + 1)]
+            bands = [(edges[k], edges[k + 1] - edges[k]) for k in range(n) if edges[k + 1] > edges[k]]
+            serial = True
+        else:
+            serial = len(bands) == 1
 
         def run(band):
             row0, rows = band
             wp.launch(kernel, dim=(rows, width), inputs=[row0, *inputs], outputs=outputs, device=self.device)
+            return rows
 
-        if len(bands) == 1:
-            run(bands[0])
+        if serial:
+            for band in bands:
+                rows = run(band)
+                if progress is not None:
+                    if not self.device.startswith("cpu"):
+                        wp.synchronize_device(self.device)
+                    progress(rows)
         else:
             if self._pool is None:
                 self._pool = ThreadPoolExecutor(max_workers=self.workers, thread_name_prefix="pywarp-tile")
-            for f in [self._pool.submit(run, b) for b in bands]:
-                f.result()
+            futures = [self._pool.submit(run, b) for b in bands]
+            try:
+                for f in as_completed(futures):
+                    rows = f.result()
+                    if progress is not None:
+                        progress(rows)
+            except BaseException:
+                for f in futures:
+                    f.cancel()
+                raise
         if not self.device.startswith("cpu"):
             wp.synchronize_device(self.device)
 

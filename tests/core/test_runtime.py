@@ -49,6 +49,25 @@ def test_tile_parallel_image_equals_single_launch():
     assert np.all(np.isfinite(a.numpy()))
 
 
+@pytest.mark.parametrize("height,workers", [(1, 1), (45, 1), (45, 2), (7, 3)])
+def test_tile_launcher_progress_per_band_same_pixels(height, workers):
+    """progress(rows) is called once per finished band, from the caller's thread, and the rows add up to the image;
+    a single worker splits the launch into serial bands so that a progress bar advances. Same pixels as without."""
+    import threading
+
+    w = 32
+    a = wp.zeros((height, w), dtype=float, device="cpu")
+    b = wp.zeros((height, w), dtype=float, device="cpu")
+    runtime.TileLauncher(workers=1).launch(_bench_image, height, w, [8], [a])
+    calls = []
+    with runtime.TileLauncher(workers=workers) as tl:
+        tl.launch(_bench_image, height, w, [8], [b], progress=lambda rows: calls.append((rows, threading.get_ident())))
+    np.testing.assert_array_equal(a.numpy(), b.numpy())
+    assert sum(r for r, _ in calls) == height
+    assert len(calls) == min(height, runtime.TileLauncher.PROGRESS_BANDS if workers == 1 else workers * 4)
+    assert {t for _, t in calls} == {threading.get_ident()}
+
+
 def test_tile_launcher_rejects_bad_arguments():
     with pytest.raises(ValueError, match="workers must be >= 1"):
         runtime.TileLauncher(workers=0)
@@ -86,10 +105,10 @@ def test_cli_bench_tiles_json_small(tmp_path):
     assert out["identical_output"] is True and out["parallel_speedup"] > 0 and out["device"] == "cpu"
     res = subprocess.run([sys.executable, "-m", "pywarp", "bench", "tiles", "--width", "-5"],
                          capture_output=True, text=True)
-    assert res.returncode == 2 and "--width must be >= 1, got -5" in res.stderr
+    assert res.returncode == 2 and "--width must be in [1, 8192], got -5" in res.stderr
     res = subprocess.run([sys.executable, "-m", "pywarp", "bench", "tiles", "--device", "cuda:3"],
                          capture_output=True, text=True)
-    assert res.returncode == 2 and "device='cuda:3' is not available" in res.stderr
+    assert res.returncode == 2 and "--device must be one of 'cpu'" in res.stderr and "got 'cuda:3'" in res.stderr
 
 
 def test_init_filters_only_the_no_driver_notice(tmp_path):

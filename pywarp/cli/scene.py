@@ -1,0 +1,304 @@
+"""``pywarp scenes``, ``pywarp render|animate [SCENE]`` and ``pywarp bench [SCENE] BENCHMARK``, built from the scene
+registry (:mod:`pywarp.core.scenes`) and the settings' parameter specs (:mod:`pywarp.core.params`).
+
+The scene is optional and defaults to ``clouds``, so ``pywarp render``, ``pywarp render --sun-elevation 8 --out
+dawn.png``, ``pywarp animate --frames 96 --out x.mp4`` and ``pywarp bench cloudscape --json`` name no scene. Every
+settings field with an option is an option of ``render`` and ``animate``; values are parsed and validated by the
+specs, and a bad one raises ValueError naming the option (``--turbidity must be in [2, 10], got 11``), which
+:func:`pywarp.cli.main.main` prints as one line and exit status 2. ``--out`` is checked before any work.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+from dataclasses import dataclass
+
+from ..core.params import Settings, add_options, from_options, option_message, param, specs
+from ..core.scenes import DEFAULT_SCENE, scene as get_scene, scenes as all_scenes
+
+
+# --- the command's own options, declared like settings -----------------------------------------------------------------
+
+@dataclass(frozen=True)
+class AnimateOptions(Settings):
+    """Options of ``pywarp animate`` besides the scene's settings."""
+
+    frames: int = param(96, unit="frames", kind="int", lo=1, hi=100000, doc="number of frames",
+                        reason="96: 4 s at 24 fps, enough to climb through the cloud layer")
+    fps: float = param(24.0, unit="1/s", lo=0.0, hi=240.0, lo_open=True, doc="frames per second of the video",
+                       reason="24: film rate")
+    time_scale: float = param(20.0, unit="s per s", lo=0.0, hi=1e6,
+                              doc="simulated seconds per video second (the wind); 0 freezes the weather",
+                              reason="20: at 30 km/h the clouds drift visibly within a few seconds of video")
+
+
+@dataclass(frozen=True)
+class BenchOptions(Settings):
+    """Options of ``pywarp bench``; each benchmark takes the ones it lists (its defaults differ)."""
+
+    width: int = param(960, unit="px", kind="int", lo=1, hi=8192, doc="frame width", default_text="per benchmark",
+                       reason="the benchmark's own default (listed with it)")
+    height: int = param(540, unit="px", kind="int", lo=1, hi=8192, doc="frame height", default_text="per benchmark",
+                        reason="the benchmark's own default (listed with it)")
+    repeat: int = param(2, kind="int", lo=1, hi=1000, doc="timed repetitions, the best kept (after a warm-up)",
+                        default_text="per benchmark",
+                        reason="the benchmark's own default (listed with it)")
+    workers: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, default_text="one per core",
+                                doc="worker threads of the tile launcher", reason="None: one per core")
+
+
+def _check_device(device: str, option: str = "--device") -> str:
+    from ..core.runtime import resolve_device
+
+    try:
+        return resolve_device(device)
+    except (ValueError, TypeError):
+        import warp as wp
+
+        names = [d.alias for d in wp.get_devices()]
+        raise ValueError(f"{option} must be one of {', '.join(map(repr, names))}, got {device!r}") from None
+
+
+# --- scene options: the union over the registered scenes ------------------------------------------------------------------
+
+def _dest(option: str) -> str:
+    return "opt_" + option.lstrip("-").replace("-", "_")
+
+
+def _add_scene_options(parser: argparse.ArgumentParser, command: str) -> None:
+    """One option per settings field of every scene (shared option strings added once). Defaults are not stored in
+    the namespace: each scene's own defaults apply (shown in the help)."""
+    added, groups = set(), {}
+    for sc in all_scenes().values():
+        exclude = sc.command_exclude.get(command, ())
+        defaults = sc.command_defaults.get(command, {})
+        starts = set(sc.path().start_fields) if (command == "animate" and sc.paths) else set()
+        for p in specs(sc.settings):
+            opt = p.option
+            if opt is None or p.name in exclude or opt in added:
+                continue
+            added.add(opt)
+            title = p.group or "settings"
+            if len(all_scenes()) > 1 and sc.name != DEFAULT_SCENE:
+                title = f"{sc.name}: {title}"
+            if title not in groups:
+                groups[title] = parser.add_argument_group(title)
+            text = p.help(defaults.get(p.name, dataclasses.MISSING))
+            if p.name in starts:
+                text += "; the start of the camera path"
+            if p.kind == "bool":
+                groups[title].add_argument(opt, dest=_dest(opt), action=argparse.BooleanOptionalAction,
+                                           default=argparse.SUPPRESS, help=text)
+            else:
+                groups[title].add_argument(opt, dest=_dest(opt), default=argparse.SUPPRESS, metavar=p.metavar(),
+                                           help=text)
+
+
+def settings_from_args(sc, args: argparse.Namespace, command: str):
+    """The scene's settings from the parsed options: every given option parsed and validated (errors name it), the
+    command's defaults, then the settings' own checks (errors reworded to name the option)."""
+    options = {p.name: p.option for p in specs(sc.settings) if p.option is not None}
+    allowed = {o for n, o in options.items() if n not in sc.command_exclude.get(command, ())}
+    given = {k[4:] for k in vars(args) if k.startswith("opt_")}
+    for dest in sorted(given):
+        if not any(_dest(o)[4:] == dest for o in allowed):
+            raise ValueError(f"--{dest.replace('_', '-')} is not an option of scene {sc.name!r}")
+    values = dict(sc.command_defaults.get(command, {}))
+    for p in specs(sc.settings):
+        opt = options.get(p.name)
+        if opt is None or opt not in allowed or not hasattr(args, _dest(opt)):
+            continue
+        raw = getattr(args, _dest(opt))
+        values[p.name] = raw if p.kind == "bool" else p.parse(raw, opt)
+    try:
+        settings = sc.settings(**values)
+    except (ValueError, TypeError) as exc:
+        raise type(exc)(option_message(str(exc), options)) from None
+    if hasattr(settings, "device"):
+        _check_device(settings.device, options.get("device", "--device"))
+    return settings
+
+
+def _scene_arg(parser: argparse.ArgumentParser) -> None:
+    names = ", ".join(all_scenes())
+    parser.add_argument("scene", nargs="?", default=None, metavar="SCENE",
+                        help=f"the scene: {names} (default: {DEFAULT_SCENE}); `pywarp scenes` lists them")
+
+
+def _progress_bar(total, desc: str, unit: str, disable: bool):
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit=unit, disable=disable, dynamic_ncols=True,
+                bar_format="{l_bar}{bar}| {n:.0f}/{total:.0f} {unit} [{elapsed}<{remaining}{postfix}]")
+
+
+# --- commands --------------------------------------------------------------------------------------------------------------
+
+def cmd_scenes(args) -> int:
+    rows = []
+    for sc in all_scenes().values():
+        rows.append({"name": sc.name, "default": sc.name == DEFAULT_SCENE, "description": sc.description,
+                     "settings": sc.settings.__name__, "paths": list(sc.paths), "default_path": sc.default_path,
+                     "benchmarks": list(sc.benchmarks), "options": sum(p.option is not None
+                                                                       for p in specs(sc.settings))})
+    if args.json:
+        import json
+
+        print(json.dumps(rows))
+        return 0
+    for r in rows:
+        print(f"{r['name']}{' (default)' if r['default'] else ''}: {r['description']}")
+        print(f"    settings   {r['settings']} ({r['options']} options: pywarp render {r['name']} --help)")
+        print(f"    paths      {', '.join(r['paths']) or '-'} (animate uses {r['default_path']})")
+        print(f"    benchmarks {', '.join(r['benchmarks']) or '-'} (pywarp bench {r['name']} NAME)")
+    return 0
+
+
+def cmd_render(args) -> int:
+    from ..core.output import IMAGE_SUFFIXES, check_output_path, write_png
+
+    sc = get_scene(args.scene)
+    out = check_output_path(args.out or sc.outputs.get("render", f"{sc.name}.png"), IMAGE_SUFFIXES)
+    settings = settings_from_args(sc, args, "render")
+    height = getattr(settings, "height", 1)
+    with _progress_bar(height, "render", "rows", args.no_progress) as bar:
+        bar.set_postfix_str("textures")
+        tech = sc.technique(settings)
+        bar.set_postfix_str(f"{settings.width}x{settings.height}")
+        img = tech.render(progress=lambda fraction: bar.update(fraction * height))
+        bar.n = height
+        bar.refresh()
+    write_png(out, img)
+    print(f"wrote {out} ({img.shape[1]}x{img.shape[0]}, scene {sc.name})")
+    return 0
+
+
+def cmd_animate(args) -> int:
+    from ..core.output import VIDEO_SUFFIXES, VideoWriter, check_output_path
+
+    sc = get_scene(args.scene)
+    out = check_output_path(args.out or sc.outputs.get("animate", f"{sc.name}.mp4"), VIDEO_SUFFIXES)
+    anim = from_options(AnimateOptions, args, dest_prefix="anim_")
+    settings = settings_from_args(sc, args, "animate")
+    if out.suffix.lower() == ".mp4" and (settings.width % 2 or settings.height % 2):
+        raise ValueError(f"--width and --height must be even for MP4, got {settings.width}x{settings.height}")
+    try:
+        path = sc.path(args.path)
+    except ValueError as exc:
+        raise ValueError(f"--{exc}") from None
+    poses = path.poses(anim.frames, settings)
+    tech = sc.technique(settings)
+    t0 = getattr(settings, sc.time_field) if sc.time_field else 0.0
+    with VideoWriter(out, fps=anim.fps) as video, \
+            _progress_bar(anim.frames, "animate", "frames", args.no_progress) as bar:
+        for i, pose in enumerate(poses):
+            if sc.time_field:
+                tech.update(**{sc.time_field: t0 + i / anim.fps * anim.time_scale})
+            video.add(tech.render(pose))
+            bar.update(1)
+    print(f"wrote {out} ({anim.frames} frames, {settings.width}x{settings.height}, scene {sc.name}, path {path.name}"
+          + (f", reprojection {'on' if settings.reprojection else 'off'}" if hasattr(settings, "reprojection")
+             else "") + ")")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    names = [args.first] + ([args.second] if args.second is not None else [])
+    if len(names) == 2:
+        sc = get_scene(names[0])
+        name = names[1]
+    elif names[0] in all_scenes() and names[0] not in get_scene().benchmarks:
+        sc = get_scene(names[0])
+        raise ValueError(f"benchmark missing: pywarp bench {sc.name} "
+                         f"{{{','.join(sc.benchmarks)}}}")
+    else:
+        sc, name = get_scene(), names[0]
+    if name not in sc.benchmarks:
+        raise ValueError(f"benchmark must be one of {', '.join(map(repr, sc.benchmarks))} (scene {sc.name}), "
+                         f"got {name!r}")
+    b = sc.benchmarks[name]
+    opts = {p.name: p.option for p in specs(BenchOptions)}
+    for field_, opt in opts.items():
+        if hasattr(args, "bench_" + field_) and field_ not in b.defaults:
+            takes = ", ".join([opts[k] for k in b.defaults if k in opts] + ["--device", "--json"])
+            raise ValueError(f"{opt} is not an option of benchmark {name!r} (it takes {takes})")
+    values = from_options(BenchOptions, args, dest_prefix="bench_",
+                          defaults={k: v for k, v in b.defaults.items() if v is not None})
+    kwargs = {k: getattr(values, k) for k in b.defaults}
+    kwargs["device"] = _check_device(args.device)
+    result = b.run(**kwargs)
+    sys.stdout.flush()
+    b.print(result, args.json)
+    return 0
+
+
+# --- the parsers ---------------------------------------------------------------------------------------------------------
+
+def add_scene_commands(sub) -> None:
+    """Add ``scenes``, ``render``, ``animate`` and ``bench`` to the ``pywarp`` subparsers ``sub``."""
+    default = get_scene()
+    fmt = argparse.RawDescriptionHelpFormatter
+
+    s = sub.add_parser("scenes", help="list the scenes (render, animate, bench take one; default clouds)",
+                       description="List the registered scenes with their camera paths and benchmarks.")
+    s.add_argument("--json", action="store_true", help="one JSON array instead of the listing")
+    s.set_defaults(run=cmd_scenes)
+
+    r = sub.add_parser("render", help=f"render one image of a scene (default {default.name}: {default.description})",
+                       formatter_class=fmt,
+                       description="Render one image of a scene. Every option has a unit, a range and a default "
+                                   "(the default scene's; `pywarp scenes` lists the scenes).\n\n"
+                                   f"{default.name}: {default.description}")
+    _scene_arg(r)
+    _add_scene_options(r, "render")
+    r.add_argument("--out", default=None, metavar="PATH",
+                   help=f"output PNG, checked writable before any work (default: "
+                        f"{default.outputs.get('render', 'SCENE.png')})")
+    r.add_argument("--no-progress", action="store_true", help="no progress bar")
+    r.set_defaults(run=cmd_render)
+
+    path = default.path() if default.paths else None
+    a = sub.add_parser("animate", help="render a video along a scene's camera path "
+                                       f"({default.name}: {path.description if path else '-'})",
+                       formatter_class=fmt,
+                       description="Render a video along a camera path of a scene: MP4 (H.264) or GIF. The camera "
+                                   "options (" + ", ".join(
+                                       o for o in (next((p.option for p in specs(default.settings) if p.name == f),
+                                                        None) for f in (path.start_fields if path else ()))
+                                       if o) + ") set the start of the path; the path then moves the camera."
+                                   + (f"\n\n{default.name}, path {path.name}: {path.description}" if path else ""))
+    _scene_arg(a)
+    add_options(a, AnimateOptions, dest_prefix="anim_")
+    a.add_argument("--path", default=None, metavar="NAME",
+                   help="camera path: " + "; ".join(f"{sc.name}: {', '.join(sc.paths)}"
+                                                    for sc in all_scenes().values() if sc.paths)
+                        + " (default: the scene's default path"
+                        + (f", {path.name} for {default.name})" if path else ")"))
+    _add_scene_options(a, "animate")
+    a.add_argument("--out", default=None, metavar="PATH",
+                   help=f"output .mp4 or .gif, checked writable before any work (default: "
+                        f"{default.outputs.get('animate', 'SCENE.mp4')})")
+    a.add_argument("--no-progress", action="store_true", help="no progress bar")
+    a.set_defaults(run=cmd_animate)
+
+    lines = []
+    for sc in all_scenes().values():
+        for bname, bm in sc.benchmarks.items():
+            opts = ", ".join(f"{k} {v if v is not None else 'auto'}" for k, v in bm.defaults.items())
+            lines.append(f"  {sc.name} {bname}: {bm.description} (defaults: {opts or '-'})")
+    b = sub.add_parser("bench", help="run a benchmark and print ratios measured in one run",
+                       formatter_class=fmt,
+                       description="Run a benchmark of a scene: pywarp bench [SCENE] BENCHMARK. Numbers are measured "
+                                   "in one run (best of --repeat after a warm-up); ratios compare them.\n\n"
+                                   "benchmarks:\n" + "\n".join(lines))
+    b.add_argument("first", metavar="[SCENE]",
+                   help=f"the scene (default {DEFAULT_SCENE}; may be left out) -- or the benchmark when it is")
+    b.add_argument("second", nargs="?", default=None, metavar="BENCHMARK",
+                   help="the benchmark: " + "; ".join(f"{sc.name}: {', '.join(sc.benchmarks)}"
+                                                      for sc in all_scenes().values()))
+    add_options(b, BenchOptions, dest_prefix="bench_")
+    b.add_argument("--device", default="cpu", metavar="NAME",
+                   help="Warp device: cpu, or cuda:N where present; honoured by every benchmark (default: cpu)")
+    b.add_argument("--json", action="store_true", help="print one JSON object as the last line")
+    b.set_defaults(run=cmd_bench)

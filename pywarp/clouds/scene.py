@@ -1,0 +1,63 @@
+"""Registers the ``clouds`` scene (vc): the volumetric cloudscape. Importing this module imports neither Warp nor the C
+library; the technique, the camera path and the benchmarks load them when used."""
+from __future__ import annotations
+
+from ..core.scenes import Benchmark, CameraPath, Scene, register
+from .settings import CloudscapeSettings
+
+
+def make_technique(settings: CloudscapeSettings):
+    """The cloudscape technique (vc-A33: init / update / render / resize), textures generated (cached)."""
+    from .cloudscape import CloudscapeTechnique
+
+    return CloudscapeTechnique(settings)
+
+
+def flythrough(frames: int, settings: CloudscapeSettings) -> list:
+    from .cloudscape import flythrough_path
+
+    return flythrough_path(frames, settings)
+
+
+def _lazy(module: str, name: str):
+    def call(*args, **kwargs):
+        import importlib
+
+        return getattr(importlib.import_module(module, __package__), name)(*args, **kwargs)
+    call.__name__ = name
+    return call
+
+
+SCENE = register(Scene(
+    name="clouds",
+    description="volumetric cloudscape of the vc thesis: Preetham or gradient sky, cloud-layer raymarch, reprojection",
+    settings=CloudscapeSettings,
+    technique=make_technique,
+    paths={"flythrough": CameraPath(
+        "flythrough", "climb from the start altitude below the cloud layer, through it, to 1.5 km above its top, "
+                      "flying 12 km forward along the heading; the pitch eases down to -12 deg",
+        flythrough, start_fields=("camera_altitude_km", "camera_pitch_deg", "camera_yaw_deg", "camera_x_km",
+                                  "camera_z_km"))},
+    default_path="flythrough",
+    benchmarks={
+        "tiles": Benchmark("tiles", "tile-parallel launcher vs one launch, on a frame-sized kernel",
+                           _lazy(".bench", "bench_tiles"), _lazy(".bench", "report_tiles"),
+                           {"width": 960, "height": 540, "repeat": 5, "workers": None}),
+        "cloudscape": Benchmark("cloudscape", "the renderer's optimisation ladder (fig 4.17), sky models (fig 4.16), "
+                                              "Warp vs C, reprojection; keys in the README",
+                                _lazy(".bench", "bench_cloudscape"), _lazy(".bench", "report_cloudscape"),
+                                {"width": 960, "height": 540, "repeat": 2, "workers": None}),
+        "textures": Benchmark("textures", "noise-texture generation: C one thread vs Warp tile-parallel vs one "
+                                          "launch", _lazy(".bench_textures", "bench_textures"),
+                              _lazy(".bench_textures", "report"),
+                              {"repeat": 3, "workers": None}),
+        "reprojection": Benchmark("reprojection", "SSIM/PSNR of reprojected frames against full renders along a "
+                                                  "camera path (needs scikit-image, a test extra)",
+                                  _lazy(".bench", "run_reprojection"), _lazy(".bench", "report_reprojection"),
+                                  {"width": 640, "height": 360}),
+    },
+    outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
+    command_defaults={"animate": {"width": 640, "height": 360, "reprojection": True}},
+    command_exclude={"render": ("reprojection", "reprojection_neighbourhood")},
+    time_field="time_s",
+))

@@ -1,0 +1,398 @@
+"""Settings of the cloudscape scene (vc), each field declared once with its parameter spec (:mod:`pywarp.core.params`):
+the noise-texture settings of vc-A13 (base shape, detail shape, curl noise, weather map) and
+:class:`CloudscapeSettings`, every parameter of a render.
+
+This module imports neither Warp nor the C library (the command line builds its options from it without starting
+either). The constants below mirror the C headers; ``tests/clouds/test_settings.py`` pins them, and every default that
+mirrors a C ``*_default()`` function, to the C values.
+
+The weather map is declared once: :class:`WeatherMapSettings`. :class:`CloudscapeSettings` takes its ``coverage``,
+``precipitation``, ``cloud_type``, ``cloud_type_variation``, the texture sizes and the seed from the texture settings'
+specs (same domain, unit, doc and default) and builds the texture settings with :meth:`CloudscapeSettings.textures`.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.params import Settings, inherit, param
+
+# cclouds/texgen.h limits (pinned to the C macros and pywarp.kernels.texgen by the tests)
+MIN_SIZE = 4  # CCL_TEXGEN_MIN_SIZE
+MAX_SIZE_3D = 512  # CCL_TEXGEN_MAX_SIZE_3D
+MAX_SIZE_2D = 8192  # CCL_TEXGEN_MAX_SIZE_2D
+MAX_OCTAVES = 8  # CCL_TEXGEN_MAX_OCTAVES
+MAX_LATTICE = 4096  # CCL_TEXGEN_MAX_LATTICE
+#: Perlin-Worley combinations of vc-A8, in the order of ccl_perlin_worley_mode (pywarp.kernels.noise.COMBINATIONS)
+COMBINATION_NAMES = ("thesis", "gpu_pro_7", "hillaire", "product", "average")
+#: cloud layer of vc-A14 (pywarp.kernels.raymarch, ccl_raymarch_cloud_layer_default)
+EARTH_RADIUS_KM = 6371.0
+LAYER_BASE_KM = 1.5
+LAYER_TOP_KM = 4.0
+
+SKIES = ("preetham", "gradient")
+JITTER_NAMES = ("tilt", "offset", "none")  # ccl_jitter_mode order
+COVERAGE_THRESHOLD_NAMES = ("coverage", "one_minus_coverage")  # ccl_coverage_threshold order
+
+
+# --- checks shared by the texture settings ---------------------------------------------------------------------------
+
+def _lattice(octaves_field: str | None, what: str = "octaves", layers: int = 4):
+    """Lattice frequency of the lowest octave/layer: the highest, v * 2^(octaves - 1), must stay <= MAX_LATTICE."""
+    def check(obj, name, v):
+        octaves = getattr(obj, octaves_field) if octaves_field else layers
+        if v * 2 ** (octaves - 1) > MAX_LATTICE:
+            raise ValueError(f"{name} * 2^({what} - 1) must be <= {MAX_LATTICE}, got {v} * 2^{octaves - 1} = "
+                             f"{v * 2 ** (octaves - 1)}")
+    return check
+
+
+def _weights(value, name):
+    try:
+        w = tuple(value)
+    except TypeError:
+        raise TypeError(f"{name} must be a sequence of 3 numbers, got {value!r}") from None
+    if len(w) != 3:
+        raise ValueError(f"{name} must hold 3 weights (lowest-frequency first), got {len(w)}")
+    for v in w:
+        if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, float, np.integer, np.floating)):
+            raise TypeError(f"{name} must hold numbers, got {v!r}")
+    w = tuple(float(v) for v in w)
+    if not all(math.isfinite(v) and v >= 0.0 for v in w) or not w[0] > 0.0:
+        raise ValueError(f"{name} must be finite and >= 0 with {name}[0] > 0 (every channel's window needs a "
+                         f"positive weight sum), got {w}")
+    return w
+
+
+def _size(default: int, hi: int, reason: str, what: str = "texture"):
+    return param(default, unit="texels", kind="int", lo=MIN_SIZE, hi=hi, pow2=True, invalidates="textures",
+                 doc=f"edge of the {what}, a power of two", reason=reason)
+
+
+def _seed(reason: str, doc: str = "seed of the noise (uint32); the same seed gives the same texture"):
+    return param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, invalidates="textures", doc=doc, reason=reason)
+
+
+def _octaves(default: int, doc: str, reason: str):
+    return param(default, kind="int", lo=1, hi=MAX_OCTAVES, invalidates="textures", doc=doc, reason=reason)
+
+
+_WEIGHTS_REASON = ("(0.625, 0.25, 0.125): the only fBm weights the thesis prints (eq 2.28, 2.30), also "
+                   "Hillaire's generator weights")
+_GAMMA = dict(lo=0.0, lo_open=True, invalidates="textures", doc="gamma of vc-4.6, C^(1/gamma)",
+              reason="1, the identity: the thesis gives no value")
+_COMBINATION = dict(choices=COMBINATION_NAMES, invalidates="textures")
+
+
+# --- texture settings (vc-A13) -----------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class BaseShapeSettings(Settings):
+    """Settings of the base-shape texture (vc-A9, vc-A13 ``BaseShapeSettings``). The thesis names the parameters
+    (Perlin octaves and frequency, Worley grid size, the weights of the Worley fBm, the Perlin-Worley combination,
+    gamma) but gives no values; each default says where it comes from. Mirrors ``ccl_base_shape_settings``; fields are
+    checked in the order of its C check."""
+
+    size: int = _size(128, MAX_SIZE_3D, "128: the 128^3 of vc-A9")
+    seed: int = _seed("0: the Perlin part then uses Ken Perlin's reference permutation")
+    perlin_octaves: int = _octaves(3, "octaves of the Perlin fBm",
+                                   "3: Hillaire's TileableVolumeNoise (the Electronic Arts code the thesis adopted)")
+    perlin_frequency: int = param(8, unit="cells", kind="int", lo=1, hi=MAX_LATTICE, invalidates="textures",
+                                  check=_lattice("perlin_octaves"),
+                                  doc="Perlin lattice cells per texture (octave 0; also the period)",
+                                  reason="8: Hillaire's value; the top octave (32 cells) keeps 4 texels per cell "
+                                         "at 128^3")
+    worley_cells: int = param(4, unit="cells", kind="int", lo=1, hi=MAX_LATTICE, invalidates="textures",
+                              check=_lattice(None, "layers"),
+                              doc="'Worley grid size': cells per texture of the lowest of the four inverse-Worley "
+                                  "layers (cells x 1, 2, 4, 8)",
+                              reason="4: Hillaire's cell count; the finest layer (32 cells) keeps 4 texels per cell "
+                                     "at 128^3")
+    worley_weights: tuple = param((0.625, 0.25, 0.125), convert=_weights, invalidates="textures",
+                                  doc="weights of the Worley fBm window, lowest frequency first",
+                                  reason=_WEIGHTS_REASON)
+    combination: str = param("thesis", **_COMBINATION, doc="Perlin-Worley combination of the R channel (vc-A8)",
+                             reason="'thesis': remap(P, 0, 1, W, 1)^2, the combination the thesis chose (4.3.1)")
+    gamma: float = param(1.0, **_GAMMA)
+
+    @property
+    def shape(self) -> tuple:
+        return (self.size, self.size, self.size, 4)
+
+
+@dataclass(frozen=True)
+class DetailShapeSettings(Settings):
+    """Settings of the detail (erosion) texture (vc-A10, vc-A13 ``DetailShapeSettings``: fBm weights, base frequency,
+    gamma; values not given in the thesis). Mirrors ``ccl_detail_shape_settings``."""
+
+    size: int = _size(32, MAX_SIZE_3D, "32: the 32^3 of vc-A10")
+    seed: int = _seed("0", "seed of the Worley feature points (layer j uses seed + j)")
+    worley_cells: int = param(2, unit="cells", kind="int", lo=1, hi=MAX_LATTICE, invalidates="textures",
+                              check=_lattice(None, "layers"),
+                              doc="base frequency: cells per texture of the lowest layer (layers cells x 1, 2, 4, 8)",
+                              reason="2: Hillaire's detail texture (layers 2, 4, 8, 16; the finest keeps 2 texels "
+                                     "per cell at 32^3)")
+    worley_weights: tuple = param((0.625, 0.25, 0.125), convert=_weights, invalidates="textures",
+                                  doc="weights of the fBm layers, lowest first", reason=_WEIGHTS_REASON)
+    gamma: float = param(1.0, **_GAMMA)
+
+    @property
+    def shape(self) -> tuple:
+        return (self.size, self.size, self.size, 3)
+
+
+@dataclass(frozen=True)
+class CurlNoiseSettings(Settings):
+    """Settings of the generated 2-D curl-noise texture (vc-A11; the thesis ships a file and states only that it holds
+    curl noise of Perlin noise). Mirrors ``ccl_curl_noise_settings``."""
+
+    size: int = _size(128, MAX_SIZE_2D, "128: not given; 128^2 x 2 floats samples the default 4 cells with 32 texels "
+                                        "per cell, far finer than the swirls")
+    seed: int = _seed("0: Perlin's reference permutation", "seed of the Perlin permutation")
+    frequency: int = param(4, unit="cells", kind="int", lo=1, hi=MAX_LATTICE, invalidates="textures",
+                           doc="Perlin lattice cells per texture (= the period)",
+                           reason="4: a few swirls per tile, like the usual curl textures")
+    fd_step: float = param(1.0 / 256.0, unit="lattice units", lo=0.0, hi=0.25, lo_open=True, invalidates="textures",
+                           doc="central-difference step",
+                           reason="1/256: the noise module's default (CCL_NOISE_FD_STEP_INV), a power of two so that "
+                                  "p +- h is exact")
+
+    @property
+    def shape(self) -> tuple:
+        return (self.size, self.size, 2)
+
+
+_UNIT = dict(lo=0.0, hi=1.0, invalidates="textures", group="weather")
+
+
+@dataclass(frozen=True)
+class WeatherMapSettings(Settings):
+    """Settings of the procedural weather map (vc-A12; the thesis ships a file). R = coverage, G = precipitation,
+    B = cloud type, A = 0 (free). See ``cclouds/texgen.h`` for the formulas. The one declaration of the weather-map
+    parameters: :class:`CloudscapeSettings` takes its weather fields from here. Fields are checked in the order of
+    ``ccl_texgen_weather_map_settings_check``."""
+
+    _validation_order = ("size", "seed", "perlin_octaves", "perlin_frequency", "perlin_contrast", "worley_octaves",
+                         "worley_cells")
+
+    size: int = _size(512, MAX_SIZE_2D, "512: not given; 4 MiB of float32 RGBA, finer than any cloud", "weather map")
+    seed: int = _seed("0: Perlin's reference permutation for the coverage noise",
+                      "seed: Perlin tables of seed (coverage), seed + 1 (precipitation), seed + 2 (type); Worley seed")
+    perlin_frequency: int = param(4, unit="cells", kind="int", lo=1, hi=MAX_LATTICE, invalidates="textures",
+                                  check=_lattice("perlin_octaves"), doc="Perlin lattice cells per map",
+                                  reason="4: a few cloud systems per tile")
+    perlin_octaves: int = _octaves(4, "Perlin fBm octaves", "4: ragged cloud-field edges down to 1/32 of the map")
+    perlin_contrast: float = param(2.0, lo=0.0, lo_open=True, invalidates="textures",
+                                   doc="gain of the Perlin fBm before clamping to [0, 1] (P = clamp(0.5 + contrast "
+                                       "fbm))",
+                                   reason="2: the fBm has a standard deviation of ~0.15 and |fbm| < 0.45, so 2 "
+                                          "spreads it over ~[0.1, 0.9]; the covered fraction (R > 0) of the default "
+                                          "map is then 0.24 / 0.61 / 0.91 at coverage 0.25 / 0.5 / 0.75")
+    worley_octaves: int = _octaves(3, "Worley fBm octaves", "3: cells down to 1/16 of the map give clustered cumulus")
+    worley_cells: int = param(4, unit="cells", kind="int", lo=1, hi=MAX_LATTICE, invalidates="textures",
+                              check=_lattice("worley_octaves"), doc="Worley cells per map (octave 0)",
+                              reason="4: the same scale as the Perlin blobs")
+    combination: str = param("thesis", **_COMBINATION, doc="Perlin-Worley combination of the coverage noise (vc-A8)",
+                             reason="'thesis', the thesis' cloud noise")
+    coverage: float = param(0.5, **_UNIT, doc="weather-map coverage: 0 clear sky, 1 the raw noise everywhere",
+                            reason="0.5: half of the noise range above the threshold, about 60 % of the sky covered")
+    precipitation: float = param(0.2, **_UNIT, doc="weather-map precipitation (darker clouds through vc-2.31's a)",
+                                 reason="0.2: mostly dry clouds, the fair-weather cumulus of the thesis' scenes")
+    cloud_type: float = param(0.75, **_UNIT, doc="mean cloud type: 0 stratus, 0.5 stratocumulus, 1 cumulus",
+                              reason="0.75: the low clouds the layer models (2.3.1), between stratocumulus and "
+                                     "cumulus")
+    cloud_type_variation: float = param(0.25, **_UNIT, doc="spread of the cloud type around its mean",
+                                        reason="0.25: types from 0.5 to 1")
+
+    @property
+    def shape(self) -> tuple:
+        return (self.size, self.size, 4)
+
+
+TEXTURE_SETTINGS = {"base_shape": BaseShapeSettings, "detail_shape": DetailShapeSettings,
+                    "curl_noise": CurlNoiseSettings, "weather_map": WeatherMapSettings}
+
+
+# --- the render ------------------------------------------------------------------------------------------------------
+
+def _layer_top_check(obj, name, v):
+    if not v > obj.layer_base_km:
+        raise ValueError(f"{name} must be > layer_base_km ({obj.layer_base_km:g} km), got {v!r}")
+
+
+def _samples_max_check(obj, name, v):
+    if v < obj.samples_min:
+        raise ValueError(f"{name} must be in [samples_min ({obj.samples_min}), 4096], got {v!r}")
+
+
+def _advanced_check(obj, name, v):
+    if v:
+        from .cloudscape import _check_params, param_values  # the C check of ccl_cloudscape_params
+
+        _check_params(param_values(obj))
+
+
+_NOTHING = "nothing"
+
+
+@dataclass(frozen=True)
+class CloudscapeSettings(Settings):
+    """Every parameter of a cloudscape render, with its unit, default and the reason for it. The thesis gives no
+    values for any of them (spec vc-A36, "Not given"). Immutable: change with ``dataclasses.replace`` (validated) or
+    :meth:`pywarp.clouds.cloudscape.CloudscapeTechnique.update`. An invalid value raises ValueError (TypeError for a
+    wrong type) naming the field, in the registry's wording."""
+
+    width: int = param(960, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group="image",
+                       doc="image width", reason="960 x 540: a quarter of the thesis' Full HD, fast on a laptop CPU")
+    height: int = param(540, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group="image",
+                        doc="image height", reason="960 x 540: a quarter of the thesis' Full HD")
+    sky: str = param("preetham", choices=SKIES, invalidates="sky", group="sky",
+                     doc="sky model: preetham (vc-A29) or gradient (vc-A28)",
+                     reason="'preetham': the thesis' default sky")
+    sun_elevation_deg: float = param(35.0, unit="deg", lo=0.0, hi=90.0, invalidates="sky", group="sky",
+                                     cli="--sun-elevation",
+                                     doc="sun elevation above the horizon (both skies: neither the Preetham model nor "
+                                         "the gradient sky's lighting is defined for a sun below it)",
+                                     reason="35: a mid-morning sun, the sky in view blue and the clouds lit from the "
+                                            "side (sunlit tops, grey bases)")
+    sun_azimuth_deg: float = param(150.0, unit="deg", invalidates="sky", group="sky", cli="--sun-azimuth",
+                                   doc="sun azimuth, 0 = -z (straight ahead of the default camera), positive towards "
+                                       "+x",
+                                   reason="150: behind the viewer's right shoulder")
+    turbidity: float = param(2.5, lo=2.0, hi=10.0, invalidates="sky", group="sky",
+                             doc="Preetham turbidity (the range of Preetham's fit)", reason="2.5: a clear day")
+    sky_variant: str = param("corrected", choices=("corrected", "thesis"), invalidates="sky", group="sky",
+                             doc="errata of the sky chain (vc-2.39, 4.4, 4.5)",
+                             reason="'corrected': Preetham's published constants")
+    sky_exposure: float = param(0.05, lo=0.0, hi=10.0, lo_open=True, invalidates="sky", group="sky",
+                                doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5)",
+                                reason="0.05: with the thesis' 0.03 and luminance in kcd/m^2 the corrected sky is a "
+                                       "dim grey-blue; 0.05 gives a mid-blue zenith at T = 2.5 without saturating "
+                                       "the sky around the sun (figures/vc/fig-4.6.png uses the thesis' 0.03)")
+    coverage: float = inherit(WeatherMapSettings, "coverage")
+    precipitation: float = inherit(WeatherMapSettings, "precipitation")
+    cloud_type: float = inherit(WeatherMapSettings, "cloud_type")
+    cloud_type_variation: float = inherit(WeatherMapSettings, "cloud_type_variation")
+    coverage_threshold: str = param("one_minus_coverage", choices=COVERAGE_THRESHOLD_NAMES, group="clouds",
+                                    doc="reading of the undefined threshold C of vc-2.29: one_minus_coverage "
+                                        "(C = 1 - D_h) or coverage (C = D_h, the literal reading: clouds survive only "
+                                        "as rings around covered areas)",
+                                    reason="one_minus_coverage: more coverage gives more cloud (ccl_cloudscape_"
+                                           "params_default; see cclouds/cloudscape.c)")
+    beer: bool = param(True, group="clouds", doc="Beer's-law term of the lighting energy vc-2.31 (off: replaced by 1)",
+                       reason="on: the formula as printed (ccl_cloudscape_params_default)")
+    powder: bool = param(True, group="clouds", doc="powder term of the lighting energy vc-2.31 (off: replaced by 1)",
+                         reason="on: the formula as printed (ccl_cloudscape_params_default)")
+    seed: int = inherit(BaseShapeSettings, "seed", group="clouds",
+                        doc="seed of every texture (uint32); the same seed gives the same image",
+                        reason="0: Perlin's reference permutation")
+    camera_altitude_km: float = param(0.3, unit="km", lo=0.0, hi=1000.0, group="camera", cli="--altitude",
+                                      doc="camera altitude above the ground (the cloud layer: 1.5-4 km)",
+                                      reason="0.3: below the layer, the cloud bases overhead")
+    camera_x_km: float = param(0.0, unit="km", group="camera", cli="--camera-x", doc="camera position x",
+                               reason="0: the origin")
+    camera_z_km: float = param(0.0, unit="km", group="camera", cli="--camera-z", doc="camera position z",
+                               reason="0: the origin")
+    camera_yaw_deg: float = param(0.0, unit="deg", group="camera", cli="--yaw",
+                                  doc="camera heading, 0 = -z, positive towards +x", reason="0: looking along -z")
+    camera_pitch_deg: float = param(20.0, unit="deg", lo=-89.0, hi=89.0, group="camera", cli="--pitch",
+                                    doc="camera pitch above the horizon",
+                                    reason="20: the horizon near the bottom edge, the cloud bases overhead")
+    fov_y_deg: float = param(60.0, unit="deg", lo=1.0, hi=170.0, group="camera", cli="--fov",
+                             doc="vertical field of view", reason="60: a natural view")
+    earth_radius_km: float = param(EARTH_RADIUS_KM, unit="km", lo=0.0, lo_open=True, group="cloud layer",
+                                   cli="--earth-radius", doc="Earth radius (vc-A14)",
+                                   reason="6371: the IUGG mean Earth radius rounded (pywarp.kernels.raymarch)")
+    layer_base_km: float = param(LAYER_BASE_KM, unit="km", lo=0.0, group="cloud layer", cli="--layer-base",
+                                 doc="altitude of the cloud layer's base (vc-A14)",
+                                 reason="1.5: a typical condensation level of low clouds (pywarp.kernels.raymarch)")
+    layer_top_km: float = param(LAYER_TOP_KM, unit="km", lo=0.0, lo_open=True, check=_layer_top_check,
+                                group="cloud layer", cli="--layer-top",
+                                doc="altitude of the cloud layer's top (vc-A14), > layer base",
+                                reason="4: room for cumulus towers growing through the thesis' 2 km limit")
+    wind_speed_kmh: float = param(30.0, unit="km/h", lo=0.0, hi=1000.0, group="wind", cli="--wind-speed",
+                                  doc="wind speed; time moves the weather map and the detail noise (the detail at "
+                                      "1.5x the speed, plus a slow rise: billowing)",
+                                  reason="30: a fresh breeze, visible motion over seconds of a fly-through")
+    wind_direction_deg: float = param(60.0, unit="deg", group="wind", cli="--wind-direction",
+                                      doc="direction the wind blows towards, 0 = -z",
+                                      reason="60: across the default view, so the motion is visible")
+    time_s: float = param(0.0, unit="s", group="wind", cli="--time", doc="time: the wind moves the clouds",
+                          reason="0: the weather map as generated")
+    adaptive_samples: bool = param(True, group="quality",
+                                   doc="adaptive view-sample count, 64 at the zenith to 128 at the horizon (vc-A18)",
+                                   reason="on: the thesis' optimisation (fig 4.17)")
+    early_exit: bool = param(True, group="quality", doc="early ray termination when opaque (vc-A21)",
+                             reason="on: the thesis' optimisation (fig 4.17)")
+    reprojection: bool = param(False, group="quality",
+                               doc="temporal reprojection (vc-A26): one pixel per 4x4 block raymarched per frame",
+                               reason="off: a single image has no previous frame")
+    reprojection_neighbourhood: int = param(1, unit="px", kind="int", lo=1, hi=9, odd=True, group="quality",
+                                            doc="vc-A27 neighbourhood averaging of reprojected pixels: 1 (exact "
+                                                "sampling) or an odd n (n x n box)",
+                                            reason="1: exact sampling, no blur")
+    jitter: str = param("tilt", choices=JITTER_NAMES, group="quality",
+                        doc="ray jitter against banding (vc-A23): tilt (the thesis), offset or none",
+                        reason="'tilt': the thesis' jitter (ccl_cloudscape_params_default)")
+    light_detail: bool = param(True, group="quality",
+                               doc="light samples with the detail erosion (off: the base shape only, cheaper)",
+                               reason="on: the thesis' density (ccl_cloudscape_params_default)")
+    base_size: int = inherit(BaseShapeSettings, "size", group="textures")
+    detail_size: int = inherit(DetailShapeSettings, "size", group="textures")
+    curl_size: int = inherit(CurlNoiseSettings, "size", group="textures")
+    weather_size: int = inherit(WeatherMapSettings, "size", group="textures")
+    g: float = param(0.2, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, group="clouds", cli="--phase-g",
+                     doc="Henyey-Greenstein asymmetry g of vc-2.31",
+                     reason="0.2: ccl_cloudscape_params_default (see cclouds/cloudscape.c)")
+    sigma_per_km: float = param(30.0, unit="1/km", lo=0.0, hi=1000.0, lo_open=True, group="clouds", cli="--sigma",
+                                doc="extinction per unit density",
+                                reason="30: ccl_cloudscape_params_default (see cclouds/cloudscape.c)")
+    samples_min: int = param(64, kind="int", lo=1, hi=4096, group="quality",
+                             doc="view samples at the zenith (vc-A18)", reason="64: the thesis (vc-A18)")
+    samples_max: int = param(128, kind="int", lo=1, hi=4096, check=_samples_max_check, group="quality",
+                             doc="view samples at the horizon (vc-A18), >= samples_min",
+                             reason="128: the thesis (vc-A18)")
+    device: str = param("cpu", invalidates="device", group="runtime",
+                        doc="Warp device: cpu, or cuda:N where present", reason="cpu: nothing requires a GPU")
+    threads: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, invalidates="device",
+                                group="runtime", default_text="one per core",
+                                doc="worker threads of the tile launcher",
+                                reason="None: one per core (PYWARP_THREADS overrides)")
+    advanced: dict = param({}, check=_advanced_check, cli=None,
+                           doc="any other field of ccl_cloudscape_params by name (e.g. {'base_scale_km': 8.0, "
+                               "'sun_colour': (30, 29, 27)}), checked by ccl_cloudscape_check",
+                           reason="{}: the defaults and reasons of cclouds/cloudscape.c")
+
+    # --- derived quantities ------------------------------------------------------------------------------------------
+    def textures(self) -> dict:
+        """The texture settings (vc-A13) of this render: kind -> settings."""
+        return {"base_shape": BaseShapeSettings(size=self.base_size, seed=self.seed),
+                "detail_shape": DetailShapeSettings(size=self.detail_size, seed=self.seed),
+                "curl_noise": CurlNoiseSettings(size=self.curl_size, seed=self.seed),
+                "weather_map": WeatherMapSettings(size=self.weather_size, seed=self.seed, coverage=self.coverage,
+                                                  precipitation=self.precipitation, cloud_type=self.cloud_type,
+                                                  cloud_type_variation=self.cloud_type_variation)}
+
+    def layer(self):
+        """The cloud layer (vc-A14) as ``pywarp.kernels.raymarch.CloudLayer``."""
+        from ..kernels import raymarch as R
+
+        return R.CloudLayer(self.earth_radius_km, self.layer_base_km, self.layer_top_km)
+
+    def sun(self) -> np.ndarray:
+        """Unit vector towards the sun (``pywarp.kernels.sky.sun_direction``)."""
+        from ..kernels import sky as S
+
+        return S.sun_direction(self.sun_elevation_deg, self.sun_azimuth_deg)
+
+    def wind_offsets(self) -> tuple[tuple[float, float], tuple[float, float, float]]:
+        """(weather offset (x, z), detail offset (x, y, z)) in km after ``time_s`` seconds of wind."""
+        dist = self.wind_speed_kmh * self.time_s / 3600.0
+        a = math.radians(self.wind_direction_deg)
+        dx, dz = math.sin(a), -math.cos(a)
+        # the lookup moves against the wind so that the clouds move with it
+        weather = (-dx * dist, -dz * dist)
+        detail = (-1.5 * dx * dist, -0.1 * dist, -1.5 * dz * dist)
+        return weather, detail
