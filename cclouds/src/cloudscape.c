@@ -12,7 +12,7 @@
 #include <string.h>
 
 /* Defaults. The thesis gives none of these values (spec vc-A36, "Not given"); each is our choice, with its reason:
- *   layer 6371 / 1.5 / 4 km   ccl_cloud_layer_default (reasons in cclouds/raymarch.h).
+ *   layer 6371 / 1.5 / 4 km   ccl_raymarch_cloud_layer_default (reasons in cclouds/raymarch.h).
  *   base_scale_km 6           one tile of the 128^3 base texture spans 6 km: its Worley cells (4 .. 32 per tile) then
  *                             make cloud cells of ~0.2-1.5 km, the size of fair-weather cumulus; 12 km looked like
  *                             soft blobs from the ground in our test renders.
@@ -56,7 +56,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     static const float ground[3] = {0.09f, 0.10f, 0.08f};
     CCL_REQUIRE(out != NULL);
     memset(out, 0, sizeof *out);
-    ccl_cloud_layer_default(&out->layer);
+    ccl_raymarch_cloud_layer_default(&out->layer);
     out->base_scale_km = 6.0f;
     out->detail_scale_km = 0.8f;
     out->weather_scale_km = 32.0f;
@@ -190,8 +190,6 @@ void ccl_cloudscape_sample_bilinear_wrap(const float *tex, int size_mask, float 
     }
 }
 
-static float length3(float x, float y, float z) { return sqrtf(x * x + y * y + z * z); }
-
 float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos, int detail,
                              float *out_precipitation)
 {
@@ -200,7 +198,7 @@ float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_tex
     ccl_vec3 q;
     *out_precipitation = 0.0f;
     /* vc-A15: relative height in the layer */
-    r = length3(pos.x - c.x, pos.y - c.y, pos.z - c.z);
+    r = ccl_vec3_length(ccl_vec3_sub(pos, c));
     h = ccl_clouds_relative_height(r, p->layer.r_inner, p->layer.r_outer, CCL_VARIANT_CORRECTED);
     if (!(h >= 0.0f && h <= 1.0f)) return 0.0f;
     /* vc-A12: weather map, planar projection with wind */
@@ -210,7 +208,7 @@ float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_tex
     *out_precipitation = w[1];
     if (!(w[0] > 0.0f)) return 0.0f;
     /* vc-4.7 / A16: vertical profile of the cloud type */
-    d_v = ccl_height_gradient(h, w[2], p->gradient_clamp);
+    d_v = ccl_clouds_height_gradient(h, w[2], p->gradient_clamp);
     if (!(d_v > 0.0f)) return 0.0f;
     /* vc-2.28: base shape */
     ccl_texgen_sample_trilinear_wrap(t->base, t->base_size - 1, pos.x / p->base_scale_km, pos.y / p->base_scale_km,
@@ -225,7 +223,7 @@ float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_tex
     q.x = pos.x + curl[0] * p->curl_strength_km + p->detail_offset[0];
     q.y = pos.y + p->detail_offset[1];
     q.z = pos.z + curl[1] * p->curl_strength_km + p->detail_offset[2];
-    h_d = ccl_clouds_relative_height(length3(q.x - c.x, q.y - c.y, q.z - c.z), p->layer.r_inner, p->layer.r_outer,
+    h_d = ccl_clouds_relative_height(ccl_vec3_length(ccl_vec3_sub(q, c)), p->layer.r_inner, p->layer.r_outer,
                                      CCL_VARIANT_CORRECTED);
     h_d = h_d < 0.0f ? 0.0f : (h_d > 1.0f ? 1.0f : h_d);
     ccl_texgen_sample_trilinear_wrap(t->detail, t->detail_size - 1, q.x / p->detail_scale_km,
@@ -241,39 +239,42 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
     float trans = 1.0f, t0, t1, t_start, dt, cos_theta;
     int n, i, j, taken = 0;
     const ccl_cloud_layer *L = &p->layer;
-    if (ccl_layer_segment(eye, dir, L->centre, L->r_earth, L->r_inner, L->r_outer, &t0, &t1)) {
-        n = p->adaptive_samples ? ccl_view_sample_count(dir.y, p->samples_min, p->samples_max) : p->samples_max;
-        cos_theta = dir.x * to_sun.x + dir.y * to_sun.y + dir.z * to_sun.z;
-        if (ccl_march_interval(t0, t1, n, &t_start, &dt)) {
+    if (ccl_raymarch_layer_segment(eye, dir, L->centre, L->r_earth, L->r_inner, L->r_outer, &t0, &t1)) {
+        n = p->adaptive_samples ? ccl_raymarch_view_sample_count(dir.y, p->samples_min, p->samples_max)
+                                : p->samples_max;
+        cos_theta = ccl_vec3_dot(dir, to_sun);
+        if (ccl_raymarch_interval(t0, t1, n, &t_start, &dt)) {
             for (i = 0; i < n; ++i) {
                 float precip, rho, h, d_light = 0.0f, a, e;
-                ccl_vec3 pos = ccl_march_point(eye, dir, t_start, dt, i, offset), light;
+                int stop;
+                ccl_vec3 pos = ccl_raymarch_point(eye, dir, t_start, dt, i, offset), light;
                 ++taken;
                 rho = ccl_cloudscape_density(p, t, pos, 1, &precip);
                 if (!(rho > 0.0f)) continue;
                 /* vc-A19: optical depth towards the sun from 6 cone samples */
                 for (j = 0; j < 6; ++j) {
                     float pj, w = j < 5 ? p->light_step_km : (p->light_far_factor - 1.0f) * 5.0f * p->light_step_km;
-                    ccl_vec3 q = ccl_light_sample_position(pos, to_sun, j, p->light_step_km, p->light_cone_angle,
-                                                           p->light_far_factor, ccl_light_cone_kernel(j));
+                    ccl_vec3 q = ccl_raymarch_light_sample_position(pos, to_sun, j, p->light_step_km,
+                                                                    p->light_cone_angle, p->light_far_factor,
+                                                                    ccl_raymarch_light_cone_kernel(j));
                     d_light += w * ccl_cloudscape_density(p, t, q, p->light_detail, &pj);
                 }
                 d_light *= p->sigma_light;
                 /* vc-2.31 + vc-A20: sun energy and ambient by relative height, per channel */
                 a = p->absorption_base + p->absorption_precip * precip;
                 if (p->beer && p->powder)
-                    e = ccl_cloud_energy(d_light, a, cos_theta, p->g);
+                    e = ccl_clouds_energy(d_light, a, cos_theta, p->g);
                 else /* the same product with a term replaced by 1 */
                     e = (p->beer ? expf(-d_light * a) : 1.0f) * ccl_phase_hg(cos_theta, p->g) *
                         (p->powder ? 1.0f - expf(-2.0f * d_light) : 1.0f);
-                h = ccl_clouds_relative_height(length3(pos.x - L->centre.x, pos.y - L->centre.y, pos.z - L->centre.z),
+                h = ccl_clouds_relative_height(ccl_vec3_length(ccl_vec3_sub(pos, L->centre)),
                                                L->r_inner, L->r_outer, CCL_VARIANT_CORRECTED);
                 light.x = p->sun_colour[0] * e + (p->ambient_bottom[0] + (p->ambient_top[0] - p->ambient_bottom[0]) * h);
                 light.y = p->sun_colour[1] * e + (p->ambient_bottom[1] + (p->ambient_top[1] - p->ambient_bottom[1]) * h);
                 light.z = p->sun_colour[2] * e + (p->ambient_bottom[2] + (p->ambient_top[2] - p->ambient_bottom[2]) * h);
                 /* vc-A21: front-to-back accumulation, early termination */
-                if (ccl_march_accumulate(&colour, &trans, p->sigma, rho, dt, light, p->exit_eps) && p->early_exit)
-                    break;
+                colour = ccl_raymarch_accumulate(colour, trans, p->sigma, rho, dt, light, p->exit_eps, &trans, &stop);
+                if (stop && p->early_exit) break;
             }
         }
     }
@@ -289,27 +290,27 @@ void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textur
                           int frame, float *out_rgb)
 {
     ccl_vec3 d = ccl_camera_ray(cam->inv_view_proj_rot, x, y, width, height), sun;
-    float offset = 0.5f, bg[3], cl[3], trans, e0, e1;
+    float offset, bg[3], cl[3], trans, e0, e1;
     int samples, c;
-    if (p->jitter_mode == CCL_JITTER_TILT)
-        d = ccl_ray_jitter_tilt(d, (uint32_t)x, (uint32_t)y, (uint32_t)frame, p->jitter_amount);
-    else if (p->jitter_mode == CCL_JITTER_OFFSET)
-        offset = ccl_ray_jitter_offset((uint32_t)x, (uint32_t)y, (uint32_t)frame);
+    d = ccl_raymarch_jitter(d, (uint32_t)x, (uint32_t)y, (uint32_t)frame, p->jitter_amount,
+                            (ccl_jitter_mode)p->jitter_mode, &offset);
     sun.x = sky->sun[0];
     sun.y = sky->sun[1];
     sun.z = sky->sun[2];
     /* background: the ground where the ray hits the Earth ahead, else the sky model's colour */
-    if (ccl_ray_sphere(cam->eye, d, p->layer.centre, p->layer.r_earth, &e0, &e1) && e1 > 0.0f &&
-        (e0 > 0.0f || d.x * (cam->eye.x - p->layer.centre.x) + d.y * (cam->eye.y - p->layer.centre.y) +
-                          d.z * (cam->eye.z - p->layer.centre.z) < 0.0f)) {
+    if (ccl_raymarch_ray_sphere(cam->eye, d, p->layer.centre, p->layer.r_earth, &e0, &e1) && e1 > 0.0f &&
+        (e0 > 0.0f || ccl_vec3_dot(d, ccl_vec3_sub(cam->eye, p->layer.centre)) < 0.0f)) {
         /* the Earth ahead: entered in front of the camera, or (camera on the ground) the ray points downwards */
         bg[0] = p->ground_colour[0];
         bg[1] = p->ground_colour[1];
         bg[2] = p->ground_colour[2];
-    } else if (sky->kind == CCL_SKY_PREETHAM)
-        ccl_sky_preetham_rgb(d.x, d.y, d.z, sun.x, sun.y, sun.z, &sky->preetham, &bg[0], &bg[1], &bg[2]);
-    else
-        ccl_sky_gradient_rgb(d.x, d.y, d.z, sun.x, sun.y, sun.z, &sky->gradient, &bg[0], &bg[1], &bg[2]);
+    } else {
+        const ccl_vec3 s = (sky->kind == CCL_SKY_PREETHAM) ? ccl_sky_preetham_rgb(d, sun, &sky->preetham)
+                                                           : ccl_sky_gradient_rgb(d, sun, &sky->gradient);
+        bg[0] = s.x;
+        bg[1] = s.y;
+        bg[2] = s.z;
+    }
     ccl_cloudscape_march(p, t, cam->eye, d, sun, offset, cl, &trans, &samples);
     /* vc-4.8: C_f = B (1 - O_D) + C_clouds, O_D = 1 - T */
     for (c = 0; c < 3; ++c)
@@ -330,7 +331,8 @@ ccl_status ccl_cloudscape_render(const ccl_cloudscape_params *p, const ccl_cloud
             float rgb[3];
             float *o = out_rgb + ((size_t)y * (size_t)width + (size_t)x) * 3u;
             ccl_cloudscape_pixel(p, t, sky, cam, x, y, width, height, frame, rgb);
-            for (c = 0; c < 3; ++c) o[c] = ccl_srgb_encode(rgb[c] < 0.0f ? 0.0f : (rgb[c] > 1.0f ? 1.0f : rgb[c]));
+            for (c = 0; c < 3; ++c)
+                o[c] = ccl_colour_srgb_encode(rgb[c] < 0.0f ? 0.0f : (rgb[c] > 1.0f ? 1.0f : rgb[c]));
         }
     }
     return CCL_OK;

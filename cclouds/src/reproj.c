@@ -13,7 +13,7 @@ static int mod16(int frame)
 
 /* --- vc-4.1 ------------------------------------------------------------------------------------------------------ */
 
-void ccl_reprojection_pixel(int id_x, int id_y, int frame, int *out_x, int *out_y)
+void ccl_reproj_pixel(int id_x, int id_y, int frame, int *out_x, int *out_y)
 {
     int f = mod16(frame);
     CCL_REQUIRE(id_x >= 0 && id_y >= 0);
@@ -21,7 +21,7 @@ void ccl_reprojection_pixel(int id_x, int id_y, int frame, int *out_x, int *out_
     *out_y = id_y * CCL_REPROJ_BLOCK + f % 4;
 }
 
-ccl_status ccl_reprojection_grid(int width, int height, int *out_grid_w, int *out_grid_h)
+ccl_status ccl_reproj_grid(int width, int height, int *out_grid_w, int *out_grid_h)
 {
     if (width < 1 || height < 1 || !out_grid_w || !out_grid_h) return CCL_EINVAL;
     *out_grid_w = (width - 1) / CCL_REPROJ_BLOCK + 1;
@@ -29,7 +29,7 @@ ccl_status ccl_reprojection_grid(int width, int height, int *out_grid_w, int *ou
     return CCL_OK;
 }
 
-int ccl_reprojection_updated(int x, int y, int frame)
+int ccl_reproj_updated(int x, int y, int frame)
 {
     int f = mod16(frame);
     CCL_REQUIRE(x >= 0 && y >= 0);
@@ -51,7 +51,7 @@ static float reduced_axis(int p, int off, int size)
     return r;
 }
 
-void ccl_reduced_coord(int x, int y, int frame, int width, int height, float *out_rx, float *out_ry)
+void ccl_reproj_reduced_coord(int x, int y, int frame, int width, int height, float *out_rx, float *out_ry)
 {
     int f = mod16(frame);
     *out_rx = reduced_axis(x, f / 4, width);
@@ -60,13 +60,13 @@ void ccl_reduced_coord(int x, int y, int frame, int width, int height, float *ou
 
 /* --- vc-A26: reprojection ---------------------------------------------------------------------------------------- */
 
-int ccl_reprojection_uv(const float inv_view_proj_rot[16], ccl_vec3 eye, const float prev_view_proj[16],
+int ccl_reproj_uv(const float inv_view_proj_rot[16], ccl_vec3 eye, const float prev_view_proj[16],
                         ccl_vec3 centre, float r_inner, int x, int y, int width, int height, float *out_u, float *out_v)
 {
     const float *m = prev_view_proj;
     ccl_vec3 d = ccl_camera_ray(inv_view_proj_rot, x, y, width, height);
     float t0, t1, t, px, py, pz, cx, cy, cw, u, v;
-    ccl_ray_sphere(eye, d, centre, r_inner, &t0, &t1);
+    ccl_raymarch_ray_sphere(eye, d, centre, r_inner, &t0, &t1);
     t = (t0 > 0.0f) ? t0 : t1;
     if (!(t > 0.0f)) {
         *out_u = NAN;
@@ -125,12 +125,12 @@ static void reproject_pixel(const float *current, const float *previous, const f
     size_t base = ((size_t)y * width + x) * channels;
     int ch, i, j, valid = 0, half = neighbourhood / 2;
     float u = 0.0f, v = 0.0f;
-    if (ccl_reprojection_updated(x, y, frame)) {
+    if (ccl_reproj_updated(x, y, frame)) {
         for (ch = 0; ch < channels; ++ch) out[base + ch] = current[base + ch];
         return;
     }
     if (history)
-        valid = ccl_reprojection_uv(inv_view_proj_rot, eye, prev_view_proj, centre, r_inner, x, y, width, height, &u,
+        valid = ccl_reproj_uv(inv_view_proj_rot, eye, prev_view_proj, centre, r_inner, x, y, width, height, &u,
                                     &v);
     if (valid) {
         float xs = snap(u * (float)width - 0.5f), ys = snap(v * (float)height - 0.5f);
@@ -145,7 +145,7 @@ static void reproject_pixel(const float *current, const float *previous, const f
         }
     } else {
         float rx, ry;
-        ccl_reduced_coord(x, y, frame, width, height, &rx, &ry);
+        ccl_reproj_reduced_coord(x, y, frame, width, height, &rx, &ry);
         if (isnan(rx) || isnan(ry)) {
             const float *keep = history ? previous : current;
             for (ch = 0; ch < channels; ++ch) out[base + ch] = keep[base + ch];
@@ -160,7 +160,7 @@ static void reproject_pixel(const float *current, const float *previous, const f
     }
 }
 
-ccl_status ccl_reproject_frame(const float *current, const float *previous, const float *reduced, int width,
+ccl_status ccl_reproj_frame(const float *current, const float *previous, const float *reduced, int width,
                                int height, int channels, int frame, const float inv_view_proj_rot[16], ccl_vec3 eye,
                                const float prev_view_proj[16], ccl_vec3 centre, float r_inner, int neighbourhood,
                                int history, float *out)

@@ -19,17 +19,17 @@ static ccl_vec3 V(float x, float y, float z)
 static void test_reprojection_pixel_order_and_wrap(void)
 {
     int x, y;
-    ccl_reprojection_pixel(2, 3, 0, &x, &y);
+    ccl_reproj_pixel(2, 3, 0, &x, &y);
     CCL_CHECK(x == 8 && y == 12);
-    ccl_reprojection_pixel(2, 3, 1, &x, &y); /* column by column: (a, b) = (0, 1) */
+    ccl_reproj_pixel(2, 3, 1, &x, &y); /* column by column: (a, b) = (0, 1) */
     CCL_CHECK(x == 8 && y == 13);
-    ccl_reprojection_pixel(2, 3, 4, &x, &y); /* (1, 0) */
+    ccl_reproj_pixel(2, 3, 4, &x, &y); /* (1, 0) */
     CCL_CHECK(x == 9 && y == 12);
-    ccl_reprojection_pixel(2, 3, 15, &x, &y);
+    ccl_reproj_pixel(2, 3, 15, &x, &y);
     CCL_CHECK(x == 11 && y == 15);
-    ccl_reprojection_pixel(2, 3, 16 * 7 + 5, &x, &y); /* f wraps mod 16 */
+    ccl_reproj_pixel(2, 3, 16 * 7 + 5, &x, &y); /* f wraps mod 16 */
     CCL_CHECK(x == 9 && y == 13);
-    ccl_reprojection_pixel(0, 0, -1, &x, &y); /* -1 == 15 (mod 16) */
+    ccl_reproj_pixel(0, 0, -1, &x, &y); /* -1 == 15 (mod 16) */
     CCL_CHECK(x == 3 && y == 3);
 }
 
@@ -38,17 +38,17 @@ static int coverage_ok(int w, int h, int first_frame)
 {
     int gw, gh, f, i, j, x, y, ok = 1;
     int *count = (int *)calloc((size_t)w * h, sizeof(int));
-    if (!count || ccl_reprojection_grid(w, h, &gw, &gh) != CCL_OK) {
+    if (!count || ccl_reproj_grid(w, h, &gw, &gh) != CCL_OK) {
         free(count);
         return 0;
     }
     for (f = first_frame; f < first_frame + 16; ++f)
         for (j = 0; j < gh; ++j)
             for (i = 0; i < gw; ++i) {
-                ccl_reprojection_pixel(i, j, f, &x, &y);
+                ccl_reproj_pixel(i, j, f, &x, &y);
                 if (x >= w || y >= h) continue; /* the bounds rule */
                 count[y * w + x] += 1;
-                if (!ccl_reprojection_updated(x, y, f)) ok = 0;
+                if (!ccl_reproj_updated(x, y, f)) ok = 0;
             }
     for (i = 0; i < w * h; ++i)
         if (count[i] != 1) ok = 0;
@@ -64,10 +64,10 @@ static void test_reprojection_coverage_exactly_once(void)
     CCL_CHECK(coverage_ok(10, 7, 37));
     CCL_CHECK(coverage_ok(1, 1, 0));
     CCL_CHECK(coverage_ok(5, 3, 3));
-    CCL_CHECK(ccl_reprojection_grid(10, 7, &gw, &gh) == CCL_OK && gw == 3 && gh == 2);
-    CCL_CHECK(ccl_reprojection_grid(8, 4, &gw, &gh) == CCL_OK && gw == 2 && gh == 1);
-    CCL_CHECK(ccl_reprojection_grid(0, 4, &gw, &gh) == CCL_EINVAL);
-    CCL_CHECK(ccl_reprojection_grid(4, -1, &gw, &gh) == CCL_EINVAL);
+    CCL_CHECK(ccl_reproj_grid(10, 7, &gw, &gh) == CCL_OK && gw == 3 && gh == 2);
+    CCL_CHECK(ccl_reproj_grid(8, 4, &gw, &gh) == CCL_OK && gw == 2 && gh == 1);
+    CCL_CHECK(ccl_reproj_grid(0, 4, &gw, &gh) == CCL_EINVAL);
+    CCL_CHECK(ccl_reproj_grid(4, -1, &gw, &gh) == CCL_EINVAL);
 }
 
 static void test_reduced_coord(void)
@@ -78,21 +78,21 @@ static void test_reduced_coord(void)
     for (f = 0; f < 16; ++f)
         for (j = 0; j < 2; ++j)
             for (i = 0; i < 3; ++i) {
-                ccl_reprojection_pixel(i, j, f, &x, &y);
+                ccl_reproj_pixel(i, j, f, &x, &y);
                 if (x >= 10 || y >= 7) continue;
-                ccl_reduced_coord(x, y, f, 10, 7, &rx, &ry);
+                ccl_reproj_reduced_coord(x, y, f, 10, 7, &rx, &ry);
                 CCL_CHECK(rx == (float)i && ry == (float)j);
             }
     /* in between: (x - a)/4; frame 5 -> (a, b) = (1, 1) */
-    ccl_reduced_coord(3, 4, 5, 16, 16, &rx, &ry);
+    ccl_reproj_reduced_coord(3, 4, 5, 16, 16, &rx, &ry);
     CCL_CHECK(rx == 0.5f && ry == 0.75f);
     /* clamped to texels written this frame: 10 wide, a = 3 -> last texel floor((9 - 3)/4) = 1 */
-    ccl_reduced_coord(9, 0, 12, 10, 7, &rx, &ry);
+    ccl_reproj_reduced_coord(9, 0, 12, 10, 7, &rx, &ry);
     CCL_CHECK(rx == 1.0f && ry == 0.0f);
-    ccl_reduced_coord(0, 0, 5, 16, 16, &rx, &ry);
+    ccl_reproj_reduced_coord(0, 0, 5, 16, 16, &rx, &ry);
     CCL_CHECK(rx == 0.0f && ry == 0.0f);
     /* a 2-pixel-wide frame renders nothing in columns when a >= 2 */
-    ccl_reduced_coord(0, 0, 8, 2, 8, &rx, &ry);
+    ccl_reproj_reduced_coord(0, 0, 8, 2, 8, &rx, &ry);
     CCL_CHECK(isnan(rx) && ry == 0.0f);
 }
 
@@ -118,17 +118,17 @@ static void test_reproject_static_camera_exact(void)
     fill(cur, H * W * C, 1u);
     fill(prev, H * W * C, 2u);
     fill(red, 4 * 6 * C, 3u);
-    ccl_cloud_layer_default(&L);
+    ccl_raymarch_cloud_layer_default(&L);
     CCL_CHECK(ccl_camera_look_at(V(0.3f, 0.002f, -0.4f), V(0.8f, 0.5f, -1.2f), V(0, 1, 0), 1.1f, 1.5f, 0.01f, 1000.0f,
                                  &cam) == CCL_OK);
     for (f = 0; f < 16; f += 5) {
-        CCL_CHECK(ccl_reproject_frame(cur, prev, red, W, H, C, f, cam.inv_view_proj_rot, cam.eye, cam.view_proj,
+        CCL_CHECK(ccl_reproj_frame(cur, prev, red, W, H, C, f, cam.inv_view_proj_rot, cam.eye, cam.view_proj,
                                       L.centre, L.r_inner, 1, 1, out) == CCL_OK);
         for (y = 0; y < H; ++y)
             for (x = 0; x < W; ++x)
                 for (ch = 0; ch < C; ++ch) {
                     int k = (y * W + x) * C + ch;
-                    if (ccl_reprojection_updated(x, y, f)) {
+                    if (ccl_reproj_updated(x, y, f)) {
                         CCL_CHECK(out[k] == cur[k]);
                     } else {
                         CCL_CHECK(out[k] == prev[k]);
@@ -153,17 +153,17 @@ static void test_reproject_fallback_and_history(void)
             red[(y * 6 + x) * C] = (float)x;
             red[(y * 6 + x) * C + 1] = (float)y;
         }
-    ccl_cloud_layer_default(&L);
+    ccl_raymarch_cloud_layer_default(&L);
     CCL_CHECK(ccl_camera_look_at(V(0, 0.002f, 0), V(0, 0.4f, -1), V(0, 1, 0), 1.0f, 1.5f, 0.01f, 1000.0f, &cam)
               == CCL_OK);
     /* history off: every pixel not rendered in frame 5 (a = b = 1) comes from the reduced buffer at
      * ((x - 1)/4, (y - 1)/4) clamped to [0, 5] x [0, 3] */
-    CCL_CHECK(ccl_reproject_frame(cur, prev, red, W, H, C, 5, cam.inv_view_proj_rot, cam.eye, cam.view_proj, L.centre,
+    CCL_CHECK(ccl_reproj_frame(cur, prev, red, W, H, C, 5, cam.inv_view_proj_rot, cam.eye, cam.view_proj, L.centre,
                                   L.r_inner, 1, 0, out) == CCL_OK);
     for (y = 0; y < H; ++y)
         for (x = 0; x < W; ++x) {
             k = (y * W + x) * C;
-            if (ccl_reprojection_updated(x, y, 5)) continue;
+            if (ccl_reproj_updated(x, y, 5)) continue;
             {
                 double ex = (x - 1) / 4.0, ey = (y - 1) / 4.0;
                 ex = ex < 0 ? 0 : (ex > 5 ? 5 : ex);
@@ -175,14 +175,14 @@ static void test_reproject_fallback_and_history(void)
     /* the previous camera looked the opposite way: nothing was visible -> the same fallback with history on */
     CCL_CHECK(ccl_camera_look_at(V(0, 0.002f, 0), V(0, 0.4f, 1), V(0, 1, 0), 1.0f, 1.5f, 0.01f, 1000.0f, &prev_cam)
               == CCL_OK);
-    CCL_CHECK(ccl_reproject_frame(cur, prev, red, W, H, C, 5, cam.inv_view_proj_rot, cam.eye, prev_cam.view_proj,
+    CCL_CHECK(ccl_reproj_frame(cur, prev, red, W, H, C, 5, cam.inv_view_proj_rot, cam.eye, prev_cam.view_proj,
                                   L.centre, L.r_inner, 1, 1, out) == CCL_OK);
     k = (4 * W + 7) * C; /* pixel (7, 4): not rendered in frame 5 */
     CCL_CHECK_CLOSE(out[k], 1.5, 1e-6);
     CCL_CHECK_CLOSE(out[k + 1], 0.75, 1e-6);
     /* out may alias current */
     memcpy(out, cur, sizeof cur);
-    CCL_CHECK(ccl_reproject_frame(out, prev, red, W, H, C, 5, cam.inv_view_proj_rot, cam.eye, cam.view_proj, L.centre,
+    CCL_CHECK(ccl_reproj_frame(out, prev, red, W, H, C, 5, cam.inv_view_proj_rot, cam.eye, cam.view_proj, L.centre,
                                   L.r_inner, 3, 1, out) == CCL_OK);
     CCL_CHECK(out[(5 * W + 5) * C] == cur[(5 * W + 5) * C]);
 }
@@ -194,17 +194,17 @@ static void test_reproject_rejects_bad_input(void)
     ccl_vec3 c = V(0, -6371, 0);
     ccl_camera_look_at(V(0, 0, 0), V(0, 0, -1), V(0, 1, 0), 1.0f, 1.0f, 0.01f, 100.0f, &cam);
     out[0] = 42.0f;
-    CCL_CHECK(ccl_reproject_frame(cur, prev, red, 0, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
+    CCL_CHECK(ccl_reproj_frame(cur, prev, red, 0, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
                                   6372.5f, 1, 1, out) == CCL_EINVAL);
-    CCL_CHECK(ccl_reproject_frame(cur, prev, red, W, H, 0, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
+    CCL_CHECK(ccl_reproj_frame(cur, prev, red, W, H, 0, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
                                   6372.5f, 1, 1, out) == CCL_EINVAL);
-    CCL_CHECK(ccl_reproject_frame(cur, prev, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
+    CCL_CHECK(ccl_reproj_frame(cur, prev, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
                                   6372.5f, 2, 1, out) == CCL_EINVAL);
-    CCL_CHECK(ccl_reproject_frame(cur, prev, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
+    CCL_CHECK(ccl_reproj_frame(cur, prev, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
                                   -1.0f, 1, 1, out) == CCL_EINVAL);
-    CCL_CHECK(ccl_reproject_frame(cur, prev, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
+    CCL_CHECK(ccl_reproj_frame(cur, prev, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
                                   6372.5f, 1, 1, prev) == CCL_EINVAL);
-    CCL_CHECK(ccl_reproject_frame(NULL, prev, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
+    CCL_CHECK(ccl_reproj_frame(NULL, prev, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye, cam.view_proj, c,
                                   6372.5f, 1, 1, out) == CCL_EINVAL);
     CCL_CHECK(out[0] == 42.0f);
 }
@@ -215,11 +215,11 @@ static void test_reprojection_uv_static_is_pixel_centre(void)
     ccl_cloud_layer L;
     float u, v;
     int x, y;
-    ccl_cloud_layer_default(&L);
+    ccl_raymarch_cloud_layer_default(&L);
     ccl_camera_look_at(V(3, 0.5f, 7), V(2, 0.6f, 6), V(0, 1, 0), 1.2f, 16.0f / 9.0f, 0.01f, 1000.0f, &cam);
     for (y = 0; y < 1080; y += 97)
         for (x = 0; x < 1920; x += 131) {
-            CCL_CHECK(ccl_reprojection_uv(cam.inv_view_proj_rot, cam.eye, cam.view_proj, L.centre, L.r_inner, x, y,
+            CCL_CHECK(ccl_reproj_uv(cam.inv_view_proj_rot, cam.eye, cam.view_proj, L.centre, L.r_inner, x, y,
                                           1920, 1080, &u, &v) == 1);
             /* float32 round trip: <= 4.5e-4 px measured; u has 24-bit resolution (1.1e-4 px per ulp here) */
             CCL_CHECK_CLOSE(u * 1920.0 - 0.5, x, 1e-3);

@@ -13,7 +13,7 @@ from ..core.runtime import init as _init
 _init()
 
 #: Topic modules, in the order of the C umbrella header.
-TOPICS = ("phase", "media", "hash", "interp", "noise", "texgen", "clouds",
+TOPICS = ("camera", "phase", "media", "hash", "interp", "noise", "texgen", "clouds",
           "raymarch", "colour", "sky", "reproj", "cloudscape")
 
 

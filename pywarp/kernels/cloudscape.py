@@ -16,32 +16,31 @@ from __future__ import annotations
 import warp as wp
 
 from .clouds import (
-    cloud_energy,
+    clouds_energy,
     clouds_base_shape,
     clouds_composite,
     clouds_coverage,
     clouds_detail_erosion,
     clouds_relative_height,
-    height_gradient,
+    clouds_height_gradient,
 )
-from .colour import srgb_encode
+from .colour import colour_srgb_encode
 from .phase import phase_hg
+from .camera import camera_ray
 from .raymarch import (
-    camera_ray,
-    ray_sphere,
-    layer_segment,
-    light_cone_kernel,
-    light_sample_position,
-    march_accumulate,
-    march_interval,
-    march_point,
-    ray_jitter_offset,
-    ray_jitter_tilt,
-    view_sample_count,
+    raymarch_accumulate,
+    raymarch_interval,
+    raymarch_jitter,
+    raymarch_layer_segment,
+    raymarch_light_cone_kernel,
+    raymarch_light_sample_position,
+    raymarch_point,
+    raymarch_ray_sphere,
+    raymarch_view_sample_count,
 )
-from .reproj import reprojection_pixel
+from .reproj import reproj_pixel
 from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb
-from .texgen import sample_trilinear_wrap
+from .texgen import texgen_sample_trilinear_wrap
 
 SKY_GRADIENT = 0
 SKY_PREETHAM = 1
@@ -121,17 +120,12 @@ def sample_bilinear_wrap(tex: wp.array2d(dtype=wp.vec4), size_mask: int, u: floa
 
 
 @wp.func
-def _length3(x: float, y: float, z: float) -> float:
-    return wp.sqrt(x * x + y * y + z * z)
-
-
-@wp.func
 def cloudscape_density(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detail: wp.array3d(dtype=wp.vec4),
                        curl: wp.array2d(dtype=wp.vec4), weather: wp.array2d(dtype=wp.vec4), pos: wp.vec3,
                        with_detail: int):
     """vc-A17: (density, precipitation) at a world position; twin of ``ccl_cloudscape_density``."""
     c = p.centre
-    r = _length3(pos[0] - c[0], pos[1] - c[1], pos[2] - c[2])
+    r = wp.length(pos - c)
     h = clouds_relative_height(r, p.r_inner, p.r_outer, 0)
     density = float(0.0)
     precip = float(0.0)
@@ -140,11 +134,11 @@ def cloudscape_density(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), det
                                  (pos[2] + p.weather_offset[1]) / p.weather_scale_km)
         precip = w[1]
         if w[0] > 0.0:
-            d_v = height_gradient(h, w[2], p.gradient_clamp)
+            d_v = clouds_height_gradient(h, w[2], p.gradient_clamp)
             if d_v > 0.0:
-                bs = sample_trilinear_wrap(base, base.shape[0] - 1,
-                                           wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km,
-                                                   pos[2] / p.base_scale_km))
+                bs = texgen_sample_trilinear_wrap(base, base.shape[0] - 1,
+                                                  wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km,
+                                                          pos[2] / p.base_scale_km))
                 l_fbm, b = clouds_base_shape(bs[0], bs[1], bs[2], bs[3])
                 c_thr = 1.0 - w[0]
                 if p.coverage_threshold == 0:
@@ -158,12 +152,11 @@ def cloudscape_density(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), det
                         qx = pos[0] + cv[0] * p.curl_strength_km + p.detail_offset[0]
                         qy = pos[1] + p.detail_offset[1]
                         qz = pos[2] + cv[1] * p.curl_strength_km + p.detail_offset[2]
-                        h_d = clouds_relative_height(_length3(qx - c[0], qy - c[1], qz - c[2]), p.r_inner, p.r_outer,
-                                                     0)
+                        h_d = clouds_relative_height(wp.length(wp.vec3(qx, qy, qz) - c), p.r_inner, p.r_outer, 0)
                         h_d = wp.clamp(h_d, 0.0, 1.0)
-                        dt = sample_trilinear_wrap(detail, detail.shape[0] - 1,
-                                                   wp.vec3(qx / p.detail_scale_km, qy / p.detail_scale_km,
-                                                           qz / p.detail_scale_km))
+                        dt = texgen_sample_trilinear_wrap(detail, detail.shape[0] - 1,
+                                                          wp.vec3(qx / p.detail_scale_km, qy / p.detail_scale_km,
+                                                                  qz / p.detail_scale_km))
                         density = clouds_detail_erosion(b_d, dt[0], dt[1], dt[2], h_d, p.detail_direction, 1)
     return density, precip
 
@@ -176,16 +169,16 @@ def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
     colour = wp.vec3(0.0, 0.0, 0.0)
     trans = float(1.0)
     taken = int(0)
-    t0, t1 = layer_segment(eye, d, p.centre, p.r_earth, p.r_inner, p.r_outer)
+    t0, t1 = raymarch_layer_segment(eye, d, p.centre, p.r_earth, p.r_inner, p.r_outer)
     if t1 >= t0:
         n = p.samples_max
         if p.adaptive_samples != 0:
-            n = view_sample_count(d[1], p.samples_min, p.samples_max)
-        cos_theta = d[0] * to_sun[0] + d[1] * to_sun[1] + d[2] * to_sun[2]
-        t_start, dt = march_interval(t0, t1, n)
+            n = raymarch_view_sample_count(d[1], p.samples_min, p.samples_max)
+        cos_theta = wp.dot(d, to_sun)
+        t_start, dt = raymarch_interval(t0, t1, n)
         if dt == dt:  # not NaN
             for i in range(n):
-                pos = march_point(eye, d, t_start, dt, i, offset)
+                pos = raymarch_point(eye, d, t_start, dt, i, offset)
                 taken = taken + 1
                 rho, precip = cloudscape_density(p, base, detail, curl, weather, pos, 1)
                 if rho > 0.0:
@@ -195,8 +188,8 @@ def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
                         w = (p.light_far_factor - 1.0) * 5.0 * p.light_step_km
                         if j < 5:
                             w = p.light_step_km
-                        q = light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
-                                                  p.light_far_factor, light_cone_kernel(j))
+                        q = raymarch_light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
+                                                           p.light_far_factor, raymarch_light_cone_kernel(j))
                         rj, pj = cloudscape_density(p, base, detail, curl, weather, q, p.light_detail)
                         d_light = d_light + w * rj
                     d_light = d_light * p.sigma_light
@@ -204,7 +197,7 @@ def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
                     a = p.absorption_base + p.absorption_precip * precip
                     e = float(0.0)
                     if p.beer != 0 and p.powder != 0:
-                        e = cloud_energy(d_light, a, cos_theta, p.g)
+                        e = clouds_energy(d_light, a, cos_theta, p.g)
                     else:  # the same product with a term replaced by 1
                         beer = float(1.0)
                         if p.beer != 0:
@@ -213,14 +206,13 @@ def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
                         if p.powder != 0:
                             powder = 1.0 - wp.exp(-2.0 * d_light)
                         e = beer * phase_hg(cos_theta, p.g) * powder
-                    h = clouds_relative_height(_length3(pos[0] - p.centre[0], pos[1] - p.centre[1],
-                                                        pos[2] - p.centre[2]), p.r_inner, p.r_outer, 0)
+                    h = clouds_relative_height(wp.length(pos - p.centre), p.r_inner, p.r_outer, 0)
                     light = wp.vec3(
                         p.sun_colour[0] * e + (p.ambient_bottom[0] + (p.ambient_top[0] - p.ambient_bottom[0]) * h),
                         p.sun_colour[1] * e + (p.ambient_bottom[1] + (p.ambient_top[1] - p.ambient_bottom[1]) * h),
                         p.sun_colour[2] * e + (p.ambient_bottom[2] + (p.ambient_top[2] - p.ambient_bottom[2]) * h))
                     # vc-A21
-                    colour, trans, stop = march_accumulate(colour, trans, p.sigma, rho, dt, light, p.exit_eps)
+                    colour, trans, stop = raymarch_accumulate(colour, trans, p.sigma, rho, dt, light, p.exit_eps)
                     if stop != 0 and p.early_exit != 0:
                         break
     return colour, trans, taken
@@ -231,12 +223,7 @@ def pixel_ray(p: CloudscapeParams, inv_view_proj_rot: wp.mat44, x: int, y: int, 
               frame: int):
     """vc-A25 + vc-A23: (direction, sample offset) of pixel (x, y) with the configured jitter."""
     d = camera_ray(inv_view_proj_rot, x, y, width, height)
-    offset = float(0.5)
-    if p.jitter_mode == 0:
-        d = ray_jitter_tilt(d, wp.uint32(x), wp.uint32(y), wp.uint32(frame), p.jitter_amount)
-    elif p.jitter_mode == 1:
-        offset = ray_jitter_offset(wp.uint32(x), wp.uint32(y), wp.uint32(frame))
-    return d, offset
+    return raymarch_jitter(d, wp.uint32(x), wp.uint32(y), wp.uint32(frame), p.jitter_amount, p.jitter_mode)
 
 
 @wp.func
@@ -251,9 +238,9 @@ def background(p: CloudscapeParams, sky_kind: int, eye: wp.vec3, d: wp.vec3, sun
                gradient: SkyGradient) -> wp.vec3:
     """Twin of the background step of ``ccl_cloudscape_pixel``: the ground colour where the ray hits the Earth
     sphere ahead, else the sky model's colour."""
-    e0, e1 = ray_sphere(eye, d, p.centre, p.r_earth)
+    e0, e1 = raymarch_ray_sphere(eye, d, p.centre, p.r_earth)
     if e1 > 0.0:
-        down = d[0] * (eye[0] - p.centre[0]) + d[1] * (eye[1] - p.centre[1]) + d[2] * (eye[2] - p.centre[2])
+        down = wp.dot(d, eye - p.centre)
         if e0 > 0.0 or down < 0.0:  # entered ahead, or (camera on the ground) pointing downwards
             return p.ground_colour
     return sky_colour(sky_kind, d, sun, preetham, gradient)
@@ -288,7 +275,7 @@ def sky_kernel(row0: int, sky_kind: int, sun: wp.vec3, preetham: Preetham, gradi
     x = j
     y = row0 + i
     if reprojection != 0:
-        x, y = reprojection_pixel(j, row0 + i, frame)
+        x, y = reproj_pixel(j, row0 + i, frame)
     if x < width and y < height:
         d, offset = pixel_ray(p, inv_view_proj_rot, x, y, width, height, frame)
         c = background(p, sky_kind, eye, d, sun, preetham, gradient)
@@ -313,7 +300,7 @@ def clouds_kernel(row0: int, p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4
     x = j
     y = row0 + i
     if reprojection != 0:
-        x, y = reprojection_pixel(j, row0 + i, frame)
+        x, y = reproj_pixel(j, row0 + i, frame)
     if x < width and y < height:
         d, offset = pixel_ray(p, inv_view_proj_rot, x, y, width, height, frame)
         cl, trans, taken = cloudscape_march(p, base, detail, curl, weather, eye, d, sun, offset)
@@ -334,7 +321,7 @@ def encode_kernel(row0: int, frame_buffer: wp.array3d(dtype=float),
     i, j = wp.tid()
     y = row0 + i
     for ch in range(3):
-        out[y, j, ch] = srgb_encode(wp.clamp(frame_buffer[y, j, ch], 0.0, 1.0))
+        out[y, j, ch] = colour_srgb_encode(wp.clamp(frame_buffer[y, j, ch], 0.0, 1.0))
 
 
 @wp.kernel

@@ -1,18 +1,18 @@
 """View-ray geometry of the cloudscape (vc §2.2, §4.2.1, §4.3.2) -- Warp twins of ``cclouds/raymarch.h``.
 
-Camera and ray generation (vc-A25), ray-sphere / ray-box intersection (vc-A14, vc-A35), the cloud-layer segment for
-a camera below, inside or above the layer (vc-A14, vc-A24), the view-sample count (vc-A18), light samples in a cone
-(vc-A19), front-to-back accumulation with early termination (vc-A21), ray jitter against banding (vc-A23), uniform
-marching in a bounding volume (vc-A35) and the constants collected from the thesis (vc-A36).
+Ray-sphere / ray-box intersection (vc-A14, vc-A35), the cloud-layer segment for a camera below, inside or above the
+layer (vc-A14, vc-A24), the view-sample count (vc-A18), light samples in a cone (vc-A19), front-to-back accumulation
+with early termination (vc-A21), ray jitter against banding (vc-A23), uniform marching in a bounding volume (vc-A35)
+and the constants collected from the thesis (vc-A36). The camera and primary rays (vc-A25) are in
+:mod:`pywarp.kernels.camera`, the PCG hash of the jitter in :mod:`pywarp.kernels.hash`.
 
 Conventions (shared with the C header):
   * World frame y up, lengths in kilometres; the default planet centre is ``(0, -EARTH_RADIUS_KM, 0)`` so the ground
     under the origin is at y = 0 and float32 coordinates near the camera stay small.
   * Rays ``o + t d``; "no hit / no segment" is NaN in both distances (so ``t_end > t_start`` is false).
-  * Matrices: ``wp.mat44`` in mathematical (row, column) indexing; the C code stores the same matrices column-major.
-    Right-handed look-at view (the camera looks down -z), OpenGL perspective (NDC z in [-1, 1]).
-  * Pixel ``(x, y)``, ``y = 0`` the top row; uv = ((x + 0.5)/W, (y + 0.5)/H); NDC = (2u - 1, 1 - 2v).
-  * Every @wp.func performs the float32 operations of its C twin in the same order.
+  * Positions, directions and colours are ``wp.vec3`` (NumPy ``(..., 3)`` arrays through the registry).
+  * Every @wp.func performs the float32 operations of its C twin in the same order; the vector maths of
+    ``cclouds/common.h`` is Warp's builtins (``wp.dot``, ``wp.length``, ``wp.normalize``, ``+ - *``).
 
 Choices where the thesis gives no value (each a named parameter; see also the header comment of raymarch.h):
   * ``EARTH_RADIUS_KM = 6371``: IUGG mean Earth radius (6371.0088 km) rounded.
@@ -35,7 +35,9 @@ from dataclasses import dataclass, fields
 import numpy as np
 import warp as wp
 
-from ..core.registry import Arg, Equation, Option, register
+from ..core.registry import Arg, Option, declare
+from .camera import _finite_float, _vec3_value
+from .hash import hash_pcg, hash_unit
 
 # --- named defaults ---------------------------------------------------------------------------------------------------
 
@@ -65,54 +67,87 @@ LIGHT_CONE_KERNEL.setflags(write=False)
 _K = [wp.constant(wp.vec3(*map(float, k))) for k in LIGHT_CONE_KERNEL]
 _K0, _K1, _K2, _K3, _K4, _K5 = _K
 
+#: Jitter modes of :func:`raymarch_jitter` (``ccl_jitter_mode``).
 JITTER_MODES = {"tilt": 0, "offset": 1, "none": 2}
 
-# PCG hash constants (>= 2^31 must be typed uint32 explicitly)
-_PCG_MUL = wp.constant(wp.uint32(747796405))
-_PCG_INC = wp.constant(wp.uint32(2891336453))
-_PCG_MUL2 = wp.constant(wp.uint32(277803737))
+
+# --- Python-side objects: the cloud layer -----------------------------------------------------------------------------
+
+def _f32(v) -> float:
+    return float(np.float32(v))
 
 
-# --- vec3 helpers (same operation order as the static helpers of raymarch.c) ----------------------------------------
+@dataclass(frozen=True)
+class CloudLayer:
+    """The Earth sphere and the two spheres bounding the cloud layer (vc-A14), centre ``(0, -earth_radius, 0)``.
 
-@wp.func
-def _dot3(a: wp.vec3, b: wp.vec3) -> float:
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    Parameters (km): ``earth_radius`` (default 6371, IUGG mean radius), ``base_altitude`` (1.5) and ``top_altitude``
+    (4.0) above the ground. Twin of ``ccl_raymarch_cloud_layer_init``.
+    """
+
+    earth_radius: float = EARTH_RADIUS_KM
+    base_altitude: float = LAYER_BASE_KM
+    top_altitude: float = LAYER_TOP_KM
+
+    def __post_init__(self):
+        er = _finite_float(self.earth_radius, "earth_radius")
+        base = _finite_float(self.base_altitude, "base_altitude")
+        top = _finite_float(self.top_altitude, "top_altitude")
+        if er <= 0:
+            raise ValueError(f"earth_radius must be > 0 km, got {er}")
+        if base < 0:
+            raise ValueError(f"base_altitude must be >= 0 km, got {base}")
+        if not top > base:
+            raise ValueError(f"top_altitude must be > base_altitude ({base}), got {top}")
+        if not self.r_outer > self.r_inner:
+            raise ValueError(f"top_altitude - base_altitude ({top - base}) is below the float32 resolution of the "
+                             f"radius {er}")
+
+    @property
+    def centre(self) -> tuple:
+        return (0.0, -_f32(self.earth_radius), 0.0)
+
+    @property
+    def r_earth(self) -> float:
+        return _f32(self.earth_radius)
+
+    @property
+    def r_inner(self) -> float:
+        return _f32(np.float32(self.earth_radius) + np.float32(self.base_altitude))
+
+    @property
+    def r_outer(self) -> float:
+        return _f32(np.float32(self.earth_radius) + np.float32(self.top_altitude))
+
+    def centre_vec3(self) -> wp.vec3:
+        return wp.vec3(*self.centre)
 
 
-@wp.func
-def _normalize3(a: wp.vec3) -> wp.vec3:
-    l = wp.sqrt(_dot3(a, a))
-    return wp.vec3(a[0] / l, a[1] / l, a[2] / l)
-
-
-@wp.func
-def _pcg_hash(v: wp.uint32) -> wp.uint32:
-    state = v * _PCG_MUL + _PCG_INC
-    word = ((state >> ((state >> wp.uint32(28)) + wp.uint32(4))) ^ state) * _PCG_MUL2
-    return (word >> wp.uint32(22)) ^ word
-
-
-@wp.func
-def _jitter_seed(x: wp.uint32, y: wp.uint32, frame: wp.uint32) -> wp.uint32:
-    return _pcg_hash(x + _pcg_hash(y + _pcg_hash(frame)))
-
-
-@wp.func
-def _hash_unit(h: wp.uint32) -> float:
-    return float(h >> wp.uint32(8)) * (1.0 / 16777216.0)
+_DEFAULT_LAYER = CloudLayer()
+_ORIGIN = Arg("origin", "ray origin (km)", unit_name="km")
+_DIRECTION = Arg("direction", "unit ray direction", unit=True)
 
 
 # --- vc-A14: ray-sphere -----------------------------------------------------------------------------------------------
 
+@declare("vc-A14", c="ccl_raymarch_ray_sphere",
+         args=(_ORIGIN, _DIRECTION, Arg("centre", "sphere centre (km)", unit_name="km"),
+               Arg("radius", "sphere radius", lo=0.0, lo_open=True, unit_name="km")),
+         outputs=("t_near", "t_far"),
+         summary="Ray-sphere intersection distances t_near <= t_far along the unit direction (negative = behind the "
+                 "origin); NaN where the ray misses. Used for the Earth and the two cloud-layer spheres (defaults: "
+                 "Earth radius 6371 km, layer 1.5-4 km above the ground, centre (0, -6371, 0)).",
+         references=("Haines, Guenther, Akenine-Moeller, Precision Improvements for Ray/Sphere Intersection, "
+                     "Ray Tracing Gems, 2019",))
 @wp.func
-def ray_sphere(o: wp.vec3, d: wp.vec3, c: wp.vec3, r: float):
+def raymarch_ray_sphere(origin: wp.vec3, direction: wp.vec3, centre: wp.vec3, radius: float) -> tuple[float, float]:
     """vc-A14: roots (t0 <= t1) of |o + t d - c| = r for unit d (Haines et al., Ray Tracing Gems 2019, robust form);
     (NaN, NaN) on a miss."""
-    f = o - c
-    b = _dot3(f, d)
-    l = f - d * b
-    ll = wp.sqrt(_dot3(l, l))
+    r = radius
+    f = origin - centre
+    b = wp.dot(f, direction)
+    l = f - direction * b
+    ll = wp.length(l)
     disc = (r - ll) * (r + ll)
     t0 = wp.nan
     t1 = wp.nan
@@ -121,7 +156,7 @@ def ray_sphere(o: wp.vec3, d: wp.vec3, c: wp.vec3, r: float):
         q = s - b
         if b >= 0.0:
             q = -(b + s)
-        ff = wp.sqrt(_dot3(f, f))
+        ff = wp.length(f)
         cq = (ff - r) * (ff + r)
         ta = 0.0
         tb = 0.0
@@ -160,7 +195,7 @@ def _slab(o: float, d: float, lo: float, hi: float, tn: float, tf: float):
 
 
 @wp.func
-def ray_box(o: wp.vec3, d: wp.vec3, bmin: wp.vec3, bmax: wp.vec3):
+def raymarch_ray_box(o: wp.vec3, d: wp.vec3, bmin: wp.vec3, bmax: wp.vec3) -> tuple[float, float]:
     """vc-A35: slab intersection with an axis-aligned box; (t0, t1) or (NaN, NaN)."""
     tn = -wp.inf
     tf = wp.inf
@@ -178,36 +213,68 @@ def ray_box(o: wp.vec3, d: wp.vec3, bmin: wp.vec3, bmax: wp.vec3):
 
 # --- vc-A14 / vc-A24: the cloud-layer segment -----------------------------------------------------------------------
 
+def _check_layer(**kw):
+    re, ri, ro = (np.asarray(kw[n]) for n in ("r_earth", "r_inner", "r_outer"))
+    if np.any(ri < re):
+        raise ValueError(f"r_inner must be >= r_earth, got r_inner={np.min(ri)}, r_earth={np.max(re)}")
+    if np.any(ri >= ro):
+        raise ValueError(f"r_inner must be < r_outer, got r_inner={np.max(ri)}, r_outer={np.min(ro)}")
+
+
+def _layer_samples(rng, n):
+    """Radii r_earth <= r_inner < r_outer (the layer 0-10 % of r_earth above it, 0.1-10 % thick)."""
+    re = rng.uniform(1.0, 100.0, n)
+    ri = re * (1.0 + rng.uniform(0.0, 0.1, n))
+    ro = ri * (1.0 + rng.uniform(0.001, 0.1, n))
+    return {"r_earth": re.astype(np.float32), "r_inner": ri.astype(np.float32), "r_outer": ro.astype(np.float32)}
+
+
+@declare("vc-A24", c="ccl_raymarch_layer_segment",
+         args=(_ORIGIN, _DIRECTION,
+               Arg("centre", "planet centre (km)", default=(0.0, -EARTH_RADIUS_KM, 0.0), unit_name="km"),
+               Arg("r_earth", "Earth radius", lo=0.0, lo_open=True, default=_DEFAULT_LAYER.r_earth, unit_name="km"),
+               # r_inner and r_outer are bounded by r_earth <= r_inner < r_outer (the cross-argument check)
+               Arg("r_inner", "cloud-layer base radius (>= r_earth)", default=_DEFAULT_LAYER.r_inner, unit_name="km"),
+               Arg("r_outer", "cloud-layer top radius (> r_inner)", default=_DEFAULT_LAYER.r_outer, unit_name="km")),
+         outputs=("t_start", "t_end"), check=_check_layer, samples=_layer_samples,
+         summary="The raymarch interval through the cloud layer for a camera below (vc-A14: inner far root to outer "
+                 "far root, nothing below the horizon), inside (camera to first exit) or above (outer entry to inner "
+                 "entry or outer exit) the layer; NaN where the ray sees no cloud layer.",
+         references=("Hillaire, Physically based sky, atmosphere and cloud rendering in Frostbite, SIGGRAPH 2016 "
+                     "course",))
 @wp.func
-def layer_segment(o: wp.vec3, d: wp.vec3, c: wp.vec3, r_earth: float, r_inner: float, r_outer: float):
+def raymarch_layer_segment(origin: wp.vec3, direction: wp.vec3, centre: wp.vec3, r_earth: float, r_inner: float,
+                           r_outer: float) -> tuple[float, float]:
     """vc-A14 (camera below the layer) and vc-A24 (inside, above): (t_start, t_end) or (NaN, NaN)."""
-    f = o - c
-    rho = wp.sqrt(_dot3(f, f))
+    o = origin
+    d = direction
+    c = centre
+    rho = wp.length(o - c)
     ts = wp.nan
     te = wp.nan
     if rho < r_inner:
-        e0, e1 = ray_sphere(o, d, c, r_earth)
+        e0, e1 = raymarch_ray_sphere(o, d, c, r_earth)
         if not (e1 > 0.0):  # a miss gives NaN: not blocked
-            i0, i1 = ray_sphere(o, d, c, r_inner)
-            u0, u1 = ray_sphere(o, d, c, r_outer)
+            i0, i1 = raymarch_ray_sphere(o, d, c, r_inner)
+            u0, u1 = raymarch_ray_sphere(o, d, c, r_outer)
             ts = i1
             te = u1
     elif rho <= r_outer:
         ts = 0.0
-        i0, i1 = ray_sphere(o, d, c, r_inner)
+        i0, i1 = raymarch_ray_sphere(o, d, c, r_inner)
         if i0 > 0.0:
             te = i0
         else:
-            u0, u1 = ray_sphere(o, d, c, r_outer)
+            u0, u1 = raymarch_ray_sphere(o, d, c, r_outer)
             te = u1
     else:
-        u0, u1 = ray_sphere(o, d, c, r_outer)
+        u0, u1 = raymarch_ray_sphere(o, d, c, r_outer)
         if u1 > 0.0:
             ts = 0.0
             if u0 > 0.0:
                 ts = u0
             te = u1
-            i0, i1 = ray_sphere(o, d, c, r_inner)
+            i0, i1 = raymarch_ray_sphere(o, d, c, r_inner)
             if i0 > 0.0:
                 te = i0
     if not (te >= ts):
@@ -218,8 +285,27 @@ def layer_segment(o: wp.vec3, d: wp.vec3, c: wp.vec3, r_earth: float, r_inner: f
 
 # --- vc-A18: view-sample count ----------------------------------------------------------------------------------------
 
+def _check_counts(**kw):
+    if np.any(np.asarray(kw["n_min"]) > np.asarray(kw["n_max"])):
+        raise ValueError(f"n_min must be <= n_max, got n_min={np.max(kw['n_min'])}, n_max={np.min(kw['n_max'])}")
+
+
+def _count_samples(rng, n):
+    n_min = rng.integers(1, 129, n)
+    return {"n_min": n_min.astype(np.int32), "n_max": (n_min + rng.integers(0, 129, n)).astype(np.int32)}
+
+
+@declare("vc-A18", c="ccl_raymarch_view_sample_count",
+         args=(Arg("dir_y", "y component of the unit view direction", lo=-1.0, hi=1.0),
+               Arg("n_min", "samples at zenith/nadir", lo=1, default=VIEW_SAMPLES_ZENITH),
+               # bounded below by n_min >= 1 through the cross-argument check
+               Arg("n_max", "samples at the horizon (>= n_min)", default=VIEW_SAMPLES_HORIZON)),
+         outputs=("n",), check=_check_counts, samples=_count_samples,
+         summary="View-ray sample count N = round(mix(n_max, n_min, |dir_y|)) (64 at zenith, 128 at the horizon; the "
+                 "interpolation law is our choice), int32.",
+         references=("Barvir, Volumetric clouds, FIT BUT 2020, §4.3.2 and §4.6",))
 @wp.func
-def view_sample_count(dir_y: float, n_min: int, n_max: int) -> int:
+def raymarch_view_sample_count(dir_y: float, n_min: int, n_max: int) -> int:
     """vc-A18: N = floor(n_max + (n_min - n_max) |dir_y| + 0.5); |dir_y| > 1 counts as 1, NaN as 0."""
     ay = wp.abs(dir_y)
     if ay >= 1.0:
@@ -233,7 +319,7 @@ def view_sample_count(dir_y: float, n_min: int, n_max: int) -> int:
 # --- vc-A19: light-cone samples ---------------------------------------------------------------------------------------
 
 @wp.func
-def light_cone_kernel(i: int) -> wp.vec3:
+def raymarch_light_cone_kernel(i: int) -> wp.vec3:
     """vc-A19: the default kernel vector i (wrapped mod 6), LIGHT_CONE_KERNEL[i]."""
     j = ((i % 6) + 6) % 6
     k = _K0
@@ -250,74 +336,117 @@ def light_cone_kernel(i: int) -> wp.vec3:
     return k
 
 
+@declare("vc-A19", c="ccl_raymarch_light_sample_position",
+         args=(Arg("p", "view sample position (km)", unit_name="km"),
+               Arg("to_sun", "unit direction towards the sun", unit=True),
+               Arg("index", "light sample index i, 0..5 (5 = the far sample)", lo=0, hi=5),
+               Arg("step", "axial step", lo=0.0, lo_open=True, sample_range=(0.01, 1.0), unit_name="km"),
+               Arg("cone_angle", "cone half-angle", lo=0.0, hi=math.pi / 2, hi_open=True, unit_name="rad"),
+               Arg("far_factor", "far sample distance / near cone length", lo=0.0, lo_open=True,
+                   sample_range=(0.5, 5.0)),
+               Arg("k", "kernel vector (unit; the default kernel is LIGHT_CONE_KERNEL[i])", unit=True)),
+         outputs=("position",),
+         summary="Position of light sample i (index) in a cone from p towards the sun: p + s_i to_sun + s_i "
+                 "tan(cone_angle) k with s_i = (i+1) step for the 5 near samples and far_factor * 5 step for the 6th "
+                 "(defaults: step LIGHT_STEP_KM, cone_angle LIGHT_CONE_ANGLE, far_factor LIGHT_FAR_FACTOR, "
+                 "k = LIGHT_CONE_KERNEL[i]).",
+         references=("Schneider & Vos, The real-time volumetric cloudscapes of Horizon Zero Dawn, SIGGRAPH 2015",
+                     "Schneider, Real-time volumetric cloudscapes, GPU Pro 7, 2016"))
 @wp.func
-def light_sample_position(p: wp.vec3, to_sun: wp.vec3, i: int, step: float, cone_angle: float, far_factor: float,
-                          k: wp.vec3) -> wp.vec3:
-    """vc-A19: p + s_i to_sun + (s_i tan(cone_angle)) k with s_i = (i + 1) step (i < 5), far_factor * 5 step (i = 5)."""
+def raymarch_light_sample_position(p: wp.vec3, to_sun: wp.vec3, index: int, step: float, cone_angle: float,
+                                   far_factor: float, k: wp.vec3) -> wp.vec3:
+    """vc-A19: p + s_i to_sun + (s_i tan(cone_angle)) k with s_i = (i + 1) step (i = index < 5), far_factor * 5 step
+    (i = 5)."""
     s = far_factor * (5.0 * step)
-    if i < 5:
-        s = float(i + 1) * step
+    if index < 5:
+        s = float(index + 1) * step
     radius = s * wp.tan(cone_angle)
     return (p + to_sun * s) + k * radius
 
 
 # --- vc-A21: accumulation and early termination -----------------------------------------------------------------------
 
+@declare("vc-A21", c="ccl_raymarch_accumulate",
+         args=(Arg("colour", "radiance accumulated so far", lo=0.0),
+               Arg("transmittance", "view transmittance T so far", lo=0.0, hi=1.0),
+               Arg("sigma", "extinction per unit density", lo=0.0, unit_name="1/km"),
+               Arg("rho", "density at the sample", lo=0.0),
+               Arg("dt", "step length", lo=0.0, unit_name="km"),
+               Arg("light", "radiance of the sample", lo=0.0),
+               Arg("eps", "early-termination threshold: stop when 1 - T >= 1 - eps", lo=0.0, hi=1.0,
+                   default=MARCH_EPS)),
+         outputs=("colour", "transmittance", "stop"),
+         summary="One front-to-back step: tau = sigma rho dt, C += T (1 - e^-tau) L, T *= e^-tau; stop = 1 (int32) "
+                 "when 1 - T >= 1 - eps (default eps = 1/256).",
+         references=("Barvir, Volumetric clouds, FIT BUT 2020, §4.3.2",
+                     "Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed., §11.2"))
 @wp.func
-def march_accumulate(colour: wp.vec3, transmittance: float, sigma: float, rho: float, dt: float, light: wp.vec3,
-                     eps: float):
+def raymarch_accumulate(colour: wp.vec3, transmittance: float, sigma: float, rho: float, dt: float, light: wp.vec3,
+                        eps: float) -> tuple[wp.vec3, float, int]:
     """vc-A21: tau = sigma rho dt; C += T (1 - e^-tau) L; T *= e^-tau. Returns (C, T, stop) with stop = 1 when
     1 - T >= 1 - eps."""
     tau = sigma * rho * dt
     e = wp.exp(-tau)
     w = transmittance * (1.0 - e)
-    c = wp.vec3(colour[0] + w * light[0], colour[1] + w * light[1], colour[2] + w * light[2])
     t = transmittance * e
     stop = 0
     if (1.0 - t) >= (1.0 - eps):
         stop = 1
-    return c, t, stop
-
-
-# --- vc-A25: ray generation -------------------------------------------------------------------------------------------
-
-@wp.func
-def camera_ray(inv_view_proj_rot: wp.mat44, x: int, y: int, width: int, height: int) -> wp.vec3:
-    """vc-A25: unit direction through the centre of pixel (x, y): uv -> NDC (z = 1) -> h = M (ndc, 1) with M the
-    camera-relative inverse view-projection (``Camera.inv_view_proj_rot``) -> normalize(h.xyz)."""
-    m = inv_view_proj_rot
-    u = (float(x) + 0.5) / float(width)
-    v = (float(y) + 0.5) / float(height)
-    nx = 2.0 * u - 1.0
-    ny = 1.0 - 2.0 * v
-    hx = m[0][0] * nx + m[0][1] * ny + m[0][2] + m[0][3]
-    hy = m[1][0] * nx + m[1][1] * ny + m[1][2] + m[1][3]
-    hz = m[2][0] * nx + m[2][1] * ny + m[2][2] + m[2][3]
-    return _normalize3(wp.vec3(hx, hy, hz))
+    return colour + light * w, t, stop
 
 
 # --- vc-A23: ray jitter -----------------------------------------------------------------------------------------------
 
 @wp.func
-def ray_jitter_tilt(d: wp.vec3, x: wp.uint32, y: wp.uint32, frame: wp.uint32, amount: float) -> wp.vec3:
-    """vc-A23: normalize(d + amount r), r in [-1, 1)^3 from the PCG hash of (x, y, frame)."""
-    seed = _jitter_seed(x, y, frame)
-    rx = 2.0 * _hash_unit(_pcg_hash(seed + wp.uint32(0))) - 1.0
-    ry = 2.0 * _hash_unit(_pcg_hash(seed + wp.uint32(1))) - 1.0
-    rz = 2.0 * _hash_unit(_pcg_hash(seed + wp.uint32(2))) - 1.0
-    return _normalize3(d + wp.vec3(rx, ry, rz) * amount)
+def _jitter_seed(x: wp.uint32, y: wp.uint32, frame: wp.uint32) -> wp.uint32:
+    return hash_pcg(x + hash_pcg(y + hash_pcg(frame)))
 
 
 @wp.func
-def ray_jitter_offset(x: wp.uint32, y: wp.uint32, frame: wp.uint32) -> float:
+def raymarch_jitter_tilt(d: wp.vec3, x: wp.uint32, y: wp.uint32, frame: wp.uint32, amount: float) -> wp.vec3:
+    """vc-A23: normalize(d + amount r), r in [-1, 1)^3 from the PCG hash of (x, y, frame)."""
+    seed = _jitter_seed(x, y, frame)
+    r = wp.vec3(2.0 * hash_unit(hash_pcg(seed + wp.uint32(0))) - 1.0,
+                2.0 * hash_unit(hash_pcg(seed + wp.uint32(1))) - 1.0,
+                2.0 * hash_unit(hash_pcg(seed + wp.uint32(2))) - 1.0)
+    return wp.normalize(d + r * amount)
+
+
+@wp.func
+def raymarch_jitter_offset(x: wp.uint32, y: wp.uint32, frame: wp.uint32) -> float:
     """vc-A23 (option): start offset in [0, 1) from the PCG hash of (x, y, frame)."""
-    return _hash_unit(_pcg_hash(_jitter_seed(x, y, frame) + wp.uint32(3)))
+    return hash_unit(hash_pcg(_jitter_seed(x, y, frame) + wp.uint32(3)))
+
+
+@declare("vc-A23", c="ccl_raymarch_jitter",
+         args=(_DIRECTION,
+               Arg("x", "pixel x", lo=0), Arg("y", "pixel y", lo=0), Arg("frame", "frame number", lo=0),
+               Arg("amount", "tilt scale", lo=0.0, default=JITTER_AMOUNT, sample_range=(0.0, 0.1), unit_name="rad")),
+         options=(Option("mode", JITTER_MODES, "tilt",
+                         "'tilt' (default, the thesis): tilt the direction; 'offset': keep it and jitter the start "
+                         "offset; 'none'"),),
+         outputs=("direction", "offset"),
+         summary="Ray jitter against banding, seeded by (x, y, frame) (uint32) through the PCG hash: mode 'tilt' "
+                 "returns normalize(d + amount r), r in [-1, 1)^3, offset 0.5; mode 'offset' d and an offset in "
+                 "[0, 1) for the first sample (t = t_start + (i + offset) dt); mode 'none' d and 0.5.",
+         references=("Jarzynski & Olano, Hash Functions for GPU Rendering, JCGT 9(3), 2020",))
+@wp.func
+def raymarch_jitter(direction: wp.vec3, x: wp.uint32, y: wp.uint32, frame: wp.uint32, amount: float,
+                    mode: int) -> tuple[wp.vec3, float]:
+    """vc-A23: (direction to march, start offset) for a jitter mode (0 tilt, 1 offset, 2 none)."""
+    d = direction
+    offset = float(0.5)
+    if mode == 0:
+        d = raymarch_jitter_tilt(direction, x, y, frame, amount)
+    elif mode == 1:
+        offset = raymarch_jitter_offset(x, y, frame)
+    return d, offset
 
 
 # --- vc-A35: uniform march --------------------------------------------------------------------------------------------
 
 @wp.func
-def march_interval(t_near: float, t_far: float, n: int):
+def raymarch_interval(t_near: float, t_far: float, n: int) -> tuple[float, float]:
     """vc-A35: (t_start, dt) = (max(t_near, 0), (t_far - t_start) / n), or (NaN, NaN) for an empty/behind interval."""
     ts = wp.nan
     dt = wp.nan
@@ -330,10 +459,156 @@ def march_interval(t_near: float, t_far: float, n: int):
 
 
 @wp.func
-def march_point(o: wp.vec3, d: wp.vec3, t_start: float, dt: float, i: int, offset: float) -> wp.vec3:
+def raymarch_point(o: wp.vec3, d: wp.vec3, t_start: float, dt: float, i: int, offset: float) -> wp.vec3:
     """vc-A35 / vc-2.18: o + (t_start + (i + offset) dt) d."""
     t = t_start + (float(i) + offset) * dt
     return o + d * t
+
+
+@wp.func
+def _march_fill(o: wp.vec3, d: wp.vec3, t0: float, t1: float, n: int, offset: float,
+                out_points: wp.array2d(dtype=wp.vec3), row: int) -> float:
+    ts, dt = raymarch_interval(t0, t1, n)
+    for i in range(n):
+        out_points[row, i] = raymarch_point(o, d, ts, dt, i, offset)
+    return dt
+
+
+@wp.func
+def raymarch_sphere(o: wp.vec3, d: wp.vec3, c: wp.vec3, r: float, n: int, offset: float,
+                    out_points: wp.array2d(dtype=wp.vec3), row: int) -> float:
+    """vc-A35: n uniform steps through the sphere (c, r) in front of o (d any non-zero length, normalized):
+    out_points[row, i] = raymarch_point(o, d, t_start, dt, i, offset); returns dt (NaN and NaN points on a miss)."""
+    u = wp.normalize(d)
+    t0, t1 = raymarch_ray_sphere(o, u, c, r)
+    return _march_fill(o, u, t0, t1, n, offset, out_points, row)
+
+
+@wp.func
+def raymarch_box(o: wp.vec3, d: wp.vec3, bmin: wp.vec3, bmax: wp.vec3, n: int, offset: float,
+                 out_points: wp.array2d(dtype=wp.vec3), row: int) -> float:
+    """vc-A35: :func:`raymarch_sphere` for an axis-aligned box (bmin <= bmax)."""
+    u = wp.normalize(d)
+    t0, t1 = raymarch_ray_box(o, u, bmin, bmax)
+    return _march_fill(o, u, t0, t1, n, offset, out_points, row)
+
+
+@wp.kernel
+def _march_volume_kernel(origins: wp.array(dtype=wp.vec3), dirs: wp.array(dtype=wp.vec3), kind: int, a: wp.vec3,
+                         b: wp.vec3, radius: float, n: int, offset: float, points: wp.array2d(dtype=wp.vec3),
+                         dts: wp.array(dtype=float)):
+    r = wp.tid()
+    if kind == 0:
+        dts[r] = raymarch_sphere(origins[r], dirs[r], a, radius, n, offset, points, r)
+    else:
+        dts[r] = raymarch_box(origins[r], dirs[r], a, b, n, offset, points, r)
+
+
+def _march_args(origin, direction, n, offset, name):
+    o = np.asarray(origin, dtype=np.float64) if not isinstance(origin, str) else None
+    d = np.asarray(direction, dtype=np.float64) if not isinstance(direction, str) else None
+    for arr, nm in ((o, "origin"), (d, "direction")):
+        if arr is None or arr.ndim == 0 or arr.shape[-1] != 3:
+            raise ValueError(f"{nm} must be an array of 3-vectors (..., 3)")
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"{nm} must be finite (no NaN or Inf)")
+    try:
+        shape = np.broadcast_shapes(o.shape[:-1], d.shape[:-1])
+    except ValueError:
+        raise ValueError(f"{name}(): origin{o.shape} and direction{d.shape} do not broadcast") from None
+    if np.any(np.sum(d * d, axis=-1) == 0.0):
+        raise ValueError("direction must be non-zero")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
+        raise TypeError(f"n must be an integer, got {n!r}")
+    if n < 1:
+        raise ValueError(f"n must be >= 1, got {n}")
+    off = _finite_float(offset, "offset")
+    if not 0.0 <= off < 1.0:
+        raise ValueError(f"offset must be in [0, 1), got {offset}")
+    f32 = lambda v: np.ascontiguousarray(v, dtype=np.float32)  # noqa: E731
+    return (f32(np.broadcast_to(o, (*shape, 3)).reshape(-1, 3)), f32(np.broadcast_to(d, (*shape, 3)).reshape(-1, 3)),
+            shape, int(n), float(np.float32(off)))
+
+
+def _sphere_args(centre, radius):
+    a = _vec3_value(centre, "centre")
+    r = _finite_float(radius, "radius")
+    if r <= 0:
+        raise ValueError(f"radius must be > 0, got {radius}")
+    return np.float32(a), np.zeros(3, np.float32), float(np.float32(r))
+
+
+def _box_args(box_min, box_max):
+    a = _vec3_value(box_min, "box_min")
+    b = _vec3_value(box_max, "box_max")
+    if np.any(a > b):
+        raise ValueError(f"box_min must be <= box_max component-wise, got {a.tolist()} and {b.tolist()}")
+    return np.float32(a), np.float32(b), 0.0
+
+
+def _march(kind, impl, device, o, d, shape, n, a, b, r, off):
+    """n uniform steps of every ray through a sphere (kind 0: centre a, radius r) or a box (kind 1: a, b)."""
+    if impl == "warp":
+        from ..core.runtime import resolve_device
+
+        dev = resolve_device(device)
+        pts = wp.empty((o.shape[0], n), dtype=wp.vec3, device=dev)
+        dts = wp.empty(o.shape[0], dtype=float, device=dev)
+        if o.shape[0]:
+            wp.launch(_march_volume_kernel, dim=o.shape[0],
+                      inputs=[wp.array(o, dtype=wp.vec3, device=dev), wp.array(d, dtype=wp.vec3, device=dev), kind,
+                              wp.vec3(*a.tolist()), wp.vec3(*b.tolist()), r, n, off], outputs=[pts, dts], device=dev)
+        return pts.numpy().reshape(*shape, n, 3), dts.numpy().reshape(shape)
+    from ..core.binding import ffi, lib
+
+    F, L = ffi(), lib()
+    pts_c = F.new("ccl_vec3[]", n)
+    dt_c = F.new("float *")
+    pts = np.empty((o.shape[0], n, 3), np.float32)
+    dts = np.empty(o.shape[0], np.float32)
+    for k in range(o.shape[0]):
+        ok, dk = tuple(o[k].tolist()), tuple(d[k].tolist())
+        if kind == 0:
+            L.ccl_raymarch_sphere(ok, dk, tuple(a.tolist()), r, n, off, pts_c, dt_c)
+        else:
+            L.ccl_raymarch_box(ok, dk, tuple(a.tolist()), tuple(b.tolist()), n, off, pts_c, dt_c)
+        pts[k] = np.frombuffer(F.buffer(pts_c), dtype=np.float32).reshape(n, 3)
+        dts[k] = dt_c[0]
+    return pts.reshape(*shape, n, 3), dts.reshape(shape)
+
+
+def _sphere_evaluator(impl, device=None):
+    def raymarch_sphere(origin, direction, centre, radius, n, offset=0.5):
+        """Sample positions (..., n, 3) and step lengths (...) of n uniform steps through the sphere (centre,
+        radius) in front of the origin (direction of any non-zero length); NaN where the ray misses (vc-A35)."""
+        o, d, shape, n, off = _march_args(origin, direction, n, offset, "raymarch_sphere")
+        a, b, r = _sphere_args(centre, radius)
+        return _march(0, impl, device, o, d, shape, n, a, b, r, off)
+
+    return raymarch_sphere
+
+
+def march_box(origin, direction, box_min, box_max, n, offset=0.5, *, impl: str = "warp", device=None):
+    """vc-A35 with an axis-aligned box (``ccl_raymarch_box``): sample positions (..., n, 3) and step lengths (...) of n
+    uniform steps through the box in front of the origin (direction of any non-zero length); NaN where the ray
+    misses. ``impl="c"`` evaluates the C function. The registered vc-A35 entry is the sphere, ``raymarch_sphere``
+    (a box is not a catalogue entry of its own)."""
+    if impl not in ("warp", "c"):
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    o, d, shape, n, off = _march_args(origin, direction, n, offset, "march_box")
+    a, b, r = _box_args(box_min, box_max)
+    return _march(1, impl, device, o, d, shape, n, a, b, r, off)
+
+
+# Not element-wise: one ray gives n sample points, (..., n, 3); the same march through a box is march_box.
+declare("vc-A35", c="ccl_raymarch_sphere", make_warp=lambda eq, device: _sphere_evaluator("warp", device),
+        make_c=lambda eq: _sphere_evaluator("c"),
+        summary="raymarch_sphere(origin, direction, centre, radius, n, offset=0.5) -> (points (..., n, 3), dt (...)): "
+                "n uniform steps over the part of the ray in front of the origin inside a bounding sphere, sample i "
+                "at t_start + (i + offset) dt; NaN where the ray misses. The same through an axis-aligned box "
+                "(ccl_raymarch_box): pywarp.kernels.raymarch.march_box(..., impl='warp' | 'c').",
+        references=("Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed., §11.3 (ray marching)",))(
+    raymarch_sphere)
 
 
 # --- vc-A36: constants ------------------------------------------------------------------------------------------------
@@ -374,7 +649,7 @@ class VcConstantTable:
 
 
 @wp.func
-def vc_constants() -> VcConstantTable:
+def raymarch_vc_constants() -> VcConstantTable:
     """vc-A36: the constants collected from the thesis, usable inside kernels."""
     c = VcConstantTable()
     c.base_texture_size = 128
@@ -444,10 +719,6 @@ class VcConstants:
     rayleigh_red_nm: float
 
 
-def _f32(v) -> float:
-    return float(np.float32(v))
-
-
 def _to_constants(get) -> VcConstants:
     """Build VcConstants from ``get(name)`` returning a number or a sequence; floats rounded through float32."""
     out = {}
@@ -464,7 +735,7 @@ def _to_constants(get) -> VcConstants:
 
 @wp.kernel
 def _eval_vc_constants(out: wp.array(dtype=VcConstantTable)):
-    out[0] = vc_constants()
+    out[0] = raymarch_vc_constants()
 
 
 def _warp_vc_constants(eq, device):
@@ -485,604 +756,15 @@ def _c_vc_constants(eq):
     from ..core.binding import lib
 
     def call():
-        p = lib().ccl_vc_constants()
+        p = lib().ccl_raymarch_vc_constants()
         return _to_constants(lambda name: getattr(p, name))
 
     return call
 
 
-# --- Python-side objects: cloud layer and camera ----------------------------------------------------------------------
-
-def _finite_float(value, name: str) -> float:
-    if isinstance(value, (bool, str, bytes)) or value is None:
-        raise TypeError(f"{name} must be a number, got {value!r}")
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {v}")
-    return v
-
-
-def _vec3_value(value, name: str) -> np.ndarray:
-    try:
-        a = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a 3-vector of numbers, got {value!r}") from None
-    if a.shape != (3,):
-        raise ValueError(f"{name} must be a 3-vector, got shape {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name} must be finite, got {a.tolist()}")
-    return a
-
-
-@dataclass(frozen=True)
-class CloudLayer:
-    """The Earth sphere and the two spheres bounding the cloud layer (vc-A14), centre ``(0, -earth_radius, 0)``.
-
-    Parameters (km): ``earth_radius`` (default 6371, IUGG mean radius), ``base_altitude`` (1.5) and ``top_altitude``
-    (4.0) above the ground. Twin of ``ccl_cloud_layer_init``.
-    """
-
-    earth_radius: float = EARTH_RADIUS_KM
-    base_altitude: float = LAYER_BASE_KM
-    top_altitude: float = LAYER_TOP_KM
-
-    def __post_init__(self):
-        er = _finite_float(self.earth_radius, "earth_radius")
-        base = _finite_float(self.base_altitude, "base_altitude")
-        top = _finite_float(self.top_altitude, "top_altitude")
-        if er <= 0:
-            raise ValueError(f"earth_radius must be > 0 km, got {er}")
-        if base < 0:
-            raise ValueError(f"base_altitude must be >= 0 km, got {base}")
-        if not top > base:
-            raise ValueError(f"top_altitude must be > base_altitude ({base}), got {top}")
-        if not self.r_outer > self.r_inner:
-            raise ValueError(f"top_altitude - base_altitude ({top - base}) is below the float32 resolution of the "
-                             f"radius {er}")
-
-    @property
-    def centre(self) -> tuple:
-        return (0.0, -_f32(self.earth_radius), 0.0)
-
-    @property
-    def r_earth(self) -> float:
-        return _f32(self.earth_radius)
-
-    @property
-    def r_inner(self) -> float:
-        return _f32(np.float32(self.earth_radius) + np.float32(self.base_altitude))
-
-    @property
-    def r_outer(self) -> float:
-        return _f32(np.float32(self.earth_radius) + np.float32(self.top_altitude))
-
-    def centre_vec3(self) -> wp.vec3:
-        return wp.vec3(*self.centre)
-
-
-@dataclass(frozen=True, eq=False)
-class Camera:
-    """Camera matrices (float32, mathematical row/column layout, ``m[row, col]``); see :func:`camera_look_at`.
-
-    ``mat44(name)`` gives a ``wp.mat44`` for kernels, ``column_major(name)`` the float[16] layout of the C code.
-    """
-
-    eye: np.ndarray
-    view: np.ndarray
-    proj: np.ndarray
-    view_proj: np.ndarray
-    inv_view_proj: np.ndarray
-    inv_view_proj_rot: np.ndarray  # inverse of proj @ (view without translation): clip -> direction from the eye
-
-    def mat44(self, name: str = "inv_view_proj") -> wp.mat44:
-        return wp.mat44(*getattr(self, name).ravel().tolist())
-
-    def column_major(self, name: str = "inv_view_proj") -> np.ndarray:
-        return np.ascontiguousarray(getattr(self, name).T.ravel(), dtype=np.float32)
-
-    def eye_vec3(self) -> wp.vec3:
-        return wp.vec3(*self.eye.tolist())
-
-
-def camera_look_at(eye, target, up=(0.0, 1.0, 0.0), fov_y: float = math.radians(60.0), aspect: float = 16.0 / 9.0,
-                   z_near: float = 0.01, z_far: float = 1000.0) -> Camera:
-    """vc-A25 camera: right-handed look-at view (GLM ``lookAt``) and OpenGL perspective (GLM ``perspective``).
-
-    ``fov_y`` vertical field of view in radians (0, pi); ``aspect`` = width / height; ``0 < z_near < z_far`` in km.
-    The inputs are rounded to float32 first (as the C function receives them), the matrices, their product and the
-    closed-form inverses ``inv(view) inv(proj)`` (and the same with the eye moved to the origin, ``inv_view_proj_rot``,
-    the matrix ray generation uses) are computed in float64 and rounded once: the twin of ``ccl_camera_look_at``.
-    Raises ValueError naming the parameter.
-    """
-    e = _vec3_value(eye, "eye").astype(np.float32).astype(np.float64)
-    tg = _vec3_value(target, "target").astype(np.float32).astype(np.float64)
-    u_in = _vec3_value(up, "up").astype(np.float32).astype(np.float64)
-    fov = float(np.float32(_finite_float(fov_y, "fov_y")))
-    asp = float(np.float32(_finite_float(aspect, "aspect")))
-    zn = float(np.float32(_finite_float(z_near, "z_near")))
-    zf = float(np.float32(_finite_float(z_far, "z_far")))
-    if not 0.0 < fov < float(np.float32(math.pi)):
-        raise ValueError(f"fov_y must be in (0, pi) radians, got {fov_y}")
-    if not asp > 0.0:
-        raise ValueError(f"aspect must be > 0, got {aspect}")
-    if not zn > 0.0:
-        raise ValueError(f"z_near must be > 0, got {z_near}")
-    if not zf > zn:
-        raise ValueError(f"z_far must be > z_near ({z_near}), got {z_far}")
-    f = tg - e
-    n = math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
-    if not n > 0.0:
-        raise ValueError("target must differ from eye")
-    f = f / n
-    nu = math.sqrt(u_in[0] * u_in[0] + u_in[1] * u_in[1] + u_in[2] * u_in[2])
-    if not nu > 0.0:
-        raise ValueError("up must be a non-zero vector")
-    s = np.array([f[1] * u_in[2] - f[2] * u_in[1], f[2] * u_in[0] - f[0] * u_in[2], f[0] * u_in[1] - f[1] * u_in[0]])
-    t = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
-    if not t > 1e-6 * nu:
-        raise ValueError("up must not be parallel to the view direction (target - eye)")
-    s = s / t
-    u = np.array([s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]])
-    view = np.zeros((4, 4))
-    inv_view = np.zeros((4, 4))
-    view[0, :3], view[1, :3], view[2, :3] = s, u, -f
-    inv_view[:3, 0], inv_view[:3, 1], inv_view[:3, 2] = s, u, -f
-    view[0, 3] = -(s[0] * e[0] + s[1] * e[1] + s[2] * e[2])
-    view[1, 3] = -(u[0] * e[0] + u[1] * e[1] + u[2] * e[2])
-    view[2, 3] = f[0] * e[0] + f[1] * e[1] + f[2] * e[2]
-    view[3, 3] = 1.0
-    inv_view[:3, 3] = e
-    inv_view[3, 3] = 1.0
-    th = math.tan(0.5 * fov)
-    proj = np.zeros((4, 4))
-    inv_proj = np.zeros((4, 4))
-    proj[0, 0] = 1.0 / (asp * th)
-    proj[1, 1] = 1.0 / th
-    proj[2, 2] = -(zf + zn) / (zf - zn)
-    proj[2, 3] = -(2.0 * zf * zn) / (zf - zn)
-    proj[3, 2] = -1.0
-    inv_proj[0, 0] = asp * th
-    inv_proj[1, 1] = th
-    inv_proj[2, 3] = -1.0
-    inv_proj[3, 2] = (zn - zf) / (2.0 * zf * zn)
-    inv_proj[3, 3] = (zf + zn) / (2.0 * zf * zn)
-    inv_view_rot = inv_view.copy()
-    inv_view_rot[:3, 3] = 0.0
-    f32 = lambda m: np.ascontiguousarray(m, dtype=np.float32)  # noqa: E731
-    return Camera(eye=f32(e), view=f32(view), proj=f32(proj), view_proj=f32(proj @ view),
-                  inv_view_proj=f32(inv_view @ inv_proj), inv_view_proj_rot=f32(inv_view_rot @ inv_proj))
-
-
-def c_camera_look_at(eye, target, up=(0.0, 1.0, 0.0), fov_y: float = math.radians(60.0), aspect: float = 16.0 / 9.0,
-                     z_near: float = 0.01, z_far: float = 1000.0) -> Camera:
-    """The same camera built by the C function ``ccl_camera_look_at`` (for checking the two against each other)."""
-    from ..core.binding import ffi, lib, status_error
-
-    cam = ffi().new("ccl_camera *")
-    st = lib().ccl_camera_look_at(tuple(map(float, eye)), tuple(map(float, target)), tuple(map(float, up)),
-                                  float(fov_y), float(aspect), float(z_near), float(z_far), cam)
-    status_error(st, "ccl_camera_look_at")
-
-    def m(name):
-        return np.frombuffer(ffi().buffer(getattr(cam, name)), dtype=np.float32).reshape(4, 4).T.copy()
-
-    return Camera(eye=np.array([cam.eye.x, cam.eye.y, cam.eye.z], np.float32), view=m("view"), proj=m("proj"),
-                  view_proj=m("view_proj"), inv_view_proj=m("inv_view_proj"),
-                  inv_view_proj_rot=m("inv_view_proj_rot"))
-
-
-# --- element-wise evaluation kernels (inputs, options, then outputs) --------------------------------------------------
-
-@wp.kernel
-def _eval_ray_sphere(ox: wp.array(dtype=float), oy: wp.array(dtype=float), oz: wp.array(dtype=float),
-                     dx: wp.array(dtype=float), dy: wp.array(dtype=float), dz: wp.array(dtype=float),
-                     cx: wp.array(dtype=float), cy: wp.array(dtype=float), cz: wp.array(dtype=float),
-                     r: wp.array(dtype=float), t0: wp.array(dtype=float), t1: wp.array(dtype=float)):
-    i = wp.tid()
-    a, b = ray_sphere(wp.vec3(ox[i], oy[i], oz[i]), _normalize3(wp.vec3(dx[i], dy[i], dz[i])),
-                      wp.vec3(cx[i], cy[i], cz[i]), r[i])
-    t0[i] = a
-    t1[i] = b
-
-
-@wp.kernel
-def _eval_layer_segment(ox: wp.array(dtype=float), oy: wp.array(dtype=float), oz: wp.array(dtype=float),
-                        dx: wp.array(dtype=float), dy: wp.array(dtype=float), dz: wp.array(dtype=float),
-                        cx: wp.array(dtype=float), cy: wp.array(dtype=float), cz: wp.array(dtype=float),
-                        r_earth: wp.array(dtype=float), r_inner: wp.array(dtype=float),
-                        r_outer: wp.array(dtype=float), t_start: wp.array(dtype=float),
-                        t_end: wp.array(dtype=float)):
-    i = wp.tid()
-    a, b = layer_segment(wp.vec3(ox[i], oy[i], oz[i]), _normalize3(wp.vec3(dx[i], dy[i], dz[i])),
-                         wp.vec3(cx[i], cy[i], cz[i]), r_earth[i], r_inner[i], r_outer[i])
-    t_start[i] = a
-    t_end[i] = b
-
-
-@wp.kernel
-def _eval_view_sample_count(dir_y: wp.array(dtype=float), n_min: wp.array(dtype=wp.int32),
-                            n_max: wp.array(dtype=wp.int32), out: wp.array(dtype=float)):
-    i = wp.tid()
-    out[i] = float(view_sample_count(dir_y[i], n_min[i], n_max[i]))
-
-
-@wp.kernel
-def _eval_light_sample_offset(idx: wp.array(dtype=wp.int32), sx: wp.array(dtype=float), sy: wp.array(dtype=float),
-                              sz: wp.array(dtype=float), step: wp.array(dtype=float),
-                              cone_angle: wp.array(dtype=float), far_factor: wp.array(dtype=float),
-                              out_x: wp.array(dtype=float), out_y: wp.array(dtype=float),
-                              out_z: wp.array(dtype=float)):
-    i = wp.tid()
-    p = light_sample_position(wp.vec3(0.0, 0.0, 0.0), _normalize3(wp.vec3(sx[i], sy[i], sz[i])), idx[i], step[i],
-                              cone_angle[i], far_factor[i], light_cone_kernel(idx[i]))
-    out_x[i] = p[0]
-    out_y[i] = p[1]
-    out_z[i] = p[2]
-
-
-@wp.kernel
-def _eval_march_accumulate(cr: wp.array(dtype=float), cg: wp.array(dtype=float), cb: wp.array(dtype=float),
-                           transmittance: wp.array(dtype=float), sigma: wp.array(dtype=float),
-                           rho: wp.array(dtype=float), dt: wp.array(dtype=float), lr: wp.array(dtype=float),
-                           lg: wp.array(dtype=float), lb: wp.array(dtype=float), eps: wp.array(dtype=float),
-                           out_r: wp.array(dtype=float), out_g: wp.array(dtype=float), out_b: wp.array(dtype=float),
-                           out_t: wp.array(dtype=float), out_stop: wp.array(dtype=float)):
-    i = wp.tid()
-    c, t, stop = march_accumulate(wp.vec3(cr[i], cg[i], cb[i]), transmittance[i], sigma[i], rho[i], dt[i],
-                                  wp.vec3(lr[i], lg[i], lb[i]), eps[i])
-    out_r[i] = c[0]
-    out_g[i] = c[1]
-    out_b[i] = c[2]
-    out_t[i] = t
-    out_stop[i] = float(stop)
-
-
-@wp.kernel
-def _eval_ray_jitter(dx: wp.array(dtype=float), dy: wp.array(dtype=float), dz: wp.array(dtype=float),
-                     x: wp.array(dtype=wp.int32), y: wp.array(dtype=wp.int32), frame: wp.array(dtype=wp.int32),
-                     amount: wp.array(dtype=float), mode: int, out_dx: wp.array(dtype=float),
-                     out_dy: wp.array(dtype=float), out_dz: wp.array(dtype=float), out_offset: wp.array(dtype=float)):
-    i = wp.tid()
-    d = _normalize3(wp.vec3(dx[i], dy[i], dz[i]))
-    offset = 0.5
-    if mode == 0:
-        d = ray_jitter_tilt(d, wp.uint32(x[i]), wp.uint32(y[i]), wp.uint32(frame[i]), amount[i])
-    elif mode == 1:
-        offset = ray_jitter_offset(wp.uint32(x[i]), wp.uint32(y[i]), wp.uint32(frame[i]))
-    out_dx[i] = d[0]
-    out_dy[i] = d[1]
-    out_dz[i] = d[2]
-    out_offset[i] = offset
-
-
-@wp.kernel
-def _camera_ray_kernel(xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32), width: int, height: int,
-                       inv_view_proj_rot: wp.mat44, out: wp.array(dtype=wp.vec3)):
-    i = wp.tid()
-    out[i] = camera_ray(inv_view_proj_rot, xs[i], ys[i], width, height)
-
-
-@wp.kernel
-def _march_volume_kernel(origins: wp.array(dtype=wp.vec3), dirs: wp.array(dtype=wp.vec3), kind: int, a: wp.vec3,
-                         b: wp.vec3, radius: float, n: int, offset: float, points: wp.array2d(dtype=wp.vec3),
-                         dts: wp.array(dtype=float)):
-    r = wp.tid()
-    o = origins[r]
-    d = _normalize3(dirs[r])
-    t0 = float(0.0)
-    t1 = float(0.0)
-    if kind == 0:
-        t0, t1 = ray_sphere(o, d, a, radius)
-    else:
-        t0, t1 = ray_box(o, d, a, b)
-    ts, dt = march_interval(t0, t1, n)
-    for i in range(n):
-        points[r, i] = march_point(o, d, ts, dt, i, offset)
-    dts[r] = dt
-
-
-# --- custom evaluators (vc-A25 camera rays, vc-A35 bounded march) -----------------------------------------------------
-
-def _int_array(value, name: str, lo: int | None = None) -> np.ndarray:
-    return Arg(name, lo=lo, dtype="int32").check(value)
-
-
-def _check_camera(camera, name: str = "camera") -> Camera:
-    if not isinstance(camera, Camera):
-        raise TypeError(f"{name} must be a pywarp.kernels.raymarch.Camera (see camera_look_at), got "
-                        f"{type(camera).__name__}")
-    return camera
-
-
-def _check_size(value, name: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{name} must be an integer, got {value!r}")
-    if value < 1:
-        raise ValueError(f"{name} must be >= 1, got {value}")
-    return int(value)
-
-
-def _camera_ray_args(x, y, width, height, camera):
-    width = _check_size(width, "width")
-    height = _check_size(height, "height")
-    camera = _check_camera(camera)
-    xa = _int_array(x, "x", lo=0)
-    ya = _int_array(y, "y", lo=0)
-    if np.any(xa >= width):
-        raise ValueError(f"x must be in [0, width - 1] = [0, {width - 1}], got {xa[xa >= width].flat[0]}")
-    if np.any(ya >= height):
-        raise ValueError(f"y must be in [0, height - 1] = [0, {height - 1}], got {ya[ya >= height].flat[0]}")
-    try:
-        shape = np.broadcast_shapes(xa.shape, ya.shape)
-    except ValueError:
-        raise ValueError(f"camera_ray(): the shapes of x{xa.shape} and y{ya.shape} do not broadcast") from None
-    return (np.ascontiguousarray(np.broadcast_to(xa, shape).ravel()),
-            np.ascontiguousarray(np.broadcast_to(ya, shape).ravel()), shape, width, height, camera)
-
-
-def _warp_camera_ray(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def camera_ray(x, y, width, height, camera):
-        """Unit view directions (..., 3) through pixel centres (x, y) of a width x height image (vc-A25)."""
-        xs, ys, shape, width, height, camera = _camera_ray_args(x, y, width, height, camera)
-        out = wp.empty(xs.size, dtype=wp.vec3, device=dev)
-        if xs.size:
-            wp.launch(_camera_ray_kernel, dim=xs.size, inputs=[wp.array(xs, dtype=wp.int32, device=dev),
-                                                              wp.array(ys, dtype=wp.int32, device=dev), width, height,
-                                                              camera.mat44("inv_view_proj_rot")],
-                      outputs=[out], device=dev)
-        return out.numpy().reshape(*shape, 3)
-
-    return camera_ray
-
-
-def _c_camera_ray(eq):
-    from ..core.binding import ffi, lib
-
-    def camera_ray(x, y, width, height, camera):
-        """Unit view directions (..., 3) through pixel centres (x, y) of a width x height image (vc-A25), C."""
-        xs, ys, shape, width, height, camera = _camera_ray_args(x, y, width, height, camera)
-        m = ffi().new("float[16]", camera.column_major("inv_view_proj_rot").tolist())
-        out = np.empty((xs.size, 3), np.float32)
-        fn = lib().ccl_camera_ray
-        for k in range(xs.size):
-            d = fn(m, int(xs[k]), int(ys[k]), width, height)
-            out[k] = (d.x, d.y, d.z)
-        return out.reshape(*shape, 3)
-
-    return camera_ray
-
-
-def _march_volume_args(origin, direction, n, centre, radius, box_min, box_max, offset):
-    o = np.asarray(origin, dtype=np.float64) if not isinstance(origin, str) else None
-    d = np.asarray(direction, dtype=np.float64) if not isinstance(direction, str) else None
-    for arr, name in ((o, "origin"), (d, "direction")):
-        if arr is None or arr.ndim == 0 or arr.shape[-1] != 3:
-            raise ValueError(f"{name} must be an array of 3-vectors (..., 3)")
-        if not np.all(np.isfinite(arr)):
-            raise ValueError(f"{name} must be finite (no NaN or Inf)")
-    try:
-        shape = np.broadcast_shapes(o.shape[:-1], d.shape[:-1])
-    except ValueError:
-        raise ValueError(f"march_volume(): origin{o.shape} and direction{d.shape} do not broadcast") from None
-    if np.any(np.sum(d * d, axis=-1) == 0.0):
-        raise ValueError("direction must be non-zero")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-        raise TypeError(f"n must be an integer, got {n!r}")
-    if n < 1:
-        raise ValueError(f"n must be >= 1, got {n}")
-    off = _finite_float(offset, "offset")
-    if not 0.0 <= off < 1.0:
-        raise ValueError(f"offset must be in [0, 1), got {offset}")
-    sphere = centre is not None or radius is not None
-    box = box_min is not None or box_max is not None
-    if sphere == box:
-        raise ValueError("give either centre and radius (a bounding sphere) or box_min and box_max (a box)")
-    if sphere:
-        if centre is None or radius is None:
-            raise ValueError("a bounding sphere needs both centre and radius")
-        a = _vec3_value(centre, "centre")
-        r = _finite_float(radius, "radius")
-        if r <= 0:
-            raise ValueError(f"radius must be > 0, got {radius}")
-        b = np.zeros(3)
-        kind = 0
-    else:
-        if box_min is None or box_max is None:
-            raise ValueError("a box needs both box_min and box_max")
-        a = _vec3_value(box_min, "box_min")
-        b = _vec3_value(box_max, "box_max")
-        if np.any(a > b):
-            raise ValueError(f"box_min must be <= box_max component-wise, got {a.tolist()} and {b.tolist()}")
-        r = 0.0
-        kind = 1
-    f32 = lambda v: np.ascontiguousarray(v, dtype=np.float32)  # noqa: E731
-    o = f32(np.broadcast_to(o, (*shape, 3)).reshape(-1, 3))
-    d = f32(np.broadcast_to(d, (*shape, 3)).reshape(-1, 3))
-    return o, d, shape, int(n), kind, f32(a), f32(b), float(np.float32(r)), float(np.float32(off))
-
-
-def _warp_march_volume(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def march_volume(origin, direction, n, centre=None, radius=None, box_min=None, box_max=None, offset=0.5):
-        """Sample positions (..., n, 3) and step lengths (...) of n uniform steps through a bounding sphere
-        (centre, radius) or box (box_min, box_max) in front of the origin; NaN where the ray misses (vc-A35)."""
-        o, d, shape, n, kind, a, b, r, off = _march_volume_args(origin, direction, n, centre, radius, box_min,
-                                                                 box_max, offset)
-        pts = wp.empty((o.shape[0], n), dtype=wp.vec3, device=dev)
-        dts = wp.empty(o.shape[0], dtype=float, device=dev)
-        if o.shape[0]:
-            wp.launch(_march_volume_kernel, dim=o.shape[0],
-                      inputs=[wp.array(o, dtype=wp.vec3, device=dev), wp.array(d, dtype=wp.vec3, device=dev), kind,
-                              wp.vec3(*a.tolist()), wp.vec3(*b.tolist()), r, n, off], outputs=[pts, dts], device=dev)
-        return pts.numpy().reshape(*shape, n, 3), dts.numpy().reshape(shape)
-
-    return march_volume
-
-
-def _c_march_volume(eq):
-    from ..core.binding import ffi, lib
-
-    def march_volume(origin, direction, n, centre=None, radius=None, box_min=None, box_max=None, offset=0.5):
-        """C twin of the vc-A35 evaluator (ccl_march_sphere / ccl_march_box)."""
-        o, d, shape, n, kind, a, b, r, off = _march_volume_args(origin, direction, n, centre, radius, box_min,
-                                                                 box_max, offset)
-        F, L = ffi(), lib()
-        pts_c = F.new("ccl_vec3[]", n)
-        dt_c = F.new("float *")
-        pts = np.empty((o.shape[0], n, 3), np.float32)
-        dts = np.empty(o.shape[0], np.float32)
-        for k in range(o.shape[0]):
-            ok, dk = tuple(o[k].tolist()), tuple(d[k].tolist())
-            if kind == 0:
-                L.ccl_march_sphere(ok, dk, tuple(a.tolist()), r, n, off, pts_c, dt_c)
-            else:
-                L.ccl_march_box(ok, dk, tuple(a.tolist()), tuple(b.tolist()), n, off, pts_c, dt_c)
-            pts[k] = np.frombuffer(F.buffer(pts_c), dtype=np.float32).reshape(n, 3)
-            dts[k] = dt_c[0]
-        return pts.reshape(*shape, n, 3), dts.reshape(shape)
-
-    return march_volume
-
-
-# --- registry ---------------------------------------------------------------------------------------------------------
-
-def _nonzero_direction(prefix: str, names=("dx", "dy", "dz")):
-    def check(**kw):
-        x, y, z = (np.asarray(kw[n], dtype=np.float64) for n in names)
-        if np.any(x * x + y * y + z * z == 0.0):
-            raise ValueError(f"{prefix} ({', '.join(names)}) must be non-zero")
-    return check
-
-
-def _check_layer(**kw):
-    _nonzero_direction("direction")(**kw)
-    re, ri, ro = (np.asarray(kw[n]) for n in ("r_earth", "r_inner", "r_outer"))
-    if np.any(ri < re):
-        raise ValueError(f"r_inner must be >= r_earth, got r_inner={np.min(ri)}, r_earth={np.max(re)}")
-    if np.any(ri >= ro):
-        raise ValueError(f"r_inner must be < r_outer, got r_inner={np.max(ri)}, r_outer={np.min(ro)}")
-
-
-def _check_counts(**kw):
-    if np.any(np.asarray(kw["n_min"]) > np.asarray(kw["n_max"])):
-        raise ValueError(f"n_min must be <= n_max, got n_min={np.max(kw['n_min'])}, n_max={np.min(kw['n_max'])}")
-
-
-_F = dict(dtype="float32")
-_O = tuple(Arg(n, "ray origin component (km)") for n in ("ox", "oy", "oz"))
-_D = tuple(Arg(n, "ray direction component (any non-zero length; normalized)") for n in ("dx", "dy", "dz"))
-_DEFAULT_LAYER = CloudLayer()
-
-register(Equation(
-    "vc-A14", "ray_sphere", "ccl_ray_sphere_flat", ray_sphere, _eval_ray_sphere,
-    args=(*_O, *_D, Arg("cx", "sphere centre x"), Arg("cy", "sphere centre y"), Arg("cz", "sphere centre z"),
-          Arg("radius", "sphere radius (> 0)", lo=0.0, lo_open=True)),
-    outputs=("t_near", "t_far"), check=_nonzero_direction("direction"),
-    summary="Ray-sphere intersection distances t_near <= t_far along the normalized direction (negative = behind "
-            "the origin); NaN where the ray misses. Used for the Earth and the two cloud-layer spheres (defaults: "
-            "Earth radius 6371 km, layer 1.5-4 km above the ground, centre (0, -6371, 0)).",
-    references=("Haines, Guenther, Akenine-Moeller, Precision Improvements for Ray/Sphere Intersection, "
-                "Ray Tracing Gems, 2019",)))
-
-register(Equation(
-    "vc-A24", "layer_segment", "ccl_layer_segment_flat", layer_segment, _eval_layer_segment,
-    args=(*_O, *_D,
-          Arg("cx", "planet centre x (km)", default=0.0), Arg("cy", "planet centre y (km)", default=-EARTH_RADIUS_KM),
-          Arg("cz", "planet centre z (km)", default=0.0),
-          Arg("r_earth", "Earth radius (km)", lo=0.0, lo_open=True, default=_DEFAULT_LAYER.r_earth),
-          Arg("r_inner", "cloud-layer base radius (km)", lo=0.0, lo_open=True, default=_DEFAULT_LAYER.r_inner),
-          Arg("r_outer", "cloud-layer top radius (km)", lo=0.0, lo_open=True, default=_DEFAULT_LAYER.r_outer)),
-    outputs=("t_start", "t_end"), check=_check_layer,
-    summary="The raymarch interval through the cloud layer for a camera below (vc-A14: inner far root to outer far "
-            "root, nothing below the horizon), inside (camera to first exit) or above (outer entry to inner entry "
-            "or outer exit) the layer; NaN where the ray sees no cloud layer.",
-    references=("Hillaire, Physically based sky, atmosphere and cloud rendering in Frostbite, SIGGRAPH 2016 course",)))
-
-register(Equation(
-    "vc-A18", "view_sample_count", "ccl_view_sample_count", view_sample_count, _eval_view_sample_count,
-    args=(Arg("dir_y", "y component of the unit view direction", lo=-1.0, hi=1.0),
-          Arg("n_min", "samples at zenith/nadir", lo=1, dtype="int32", default=VIEW_SAMPLES_ZENITH),
-          Arg("n_max", "samples at the horizon", lo=1, dtype="int32", default=VIEW_SAMPLES_HORIZON)),
-    outputs=("n",), check=_check_counts,
-    summary="View-ray sample count N = round(mix(n_max, n_min, |dir_y|)) (64 at zenith, 128 at the horizon; the "
-            "interpolation law is our choice). Returned as float32 holding an integer.",
-    references=("Barvir, Volumetric clouds, FIT BUT 2020, §4.3.2 and §4.6",)))
-
-register(Equation(
-    "vc-A19", "light_sample_offset", "ccl_light_sample_offset_flat", light_sample_position, _eval_light_sample_offset,
-    args=(Arg("i", "light sample index 0..5 (5 = the far sample)", lo=0, hi=5, dtype="int32"),
-          Arg("sx", "direction to the sun x (any non-zero length)"), Arg("sy", "direction to the sun y"),
-          Arg("sz", "direction to the sun z"),
-          Arg("step", "axial step (km)", lo=0.0, lo_open=True, default=LIGHT_STEP_KM),
-          Arg("cone_angle", "cone half-angle (rad)", lo=0.0, hi=math.pi / 2, hi_open=True, default=LIGHT_CONE_ANGLE),
-          Arg("far_factor", "far sample distance / near cone length", lo=0.0, lo_open=True,
-              default=LIGHT_FAR_FACTOR)),
-    outputs=("x", "y", "z"), check=_nonzero_direction("sun direction", ("sx", "sy", "sz")),
-    summary="Offset of light sample i from the view sample: s_i to_sun + s_i tan(cone_angle) k_i with s_i = (i+1) "
-            "step for the 5 near samples and far_factor * 5 step for the 6th; k_i = LIGHT_CONE_KERNEL[i].",
-    references=("Schneider & Vos, The real-time volumetric cloudscapes of Horizon Zero Dawn, SIGGRAPH 2015",
-                "Schneider, Real-time volumetric cloudscapes, GPU Pro 7, 2016")))
-
-register(Equation(
-    "vc-A21", "march_accumulate", "ccl_march_accumulate_flat", march_accumulate, _eval_march_accumulate,
-    args=(Arg("cr", "accumulated colour r"), Arg("cg", "accumulated colour g"), Arg("cb", "accumulated colour b"),
-          Arg("transmittance", "view transmittance T so far", lo=0.0, hi=1.0),
-          Arg("sigma", "extinction per unit density (1/km)", lo=0.0),
-          Arg("rho", "density at the sample", lo=0.0), Arg("dt", "step length (km)", lo=0.0),
-          Arg("lr", "sample radiance r", lo=0.0), Arg("lg", "sample radiance g", lo=0.0),
-          Arg("lb", "sample radiance b", lo=0.0),
-          Arg("eps", "early-termination threshold: stop when 1 - T >= 1 - eps", lo=0.0, hi=1.0, default=MARCH_EPS)),
-    outputs=("r", "g", "b", "transmittance", "stop"),
-    summary="One front-to-back step: tau = sigma rho dt, C += T (1 - e^-tau) L, T *= e^-tau; stop = 1.0 when "
-            "1 - T >= 1 - eps (default eps = 1/256).",
-    references=("Barvir, Volumetric clouds, FIT BUT 2020, §4.3.2",
-                "Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed., §11.2")))
-
-register(Equation(
-    "vc-A23", "ray_jitter", "ccl_ray_jitter_flat", ray_jitter_tilt, _eval_ray_jitter,
-    args=(*_D, Arg("x", "pixel x", lo=0, dtype="int32"), Arg("y", "pixel y", lo=0, dtype="int32"),
-          Arg("frame", "frame number", lo=0, dtype="int32"),
-          Arg("amount", "tilt scale (rad)", lo=0.0, default=JITTER_AMOUNT)),
-    options=(Option("mode", JITTER_MODES, "tilt",
-                    "'tilt' (default, the thesis): tilt the direction; 'offset': keep it and jitter the start "
-                    "offset; 'none'"),),
-    outputs=("dx", "dy", "dz", "offset"), check=_nonzero_direction("direction"),
-    summary="Ray jitter against banding, seeded by (x, y, frame) through the PCG hash: mode 'tilt' returns "
-            "normalize(d + amount r), r in [-1, 1)^3, offset 0.5; mode 'offset' the normalized d and an offset in "
-            "[0, 1) for the first sample (t = t_start + (i + offset) dt); mode 'none' d and 0.5.",
-    references=("Jarzynski & Olano, Hash Functions for GPU Rendering, JCGT 9(3), 2020",)))
-
-register(Equation(
-    "vc-A25", "camera_ray", "ccl_camera_ray", camera_ray, _camera_ray_kernel,
-    make_warp=_warp_camera_ray, make_c=_c_camera_ray,
-    summary="camera_ray(x, y, width, height, camera) -> unit directions (..., 3) through pixel centres: "
-            "uv = ((x+0.5)/W, (y+0.5)/H), NDC = (2u-1, 1-2v, 1), h = inverse view-projection of the camera moved to "
-            "the origin times (NDC, 1), d = normalize(h.xyz). camera from camera_look_at (GLM lookAt + perspective, "
-            "float32 matrices).",
-    references=("GLM lookAt / perspective (OpenGL conventions)",)))
-
-register(Equation(
-    "vc-A35", "march_volume", "ccl_march_sphere", march_point, _march_volume_kernel,
-    make_warp=_warp_march_volume, make_c=_c_march_volume,
-    summary="march_volume(origin, direction, n, centre=, radius= | box_min=, box_max=, offset=0.5) -> (points "
-            "(..., n, 3), dt (...)): n uniform steps over the part of the ray in front of the origin inside a "
-            "bounding sphere or axis-aligned box, sample i at t_start + (i + offset) dt; NaN where the ray misses.",
-    references=("Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed., §11.3 (ray marching)",)))
-
-register(Equation(
-    "vc-A36", "vc_constants", "ccl_vc_constants", vc_constants, _eval_vc_constants,
-    make_warp=_warp_vc_constants, make_c=_c_vc_constants,
-    summary="vc_constants() -> VcConstants: the constants collected from the thesis (texture sizes, fBm weights, "
-            "erosion, powder, Schlick fit, cloud types, gradient break points, sample counts, reprojection block and "
-            "cycle, tone-map constant, CIE clear sky, cloud altitudes, Rayleigh ratio).",
-    references=("Barvir, Volumetric clouds, FIT BUT 2020 (spec/vc.md vc-A36)",)))
+# Not element-wise: the result is a table of constants (a struct of scalars and short vectors), not an array.
+declare("vc-A36", c="ccl_raymarch_vc_constants", make_warp=_warp_vc_constants, make_c=_c_vc_constants,
+        summary="raymarch_vc_constants() -> VcConstants: the constants collected from the thesis (texture sizes, fBm "
+                "weights, erosion, powder, Schlick fit, cloud types, gradient break points, sample counts, "
+                "reprojection block and cycle, tone-map constant, CIE clear sky, cloud altitudes, Rayleigh ratio).",
+        references=("Barvir, Volumetric clouds, FIT BUT 2020 (spec/vc.md vc-A36)",))(raymarch_vc_constants)

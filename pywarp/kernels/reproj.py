@@ -5,10 +5,10 @@ vc-A22) holds those pixels; the reprojection pass (vc-A26) fills every other pix
 inner-sphere hit point and the previous view-projection, or from the reduced buffer when the point was not visible,
 optionally averaging an n x n neighbourhood (vc-A27).
 
-Images are float32 arrays (height, width, channels), y = 0 the top row; uv/NDC as in :mod:`pywarp.kernels.raymarch`.
+Images are float32 arrays (height, width, channels), y = 0 the top row; uv/NDC as in :mod:`pywarp.kernels.camera`.
 Choices where the thesis is silent (the header comment of ``cclouds/reproj.h`` has the reasons):
   * frame f taken mod 16 (negative frames wrap too); (a, b) = (f div 4, f mod 4), column by column as in eq 4.1;
-  * sizes not divisible by 4: grid ceil(W/4) x ceil(H/4), pixels outside the image skipped (:func:`reprojection_grid`);
+  * sizes not divisible by 4: grid ceil(W/4) x ceil(H/4), pixels outside the image skipped (:func:`reproj_grid`);
   * reduced-buffer fallback at the true positions of this frame's rendered pixels: ((x - a)/4, (y - b)/4), clamped to
     the texels written this frame;
   * bilinear lookup with clamp-to-edge at (u W - 0.5, v H - 0.5), snapped to a pixel centre within ``SNAP_PX``;
@@ -24,8 +24,9 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ..core.registry import Arg, Equation, register
-from .raymarch import Camera, CloudLayer, _check_camera, camera_ray, ray_sphere
+from ..core.registry import Arg, declare
+from .camera import Camera, _check_camera, _check_size, camera_ray
+from .raymarch import CloudLayer, raymarch_ray_sphere
 
 REPROJ_BLOCK = 4
 REPROJ_CYCLE = 16
@@ -44,15 +45,28 @@ def _mod16(frame: int) -> int:
     return ((frame % 16) + 16) % 16
 
 
+# the pixel index 4 id + 3 must fit in int32
+_ID_MAX = (2**31 - 1 - 3) // 4
+
+
+@declare("vc-4.1", c="ccl_reproj_pixel",
+         args=(Arg("id_x", "thread index x (grid of ceil(W/4) columns)", lo=0, hi=_ID_MAX),
+               Arg("id_y", "thread index y (grid of ceil(H/4) rows)", lo=0, hi=_ID_MAX),
+               Arg("frame", "frame number (taken mod 16)")),
+         outputs=("x", "y"),
+         summary="reproj_pixel(id_x, id_y, frame) -> (x, y) int32: f = frame mod 16, a = floor(f/4), b = f mod 4, "
+                 "(x, y) = (4 id_x + a, 4 id_y + b). Thread grid ceil(W/4) x ceil(H/4) (reproj_grid); threads whose "
+                 "pixel lies outside the image are skipped.",
+         references=("Barvir, Volumetric clouds, FIT BUT 2020, eq. 4.1",))
 @wp.func
-def reprojection_pixel(id_x: int, id_y: int, frame: int):
+def reproj_pixel(id_x: int, id_y: int, frame: int) -> tuple[int, int]:
     """vc-4.1: (x, y) = (4 id_x + a, 4 id_y + b), a = floor(f / 4), b = f mod 4, f = frame mod 16."""
     f = _mod16(frame)
     return id_x * 4 + f / 4, id_y * 4 + f % 4
 
 
 @wp.func
-def reprojection_updated(x: int, y: int, frame: int) -> int:
+def reproj_updated(x: int, y: int, frame: int) -> int:
     """vc-4.1: 1 if pixel (x, y) is raymarched in this frame."""
     f = _mod16(frame)
     r = 0
@@ -61,14 +75,13 @@ def reprojection_updated(x: int, y: int, frame: int) -> int:
     return r
 
 
-def reprojection_grid(width: int, height: int) -> tuple[int, int]:
-    """Thread grid and reduced-buffer size (ceil(width / 4), ceil(height / 4)) (vc-4.1 bounds rule, vc-A22).
+def reproj_grid(width: int, height: int) -> tuple[int, int]:
+    """Thread grid and reduced-buffer size (ceil(width / 4), ceil(height / 4)) (vc-4.1 bounds rule, vc-A22), the twin
+    of ``ccl_reproj_grid``.
 
-    Thread (i, j) renders pixel ``reprojection_pixel(i, j, frame)`` and is skipped when that pixel lies outside the
-    image; over 16 consecutive frames every pixel is then rendered exactly once.
+    Thread (i, j) renders pixel ``reproj_pixel(i, j, frame)`` and is skipped when that pixel lies outside the image;
+    over 16 consecutive frames every pixel is then rendered exactly once.
     """
-    from .raymarch import _check_size
-
     w = _check_size(width, "width")
     h = _check_size(height, "height")
     return (w - 1) // REPROJ_BLOCK + 1, (h - 1) // REPROJ_BLOCK + 1
@@ -90,8 +103,32 @@ def _reduced_axis(p: int, off: int, size: int) -> float:
     return r
 
 
+def _check_reduced(**kw):
+    x, y, w, h = (np.asarray(kw[n]) for n in ("x", "y", "width", "height"))
+    if np.any(x >= w):
+        raise ValueError(f"x must be < width, got x={np.max(x)}, width={np.min(w)}")
+    if np.any(y >= h):
+        raise ValueError(f"y must be < height, got y={np.max(y)}, height={np.min(h)}")
+
+
+def _reduced_samples(rng, n):
+    w, h = rng.integers(1, 4096, n), rng.integers(1, 4096, n)
+    return {"x": rng.integers(0, w).astype(np.int32), "y": rng.integers(0, h).astype(np.int32),
+            "width": w.astype(np.int32), "height": h.astype(np.int32)}
+
+
+@declare("vc-A22", c="ccl_reproj_reduced_coord",
+         args=(Arg("x", "pixel x (< width)", lo=0), Arg("y", "pixel y (< height)", lo=0),
+               Arg("frame", "frame number (mod 16)"),
+               # width, height >= 1 follow from 0 <= x < width, 0 <= y < height (the cross-argument check)
+               Arg("width", "image width (> x)"), Arg("height", "image height (> y)")),
+         outputs=("rx", "ry"), check=_check_reduced, samples=_reduced_samples,
+         summary="Reduced (1/4 x 1/4) buffer coordinates of pixel (x, y) in frame f: ((x - a)/4, (y - b)/4) clamped to "
+                 "the texels written this frame; equals the texel (x div 4, y div 4) the pixel writes when it is "
+                 "rendered this frame; NaN when the frame renders no pixel in that direction (size < 4).",
+         references=("Barvir, Volumetric clouds, FIT BUT 2020, §4.3.2 (reduced frame buffer)",))
 @wp.func
-def reduced_coord(x: int, y: int, frame: int, width: int, height: int):
+def reproj_reduced_coord(x: int, y: int, frame: int, width: int, height: int) -> tuple[float, float]:
     """vc-A22: reduced-buffer coordinates ((x - a)/4, (y - b)/4) clamped to the texels written this frame."""
     f = _mod16(frame)
     return _reduced_axis(x, f / 4, width), _reduced_axis(y, f % 4, height)
@@ -100,12 +137,12 @@ def reduced_coord(x: int, y: int, frame: int, width: int, height: int):
 # --- vc-A26 / vc-A27 --------------------------------------------------------------------------------------------------
 
 @wp.func
-def reprojection_uv(inv_view_proj_rot: wp.mat44, eye: wp.vec3, prev_view_proj: wp.mat44, centre: wp.vec3,
-                    r_inner: float, x: int, y: int, width: int, height: int):
+def reproj_uv(inv_view_proj_rot: wp.mat44, eye: wp.vec3, prev_view_proj: wp.mat44, centre: wp.vec3, r_inner: float,
+              x: int, y: int, width: int, height: int) -> tuple[int, float, float]:
     """vc-A26 step 2: (visible, u, v) of pixel (x, y) in the previous frame via the inner-sphere hit point."""
     m = prev_view_proj
     d = camera_ray(inv_view_proj_rot, x, y, width, height)
-    t0, t1 = ray_sphere(eye, d, centre, r_inner)
+    t0, t1 = raymarch_ray_sphere(eye, d, centre, r_inner)
     t = t1
     if t0 > 0.0:
         t = t0
@@ -163,7 +200,7 @@ def reproject_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype
     height = current.shape[0]
     width = current.shape[1]
     channels = current.shape[2]
-    if reprojection_updated(x, y, frame) == 1:
+    if reproj_updated(x, y, frame) == 1:
         for ch in range(channels):
             out[y, x, ch] = current[y, x, ch]
         return
@@ -171,7 +208,7 @@ def reproject_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype
     u = float(0.0)
     v = float(0.0)
     if history != 0:
-        valid, u, v = reprojection_uv(inv_view_proj_rot, eye, prev_view_proj, centre, r_inner, x, y, width, height)
+        valid, u, v = reproj_uv(inv_view_proj_rot, eye, prev_view_proj, centre, r_inner, x, y, width, height)
     if valid == 1:
         xs = _snap(u * float(width) - 0.5)
         ys = _snap(v * float(height) - 0.5)
@@ -184,7 +221,7 @@ def reproject_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype
                     s = s + _bilinear(previous, width - 1, height - 1, ch, xs + float(i), ys + float(j))
             out[y, x, ch] = s * inv_n
     else:
-        rx, ry = reduced_coord(x, y, frame, width, height)
+        rx, ry = reproj_reduced_coord(x, y, frame, width, height)
         if wp.isnan(rx) or wp.isnan(ry):
             for ch in range(channels):
                 if history != 0:
@@ -210,88 +247,7 @@ def reproject_frame_kernel(row0: int, current: wp.array3d(dtype=float), previous
                     neighbourhood, history, j, row0 + i, out)
 
 
-# --- element-wise evaluation kernels ----------------------------------------------------------------------------------
-
-@wp.kernel
-def _eval_reduced_coord(x: wp.array(dtype=wp.int32), y: wp.array(dtype=wp.int32), frame: wp.array(dtype=wp.int32),
-                        width: wp.array(dtype=wp.int32), height: wp.array(dtype=wp.int32),
-                        out_rx: wp.array(dtype=float), out_ry: wp.array(dtype=float)):
-    i = wp.tid()
-    rx, ry = reduced_coord(x[i], y[i], frame[i], width[i], height[i])
-    out_rx[i] = rx
-    out_ry[i] = ry
-
-
-@wp.kernel
-def _eval_reprojection_pixel(id_x: wp.array(dtype=wp.int32), id_y: wp.array(dtype=wp.int32),
-                             frame: wp.array(dtype=wp.int32), out_x: wp.array(dtype=wp.int32),
-                             out_y: wp.array(dtype=wp.int32)):
-    i = wp.tid()
-    px, py = reprojection_pixel(id_x[i], id_y[i], frame[i])
-    out_x[i] = px
-    out_y[i] = py
-
-
-# --- custom evaluators ------------------------------------------------------------------------------------------------
-
-_PIXEL_ARGS = (Arg("id_x", "thread index x (grid of ceil(W/4) columns)", lo=0, dtype="int32"),
-               Arg("id_y", "thread index y", lo=0, dtype="int32"),
-               Arg("frame", "frame number (taken mod 16)", dtype="int32"))
-
-
-def _pixel_args(id_x, id_y, frame):
-    arrays = [a.check(v) for a, v in zip(_PIXEL_ARGS, (id_x, id_y, frame))]
-    # the pixel index 4 id + 3 must fit in int32
-    for a, arr in zip(_PIXEL_ARGS[:2], arrays[:2]):
-        if np.any(arr > (2**31 - 1 - 3) // 4):
-            raise ValueError(f"{a.name} must be <= {(2**31 - 4) // 4}, got {arr.max()}")
-    try:
-        shape = np.broadcast_shapes(*(a.shape for a in arrays))
-    except ValueError:
-        raise ValueError("reprojection_pixel(): the shapes of id_x, id_y, frame do not broadcast") from None
-    return [np.ascontiguousarray(np.broadcast_to(a, shape).ravel()) for a in arrays], shape
-
-
-def _shape_out(arrs, shape):
-    res = tuple(a.reshape(shape) for a in arrs)
-    return tuple(r[()] if shape == () else r for r in res)
-
-
-def _warp_reprojection_pixel(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def reprojection_pixel(id_x, id_y, frame):
-        """vc-4.1: pixel (x, y) (int32) rendered by thread (id_x, id_y) in frame `frame`."""
-        flat, shape = _pixel_args(id_x, id_y, frame)
-        n = flat[0].size
-        outs = [wp.empty(n, dtype=wp.int32, device=dev) for _ in range(2)]
-        if n:
-            wp.launch(_eval_reprojection_pixel, dim=n, inputs=[wp.array(a, dtype=wp.int32, device=dev) for a in flat],
-                      outputs=outs, device=dev)
-        return _shape_out([o.numpy() for o in outs], shape)
-
-    return reprojection_pixel
-
-
-def _c_reprojection_pixel(eq):
-    from ..core.binding import ffi, lib
-
-    def reprojection_pixel(id_x, id_y, frame):
-        """vc-4.1 (C): pixel (x, y) (int32) rendered by thread (id_x, id_y) in frame `frame`."""
-        flat, shape = _pixel_args(id_x, id_y, frame)
-        px, py = ffi().new("int *"), ffi().new("int *")
-        ox = np.empty(flat[0].size, np.int32)
-        oy = np.empty(flat[0].size, np.int32)
-        fn = lib().ccl_reprojection_pixel
-        for k in range(ox.size):
-            fn(int(flat[0][k]), int(flat[1][k]), int(flat[2][k]), px, py)
-            ox[k], oy[k] = px[0], py[0]
-        return _shape_out([ox, oy], shape)
-
-    return reprojection_pixel
-
+# --- the frame pass: custom evaluator -------------------------------------------------------------------------------
 
 def _image(value, name: str) -> np.ndarray:
     if isinstance(value, (str, bytes)) or value is None:
@@ -373,65 +329,32 @@ def _make_frame_evaluator(default_neighbourhood: int, impl: str, device=None):
 
             F = ffi()
             res = np.empty_like(cur)
-            st = lib().ccl_reproject_frame(
+            st = lib().ccl_reproj_frame(
                 F.from_buffer("float[]", cur), F.from_buffer("float[]", prev), F.from_buffer("float[]", red), w, h, c,
                 f, F.new("float[16]", camera.column_major("inv_view_proj_rot").tolist()), tuple(camera.eye.tolist()),
                 F.new("float[16]", prev_camera.column_major("view_proj").tolist()), lay.centre, lay.r_inner, n, hist,
                 F.from_buffer("float[]", res))
-            status_error(st, "ccl_reproject_frame")
+            status_error(st, "ccl_reproj_frame")
         return res[:, :, 0] if squeeze else res
 
     return reproject_frame
 
 
-# --- registry ---------------------------------------------------------------------------------------------------------
-
-def _check_reduced(**kw):
-    x, y, w, h = (np.asarray(kw[n]) for n in ("x", "y", "width", "height"))
-    if np.any(x >= w):
-        raise ValueError(f"x must be < width, got x={np.max(x)}, width={np.min(w)}")
-    if np.any(y >= h):
-        raise ValueError(f"y must be < height, got y={np.max(y)}, height={np.min(h)}")
-
-
-register(Equation(
-    "vc-4.1", "reprojection_pixel", "ccl_reprojection_pixel", reprojection_pixel, _eval_reprojection_pixel,
-    args=_PIXEL_ARGS, outputs=("x", "y"),
-    make_warp=_warp_reprojection_pixel, make_c=_c_reprojection_pixel,
-    summary="reprojection_pixel(id_x, id_y, frame) -> (x, y) int32: f = frame mod 16, a = floor(f/4), b = f mod 4, "
-            "(x, y) = (4 id_x + a, 4 id_y + b). Thread grid ceil(W/4) x ceil(H/4) (reprojection_grid); threads whose "
-            "pixel lies outside the image are skipped.",
-    references=("Barvir, Volumetric clouds, FIT BUT 2020, eq. 4.1",)))
-
-register(Equation(
-    "vc-A22", "reduced_coord", "ccl_reduced_coord", reduced_coord, _eval_reduced_coord,
-    args=(Arg("x", "pixel x", lo=0, dtype="int32"), Arg("y", "pixel y", lo=0, dtype="int32"),
-          Arg("frame", "frame number (mod 16)", dtype="int32"),
-          Arg("width", "image width", lo=1, dtype="int32"), Arg("height", "image height", lo=1, dtype="int32")),
-    outputs=("rx", "ry"), check=_check_reduced,
-    summary="Reduced (1/4 x 1/4) buffer coordinates of pixel (x, y) in frame f: ((x - a)/4, (y - b)/4) clamped to "
-            "the texels written this frame; equals the texel (x div 4, y div 4) the pixel writes when it is "
-            "rendered this frame; NaN when the frame renders no pixel in that direction (size < 4).",
-    references=("Barvir, Volumetric clouds, FIT BUT 2020, §4.3.2 (reduced frame buffer)",)))
-
-register(Equation(
-    "vc-A26", "reproject_frame", "ccl_reproject_frame", reproject_pixel, reproject_frame_kernel,
-    make_warp=lambda eq, device: _make_frame_evaluator(1, "warp", device),
-    make_c=lambda eq: _make_frame_evaluator(1, "c"),
-    summary="reproject_frame(current, previous, reduced, frame, camera, prev_camera, layer=CloudLayer(), "
-            "neighbourhood=1, history=True): pixels not rendered this frame are reprojected through the inner-sphere "
-            "hit point into the previous frame (bilinear) when visible there, else interpolated from the reduced "
-            "buffer.",
-    references=("Schneider & Vos, The real-time volumetric cloudscapes of Horizon Zero Dawn, SIGGRAPH 2015",
-                "Barvir, Volumetric clouds, FIT BUT 2020, §4.4")))
-
-register(Equation(
-    "vc-A27", "reproject_frame_averaged", "ccl_reproject_frame", reproject_pixel, reproject_frame_kernel,
-    make_warp=lambda eq, device: _make_frame_evaluator(AVERAGE_NEIGHBOURHOOD, "warp", device),
-    make_c=lambda eq: _make_frame_evaluator(AVERAGE_NEIGHBOURHOOD, "c"),
-    summary="reproject_frame with neighbourhood averaging: the reprojected value is the mean of an n x n box of "
-            "bilinear samples one pixel apart (default n = 3), trading detail for fewer reprojection artifacts.",
-    references=("Barvir, Volumetric clouds, FIT BUT 2020, §4.4, fig. 4.14",)))
+# Not element-wise: whole images in and out (each pixel reads a neighbourhood of the previous frame and the reduced
+# buffer), and the cameras are struct arguments. vc-A27 is the same pass with neighbourhood > 1 (3 in the thesis's
+# figure 4.14b, AVERAGE_NEIGHBOURHOOD).
+declare("vc-A26", "vc-A27", c="ccl_reproj_frame", name="reproj_frame",
+        make_warp=lambda eq, device: _make_frame_evaluator(1, "warp", device),
+        make_c=lambda eq: _make_frame_evaluator(1, "c"),
+        summary="reproj_frame(current, previous, reduced, frame, camera, prev_camera, layer=CloudLayer(), "
+                "neighbourhood=1, history=True): pixels not rendered this frame are reprojected through the "
+                "inner-sphere hit point into the previous frame (bilinear) when visible there, else interpolated from "
+                "the reduced buffer. vc-A27 (neighbourhood averaging): neighbourhood = n > 1 (odd) takes the mean of "
+                "an n x n box of bilinear samples one pixel apart (AVERAGE_NEIGHBOURHOOD = 3, fig 4.14b), trading "
+                "detail for fewer reprojection artifacts.",
+        references=("Schneider & Vos, The real-time volumetric cloudscapes of Horizon Zero Dawn, SIGGRAPH 2015",
+                    "Barvir, Volumetric clouds, FIT BUT 2020, §4.4, fig. 4.14"))(reproject_pixel)
 
 
-__all__ = ["Camera", "CloudLayer", "reprojection_grid", "REPROJ_BLOCK", "REPROJ_CYCLE", "SNAP_PX"]
+__all__ = ["Camera", "CloudLayer", "reproj_grid", "REPROJ_BLOCK", "REPROJ_CYCLE", "SNAP_PX",
+           "AVERAGE_NEIGHBOURHOOD"]

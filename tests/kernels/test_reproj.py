@@ -9,6 +9,9 @@ import pytest
 import warp as wp
 
 import pywarp
+from helpers import assert_twins_agree
+
+from pywarp.kernels import camera as cm
 from pywarp.kernels import raymarch as rm
 from pywarp.kernels import reproj as rp
 from pywarp.core.runtime import TileLauncher
@@ -37,7 +40,7 @@ def test_reprojection_pixel_contract(impl):
 
 
 def coverage(width, height, first_frame, impl):
-    gw, gh = rp.reprojection_grid(width, height)
+    gw, gh = rp.reproj_grid(width, height)
     ii, jj = np.meshgrid(np.arange(gw), np.arange(gh))
     count = np.zeros((height, width), int)
     px = pywarp.equation("vc-4.1", impl=impl)
@@ -57,29 +60,31 @@ def test_reprojection_every_pixel_exactly_once_in_16_frames(impl, size):
 
 
 @pytest.mark.spec("vc-4.1", "vc-A22")
-def test_reprojection_grid_is_ceil_quarter_and_rejects_bad_sizes():
-    assert rp.reprojection_grid(10, 7) == (3, 2)
-    assert rp.reprojection_grid(1920, 1080) == (480, 270)
-    assert rp.reprojection_grid(1, 1) == (1, 1)
+def test_reproj_grid_is_ceil_quarter_and_rejects_bad_sizes():
+    assert rp.reproj_grid(10, 7) == (3, 2)
+    assert rp.reproj_grid(1920, 1080) == (480, 270)
+    assert rp.reproj_grid(1, 1) == (1, 1)
     with pytest.raises(ValueError, match=r"^width must be >= 1, got 0"):
-        rp.reprojection_grid(0, 7)
+        rp.reproj_grid(0, 7)
     with pytest.raises(ValueError, match=r"^height must be >= 1, got -3"):
-        rp.reprojection_grid(10, -3)
+        rp.reproj_grid(10, -3)
     with pytest.raises(TypeError, match=r"^width must be an integer"):
-        rp.reprojection_grid(10.5, 7)
+        rp.reproj_grid(10.5, 7)
 
 
 @pytest.mark.spec("vc-4.1")
 @pytest.mark.parametrize("impl", IMPLS)
 def test_reprojection_pixel_bad_input(impl):
     px = pywarp.equation("vc-4.1", impl=impl)
-    with pytest.raises(ValueError, match=r"^id_x must be in \[0, inf\), got -1"):
+    with pytest.raises(ValueError, match=r"^id_x must be in \[0, 5.36871e\+08\], got -1"):
         px(-1, 0, 0)
     with pytest.raises(ValueError, match=r"^frame must hold integers"):
         px(0, 0, 1.5)
-    with pytest.raises(ValueError, match=r"^id_y must be <="):
+    # the pixel index 4 id + 3 must fit in int32
+    assert px(0, (2**31 - 4) // 4, 15) == (3, 2**31 - 1)
+    with pytest.raises(ValueError, match=r"^id_y must be in \[0, 5.36871e\+08\], got 536870912"):
         px(0, 2**29, 0)
-    with pytest.raises(ValueError, match=r"^reprojection_pixel\(\): the shapes of id_x, id_y, frame do not broadcast"):
+    with pytest.raises(ValueError, match=r"^reproj_pixel\(\): the shapes of the array arguments do not broadcast"):
         px([0, 1], [0, 1, 2], 0)
 
 
@@ -90,10 +95,10 @@ def test_reprojection_pixel_bad_input(impl):
 def test_reduced_coord_maps_rendered_pixels_to_their_texel(impl):
     rc = pywarp.equation("vc-A22", impl=impl)
     w, h = 10, 7
-    gw, gh = rp.reprojection_grid(w, h)
+    gw, gh = rp.reproj_grid(w, h)
     ii, jj = (a.ravel() for a in np.meshgrid(np.arange(gw), np.arange(gh)))
     for f in range(16):
-        x, y = pywarp.reprojection_pixel(ii, jj, f)
+        x, y = pywarp.reproj_pixel(ii, jj, f)
         inside = (x < w) & (y < h)
         rx, ry = rc(x[inside], y[inside], f, w, h)
         np.testing.assert_array_equal(rx, ii[inside])  # the texel (x div 4, y div 4) the pixel writes
@@ -110,8 +115,10 @@ def test_reduced_coord_maps_rendered_pixels_to_their_texel(impl):
     assert np.isnan(rx) and ry == 0.0
     with pytest.raises(ValueError, match=r"^x must be < width"):
         rc(10, 0, 0, 10, 7)
-    with pytest.raises(ValueError, match=r"^width must be in \[1, inf\)"):
+    with pytest.raises(ValueError, match=r"^x must be < width"):
         rc(0, 0, 0, 0, 7)
+    with pytest.raises(ValueError, match=r"^y must be in \[0, inf\)"):
+        rc(0, -1, 0, 4, 7)
 
 
 # --- vc-A26 / vc-A27 helpers: float64 camera math written independently -----------------------------------------------
@@ -167,7 +174,7 @@ def updated_mask(w, h, frame):
 @pytest.mark.parametrize("impl", IMPLS)
 def test_reproject_static_camera_returns_previous_frame_exactly(impl, rng):
     w, h = 48, 30
-    cam = rm.camera_look_at((0.3, 0.002, -0.4), (0.8, 0.5, -1.2), fov_y=1.1, aspect=w / h)
+    cam = cm.camera_look_at((0.3, 0.002, -0.4), (0.8, 0.5, -1.2), fov_y=1.1, aspect=w / h)
     cur, prev = rng.random((h, w, 3), np.float32), rng.random((h, w, 3), np.float32)
     red = rng.random((8, 12, 3), np.float32)
     rep = pywarp.equation("vc-A26", impl=impl)
@@ -196,8 +203,8 @@ def test_reproject_moving_camera_matches_float64_projection(impl, motion):
         prev = (eye, eye + np.array([0.0, 0.33, -1.0]))
     else:
         prev = (eye + np.array([0.8, 0.0, 0.5]), target + np.array([0.8, 0.0, 0.5]))
-    cam = rm.camera_look_at(*cur, fov_y=fov, aspect=w / h)
-    pcam = rm.camera_look_at(*prev, fov_y=fov, aspect=w / h)
+    cam = cm.camera_look_at(*cur, fov_y=fov, aspect=w / h)
+    pcam = cm.camera_look_at(*prev, fov_y=fov, aspect=w / h)
     prev_img = coordinate_frame(w, h)
     cur_img = np.full((h, w, 2), -7.0, np.float32)
     red = np.full((14, 24, 2), -9.0, np.float32)
@@ -235,11 +242,11 @@ def test_reproject_fallback_interpolates_reduced_buffer(impl):
     true positions of this frame's rendered pixels; a reduced buffer linear in its texel coordinates is reproduced
     exactly."""
     w, h, frame = 26, 15, 6  # (a, b) = (1, 2); 26 x 15 not divisible by 4
-    gw, gh = rp.reprojection_grid(w, h)
+    gw, gh = rp.reproj_grid(w, h)
     ti, tj = np.meshgrid(np.arange(gw, dtype=np.float32), np.arange(gh, dtype=np.float32))
     red = np.stack([ti, tj], -1)
-    cam = rm.camera_look_at((0, 0.002, 0), (0, 0.4, -1), aspect=w / h)
-    away = rm.camera_look_at((0, 0.002, 0), (0, 0.4, 1), aspect=w / h)
+    cam = cm.camera_look_at((0, 0.002, 0), (0, 0.4, -1), aspect=w / h)
+    away = cm.camera_look_at((0, 0.002, 0), (0, 0.4, 1), aspect=w / h)
     rng = np.random.default_rng(3)
     cur, prev = rng.random((h, w, 2), np.float32), rng.random((h, w, 2), np.float32)
     x, y = np.meshgrid(np.arange(w), np.arange(h))
@@ -256,7 +263,7 @@ def test_reproject_fallback_interpolates_reduced_buffer(impl):
     # a 2-pixel-wide frame in a cycle frame that renders no column: keep previous (history) or current (no history)
     tiny_cur, tiny_prev = np.full((8, 2, 1), 1.0, np.float32), np.full((8, 2, 1), 2.0, np.float32)
     tiny_red = np.zeros((2, 1, 1), np.float32)
-    tcam = rm.camera_look_at((0, 0.002, 0), (0, 0.4, -1), aspect=0.25)
+    tcam = cm.camera_look_at((0, 0.002, 0), (0, 0.4, -1), aspect=0.25)
     assert np.all(rep(tiny_cur, tiny_prev, tiny_red, 9, tcam, away) == 2.0)
     assert np.all(rep(tiny_cur, tiny_prev, tiny_red, 9, tcam, tcam, history=False) == 1.0)
 
@@ -267,12 +274,13 @@ def test_reproject_fallback_interpolates_reduced_buffer(impl):
 @pytest.mark.parametrize("impl", IMPLS)
 def test_reproject_neighbourhood_average_is_box_filter(impl, rng):
     w, h = 40, 24
-    cam = rm.camera_look_at((0.1, 0.002, 0.2), (0.3, 0.5, -0.8), fov_y=0.9, aspect=w / h)
+    cam = cm.camera_look_at((0.1, 0.002, 0.2), (0.3, 0.5, -0.8), fov_y=0.9, aspect=w / h)
     cur = rng.random((h, w), np.float32)
     prev = rng.random((h, w), np.float32)
     red = rng.random((6, 10), np.float32)
     avg = pywarp.equation("vc-A27", impl=impl)
-    out3 = avg(cur, prev, red, 5, cam, cam)  # default neighbourhood 3
+    assert avg.equation is pywarp.equation("vc-A26").equation  # one entry: vc-A27 is neighbourhood > 1
+    out3 = avg(cur, prev, red, 5, cam, cam, neighbourhood=rp.AVERAGE_NEIGHBOURHOOD)  # the thesis's 3 x 3 (fig 4.14b)
     # static camera: the 3 x 3 box mean of previous with clamp-to-edge, computed with NumPy
     pad = np.pad(prev.astype(np.float64), 1, mode="edge")
     box = sum(pad[1 + j:1 + j + h, 1 + i:1 + i + w] for j in (-1, 0, 1) for i in (-1, 0, 1)) / 9
@@ -296,31 +304,31 @@ def test_reproject_c_and_warp_agree(rng):
     float32 operations in the same order (no contraction, correctly rounded sqrt, the same floor/clamp decisions),
     so they agree exactly in practice (measured 0 ulp); reduced_coord and the pixel index must be equal."""
     w, h = 70, 45
-    cam = rm.camera_look_at((0.2, 0.003, 0.1), (0.5, 0.4, -0.9), fov_y=1.2, aspect=w / h)
-    pcam = rm.camera_look_at((0.25, 0.003, 0.05), (0.52, 0.41, -0.9), fov_y=1.2, aspect=w / h)
+    cam = cm.camera_look_at((0.2, 0.003, 0.1), (0.5, 0.4, -0.9), fov_y=1.2, aspect=w / h)
+    pcam = cm.camera_look_at((0.25, 0.003, 0.05), (0.52, 0.41, -0.9), fov_y=1.2, aspect=w / h)
     cur, prev = rng.random((h, w, 4), np.float32), rng.random((h, w, 4), np.float32)
     red = rng.random((12, 18, 4), np.float32)
-    for cid, kw in (("vc-A26", {}), ("vc-A27", {}), ("vc-A26", {"history": False}), ("vc-A27", {"neighbourhood": 5})):
+    for cid, kw in (("vc-A26", {}), ("vc-A27", {"neighbourhood": 3}), ("vc-A26", {"history": False}),
+                    ("vc-A27", {"neighbourhood": 5})):
         for frame in (0, 9):
             a = pywarp.equation(cid)(cur, prev, red, frame, cam, pcam, **kw)
             b = pywarp.equation(cid, impl="c")(cur, prev, red, frame, cam, pcam, **kw)
             assert np.max(np.abs(a.view(np.int32).astype(np.int64) - b.view(np.int32).astype(np.int64))) <= 2
     x, y = rng.integers(0, w, 500), rng.integers(0, h, 500)
     f = rng.integers(-40, 40, 500)
-    for p, q in zip(pywarp.equation("vc-A22")(x, y, f, w, h),
-                    pywarp.equation("vc-A22", impl="c")(x, y, f, w, h)):
-        np.testing.assert_array_equal(p, q)
+    assert_twins_agree("vc-A22", x, y, f, w, h, ulp=0)  # exact: a clamp of (p - off) / 4
+    assert_twins_agree("vc-4.1", x, y, f)
 
 
 @pytest.mark.spec("vc-A26")
 def test_reproject_kernel_tile_parallel_equals_single_band(rng):
     """The image kernel follows TileLauncher's row-band convention: any banding gives the same frame."""
     w, h = 37, 29
-    cam = rm.camera_look_at((0, 0.002, 0), (0.2, 0.5, -1), aspect=w / h)
-    pcam = rm.camera_look_at((0.3, 0.002, 0), (0.5, 0.5, -1), aspect=w / h)
+    cam = cm.camera_look_at((0, 0.002, 0), (0.2, 0.5, -1), aspect=w / h)
+    pcam = cm.camera_look_at((0.3, 0.002, 0), (0.5, 0.5, -1), aspect=w / h)
     cur, prev = rng.random((h, w, 3), np.float32), rng.random((h, w, 3), np.float32)
     red = rng.random((8, 10, 3), np.float32)
-    ref = pywarp.reproject_frame(cur, prev, red, 11, cam, pcam)
+    ref = pywarp.reproj_frame(cur, prev, red, 11, cam, pcam)
     layer = rm.CloudLayer()
     for workers in (1, 3):
         with TileLauncher(workers=workers, bands_per_worker=3) as tl:
@@ -338,7 +346,7 @@ def test_reproject_kernel_tile_parallel_equals_single_band(rng):
 @pytest.mark.parametrize("impl", IMPLS)
 def test_reproject_bad_input_raises_naming_parameter(impl):
     rep = pywarp.equation("vc-A26", impl=impl)
-    cam = rm.camera_look_at((0, 0.002, 0), (0, 0.4, -1), aspect=2.0)
+    cam = cm.camera_look_at((0, 0.002, 0), (0, 0.4, -1), aspect=2.0)
     cur = np.zeros((8, 16, 3), np.float32)
     red = np.zeros((2, 4, 3), np.float32)
     with pytest.raises(ValueError, match=r"^previous must have the shape of current"):
@@ -354,7 +362,7 @@ def test_reproject_bad_input_raises_naming_parameter(impl):
         pywarp.equation("vc-A27", impl=impl)(cur, cur, red, 0, cam, cam, neighbourhood=0)
     with pytest.raises(TypeError, match=r"^frame must be an integer"):
         rep(cur, cur, red, 1.5, cam, cam)
-    with pytest.raises(TypeError, match=r"^prev_camera must be a pywarp.kernels.raymarch.Camera"):
+    with pytest.raises(TypeError, match=r"^prev_camera must be a pywarp.kernels.camera.Camera"):
         rep(cur, cur, red, 0, cam, None)
     with pytest.raises(TypeError, match=r"^layer must be a CloudLayer"):
         rep(cur, cur, red, 0, cam, cam, layer=6372.5)

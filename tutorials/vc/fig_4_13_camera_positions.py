@@ -4,9 +4,9 @@
 The thesis extends the raymarch so that the camera may enter the cloud layer and fly above it (vc-A24): inside the
 layer the march starts at the camera and ends where the ray first leaves the layer (inner or outer sphere); above it
 the march starts where the ray enters the outer sphere and ends at the inner sphere or the ground. The layer spheres
-and their intersections are vc-A14 (pywarp.ray_sphere, pywarp.layer_segment); everything else is the full cloud pass
-(vc-A17, vc-A18, vc-A19, vc-A20, vc-A21, vc-A22, vc-2.31, vc-4.8) over the Preetham sky (vc-A29). Renderer:
-pywarp.clouds.cloudscape.
+and their intersections are vc-A14 (pywarp.raymarch_ray_sphere, pywarp.raymarch_layer_segment); everything else is
+the full cloud pass (vc-A17, vc-A18, vc-A19, vc-A20, vc-A21, vc-A22, vc-2.31, vc-4.8) over the Preetham sky (vc-A29).
+Renderer: pywarp.clouds.cloudscape.
 
 Parameters (none are given in the thesis): the renderer's default layer (base 1.5 km, top 4 km, Earth radius
 6371 km), coverage 0.6 (more clouds around the camera inside the layer), cloud type 0.75, seed 0, sun 25° up at
@@ -96,17 +96,19 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     images = [tech.render(pose) for _, pose in poses]
 
     # %% [markdown]
-    # Panel (d): the march segment of the central ray of each camera, from pywarp.layer_segment (vc-A24) — the same
-    # function the renderer calls per pixel. Heights are to scale; horizontal distances are compressed (the segment of
-    # the camera inside the layer looking 3° down is tens of km long).
+    # Panel (d): the march segment of the central ray of each camera, from pywarp.raymarch_layer_segment (vc-A24) — the
+    # same function the renderer calls per pixel. Heights are to scale; horizontal distances are compressed (the
+    # segment of the camera inside the layer looking 3° down is tens of km long).
 
     # %%
     c = p["centre"]
     segments = []
     for _, pose in poses:
         d = pose.forward()
-        t0, t1 = pywarp.layer_segment(pose.x_km, pose.altitude_km, pose.z_km, *d, *c, p["r_earth"], p["r_inner"],
-                                      p["r_outer"])
+        d32 = d.astype(np.float32)  # the unit direction in float32, normalized as the renderer's rays are
+        d32 = d32 / np.sqrt(d32[0] * d32[0] + d32[1] * d32[1] + d32[2] * d32[2])
+        t0, t1 = pywarp.raymarch_layer_segment((pose.x_km, pose.altitude_km, pose.z_km), d32, c, p["r_earth"],
+                                               p["r_inner"], p["r_outer"])
         segments.append((pose, d, float(t0), float(t1)))
 
     # %%

@@ -6,6 +6,7 @@
 #define CCLOUDS_CCLOUDS_H
 
 #include "cclouds/common.h"
+#include "cclouds/camera.h"
 #include "cclouds/phase.h"
 #include "cclouds/media.h"
 #include "cclouds/hash.h"

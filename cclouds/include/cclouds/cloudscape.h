@@ -8,15 +8,16 @@
  *   B      = ground_colour if the ray hits the Earth sphere ahead, else the sky colour of d (gradient or Preetham,
  *            display-linear: the Preetham sky is already tone mapped). The thesis draws no ground (the Earth sphere
  *            only stops the clouds below the horizon); a flat ground colour keeps the view from above readable.
- *   [t0,t1]= the part of the ray inside the cloud layer (ccl_layer_segment: camera below, inside or above the layer)
- *   n      = ccl_view_sample_count(d.y, samples_min, samples_max) when adaptive_samples, else samples_max
- *   for i < n: p = ccl_march_point(eye, d, t0, dt, i, offset);  rho = density(p) (vc-A17)
+ *   [t0,t1]= the part of the ray inside the cloud layer (ccl_raymarch_layer_segment: camera below, inside or above
+ *            the layer)
+ *   n      = ccl_raymarch_view_sample_count(d.y, samples_min, samples_max) when adaptive_samples, else samples_max
+ *   for i < n: p = ccl_raymarch_point(eye, d, t0, dt, i, offset);  rho = density(p) (vc-A17)
  *       if rho > 0: d_light = sigma_light * sum_j w_j density(q_j)  over the 6 cone samples q_j (vc-A19),
  *                   w_j = light_step (near samples) and (far_factor - 1) * 5 light_step (the far one);
  *                   a = absorption_base + absorption_precip * precipitation;
  *                   L = sun_colour * E(d_light, a, dot(d, to_sun), g) + ambient(h)   (vc-2.31, vc-A20;
  *                       the beer / powder flags replace a term of E by 1, to show what each contributes)
- *                   ccl_march_accumulate(colour, T, sigma, rho, dt, L, exit_eps)     (vc-A21)
+ *                   ccl_raymarch_accumulate(colour, T, sigma, rho, dt, L, exit_eps)     (vc-A21)
  *                   stop when early_exit and the accumulation says so
  *   C_f    = B (1 - O_D) + C_clouds with O_D = 1 - T (vc-4.8), then sRGB encoding.
  * density(p) (vc-A17): h = relative height (vc-A15); weather map at (p.x, p.z) + wind -> coverage D_h (R),
@@ -34,6 +35,7 @@
 #ifndef CCLOUDS_CLOUDSCAPE_H
 #define CCLOUDS_CLOUDSCAPE_H
 
+#include "cclouds/camera.h"
 #include "cclouds/common.h"
 #include "cclouds/raymarch.h"
 #include "cclouds/sky.h"
@@ -107,7 +109,7 @@ typedef enum ccl_sky_kind {
 typedef struct ccl_cloudscape_sky {
     int kind;                   /* ccl_sky_kind */
     float sun[3];               /* unit direction towards the sun (ccl_sky_sun_direction) */
-    ccl_preetham preetham;      /* filled by ccl_preetham_init when kind == CCL_SKY_PREETHAM */
+    ccl_preetham preetham;      /* filled by ccl_sky_preetham_init when kind == CCL_SKY_PREETHAM */
     ccl_sky_gradient gradient;  /* filled by ccl_sky_gradient_defaults / _init when kind == CCL_SKY_GRADIENT */
 } ccl_cloudscape_sky;
 

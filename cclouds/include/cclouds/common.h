@@ -58,6 +58,35 @@ typedef struct {
     float x, y, z;
 } ccl_vec3;
 
+/* --- vector maths ---------------------------------------------------------------------------------------------------
+ * Shared by every cclouds source (no private copies). float32 operations in the order written below, so that the
+ * Warp code that mirrors a C function computes the same bits. Their Warp twins are Warp's own builtins, not catalogue
+ * entries (not registered): a + b, a - b, a * s, wp.dot, wp.cross, wp.length, wp.normalize.
+ * Total: NaN and Inf propagate by IEEE rules; no precondition. */
+
+/* a + b, component-wise. Warp: a + b. */
+CCL_API ccl_vec3 ccl_vec3_add(ccl_vec3 a, ccl_vec3 b);
+
+/* a - b, component-wise. Warp: a - b. */
+CCL_API ccl_vec3 ccl_vec3_sub(ccl_vec3 a, ccl_vec3 b);
+
+/* a s, every component times the scalar s. Warp: a * s. */
+CCL_API ccl_vec3 ccl_vec3_scale(ccl_vec3 a, float s);
+
+/* Dot product a.x b.x + a.y b.y + a.z b.z (summed left to right). Warp: wp.dot(a, b). */
+CCL_API float ccl_vec3_dot(ccl_vec3 a, ccl_vec3 b);
+
+/* Cross product a x b = (a.y b.z - a.z b.y, a.z b.x - a.x b.z, a.x b.y - a.y b.x) (right-handed). Warp: wp.cross. */
+CCL_API ccl_vec3 ccl_vec3_cross(ccl_vec3 a, ccl_vec3 b);
+
+/* Euclidean length sqrt(a.x^2 + a.y^2 + a.z^2) (>= 0; no scaling against overflow, like Warp). Warp: wp.length. */
+CCL_API float ccl_vec3_length(ccl_vec3 a);
+
+/* Unit vector a / |a| (each component divided by the length). The zero vector gives the zero vector, as Warp's
+ * wp.normalize does; a NaN component gives NaN components here, where wp.normalize returns the zero vector (the
+ * only difference between the twins). Warp: wp.normalize. */
+CCL_API ccl_vec3 ccl_vec3_normalize(ccl_vec3 a);
+
 /* Short human-readable name of a status code ("ok", "invalid argument", ...); never NULL. */
 CCL_API const char *ccl_status_str(ccl_status status);
 

@@ -1,6 +1,6 @@
 /*
- * cclouds/raymarch.h -- view-ray geometry of the cloudscape (vc §2.2, §4.2.1, §4.3.2): camera and ray generation,
- * ray-sphere / ray-box intersection, the cloud-layer segment, view-sample count, light-cone sample positions,
+ * cclouds/raymarch.h -- view-ray geometry of the cloudscape (vc §2.2, §4.2.1, §4.3.2): ray-sphere / ray-box
+ * intersection, the cloud-layer segment, view-sample count, light-cone sample positions,
  * front-to-back accumulation with early termination, ray jitter, and the constants collected from the thesis.
  *
  * Conventions (all functions):
@@ -9,14 +9,10 @@
  *     a camera near the origin keeps float32 coordinates small.
  *   - Ray o + t d with |d| = 1 where a function says "unit d"; t is the distance along the ray. "No hit / no segment"
  *     is reported by a 0 return value AND by NaN in both distances, so `t_end > t_start` is false for a miss.
- *   - Matrices are float[16] in COLUMN-MAJOR order (OpenGL/GLM): element (row r, column c) is m[c * 4 + r].
- *     Camera: right-handed look-at view matrix (the camera looks down -z in view space) and an OpenGL perspective
- *     projection with NDC z in [-1, 1].
- *   - Pixels: (x, y) integer indices, y = 0 is the TOP row (NumPy/PNG order); the pixel centre has
- *     uv = ((x + 0.5) / width, (y + 0.5) / height) and NDC = (2u - 1, 1 - 2v).
+ *   - The camera and primary rays (vc-A25) are in cclouds/camera.h; the PCG hash of the jitter in cclouds/hash.h.
  *   - float32 throughout; every operation is mirrored in the same order by pywarp/kernels/raymarch.py.
- *   - Functions with a `_flat` suffix take scalar components instead of ccl_vec3 (for the Python registry); they
- *     normalize any direction they are given and otherwise call the ccl_vec3 function.
+ *   - Vectors in and out by value (ccl_vec3); several results: the first is the return value, the others go
+ *     through trailing out-pointers.
  */
 #ifndef CCLOUDS_RAYMARCH_H
 #define CCLOUDS_RAYMARCH_H
@@ -26,18 +22,6 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* Camera matrices, all float32 column-major (see the conventions above). Built by ccl_camera_look_at; the products
- * and the inverse are computed in double and rounded once. */
-typedef struct {
-    ccl_vec3 eye;              /* camera position (world) */
-    float view[16];            /* world -> view (look-at) */
-    float proj[16];            /* view -> clip (perspective, vertical field of view) */
-    float view_proj[16];       /* proj * view: world -> clip */
-    float inv_view_proj[16];   /* inverse of view_proj: clip -> world */
-    float inv_view_proj_rot[16]; /* inverse of proj * (view without its translation): clip -> direction from the
-                                    eye; what ccl_camera_ray uses (see there) */
-} ccl_camera;
 
 /* The three concentric spheres of vc-A14: the Earth and the inner (base) and outer (top) spheres of the cloud layer.
  * Radii in km, centre = (0, -r_earth, 0). */
@@ -91,7 +75,7 @@ typedef struct {
  *   light cone                  step 0.1 km (5 near samples span 0.5 km, a cumulus core; the far one at 1.5 km catches
  *                               a neighbouring cloud within the 2.5 km layer), half-angle 15 deg (0.2617994 rad:
  *                               sideways spread ~1.3 steps at the cone end), far factor 3 (the thesis), kernel
- *                               ccl_light_cone_kernel.
+ *                               ccl_raymarch_light_cone_kernel.
  *   early termination           eps = 1/256: stop once 1 - T >= 1 - eps; what the remaining samples could still add is
  *                               below T <= 1/256 of the light, under one 8-bit step for radiance <= 1.
  *   jitter                      tilt (the thesis's reading, default) by up to amount * sqrt(3) rad, amount = 0.002 rad
@@ -107,17 +91,14 @@ typedef struct {
  * q = -b - sign(b) sqrt(disc), roots {cq/q, q} with cq = |o - c|^2 - r^2 = (|o - c| - r)(|o - c| + r).
  * Output: *out_t0 <= *out_t1 (may be negative: behind the origin), returns 1; on a miss both NaN, returns 0.
  * A tangent ray gives t0 == t1. NaN input propagates (returns 0). */
-CCL_API int ccl_ray_sphere(ccl_vec3 o, ccl_vec3 d, ccl_vec3 c, float r, float *out_t0, float *out_t1);
-
-/* ccl_ray_sphere with scalar components; (dx, dy, dz) any non-zero length (normalized here). Ref: vc-A14. */
-CCL_API int ccl_ray_sphere_flat(float ox, float oy, float oz, float dx, float dy, float dz, float cx, float cy,
-                                float cz, float r, float *out_t0, float *out_t1);
+CCL_API int ccl_raymarch_ray_sphere(ccl_vec3 o, ccl_vec3 d, ccl_vec3 c, float r, float *out_t0, float *out_t1);
 
 /* Ray-box (axis-aligned) intersection by slabs. Ref: vc-A35 (the bounding body of §2.2).
  * o -> origin, d -> direction (any non-zero length; t in units of |d|), bmin <= bmax -> box corners. Axes with
  * d == 0 accept the ray only when the origin lies between the slab planes. Output t0 <= t1 (either may be negative),
  * returns 1; miss: NaN, NaN, returns 0. */
-CCL_API int ccl_ray_box(ccl_vec3 o, ccl_vec3 d, ccl_vec3 bmin, ccl_vec3 bmax, float *out_t0, float *out_t1);
+CCL_API int ccl_raymarch_ray_box(ccl_vec3 o, ccl_vec3 d, ccl_vec3 bmin, ccl_vec3 bmax, float *out_t0,
+                                 float *out_t1);
 
 /* The part of the cloud layer a view ray marches through, for every camera position.
  * Ref: vc-A14 (camera below the layer), vc-A24 (inside, above). o -> camera position, d -> unit view direction,
@@ -130,31 +111,26 @@ CCL_API int ccl_ray_box(ccl_vec3 o, ccl_vec3 d, ccl_vec3 bmin, ccl_vec3 bmax, fl
  * Output 0 <= *out_t_start <= *out_t_end, returns 1; no segment: NaN, NaN, returns 0.
  * Accuracy: |o - c| and the radii are float32 numbers near 6371 km (spacing 4.9e-4 km); a root moves by about
  * eps R^2 / sqrt(disc), sub-metre for most rays and metres for grazing ones (tested: <= 4 eps (R^2 / s + R)). */
-CCL_API int ccl_layer_segment(ccl_vec3 o, ccl_vec3 d, ccl_vec3 c, float r_earth, float r_inner, float r_outer,
-                              float *out_t_start, float *out_t_end);
-
-/* ccl_layer_segment with scalar components; (dx, dy, dz) any non-zero length. Ref: vc-A24, vc-A14. */
-CCL_API int ccl_layer_segment_flat(float ox, float oy, float oz, float dx, float dy, float dz, float cx, float cy,
-                                   float cz, float r_earth, float r_inner, float r_outer, float *out_t_start,
-                                   float *out_t_end);
+CCL_API int ccl_raymarch_layer_segment(ccl_vec3 o, ccl_vec3 d, ccl_vec3 c, float r_earth, float r_inner,
+                                       float r_outer, float *out_t_start, float *out_t_end);
 
 /* Default cloud layer: Earth radius 6371 km, base 1.5 km and top 4 km above the ground (see the choices above). */
-CCL_API void ccl_cloud_layer_default(ccl_cloud_layer *out);
+CCL_API void ccl_raymarch_cloud_layer_default(ccl_cloud_layer *out);
 
 /* Cloud layer from an Earth radius and the base/top altitudes above the ground (km); centre (0, -earth_radius, 0).
  * Returns CCL_EINVAL (out untouched) unless 0 < earth_radius, 0 <= base_altitude < top_altitude, all finite. */
-CCL_API ccl_status ccl_cloud_layer_init(float earth_radius, float base_altitude, float top_altitude,
-                                        ccl_cloud_layer *out);
+CCL_API ccl_status ccl_raymarch_cloud_layer_init(float earth_radius, float base_altitude, float top_altitude,
+                                                 ccl_cloud_layer *out);
 
 /* Number of view samples N = round(mix(n_max, n_min, |dir_y|)) = floor(n_max + (n_min - n_max) |dir_y| + 0.5).
  * Ref: vc-A18 (64 at zenith ... 128 at the horizon; the law is our choice). dir_y -> y component of the unit view
  * direction in [-1, 1]; 1 <= n_min <= n_max (thesis: 64, 128). Output in [n_min, n_max]; n_max at the horizon. */
-CCL_API int ccl_view_sample_count(float dir_y, int n_min, int n_max);
+CCL_API int ccl_raymarch_view_sample_count(float dir_y, int n_min, int n_max);
 
 /* Default light-cone kernel vector i (0..5): six fixed pseudo-random unit vectors (uniform on the sphere, drawn with
  * the PCG hash of 2i and 2i + 1; see pywarp/kernels/raymarch.py LIGHT_CONE_KERNEL for the derivation).
  * Ref: vc-A19. i outside 0..5 is wrapped mod 6. */
-CCL_API ccl_vec3 ccl_light_cone_kernel(int i);
+CCL_API ccl_vec3 ccl_raymarch_light_cone_kernel(int i);
 
 /* Position of light sample i (0..5) in a cone from p towards the sun.
  * Ref: vc-A19 (Schneider & Vos 2015; GPU Pro 7, "Real-time volumetric cloudscapes", 2016). p -> view sample,
@@ -163,44 +139,19 @@ CCL_API ccl_vec3 ccl_light_cone_kernel(int i);
  * Axial distance s_i = (i + 1) step for the 5 near samples (i < 5), s_5 = far_factor * 5 step;
  * position = p + s_i to_sun + (s_i tan(cone_angle)) k: the sideways offset grows with s_i (increasing offsets).
  * Output: world position. */
-CCL_API ccl_vec3 ccl_light_sample_position(ccl_vec3 p, ccl_vec3 to_sun, int i, float step, float cone_angle,
-                                           float far_factor, ccl_vec3 k);
-
-/* Offset of light sample i from the view sample (p = 0) with the default kernel; to_sun any non-zero length
- * (normalized here). Ref: vc-A19. */
-CCL_API void ccl_light_sample_offset_flat(int i, float sx, float sy, float sz, float step, float cone_angle,
-                                          float far_factor, float *out_x, float *out_y, float *out_z);
+CCL_API ccl_vec3 ccl_raymarch_light_sample_position(ccl_vec3 p, ccl_vec3 to_sun, int i, float step,
+                                                    float cone_angle, float far_factor, ccl_vec3 k);
 
 /* One front-to-back accumulation step. Ref: vc-A21 (cataloguer's standard form), vc-2.18.
- * sigma -> extinction per unit density (1/km), rho -> density (>= 0), dt -> step length (km), light -> radiance of
- * the sample. tau = (sigma rho) dt, e = exp(-tau); *colour += (T (1 - e)) light; *transmittance T *= e.
- * Returns 1 when the march may stop: 1 - T >= 1 - eps with the updated T (eps default 1/256, see above). */
-CCL_API int ccl_march_accumulate(ccl_vec3 *colour, float *transmittance, float sigma, float rho, float dt,
-                                 ccl_vec3 light, float eps);
+ * colour -> radiance accumulated so far, transmittance -> view transmittance T so far ([0, 1]), sigma -> extinction
+ * per unit density (1/km, >= 0), rho -> density (>= 0), dt -> step length (km, >= 0), light -> radiance of the
+ * sample, eps -> termination threshold ([0, 1], default 1/256, see above).
+ * tau = (sigma rho) dt, e = exp(-tau); returns colour + (T (1 - e)) light; *out_transmittance = T e;
+ * *out_stop = 1 when the march may stop (1 - T e >= 1 - eps), else 0. */
+CCL_API ccl_vec3 ccl_raymarch_accumulate(ccl_vec3 colour, float transmittance, float sigma, float rho, float dt,
+                                         ccl_vec3 light, float eps, float *out_transmittance, int *out_stop);
 
-/* ccl_march_accumulate with scalar components; *out_stop = 1.0f when the march may stop, else 0.0f. Ref: vc-A21. */
-CCL_API void ccl_march_accumulate_flat(float cr, float cg, float cb, float transmittance, float sigma, float rho,
-                                       float dt, float lr, float lg, float lb, float eps, float *out_r,
-                                       float *out_g, float *out_b, float *out_transmittance, float *out_stop);
-
-/* Camera from eye, target and up vectors (GLM lookAt, right-handed) and a perspective projection (GLM perspective,
- * OpenGL NDC): fov_y -> vertical field of view (rad, (0, pi)), aspect -> width / height (> 0),
- * 0 < z_near < z_far (km). Ref: vc-A25. Returns CCL_EINVAL (out untouched) for a non-finite input, eye == target,
- * up parallel to the view direction or a parameter outside its range. */
-CCL_API ccl_status ccl_camera_look_at(ccl_vec3 eye, ccl_vec3 target, ccl_vec3 up, float fov_y, float aspect,
-                                      float z_near, float z_far, ccl_camera *out);
-
-/* Unit view direction through the centre of pixel (x, y) of a width x height image.
- * Ref: vc-A25: pixel -> uv = ((x + 0.5)/width, (y + 0.5)/height) -> NDC (2u - 1, 1 - 2v, z = 1) ->
- * h = inv_view_proj_rot (ndc, 1) -> d = normalize(h.xyz). inv_view_proj_rot is the inverse view-projection of the
- * camera moved to the origin (ccl_camera.inv_view_proj_rot): h.xyz = R (x aspect tan(fov/2), y tan(fov/2), -1)
- * exactly, and w = 1/z_far > 0 only scales it, so it is not divided out. Why not the full inverse: its float32
- * entries mix the eye translation (~50 |eye| for z_near = 0.01) with the far-plane w (1/z_far), and the direction
- * p/w - eye cancels them: measured 0.037 px error at 1920 x 1080 with the eye 7.6 km from the origin, against
- * < 1e-3 px here, independent of the eye position. */
-CCL_API ccl_vec3 ccl_camera_ray(const float inv_view_proj_rot[16], int x, int y, int width, int height);
-
-/* Jitter modes of ccl_ray_jitter_flat (vc-A23). */
+/* Jitter modes of ccl_raymarch_jitter (vc-A23). */
 typedef enum {
     CCL_JITTER_TILT = 0,    /* tilt the direction (the thesis, default) */
     CCL_JITTER_OFFSET = 1,  /* keep the direction, jitter the start offset of the first sample */
@@ -208,42 +159,45 @@ typedef enum {
 } ccl_jitter_mode;
 
 /* Direction tilted by a pseudo-random amount: normalize(d + amount * r), r in [-1, 1)^3 from the PCG hash of
- * (x, y, frame). Ref: vc-A23. d -> unit direction, amount -> tilt scale (rad, >= 0; the tilt angle is at most about
+ * (x, y, frame): seed = pcg(x + pcg(y + pcg(frame))), r_k = 2 ccl_hash_unit(pcg(seed + k)) - 1, k = 0, 1, 2.
+ * Ref: vc-A23. d -> unit direction, amount -> tilt scale (rad, >= 0; the tilt angle is at most about
  * sqrt(3) amount). Deterministic: the same (x, y, frame) gives the same direction. */
-CCL_API ccl_vec3 ccl_ray_jitter_tilt(ccl_vec3 d, uint32_t x, uint32_t y, uint32_t frame, float amount);
+CCL_API ccl_vec3 ccl_raymarch_jitter_tilt(ccl_vec3 d, uint32_t x, uint32_t y, uint32_t frame, float amount);
 
-/* Pseudo-random start offset in [0, 1) (in units of the step, see ccl_march_point) from the PCG hash of
- * (x, y, frame). Ref: vc-A23 (the alternative to tilting). */
-CCL_API float ccl_ray_jitter_offset(uint32_t x, uint32_t y, uint32_t frame);
+/* Pseudo-random start offset in [0, 1) (in units of the step, see ccl_raymarch_point) from the PCG hash of
+ * (x, y, frame): ccl_hash_unit(pcg(seed + 3)) with the seed of ccl_raymarch_jitter_tilt. Ref: vc-A23 (the
+ * alternative to tilting). */
+CCL_API float ccl_raymarch_jitter_offset(uint32_t x, uint32_t y, uint32_t frame);
 
-/* Both jitters through one entry: mode CCL_JITTER_TILT -> tilted direction, offset 0.5; CCL_JITTER_OFFSET ->
- * normalized direction, hashed offset; CCL_JITTER_NONE -> normalized direction, offset 0.5. x, y, frame >= 0.
- * Ref: vc-A23. */
-CCL_API void ccl_ray_jitter_flat(float dx, float dy, float dz, int x, int y, int frame, float amount, int mode,
-                                 float *out_dx, float *out_dy, float *out_dz, float *out_offset);
+/* The jitter of pixel (x, y) in frame `frame` for a jitter mode: CCL_JITTER_TILT -> ccl_raymarch_jitter_tilt(d, ...),
+ * offset 0.5; CCL_JITTER_OFFSET -> d unchanged, offset ccl_raymarch_jitter_offset(x, y, frame); CCL_JITTER_NONE ->
+ * d unchanged, offset 0.5. Ref: vc-A23. d -> unit view direction, amount -> tilt scale (rad, >= 0).
+ * Returns the direction to march; *out_offset = the start offset in [0, 1). */
+CCL_API ccl_vec3 ccl_raymarch_jitter(ccl_vec3 d, uint32_t x, uint32_t y, uint32_t frame, float amount,
+                                     ccl_jitter_mode mode, float *out_offset);
 
 /* Uniform march over an intersection interval: clamps the interval to the part in front of the origin,
  * t_start = max(t_near, 0), dt = (t_far - t_start) / n. Ref: vc-A35, vc-2.18 (S = n uniform steps).
  * Returns 0 (NaN, NaN) when the interval is empty, lies behind the origin or is NaN; n >= 1. */
-CCL_API int ccl_march_interval(float t_near, float t_far, int n, float *out_t_start, float *out_dt);
+CCL_API int ccl_raymarch_interval(float t_near, float t_far, int n, float *out_t_start, float *out_dt);
 
 /* Sample i of a uniform march: o + (t_start + (i + offset) dt) d; offset in [0, 1) (0.5 = segment midpoints).
  * Ref: vc-A35, vc-2.18 (x_t = x + t dt w). */
-CCL_API ccl_vec3 ccl_march_point(ccl_vec3 o, ccl_vec3 d, float t_start, float dt, int i, float offset);
+CCL_API ccl_vec3 ccl_raymarch_point(ccl_vec3 o, ccl_vec3 d, float t_start, float dt, int i, float offset);
 
 /* n uniform steps through a bounding sphere (centre c, radius r > 0) in front of the origin: d any non-zero length
- * (normalized here), [t_near, t_far] from ccl_ray_sphere -> ccl_march_interval -> out_points[i] = ccl_march_point(o,
- * d, t_start, dt, i, offset) for i = 0..n-1 (out_points holds n vectors). Ref: vc-A35. Returns 1; on a miss 0 with
- * every point and *out_dt NaN. */
-CCL_API int ccl_march_sphere(ccl_vec3 o, ccl_vec3 d, ccl_vec3 c, float r, int n, float offset, ccl_vec3 *out_points,
-                             float *out_dt);
+ * (normalized here), [t_near, t_far] from ccl_raymarch_ray_sphere -> ccl_raymarch_interval -> out_points[i] =
+ * ccl_raymarch_point(o, d, t_start, dt, i, offset) for i = 0..n-1 (out_points holds n vectors). Ref: vc-A35.
+ * Returns 1; on a miss 0 with every point and *out_dt NaN. */
+CCL_API int ccl_raymarch_sphere(ccl_vec3 o, ccl_vec3 d, ccl_vec3 c, float r, int n, float offset,
+                                ccl_vec3 *out_points, float *out_dt);
 
-/* ccl_march_sphere for an axis-aligned box (bmin <= bmax), intersected by ccl_ray_box. Ref: vc-A35. */
-CCL_API int ccl_march_box(ccl_vec3 o, ccl_vec3 d, ccl_vec3 bmin, ccl_vec3 bmax, int n, float offset,
-                          ccl_vec3 *out_points, float *out_dt);
+/* ccl_raymarch_sphere for an axis-aligned box (bmin <= bmax), intersected by ccl_raymarch_ray_box. Ref: vc-A35. */
+CCL_API int ccl_raymarch_box(ccl_vec3 o, ccl_vec3 d, ccl_vec3 bmin, ccl_vec3 bmax, int n, float offset,
+                             ccl_vec3 *out_points, float *out_dt);
 
 /* The constants collected from the thesis (vc-A36); never NULL, static storage, read-only. */
-CCL_API const ccl_vc_constant_table *ccl_vc_constants(void);
+CCL_API const ccl_vc_constant_table *ccl_raymarch_vc_constants(void);
 
 #ifdef __cplusplus
 }

@@ -5,7 +5,7 @@
  * (vc-A27).
  *
  * Conventions: images are float32, row-major (height, width, channels), pixel (x, y) at index
- * (y * width + x) * channels + c, y = 0 the top row; uv and NDC as in cclouds/raymarch.h (uv = ((x + 0.5)/width,
+ * (y * width + x) * channels + c, y = 0 the top row; uv and NDC as in cclouds/camera.h (uv = ((x + 0.5)/width,
  * (y + 0.5)/height), NDC y = 1 - 2v); matrices float[16] column-major.
  *
  * Choices where the thesis is silent (mirrored in pywarp/kernels/reproj.py):
@@ -30,6 +30,7 @@
 #ifndef CCLOUDS_REPROJ_H
 #define CCLOUDS_REPROJ_H
 
+#include "cclouds/camera.h"
 #include "cclouds/common.h"
 #include "cclouds/raymarch.h"
 
@@ -43,35 +44,35 @@ extern "C" {
 
 /* Pixel written by thread (id_x, id_y) in frame `frame` when reprojection is on.
  * Ref: vc-4.1: f = frame mod 16, a = floor(f / 4), b = f mod 4, (x, y) = (4 id_x + a, 4 id_y + b).
- * id_x, id_y >= 0. The caller skips pixels outside the image (see ccl_reprojection_grid). */
-CCL_API void ccl_reprojection_pixel(int id_x, int id_y, int frame, int *out_x, int *out_y);
+ * id_x, id_y >= 0. The caller skips pixels outside the image (see ccl_reproj_grid). */
+CCL_API void ccl_reproj_pixel(int id_x, int id_y, int frame, int *out_x, int *out_y);
 
 /* Thread grid (= reduced buffer) size for a width x height image: ceil(width / 4) x ceil(height / 4).
  * Ref: vc-4.1 (bounds rule), vc-A22. Returns CCL_EINVAL if width < 1 or height < 1. */
-CCL_API ccl_status ccl_reprojection_grid(int width, int height, int *out_grid_w, int *out_grid_h);
+CCL_API ccl_status ccl_reproj_grid(int width, int height, int *out_grid_w, int *out_grid_h);
 
 /* 1 if pixel (x, y) is raymarched in frame `frame` ((x mod 4, y mod 4) == (a, b) of eq 4.1), else 0. Ref: vc-4.1. */
-CCL_API int ccl_reprojection_updated(int x, int y, int frame);
+CCL_API int ccl_reproj_updated(int x, int y, int frame);
 
 /* Continuous coordinates in the reduced buffer (texel units, texel (i, j) at (i, j)) of pixel (x, y) in frame
  * `frame`: ((x - a)/4, (y - b)/4), clamped to [0, floor((width - 1 - a)/4)] x [0, floor((height - 1 - b)/4)], the
  * texels written this frame. For the pixel rendered by thread (i, j) this is exactly (i, j), the texel it writes.
  * NaN in a coordinate when this frame renders no pixel in that direction (width - 1 < a, or height - 1 < b).
  * Ref: vc-A22 (reduced buffer mapping), vc-A26 step 3. 0 <= x < width, 0 <= y < height. */
-CCL_API void ccl_reduced_coord(int x, int y, int frame, int width, int height, float *out_rx, float *out_ry);
+CCL_API void ccl_reproj_reduced_coord(int x, int y, int frame, int width, int height, float *out_rx, float *out_ry);
 
 /* Where pixel (x, y) of the current frame was in the previous frame.
  * Ref: vc-A26 step 2: ray from eye through the pixel (ccl_camera_ray with inv_view_proj_rot) -> nearest hit in front
  * of the camera on the inner sphere (centre, r_inner) -> P -> clip = prev_view_proj (P, 1) -> NDC -> uv.
  * Returns 1 if the point was visible (clip w > 0 and uv in [0, 1]^2); otherwise 0. *out_u, *out_v hold the uv when
  * the point projects (w > 0, even outside [0, 1]) and NaN when the ray misses the sphere or w <= 0. */
-CCL_API int ccl_reprojection_uv(const float inv_view_proj_rot[16], ccl_vec3 eye, const float prev_view_proj[16],
+CCL_API int ccl_reproj_uv(const float inv_view_proj_rot[16], ccl_vec3 eye, const float prev_view_proj[16],
                                 ccl_vec3 centre, float r_inner, int x, int y, int width, int height, float *out_u,
                                 float *out_v);
 
 /* The reprojection pass over a frame.
  * Ref: vc-A26 (temporal reprojection), vc-A27 (neighbourhood averaging).
- * current  -> this frame's buffer (height, width, channels): the pixels rendered this frame (ccl_reprojection_updated)
+ * current  -> this frame's buffer (height, width, channels): the pixels rendered this frame (ccl_reproj_updated)
  *             are taken from it unchanged;
  * previous -> the previous frame's final buffer (height, width, channels);
  * reduced  -> this frame's reduced buffer (ceil(height/4), ceil(width/4), channels);
@@ -84,7 +85,7 @@ CCL_API int ccl_reprojection_uv(const float inv_view_proj_rot[16], ccl_vec3 eye,
  * out      -> (height, width, channels); may be the same array as current, never previous.
  * Returns CCL_EINVAL (out untouched) for NULL pointers, sizes < 1, an even or non-positive neighbourhood,
  * r_inner <= 0 or NaN, or out == previous. */
-CCL_API ccl_status ccl_reproject_frame(const float *current, const float *previous, const float *reduced, int width,
+CCL_API ccl_status ccl_reproj_frame(const float *current, const float *previous, const float *reduced, int width,
                                        int height, int channels, int frame, const float inv_view_proj_rot[16],
                                        ccl_vec3 eye, const float prev_view_proj[16], ccl_vec3 centre, float r_inner,
                                        int neighbourhood, int history, float *out);
