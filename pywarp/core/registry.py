@@ -389,14 +389,14 @@ def _generate_kernel(func, eq: Equation):
         else:
             a = arg_by_name[p]
             src_params.append(f"{p}: {_ARRAY_ANN[(a.kind(), a.length)]}")
-            call.append(f"{p}[i]")
+            call.append(f"{p}[_tid]")
     outs = [f"out_{o.name}" for o in eq.out_specs]
     src_params += [f"out_{o.name}: {_ARRAY_ANN[(o.dtype, o.length)]}" for o in eq.out_specs]
     kname = f"_eval_{func.key}"
-    body = [f"def {kname}({', '.join(src_params)}):", "    i = wp.tid()"]
+    body = [f"def {kname}({', '.join(src_params)}):", "    _tid = wp.tid()"]
     results = [f"r{k}" for k in range(len(outs))]
     body.append(f"    {', '.join(results)} = _f({', '.join(call)})")
-    body += [f"    {o}[i] = {r}" for o, r in zip(outs, results)]
+    body += [f"    {o}[_tid] = {r}" for o, r in zip(outs, results)]
     src = "\n".join(body) + "\n"
     filename = f"<pywarp generated {fn.__module__}.{kname}>"
     linecache.cache[filename] = (len(src), None, src.splitlines(True), filename)

@@ -12,7 +12,7 @@ import pytest
 
 import pywarp
 from pywarp.core import binding as _cclouds
-from pywarp.core.registry import catalogue, missing, registry
+from pywarp.core.registry import catalogue, entries, missing, registry
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -52,9 +52,9 @@ def test_every_registered_entry_is_complete():
 
 
 def test_registered_names_are_unique_and_exposed_on_the_package():
-    names = [eq.name for eq in registry().values()]
+    names = [eq.name for eq in entries()]
     assert len(names) == len(set(names))
-    for eq in registry().values():
+    for eq in entries():
         fn = getattr(pywarp, eq.name)
         assert fn.equation is eq
 
