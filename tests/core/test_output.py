@@ -1,11 +1,14 @@
 """Safe output: path validation before work, no NaN image, atomic PNG/GIF/MP4 writes with no partial file."""
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
 from PIL import Image
 
-from pywarp.core.output import VideoWriter, check_output_path, to_uint8, write_png
+from pywarp.core.output import (VideoWriter, atomic_path, check_output_dir, check_output_path, remove_temporaries,
+                                to_uint8, write_png)
 
 
 def test_check_output_path_errors(tmp_path):
@@ -74,3 +77,91 @@ def test_written_files_have_the_usual_permissions(tmp_path):
     mask = os.umask(0)
     os.umask(mask)
     assert stat.S_IMODE(out.stat().st_mode) == 0o666 & ~mask
+
+
+def test_check_output_path_more_errors(tmp_path):
+    (tmp_path / "f").write_text("x")
+    with pytest.raises(ValueError, match="--out: '.*f' is not a folder"):
+        check_output_path(tmp_path / "f" / "a.png", (".png",))
+    with pytest.raises(ValueError, match="--video: folder"):
+        check_output_path(tmp_path / "nope" / "a.mp4", (".mp4",), option="--video")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f"]  # the writability probe leaves nothing
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() == 0, reason="the superuser may write anywhere")
+def test_check_output_path_refuses_a_read_only_folder(tmp_path):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o500)
+    try:
+        with pytest.raises(ValueError, match="--out: cannot write in folder"):
+            check_output_path(ro / "a.png", (".png",))
+    finally:
+        ro.chmod(0o700)
+
+
+def test_check_output_dir(tmp_path):
+    assert check_output_dir(tmp_path / "new" / "deeper") == tmp_path / "new" / "deeper"
+    assert not (tmp_path / "new").exists()  # checked, not created
+    (tmp_path / "f").write_text("x")
+    with pytest.raises(ValueError, match="--out: '.*f' is not a folder"):
+        check_output_dir(tmp_path / "f")
+    with pytest.raises(ValueError, match="--out: cannot create folder"):
+        check_output_dir(tmp_path / "f" / "sub")
+
+
+def test_write_errors_name_the_option_and_path_never_the_temporary_file(tmp_path, monkeypatch):
+    from PIL import Image
+
+    def full_disk(self, fp, *a, **k):
+        raise OSError(28, "No space left on device", str(fp))
+
+    out = check_output_path(tmp_path / "c.png", (".png",))
+    monkeypatch.setattr(Image.Image, "save", full_disk)
+    with pytest.raises(OSError) as exc:
+        write_png(out, np.zeros((4, 4, 3), np.float32))
+    assert str(exc.value) == f"--out: cannot write {str(out)!r}: No space left on device"
+    assert ".part" not in str(exc.value) and exc.value.errno == 28
+    gif = out.with_suffix(".gif")
+    with pytest.raises(OSError, match="cannot write .*c.gif': No space left on device") as exc:
+        with VideoWriter(gif) as vw:  # not checked by check_output_path: no option to name
+            vw.add(np.zeros((4, 4, 3), np.float32))
+    assert ".part" not in str(exc.value)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("exc_type", [KeyboardInterrupt, RuntimeError])
+def test_mp4_writer_kills_ffmpeg_and_removes_the_temporary_file(tmp_path, exc_type):
+    path = tmp_path / "v.mp4"
+    with pytest.raises(exc_type):
+        with VideoWriter(path, fps=10) as vw:
+            vw.add(np.zeros((16, 24, 3), np.float32))
+            proc = vw._enc.proc
+            assert proc.poll() is None and any(p.name.endswith(".part") for p in tmp_path.iterdir())
+            raise exc_type()
+    assert proc.poll() is not None  # ffmpeg was stopped
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_video_writer_refuses_a_changing_frame_size(tmp_path):
+    with pytest.raises(ValueError, match="every frame must be 24x16, got 26x16"):
+        with VideoWriter(tmp_path / "v.mp4") as vw:
+            vw.add(np.zeros((16, 24, 3), np.float32))
+            vw.add(np.zeros((16, 26, 3), np.float32))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_atomic_path_and_remove_temporaries(tmp_path):
+    with atomic_path(tmp_path / "a.txt") as tmp:
+        assert tmp.name.startswith(".a.") and tmp.name.endswith(".txt.part")
+        tmp.write_text("done")
+    assert (tmp_path / "a.txt").read_text() == "done"
+    with pytest.raises(KeyboardInterrupt):
+        with atomic_path(tmp_path / "b.txt") as tmp:
+            tmp.write_text("half")
+            raise KeyboardInterrupt
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt"]
+    vw = VideoWriter(tmp_path / "c.gif").__enter__()  # a writer left open, e.g. by an interrupt in another frame
+    assert len(list(tmp_path.glob(".c.*.gif.part"))) == 1
+    assert [p.name for p in remove_temporaries()] == [vw._tmp.name]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt"]
