@@ -31,10 +31,10 @@ int main(int argc, char **argv)
 {
     int width = argc > 2 ? atoi(argv[1]) : 320, height = argc > 2 ? atoi(argv[2]) : 180, x, y, ok = 1;
     const char *path = argc > 3 ? argv[3] : "cloudscape.ppm";
-    ccl_base_shape_settings bs = ccl_base_shape_settings_default();
-    ccl_detail_shape_settings ds = ccl_detail_shape_settings_default();
-    ccl_curl_noise_settings cs = ccl_curl_noise_settings_default();
-    ccl_weather_map_settings ws = ccl_weather_map_settings_default();
+    ccl_base_shape_settings bs = ccl_texgen_base_shape_settings_default();
+    ccl_detail_shape_settings ds = ccl_texgen_detail_shape_settings_default();
+    ccl_curl_noise_settings cs = ccl_texgen_curl_noise_settings_default();
+    ccl_weather_map_settings ws = ccl_texgen_weather_map_settings_default();
     ccl_cloudscape_params params;
     ccl_cloudscape_sky sky;
     ccl_cloud_textures tex;

@@ -224,16 +224,16 @@ static void worley_offsets(uint32_t h0, float *ox, float *oy, float *oz)
     *oz = (float)(h2 >> 9u) * scale;
 }
 
-void ccl_noise_worley_feature(int32_t ix, int32_t iy, int32_t iz, int32_t cells, uint32_t seed,
-                              float *out_x, float *out_y, float *out_z)
+ccl_vec3 ccl_noise_worley_feature(int32_t ix, int32_t iy, int32_t iz, int32_t cells, uint32_t seed)
 {
+    ccl_vec3 o;
     CCL_REQUIRE(cells >= 1);
-    CCL_REQUIRE(out_x != NULL && out_y != NULL && out_z != NULL);
     if (cells < 1) cells = 1;
     worley_offsets(ccl_hash_pcg((uint32_t)pmod(ix, cells) +
-                                  ccl_hash_pcg((uint32_t)pmod(iy, cells) +
-                                                 ccl_hash_pcg((uint32_t)pmod(iz, cells) + ccl_hash_pcg(seed)))),
-                   out_x, out_y, out_z);
+                                ccl_hash_pcg((uint32_t)pmod(iy, cells) +
+                                             ccl_hash_pcg((uint32_t)pmod(iz, cells) + ccl_hash_pcg(seed)))),
+                   &o.x, &o.y, &o.z);
+    return o;
 }
 
 float ccl_noise_worley3(float x, float y, float z, int32_t cells, uint32_t seed, ccl_worley_metric metric,
@@ -311,8 +311,8 @@ float ccl_noise_worley3_bruteforce(float x, float y, float z, int32_t cells, uin
     for (k = 0; k < cells; ++k)
         for (j = 0; j < cells; ++j)
             for (i = 0; i < cells; ++i) {
-                float ox, oy, oz;
-                ccl_noise_worley_feature(i, j, k, cells, seed, &ox, &oy, &oz);
+                ccl_vec3 o = ccl_noise_worley_feature(i, j, k, cells, seed);
+                float ox = o.x, oy = o.y, oz = o.z;
                 for (cz = -1; cz <= 1; ++cz)
                     for (cy = -1; cy <= 1; ++cy)
                         for (cx = -1; cx <= 1; ++cx) {
@@ -396,34 +396,35 @@ static float dnoise(const uint8_t *perm, int32_t period, float x, float y, float
     return (ccl_noise_perlin3_perm(xp, yp, zp, perm, period) - ccl_noise_perlin3_perm(xm, ym, zm, perm, period)) / d;
 }
 
-void ccl_noise_curl3_perm(float x, float y, float z, const uint8_t *perm, int32_t period, float h,
-                          float *out_x, float *out_y, float *out_z)
+ccl_vec3 ccl_noise_curl3_perm(float x, float y, float z, const uint8_t *perm, int32_t period, float h)
 {
+    ccl_vec3 v;
     /* psi = (N(p), N(q1), N(q2)), q1 = p + o1, q2 = p + o2; v = nabla x psi (vc-2.23) */
     float q1x = x + CCL_O1X, q1y = y + CCL_O1Y, q1z = z + CCL_O1Z;
     float q2x = x + CCL_O2X, q2y = y + CCL_O2Y, q2z = z + CCL_O2Z;
     CCL_REQUIRE(h > 0.0f);
-    *out_x = dnoise(perm, period, q2x, q2y, q2z, 1, h) - dnoise(perm, period, q1x, q1y, q1z, 2, h);
-    *out_y = dnoise(perm, period, x, y, z, 2, h) - dnoise(perm, period, q2x, q2y, q2z, 0, h);
-    *out_z = dnoise(perm, period, q1x, q1y, q1z, 0, h) - dnoise(perm, period, x, y, z, 1, h);
+    v.x = dnoise(perm, period, q2x, q2y, q2z, 1, h) - dnoise(perm, period, q1x, q1y, q1z, 2, h);
+    v.y = dnoise(perm, period, x, y, z, 2, h) - dnoise(perm, period, q2x, q2y, q2z, 0, h);
+    v.z = dnoise(perm, period, q1x, q1y, q1z, 0, h) - dnoise(perm, period, x, y, z, 1, h);
+    return v;
 }
 
-void ccl_noise_curl3(float x, float y, float z, uint32_t seed, int32_t period, float h, float *out_x, float *out_y,
-                     float *out_z)
+ccl_vec3 ccl_noise_curl3(float x, float y, float z, uint32_t seed, int32_t period, float h)
 {
     uint8_t buf[CCL_NOISE_PERM_SIZE];
-    ccl_noise_curl3_perm(x, y, z, table_for(seed, buf), period, h, out_x, out_y, out_z);
+    return ccl_noise_curl3_perm(x, y, z, table_for(seed, buf), period, h);
 }
 
-void ccl_noise_gradient3(float x, float y, float z, uint32_t seed, int32_t period, float h, float *out_x,
-                         float *out_y, float *out_z)
+ccl_vec3 ccl_noise_gradient3(float x, float y, float z, uint32_t seed, int32_t period, float h)
 {
     uint8_t buf[CCL_NOISE_PERM_SIZE];
     const uint8_t *perm = table_for(seed, buf);
+    ccl_vec3 g;
     CCL_REQUIRE(h > 0.0f);
-    *out_x = dnoise(perm, period, x, y, z, 0, h);
-    *out_y = dnoise(perm, period, x, y, z, 1, h);
-    *out_z = dnoise(perm, period, x, y, z, 2, h);
+    g.x = dnoise(perm, period, x, y, z, 0, h);
+    g.y = dnoise(perm, period, x, y, z, 1, h);
+    g.z = dnoise(perm, period, x, y, z, 2, h);
+    return g;
 }
 
 float ccl_noise_rot2(float x, float y, uint32_t seed, int32_t period, float h)
@@ -460,7 +461,7 @@ float ccl_noise_curl_property(float x, float y, float z, uint32_t seed, int32_t 
     CCL_REQUIRE(h > 0.0f);
     for (i = 0; i < 3; ++i) {
         float px = x, py = y, pz = z, mx = x, my = y, mz = z, d;
-        float vp[3], vm[3];
+        ccl_vec3 vp, vm;
         if (i == 0) {
             px = x + h;
             mx = x - h;
@@ -474,11 +475,11 @@ float ccl_noise_curl_property(float x, float y, float z, uint32_t seed, int32_t 
             mz = z - h;
             d = pz - mz;
         }
-        ccl_noise_curl3_perm(px, py, pz, perm, period, h, &vp[0], &vp[1], &vp[2]);
-        ccl_noise_curl3_perm(mx, my, mz, perm, period, h, &vm[0], &vm[1], &vm[2]);
-        jac[0][i] = (vp[0] - vm[0]) / d;
-        jac[1][i] = (vp[1] - vm[1]) / d;
-        jac[2][i] = (vp[2] - vm[2]) / d;
+        vp = ccl_noise_curl3_perm(px, py, pz, perm, period, h);
+        vm = ccl_noise_curl3_perm(mx, my, mz, perm, period, h);
+        jac[0][i] = (vp.x - vm.x) / d;
+        jac[1][i] = (vp.y - vm.y) / d;
+        jac[2][i] = (vp.z - vm.z) / d;
     }
     if (variant == CCL_VARIANT_THESIS) {
         /* the printed nabla x F = 0, with F = v */
@@ -490,19 +491,20 @@ float ccl_noise_curl_property(float x, float y, float z, uint32_t seed, int32_t 
     return jac[0][0] + jac[1][1] + jac[2][2];
 }
 
-void ccl_noise_curl2_perm(float x, float y, const uint8_t *perm, int32_t period, float h, float *out_x,
-                          float *out_y)
+ccl_vec2 ccl_noise_curl2_perm(float x, float y, const uint8_t *perm, int32_t period, float h)
 {
     /* stream function psi = N(x, y, 0); v = (dpsi/dy, -dpsi/dx) */
+    ccl_vec2 v;
     CCL_REQUIRE(h > 0.0f);
-    *out_x = dnoise(perm, period, x, y, 0.0f, 1, h);
-    *out_y = -dnoise(perm, period, x, y, 0.0f, 0, h);
+    v.x = dnoise(perm, period, x, y, 0.0f, 1, h);
+    v.y = -dnoise(perm, period, x, y, 0.0f, 0, h);
+    return v;
 }
 
-void ccl_noise_curl2(float x, float y, uint32_t seed, int32_t period, float h, float *out_x, float *out_y)
+ccl_vec2 ccl_noise_curl2(float x, float y, uint32_t seed, int32_t period, float h)
 {
     uint8_t buf[CCL_NOISE_PERM_SIZE];
-    ccl_noise_curl2_perm(x, y, table_for(seed, buf), period, h, out_x, out_y);
+    return ccl_noise_curl2_perm(x, y, table_for(seed, buf), period, h);
 }
 
 /* ---- Perlin-Worley ----------------------------------------------------------------------------------- */

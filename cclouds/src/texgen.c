@@ -109,7 +109,7 @@ float ccl_texgen_gamma(float c, float gamma)
 
 /* ---- settings (vc-A13) ------------------------------------------------------------------------------------------- */
 
-ccl_base_shape_settings ccl_base_shape_settings_default(void)
+ccl_base_shape_settings ccl_texgen_base_shape_settings_default(void)
 {
     ccl_base_shape_settings s;
     s.size = 128;
@@ -125,7 +125,7 @@ ccl_base_shape_settings ccl_base_shape_settings_default(void)
     return s;
 }
 
-ccl_detail_shape_settings ccl_detail_shape_settings_default(void)
+ccl_detail_shape_settings ccl_texgen_detail_shape_settings_default(void)
 {
     ccl_detail_shape_settings s;
     s.size = 32;
@@ -138,7 +138,7 @@ ccl_detail_shape_settings ccl_detail_shape_settings_default(void)
     return s;
 }
 
-ccl_curl_noise_settings ccl_curl_noise_settings_default(void)
+ccl_curl_noise_settings ccl_texgen_curl_noise_settings_default(void)
 {
     ccl_curl_noise_settings s;
     s.size = 128;
@@ -148,7 +148,7 @@ ccl_curl_noise_settings ccl_curl_noise_settings_default(void)
     return s;
 }
 
-ccl_weather_map_settings ccl_weather_map_settings_default(void)
+ccl_weather_map_settings ccl_texgen_weather_map_settings_default(void)
 {
     ccl_weather_map_settings s;
     s.size = 512;
@@ -166,7 +166,7 @@ ccl_weather_map_settings ccl_weather_map_settings_default(void)
     return s;
 }
 
-ccl_status ccl_base_shape_settings_check(const ccl_base_shape_settings *s, const char **out_field)
+ccl_status ccl_texgen_base_shape_settings_check(const ccl_base_shape_settings *s, const char **out_field)
 {
     if (!s) return fail(out_field, "s");
     if (!is_pow2_in(s->size, CCL_TEXGEN_MIN_SIZE, CCL_TEXGEN_MAX_SIZE_3D)) return fail(out_field, "size");
@@ -179,7 +179,7 @@ ccl_status ccl_base_shape_settings_check(const ccl_base_shape_settings *s, const
     return fail(out_field, NULL);
 }
 
-ccl_status ccl_detail_shape_settings_check(const ccl_detail_shape_settings *s, const char **out_field)
+ccl_status ccl_texgen_detail_shape_settings_check(const ccl_detail_shape_settings *s, const char **out_field)
 {
     if (!s) return fail(out_field, "s");
     if (!is_pow2_in(s->size, CCL_TEXGEN_MIN_SIZE, CCL_TEXGEN_MAX_SIZE_3D)) return fail(out_field, "size");
@@ -189,7 +189,7 @@ ccl_status ccl_detail_shape_settings_check(const ccl_detail_shape_settings *s, c
     return fail(out_field, NULL);
 }
 
-ccl_status ccl_curl_noise_settings_check(const ccl_curl_noise_settings *s, const char **out_field)
+ccl_status ccl_texgen_curl_noise_settings_check(const ccl_curl_noise_settings *s, const char **out_field)
 {
     if (!s) return fail(out_field, "s");
     if (!is_pow2_in(s->size, CCL_TEXGEN_MIN_SIZE, CCL_TEXGEN_MAX_SIZE_2D)) return fail(out_field, "size");
@@ -198,7 +198,7 @@ ccl_status ccl_curl_noise_settings_check(const ccl_curl_noise_settings *s, const
     return fail(out_field, NULL);
 }
 
-ccl_status ccl_weather_map_settings_check(const ccl_weather_map_settings *s, const char **out_field)
+ccl_status ccl_texgen_weather_map_settings_check(const ccl_weather_map_settings *s, const char **out_field)
 {
     if (!s) return fail(out_field, "s");
     if (!is_pow2_in(s->size, CCL_TEXGEN_MIN_SIZE, CCL_TEXGEN_MAX_SIZE_2D)) return fail(out_field, "size");
@@ -247,7 +247,9 @@ static void curl_texel(const ccl_curl_noise_settings *s, const uint8_t *perm, in
 {
     float f = (float)s->frequency;
     float x = texcoord(ix, s->size) * f, y = texcoord(iy, s->size) * f;
-    ccl_noise_curl2_perm(x, y, perm, s->frequency, s->fd_step, &out[0], &out[1]);
+    ccl_vec2 v = ccl_noise_curl2_perm(x, y, perm, s->frequency, s->fd_step);
+    out[0] = v.x;
+    out[1] = v.y;
 }
 
 static void weather_texel(const ccl_weather_map_settings *s, const uint8_t *perm0, const uint8_t *perm1,
@@ -285,7 +287,7 @@ void ccl_texgen_base_shape_texel(int32_t ix, int32_t iy, int32_t iz, int32_t siz
     s.worley_weights[2] = worley_w2;
     s.combination = combination;
     s.gamma = gamma;
-    CCL_REQUIRE(ccl_base_shape_settings_check(&s, NULL) == CCL_OK);
+    CCL_REQUIRE(ccl_texgen_base_shape_settings_check(&s, NULL) == CCL_OK);
     CCL_REQUIRE(out_r != NULL && out_g != NULL && out_b != NULL && out_a != NULL);
     ccl_noise_perm_table(seed, perm);
     base_texel(&s, perm, ix, iy, iz, out);
@@ -308,7 +310,7 @@ void ccl_texgen_detail_shape_texel(int32_t ix, int32_t iy, int32_t iz, int32_t s
     s.worley_weights[1] = worley_w1;
     s.worley_weights[2] = worley_w2;
     s.gamma = gamma;
-    CCL_REQUIRE(ccl_detail_shape_settings_check(&s, NULL) == CCL_OK);
+    CCL_REQUIRE(ccl_texgen_detail_shape_settings_check(&s, NULL) == CCL_OK);
     CCL_REQUIRE(out_r != NULL && out_g != NULL && out_b != NULL);
     detail_texel(&s, ix, iy, iz, out);
     *out_r = out[0];
@@ -324,7 +326,7 @@ ccl_status ccl_texgen_base_shape(const ccl_base_shape_settings *s, float *out_rg
     size_t n;
     int32_t ix, iy, iz;
     float *o;
-    if (!s || !out_rgba || ccl_base_shape_settings_check(s, NULL) != CCL_OK) return CCL_EINVAL;
+    if (!s || !out_rgba || ccl_texgen_base_shape_settings_check(s, NULL) != CCL_OK) return CCL_EINVAL;
     n = (size_t)s->size;
     if (out_len != n * n * n * 4u) return CCL_EINVAL;
     ccl_noise_perm_table(s->seed, perm);
@@ -341,7 +343,7 @@ ccl_status ccl_texgen_detail_shape(const ccl_detail_shape_settings *s, float *ou
     size_t n;
     int32_t ix, iy, iz;
     float *o;
-    if (!s || !out_rgb || ccl_detail_shape_settings_check(s, NULL) != CCL_OK) return CCL_EINVAL;
+    if (!s || !out_rgb || ccl_texgen_detail_shape_settings_check(s, NULL) != CCL_OK) return CCL_EINVAL;
     n = (size_t)s->size;
     if (out_len != n * n * n * 3u) return CCL_EINVAL;
     o = out_rgb;
@@ -358,7 +360,7 @@ ccl_status ccl_texgen_curl_noise(const ccl_curl_noise_settings *s, float *out_xy
     size_t n;
     int32_t ix, iy;
     float *o;
-    if (!s || !out_xy || ccl_curl_noise_settings_check(s, NULL) != CCL_OK) return CCL_EINVAL;
+    if (!s || !out_xy || ccl_texgen_curl_noise_settings_check(s, NULL) != CCL_OK) return CCL_EINVAL;
     n = (size_t)s->size;
     if (out_len != n * n * 2u) return CCL_EINVAL;
     ccl_noise_perm_table(s->seed, perm);
@@ -375,7 +377,7 @@ ccl_status ccl_texgen_weather_map(const ccl_weather_map_settings *s, float *out_
     size_t n;
     int32_t ix, iy;
     float *o;
-    if (!s || !out_rgba || ccl_weather_map_settings_check(s, NULL) != CCL_OK) return CCL_EINVAL;
+    if (!s || !out_rgba || ccl_texgen_weather_map_settings_check(s, NULL) != CCL_OK) return CCL_EINVAL;
     n = (size_t)s->size;
     if (out_len != n * n * 4u) return CCL_EINVAL;
     ccl_noise_perm_table(s->seed, perm0);

@@ -72,7 +72,10 @@ static void test_worley_properties(void)
     float ox, oy, oz;
     for (c = 1; c <= 8; c *= 2) {
         /* value 0 at the feature point of cell (1, 0, 1): (1 + ox) / c is exact for c a power of two */
-        ccl_noise_worley_feature(1, 0, 1, c, 42u, &ox, &oy, &oz);
+        ccl_vec3 o = ccl_noise_worley_feature(1, 0, 1, c, 42u);
+        ox = o.x;
+        oy = o.y;
+        oz = o.z;
         CCL_CHECK(ox >= 0.0f && ox < 1.0f && oy >= 0.0f && oy < 1.0f && oz >= 0.0f && oz < 1.0f);
         CCL_CHECK(ccl_noise_worley3((1.0f + ox) / (float)c, oy / (float)c, (1.0f + oz) / (float)c, c, 42u,
                                     CCL_WORLEY_EUCLIDEAN, 0) == 0.0f);
@@ -81,10 +84,8 @@ static void test_worley_properties(void)
     }
     /* wrapped cell indices give the same feature point */
     {
-        float ax, ay, az;
-        ccl_noise_worley_feature(-1, 5, 2, 4, 3u, &ox, &oy, &oz);
-        ccl_noise_worley_feature(3, 1, 6, 4, 3u, &ax, &ay, &az);
-        CCL_CHECK(ox == ax && oy == ay && oz == az);
+        ccl_vec3 a = ccl_noise_worley_feature(-1, 5, 2, 4, 3u), b = ccl_noise_worley_feature(3, 1, 6, 4, 3u);
+        CCL_CHECK(a.x == b.x && a.y == b.y && a.z == b.z);
     }
     for (i = 0; i < 300; ++i) {
         float x = (float)((i * 37) % 256) / 256.0f, y = (float)((i * 91) % 256) / 256.0f;
@@ -138,18 +139,19 @@ static void test_curl_identities(void)
     double max_div = 0.0, max_curlcurl = 0.0;
     for (i = 0; i < 40; ++i) {
         float x = -3.1f + 0.173f * (float)i, y = 1.7f - 0.291f * (float)i, z = 0.37f * (float)i;
-        float vx, vy, vz, gx, gy, gz, cx, cy;
+        ccl_vec3 v, g;
+        ccl_vec2 c;
         float div = ccl_noise_curl_property(x, y, z, 0u, 0, h, CCL_VARIANT_CORRECTED);
         float cc = ccl_noise_curl_property(x, y, z, 0u, 0, h, CCL_VARIANT_THESIS);
         if (fabs(div) > max_div) max_div = fabs(div);
         if (cc > max_curlcurl) max_curlcurl = cc;
         /* 2.24 = z component of 2.23 at z = 0 */
-        ccl_noise_curl3(x, y, 0.0f, 0u, 0, h, &vx, &vy, &vz);
-        CCL_CHECK(ccl_noise_rot2(x, y, 0u, 0, h) == vz);
+        v = ccl_noise_curl3(x, y, 0.0f, 0u, 0, h);
+        CCL_CHECK(ccl_noise_rot2(x, y, 0u, 0, h) == v.z);
         /* 2-D curl noise is perpendicular to the gradient of its stream function */
-        ccl_noise_curl2(x, y, 0u, 0, h, &cx, &cy);
-        ccl_noise_gradient3(x, y, 0.0f, 0u, 0, h, &gx, &gy, &gz);
-        CCL_CHECK(cx == gy && cy == -gx);
+        c = ccl_noise_curl2(x, y, 0u, 0, h);
+        g = ccl_noise_gradient3(x, y, 0.0f, 0u, 0, h);
+        CCL_CHECK(c.x == g.y && c.y == -g.x);
     }
     /* div(curl psi) is round-off (< 1e-3; the curl components are O(1), their derivatives O(10));
      * the printed reading curl(curl psi) = 0 fails by orders of magnitude */
@@ -170,7 +172,8 @@ static void test_perlin_worley(void)
 
 static void test_noise_nan_propagates(void)
 {
-    float nan = (float)NAN, a, b, c;
+    float nan = (float)NAN;
+    ccl_vec3 v;
     CCL_CHECK(isnan(ccl_noise_perlin3(nan, 0.5f, 0.5f, 0u, 0)));
     CCL_CHECK(isnan(ccl_noise_perlin3(0.5f, (float)INFINITY, 0.5f, 3u, 4)));
     CCL_CHECK(isnan(ccl_noise_perlin2(nan, 0.5f, 0u, 0, CCL_INTERP_LINEAR)));
@@ -178,8 +181,10 @@ static void test_noise_nan_propagates(void)
     CCL_CHECK(isnan(ccl_noise_worley3_bruteforce(0.5f, nan, 0.5f, 4, 0u, CCL_WORLEY_EUCLIDEAN, 0)));
     CCL_CHECK(isnan(ccl_noise_fbm_perlin3(nan, 0.5f, 0.5f, 3, 2.0f, 0u, 0)));
     CCL_CHECK(isnan(ccl_noise_fbm_worley3(nan, 0.5f, 0.5f, 3, 2, 0u, CCL_WORLEY_EUCLIDEAN, 1)));
-    ccl_noise_curl3(nan, 0.0f, 0.0f, 0u, 0, 0.01f, &a, &b, &c);
-    CCL_CHECK(isnan(a) && isnan(b) && isnan(c));
+    v = ccl_noise_curl3(nan, 0.0f, 0.0f, 0u, 0, 0.01f);
+    CCL_CHECK(isnan(v.x) && isnan(v.y) && isnan(v.z));
+    CCL_CHECK(isnan(ccl_noise_gradient3(0.5f, nan, 0.0f, 0u, 0, 0.01f).y));
+    CCL_CHECK(isnan(ccl_noise_curl2(nan, 0.5f, 0u, 0, 0.01f).x));
     CCL_CHECK(isnan(ccl_noise_perlin_worley(nan, 0.5f, CCL_PW_THESIS)));
     CCL_CHECK(isnan(ccl_noise_perlin_worley(0.5f, nan, CCL_PW_GPU_PRO_7)));
 }

@@ -10,7 +10,7 @@
 static const char *field_of_base(ccl_base_shape_settings s)
 {
     const char *f = "unset";
-    ccl_status st = ccl_base_shape_settings_check(&s, &f);
+    ccl_status st = ccl_texgen_base_shape_settings_check(&s, &f);
     return st == CCL_OK ? "" : f;
 }
 
@@ -28,10 +28,10 @@ static void test_texgen_gamma_closed_form(void)
 
 static void test_texgen_settings_defaults_and_check(void)
 {
-    ccl_base_shape_settings b = ccl_base_shape_settings_default(), bad;
-    ccl_detail_shape_settings d = ccl_detail_shape_settings_default();
-    ccl_curl_noise_settings c = ccl_curl_noise_settings_default();
-    ccl_weather_map_settings w = ccl_weather_map_settings_default();
+    ccl_base_shape_settings b = ccl_texgen_base_shape_settings_default(), bad;
+    ccl_detail_shape_settings d = ccl_texgen_detail_shape_settings_default();
+    ccl_curl_noise_settings c = ccl_texgen_curl_noise_settings_default();
+    ccl_weather_map_settings w = ccl_texgen_weather_map_settings_default();
     const char *f = "unset";
     CCL_CHECK(b.size == 128 && b.perlin_octaves == 3 && b.perlin_frequency == 8 && b.worley_cells == 4);
     CCL_CHECK(b.worley_weights[0] == 0.625f && b.worley_weights[1] == 0.25f && b.worley_weights[2] == 0.125f);
@@ -39,11 +39,11 @@ static void test_texgen_settings_defaults_and_check(void)
     CCL_CHECK(d.size == 32 && d.worley_cells == 2 && d.gamma == 1.0f);
     CCL_CHECK(c.size == 128 && c.frequency == 4 && c.fd_step == 1.0f / 256.0f);
     CCL_CHECK(w.size == 512 && w.coverage == 0.5f && w.cloud_type == 0.75f);
-    CCL_CHECK(ccl_base_shape_settings_check(&b, &f) == CCL_OK && f == NULL);
-    CCL_CHECK(ccl_detail_shape_settings_check(&d, NULL) == CCL_OK);
-    CCL_CHECK(ccl_curl_noise_settings_check(&c, NULL) == CCL_OK);
-    CCL_CHECK(ccl_weather_map_settings_check(&w, NULL) == CCL_OK);
-    CCL_CHECK(ccl_base_shape_settings_check(NULL, &f) == CCL_EINVAL && strcmp(f, "s") == 0);
+    CCL_CHECK(ccl_texgen_base_shape_settings_check(&b, &f) == CCL_OK && f == NULL);
+    CCL_CHECK(ccl_texgen_detail_shape_settings_check(&d, NULL) == CCL_OK);
+    CCL_CHECK(ccl_texgen_curl_noise_settings_check(&c, NULL) == CCL_OK);
+    CCL_CHECK(ccl_texgen_weather_map_settings_check(&w, NULL) == CCL_OK);
+    CCL_CHECK(ccl_texgen_base_shape_settings_check(NULL, &f) == CCL_EINVAL && strcmp(f, "s") == 0);
 
     bad = b; bad.size = 96;
     CCL_CHECK(strcmp(field_of_base(bad), "size") == 0);
@@ -73,20 +73,20 @@ static void test_texgen_settings_defaults_and_check(void)
     CCL_CHECK(strcmp(field_of_base(bad), "gamma") == 0);
 
     c.fd_step = 0.0f;
-    CCL_CHECK(ccl_curl_noise_settings_check(&c, &f) == CCL_EINVAL && strcmp(f, "fd_step") == 0);
+    CCL_CHECK(ccl_texgen_curl_noise_settings_check(&c, &f) == CCL_EINVAL && strcmp(f, "fd_step") == 0);
     w.coverage = 1.5f;
-    CCL_CHECK(ccl_weather_map_settings_check(&w, &f) == CCL_EINVAL && strcmp(f, "coverage") == 0);
-    w = ccl_weather_map_settings_default();
+    CCL_CHECK(ccl_texgen_weather_map_settings_check(&w, &f) == CCL_EINVAL && strcmp(f, "coverage") == 0);
+    w = ccl_texgen_weather_map_settings_default();
     w.cloud_type = (float)NAN;
-    CCL_CHECK(ccl_weather_map_settings_check(&w, &f) == CCL_EINVAL && strcmp(f, "cloud_type") == 0);
+    CCL_CHECK(ccl_texgen_weather_map_settings_check(&w, &f) == CCL_EINVAL && strcmp(f, "cloud_type") == 0);
     d.gamma = -1.0f;
-    CCL_CHECK(ccl_detail_shape_settings_check(&d, &f) == CCL_EINVAL && strcmp(f, "gamma") == 0);
+    CCL_CHECK(ccl_texgen_detail_shape_settings_check(&d, &f) == CCL_EINVAL && strcmp(f, "gamma") == 0);
 }
 
 static void test_texgen_whole_texture_rejects_bad_buffers(void)
 {
-    ccl_base_shape_settings b = ccl_base_shape_settings_default();
-    ccl_detail_shape_settings d = ccl_detail_shape_settings_default();
+    ccl_base_shape_settings b = ccl_texgen_base_shape_settings_default();
+    ccl_detail_shape_settings d = ccl_texgen_detail_shape_settings_default();
     float buf[4 * 4 * 4 * 4];
     b.size = 4;
     d.size = 4;
@@ -106,7 +106,7 @@ static void test_texgen_whole_texture_rejects_bad_buffers(void)
 /* The base texture rebuilt from the noise primitives with the formulas of the header comment. */
 static void test_texgen_base_shape_matches_noise_composition(void)
 {
-    ccl_base_shape_settings s = ccl_base_shape_settings_default();
+    ccl_base_shape_settings s = ccl_texgen_base_shape_settings_default();
     const int n = 8;
     float *tex = malloc(sizeof(float) * 8 * 8 * 8 * 4);
     int ix, iy, iz, bad_range = 0;
@@ -148,8 +148,8 @@ static void test_texgen_base_shape_matches_noise_composition(void)
 
 static void test_texgen_texel_functions_match_whole_texture_and_are_periodic(void)
 {
-    ccl_base_shape_settings s = ccl_base_shape_settings_default();
-    ccl_detail_shape_settings d = ccl_detail_shape_settings_default();
+    ccl_base_shape_settings s = ccl_texgen_base_shape_settings_default();
+    ccl_detail_shape_settings d = ccl_texgen_detail_shape_settings_default();
     float *tb = malloc(sizeof(float) * 8 * 8 * 8 * 4), *td = malloc(sizeof(float) * 8 * 8 * 8 * 3);
     int i, mismatches = 0, periodic_fail = 0;
     s.size = 8;
@@ -204,7 +204,7 @@ static void test_texgen_detail_channel_is_worley_fbm_for_halving_weights(void)
 
 static void test_texgen_curl_noise_is_divergence_free_and_tileable(void)
 {
-    ccl_curl_noise_settings s = ccl_curl_noise_settings_default();
+    ccl_curl_noise_settings s = ccl_texgen_curl_noise_settings_default();
     const int n = 32;
     float *t = malloc(sizeof(float) * 32 * 32 * 2);
     int ix, iy;
@@ -234,7 +234,7 @@ static void test_texgen_curl_noise_is_divergence_free_and_tileable(void)
 
 static void test_texgen_weather_map_channels(void)
 {
-    ccl_weather_map_settings s = ccl_weather_map_settings_default();
+    ccl_weather_map_settings s = ccl_texgen_weather_map_settings_default();
     const int n = 32;
     float *t = malloc(sizeof(float) * 32 * 32 * 4), *t2 = malloc(sizeof(float) * 32 * 32 * 4);
     int i, bad = 0, monotone_fail = 0;

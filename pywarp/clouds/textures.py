@@ -54,6 +54,7 @@ import numpy as np
 
 from ..kernels.noise import COMBINATIONS  # Perlin-Worley combination names (vc-A8)
 from ..kernels.texgen import MAX_SIZE_2D, MIN_SIZE  # cclouds/texgen.h limits
+from ..kernels import texgen as _texgen  # the whole-texture generation (Warp tile kernels, C)
 
 #: Version of the generated data's definition; bump it whenever a texture's content changes for the same settings.
 FORMAT_VERSION = 1
@@ -92,36 +93,9 @@ def _check_impl(impl) -> str:
 
 # --- C structs ------------------------------------------------------------------------------------------------------
 
-_C_TYPES = {"base_shape": "ccl_base_shape_settings", "detail_shape": "ccl_detail_shape_settings",
-            "curl_noise": "ccl_curl_noise_settings", "weather_map": "ccl_weather_map_settings"}
-
-
 def _c_struct(kind: str, values: dict):
-    """A cffi ``ccl_<kind>_settings *`` holding ``values`` (dataclass field -> value), without Python validation:
-    a value that does not fit its C type raises ValueError/TypeError naming the field."""
-    from ..core.binding import ffi
-
-    f = ffi()
-    st = f.new(f"{_C_TYPES[kind]} *")
-    for name, v in values.items():
-        try:
-            if name == "worley_weights":
-                w = list(v)
-                if len(w) != 3:
-                    raise ValueError(f"worley_weights must hold 3 weights, got {len(w)}")
-                for i in range(3):
-                    st.worley_weights[i] = w[i]
-            elif name == "combination":
-                if v not in COMBINATIONS:
-                    raise ValueError(f"combination must be one of {', '.join(map(repr, COMBINATIONS))}, got {v!r}")
-                st.combination = COMBINATIONS[v]
-            else:
-                setattr(st, name, v)
-        except OverflowError:
-            raise ValueError(f"{name} is out of range of its C type, got {v!r}") from None
-        except TypeError as exc:
-            raise TypeError(f"{name}: {exc}") from None
-    return st
+    """A cffi ``ccl_<kind>_settings *`` holding ``values`` (see :func:`pywarp.kernels.texgen.settings_struct`)."""
+    return _texgen.settings_struct(kind, values)
 
 
 def texture_settings(kind: str = "base_shape", impl: str = "warp", **fields_):
@@ -161,50 +135,7 @@ def generate(kind: str, settings=None, impl: str = "warp", device: str | None = 
     settings = cls() if settings is None else settings
     if not isinstance(settings, cls):
         raise TypeError(f"settings must be a {cls.__name__} for kind {kind!r}, got {type(settings).__name__}")
-    return _generate_c(kind, settings) if impl == "c" else _generate_warp(kind, settings, device, launcher)
-
-
-def _generate_c(kind: str, s) -> np.ndarray:
-    from ..core.binding import ffi, lib, status_error
-
-    st = _c_struct(kind, asdict(s))
-    out = np.empty(s.shape, dtype=np.float32)
-    status = getattr(lib(), f"ccl_texgen_{kind}")(st, ffi().from_buffer("float[]", out), out.size)
-    status_error(status, f"ccl_texgen_{kind}")
-    return out
-
-
-def _generate_warp(kind: str, s, device, launcher) -> np.ndarray:
-    import warp as wp
-
-    from ..kernels import texgen as k
-    from ..kernels.noise import perm_array
-    from ..core.runtime import launcher as shared_launcher
-
-    lau = launcher if launcher is not None else shared_launcher(device)
-    dev = lau.device
-    n = s.size
-    if kind == "base_shape":
-        w0, w1, w2 = s.worley_weights
-        out = wp.empty((n, n, n), dtype=wp.vec4, device=dev)
-        lau.launch(k._base_shape_kernel, n * n, n,
-                   [n, s.seed, s.perlin_octaves, s.perlin_frequency, s.worley_cells, w0, w1, w2, s.gamma,
-                    COMBINATIONS[s.combination], perm_array(s.seed, dev)], [out])
-    elif kind == "detail_shape":
-        w0, w1, w2 = s.worley_weights
-        out = wp.empty((n, n, n), dtype=wp.vec3, device=dev)
-        lau.launch(k._detail_shape_kernel, n * n, n, [n, s.seed, s.worley_cells, w0, w1, w2, s.gamma], [out])
-    elif kind == "curl_noise":
-        out = wp.empty((n, n), dtype=wp.vec2, device=dev)
-        lau.launch(k._curl_noise_kernel, n, n, [n, s.frequency, s.fd_step, perm_array(s.seed, dev)], [out])
-    else:
-        out = wp.empty((n, n), dtype=wp.vec4, device=dev)
-        seeds = [(s.seed + i) & 0xFFFFFFFF for i in range(3)]
-        lau.launch(k._weather_map_kernel, n, n,
-                   [n, s.seed, s.perlin_frequency, s.perlin_octaves, s.perlin_contrast, s.worley_cells,
-                    s.worley_octaves, COMBINATIONS[s.combination], s.coverage, s.precipitation, s.cloud_type,
-                    s.cloud_type_variation, *(perm_array(x, dev) for x in seeds)], [out])
-    return np.array(out.numpy(), dtype=np.float32, copy=True).reshape(s.shape)
+    return _texgen.generate(kind, settings, impl=impl, device=device, launcher=launcher)
 
 
 # --- cache ----------------------------------------------------------------------------------------------------------
@@ -230,8 +161,9 @@ def _code_hash() -> str:
     textures cached by an older one even within one package version (a development install)."""
     root = Path(__file__).resolve().parents[1]  # the pywarp package folder
     h = hashlib.sha256()
-    for rel in ("kernels/texgen.py", "kernels/noise.py", "kernels/interp.py", "kernels/hash.py", "include/cclouds/texgen.h",
-                "include/cclouds/noise.h", "include/cclouds/interp.h", "include/cclouds/hash.h"):
+    for rel in ("kernels/texgen.py", "kernels/noise.py", "kernels/interp.py", "kernels/hash.py",
+                "include/cclouds/texgen.h", "include/cclouds/noise.h", "include/cclouds/interp.h",
+                "include/cclouds/hash.h"):
         f = root / rel
         if f.is_file():
             h.update(f.read_bytes())
@@ -487,7 +419,7 @@ class WeatherMap:
 
 def to_warp_texture3d(arr, device: str | None = None):
     """A (n, n, n, 3|4) float32 volume as a ``wp.array3d(dtype=wp.vec4)`` indexed [z, y, x] (RGB gets A = 0), the
-    input of :func:`pywarp.kernels.texgen.sample_trilinear_wrap` (size_mask = n - 1)."""
+    input of :func:`pywarp.kernels.texgen.texgen_sample_trilinear_wrap` (size_mask = n - 1)."""
     import warp as wp
 
     from ..core.runtime import resolve_device

@@ -19,13 +19,12 @@ Every ``@wp.func`` mirrors the C function of the same name (minus ``ccl_``) oper
 """
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 
 import numpy as np
 import warp as wp
 
-from ..core.registry import VARIANT, Arg, Equation, Option, register
+from ..core.registry import VARIANT, Arg, Option, declare
 from .hash import hash_pcg, hash_pcg_py
 from .interp import interp_fade_cubic, interp_fade_quintic, interp_lerp, interp_remap
 
@@ -148,6 +147,119 @@ def _wrap_lattice(i: int, period: int) -> int:
     return i & 255
 
 
+# --- argument domains and cross-argument checks --------------------------------------------------------------------
+
+_COORD_LIM = float(2 ** 24)  # float32 keeps a fractional part below 2^24
+_CURL_LIM = float(2 ** 23)  # the curl potential adds offsets of up to ~120 lattice units
+
+
+def _coord(name, doc, lim=_COORD_LIM):
+    # open bounds: float32 keeps a fractional part only strictly below 2^24 (the C headers' |x| < 2^24)
+    return Arg(name, doc, lo=-lim, hi=lim, lo_open=True, hi_open=True)
+
+
+_X = _coord("x", "x coordinate (lattice units of the noise)")
+_Y = _coord("y", "y coordinate")
+_Z = _coord("z", "z coordinate")
+_SEED = Arg("seed", "uint32 seed; 0 = Ken Perlin's reference permutation", lo=0, hi=4294967295, dtype="uint32",
+            default=0)
+_PERIOD = Arg("period", "0 = Perlin's lattice (repeats every 256), P >= 1 = periodic with integer period P",
+              lo=0, hi=2 ** 30, dtype="int32", default=0)
+_CELLS = Arg("cells", "Worley cells per unit period (the noise has period 1 on every axis)", lo=1, hi=2 ** 16,
+             dtype="int32")
+_WSEED = Arg("seed", "uint32 seed of the feature-point hash", lo=0, hi=4294967295, dtype="uint32", default=0)
+_H = Arg("h", "central-difference step (lattice units)", lo=0.0, hi=0.25, lo_open=True, default=FD_STEP)
+_CX, _CY, _CZ = (_coord(n, f"{n} coordinate (lattice units)", _CURL_LIM) for n in "xyz")
+
+METRIC = Option("metric", METRICS, "euclidean", "distance: 'euclidean' (L2, classic) or 'manhattan' (L1)")
+INVERSE = Option("inverse", {False: 0, True: 1}, False, "True: 1 - F1 (inverse Worley, used for clouds)")
+COMBINATION = Option("combination", COMBINATIONS, "thesis",
+                     "'thesis' remap(P,0,1,W,1)^2 (default, §4.3.1); 'gpu_pro_7' clamp(remap(P,W,1,0,1),0,1); "
+                     "'hillaire' remap(P,0,1,W,1); 'product' P*W; 'average' (P+W)/2")
+
+
+def _max_abs(x, y, z) -> np.ndarray:
+    """max(|x|, |y|, |z|) element-wise in float64 (broadcast)."""
+    return np.maximum(np.maximum(np.abs(x.astype(np.float64)), np.abs(y.astype(np.float64))),
+                      np.abs(z.astype(np.float64)))
+
+
+def _check_worley(x, y, z, cells, **_):
+    scaled = _max_abs(x, y, z) * cells
+    if np.any(scaled >= _COORD_LIM):
+        raise ValueError(f"cells * |x|, |y|, |z| must be < 2^24 (float32 position precision), got {scaled.max():g}")
+
+
+def _check_worley_bruteforce(x, y, z, cells, **_):
+    if np.any(cells > 64):
+        raise ValueError(f"cells must be in [1, 64] for the O(cells^3) brute force, got {int(cells.max())}")
+
+
+def _check_fbm_perlin(x, y, z, octaves, frequency, seed, period, **_):
+    top = 2.0 ** (octaves.astype(np.float64) - 1)
+    if np.any(period * top > 2.0 ** 30):
+        raise ValueError("period must satisfy period * 2^(octaves - 1) <= 2^30")
+    if np.any(_max_abs(x, y, z) * frequency * top >= _COORD_LIM):
+        raise ValueError("frequency * 2^(octaves - 1) * |x|, |y|, |z| must be < 2^24 (float32 position precision)")
+
+
+def _check_fbm_worley(x, y, z, octaves, cells, **_):
+    top = cells.astype(np.float64) * 2.0 ** (octaves.astype(np.float64) - 1)
+    if np.any(top > 2.0 ** 16):
+        raise ValueError("cells must satisfy cells * 2^(octaves - 1) <= 65536")
+    if np.any(_max_abs(x, y, z) * top >= _COORD_LIM):
+        raise ValueError("cells * 2^(octaves - 1) * |x|, |y|, |z| must be < 2^24 (float32 position precision)")
+
+
+_PERLIN_REF = ("K. Perlin, Improving Noise, SIGGRAPH 2002 (reference code ImprovedNoise.java, "
+               "https://mrl.cs.nyu.edu/~perlin/noise/)",
+               "K. Perlin, An Image Synthesizer, SIGGRAPH 1985")
+_WORLEY_REF = ("S. Worley, A Cellular Texture Basis Function, SIGGRAPH 1996",)
+_PCG_REF = "M. Jarzynski & M. Olano, Hash Functions for GPU Rendering, JCGT 9(3), 2020 (PCG hash)"
+_CURL_REF = ("R. Bridson, J. Hourihan & M. Nordenstam, Curl-Noise for Procedural Fluid Flow, SIGGRAPH 2007",)
+_CURL_SUMMARY = ("Central differences with step h (default 1/256 lattice units) over float32 Perlin noise N "
+                 "(seed, period as in vc-A1); potential psi = (N(p), N(p + o1), N(p + o2)), o1 = (100.25, -57.75, "
+                 "33.5), o2 = (-41.5, 88.25, -119.75).")
+
+#: The permutation table of a Perlin entry is computed from its ``seed`` argument: the Warp functions take the table
+#: (``perm``), the C functions the seed; the evaluator launches once per distinct seed.
+_PERM = {"perm": ("seed", perm_array)}
+
+
+def _fbm_perlin_samples(rng, n):
+    """Valid (x, y, z, octaves, frequency, period) for the contract tests: frequency * 2^(octaves - 1) * |p| < 2^24
+    and period * 2^(octaves - 1) <= 2^30. The first sample has one octave, frequency 1/2 and |p| * frequency < 2, so
+    every edge of x, y, z, octaves, frequency and period stays valid when set alone."""
+    octaves = rng.integers(1, 9, n).astype(np.int32)
+    octaves[0] = 1
+    frequency = rng.uniform(0.5, 4.0, n).astype(np.float32)
+    frequency[0] = 0.5  # x at its edge (just below 2^24) times the frequency stays below 2^24
+    p = rng.uniform(-0.45, 0.45, (3, n)).astype(np.float32)
+    return {"x": p[0], "y": p[1], "z": p[2], "octaves": octaves, "frequency": frequency,
+            "seed": rng.integers(0, 3, n).astype(np.uint32), "period": rng.integers(0, 17, n).astype(np.int32)}
+
+
+def _worley_samples(rng, n):
+    """Valid (x, y, z, cells, seed): cells * |p| < 2^24. The first sample has one cell, so the edges of x, y, z (just
+    below 2^24) stay valid when set alone."""
+    cells = rng.integers(1, 17, n).astype(np.int32)
+    cells[0] = 1
+    p = rng.uniform(-3.0, 3.0, (3, n)).astype(np.float32)
+    return {"x": p[0], "y": p[1], "z": p[2], "cells": cells,
+            "seed": rng.integers(0, 2 ** 32, n, dtype=np.uint64).astype(np.uint32)}
+
+
+def _fbm_worley_samples(rng, n):
+    """Valid (x, y, z, octaves, cells, seed): cells * 2^(octaves - 1) <= 2^16. The first sample has one octave and
+    one cell, so the edges octaves = 16 and cells = 65536 stay valid when set alone."""
+    octaves = rng.integers(1, 5, n).astype(np.int32)
+    cells = rng.integers(1, 9, n).astype(np.int32)
+    octaves[0], cells[0] = 1, 1
+    p = rng.uniform(-2.0, 2.0, (3, n)).astype(np.float32)
+    return {"x": p[0], "y": p[1], "z": p[2], "octaves": octaves, "cells": cells,
+            "seed": rng.integers(0, 2 ** 32, n, dtype=np.uint64).astype(np.uint32)}
+
+
 # --- Perlin (vc-A1, vc-A2) -----------------------------------------------------------------------------------------
 
 @wp.func
@@ -169,6 +281,17 @@ def _grad3(hash: int, x: float, y: float, z: float) -> float:
     return u + v
 
 
+@declare("vc-A1", c="ccl_noise_perlin3",
+         args=(_X, _Y, _Z, _SEED, _PERIOD), outputs=("n",), derived=_PERM,
+         summary="3-D Perlin gradient noise; seed 0 is Ken Perlin's 2002 ImprovedNoise reference exactly (his "
+                 "permutation, 12 edge gradients via hash & 15, quintic fade 2.20, trilinear lerp), in float32; other "
+                 "seeds use a Fisher-Yates permutation driven by the PCG hash (perm_table / ccl_noise_perm_table). "
+                 "Output about [-1, 1], 0 at lattice points. period 0 = Perlin's lattice, period >= 1 = exactly "
+                 "periodic (vc-A2). Also: 2-D noise ccl_noise_perlin2 / noise_perlin2 (= perlin3(x, y, 0), with a "
+                 "choice of interpolant quintic/cubic/linear/cosine for vc-fig-2.5, NumPy helper perlin2()), the "
+                 "table-taking fast forms ccl_noise_perlin3_perm, and the interpolants ccl_interp_lerp, "
+                 "ccl_interp_cosine (vc-fig-2.6). Warp functions take the permutation table (perm_array(seed)).",
+         references=_PERLIN_REF + (_PCG_REF,))
 @wp.func
 def noise_perlin3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), period: int) -> float:
     """vc-A1: 3-D Perlin gradient noise (seed 0 table = Perlin's 2002 reference); period 0 or >= 1 (vc-A2)."""
@@ -212,6 +335,14 @@ def noise_perlin3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), 
                    interp_lerp(u, _grad3(ab1, rx, ry - 1.0, rz - 1.0), _grad3(bb1, rx - 1.0, ry - 1.0, rz - 1.0))))
 
 
+@declare("vc-A2", c="ccl_noise_perlin3_tiled",
+         args=(_X, _Y, _Z, Arg("period", "integer period on every axis (lattice units)", lo=1, hi=2 ** 30,
+                               dtype="int32"), _SEED),
+         outputs=("n",), derived=_PERM,
+         summary="Seamless Perlin noise: noise_perlin3 with a required period P >= 1; the lattice coordinate is "
+                 "reduced modulo P before hashing, so f(p + P e_i) == f(p) exactly when p + P is representable in "
+                 "float32.",
+         references=_PERLIN_REF[:1])
 @wp.func
 def noise_perlin3_tiled(x: float, y: float, z: float, period: int, perm: wp.array(dtype=wp.int32)) -> float:
     """vc-A2: noise_perlin3 with a required period >= 1."""
@@ -273,6 +404,15 @@ def noise_worley_feature(ix: int, iy: int, iz: int, cells: int, seed: wp.uint32)
     return _worley_offsets(h0)
 
 
+@declare("vc-A3", c="ccl_noise_worley3",
+         args=(_X, _Y, _Z, _CELLS, _WSEED), options=(METRIC, INVERSE), outputs=("f1",), check=_check_worley,
+         samples=_worley_samples,
+         summary="Worley (cellular) noise F1, periodic with period 1 on every axis (cells per unit = cells; cell "
+                 "indices wrapped modulo cells, vc-A5). One feature point per cell from the PCG hash of the wrapped "
+                 "cell index and the seed (ccl_noise_worley_feature / noise_worley_feature); the 27 neighbouring cells "
+                 "are searched. F1 = distance in cell units clamped to [0, 1] (the clamp makes the 27-cell search "
+                 "exact). metric='manhattan' gives L1 distances and inverse=True gives 1 - F1 (vc-A4).",
+         references=_WORLEY_REF + (_PCG_REF,))
 @wp.func
 def noise_worley3(x: float, y: float, z: float, cells: int, seed: wp.uint32, metric: int, inverse: int) -> float:
     """vc-A3/A4/A5: Worley F1 (cell units, clamped to [0, 1]), period 1; metric 0 = Euclidean, 1 = Manhattan."""
@@ -319,13 +459,30 @@ def noise_worley3(x: float, y: float, z: float, cells: int, seed: wp.uint32, met
     return f1
 
 
+@declare("vc-A4", c="ccl_noise_worley3_variants",
+         args=(_X, _Y, _Z, _CELLS, _WSEED), outputs=("classic", "manhattan", "inverse"),
+         check=_check_worley, samples=_worley_samples,
+         summary="The three Worley variants of vc-fig-2.7 at once: classic (Euclidean F1), Manhattan (L1) F1 and "
+                 "inverse 1 - F1; each equals noise_worley3 (vc-A3) with the matching metric/inverse options.",
+         references=_WORLEY_REF)
 @wp.func
-def noise_worley3_variants(x: float, y: float, z: float, cells: int, seed: wp.uint32) -> wp.vec3:
+def noise_worley3_variants(x: float, y: float, z: float, cells: int,
+                           seed: wp.uint32) -> tuple[float, float, float]:
     """vc-A4: (classic, Manhattan, inverse) Worley at one point, the three panels of vc-fig-2.7."""
-    return wp.vec3(noise_worley3(x, y, z, cells, seed, 0, 0), noise_worley3(x, y, z, cells, seed, 1, 0),
-                   noise_worley3(x, y, z, cells, seed, 0, 1))
+    return (noise_worley3(x, y, z, cells, seed, 0, 0), noise_worley3(x, y, z, cells, seed, 1, 0),
+            noise_worley3(x, y, z, cells, seed, 0, 1))
 
 
+@declare("vc-A5", c="ccl_noise_worley3_bruteforce",
+         # samples: O(cells^3) per point, so the contract tests draw small lattices (the edge 64 is still checked)
+         args=(_X, _Y, _Z, Arg("cells", "cells per unit period", lo=1, hi=64, dtype="int32", sample_range=(1, 4)),
+               _WSEED),
+         options=(METRIC, INVERSE), outputs=("f1",), check=_check_worley_bruteforce,
+         summary="Tileable Worley noise by the literal construction of vc-A5: the cube of cells^3 feature points is "
+                 "surrounded by its copies and every point tries all 27 placements of every feature point (O(cells^3) "
+                 "per point). A reference: noise_worley3 (vc-A3) gives the same value with the wrapped 27-cell search "
+                 "and is the function to use; it is periodic with period 1 by construction.",
+         references=_WORLEY_REF)
 @wp.func
 def noise_worley3_bruteforce(x: float, y: float, z: float, cells: int, seed: wp.uint32, metric: int,
                              inverse: int) -> float:
@@ -366,6 +523,17 @@ def noise_worley3_bruteforce(x: float, y: float, z: float, cells: int, seed: wp.
 
 # --- fBm (vc-2.21, vc-A6) ------------------------------------------------------------------------------------------
 
+@declare("vc-2.21", c="ccl_noise_fbm_perlin3",
+         args=(_X, _Y, _Z, Arg("octaves", "number of octaves", lo=1, hi=24, dtype="int32"),
+               Arg("frequency", "f_0, lattice cells per unit of x", lo=0.0, lo_open=True),
+               _SEED, Arg("period", "0, or the integer period of octave 0 in its lattice units (octave i: period 2^i); "
+                                    "the fBm repeats every period/frequency", lo=0, hi=2 ** 30, dtype="int32",
+                          default=0)),
+         outputs=("n",), derived=_PERM, check=_check_fbm_perlin, samples=_fbm_perlin_samples,
+         summary="fBm N_s(p) = sum_i w_i N(f_i p) / sum_i w_i of Perlin noise with the octave rules of vc-A6 "
+                 "(f_0 = frequency, f_i = 2 f_{i-1}, w_0 = 1, w_i = w_{i-1}/2), normalised by the sum of the weights "
+                 "so the range stays that of one octave. The Worley counterpart is noise_fbm_worley3 (vc-A6).",
+         references=_PERLIN_REF[:1])
 @wp.func
 def noise_fbm_perlin3(x: float, y: float, z: float, octaves: int, frequency: float, perm: wp.array(dtype=wp.int32),
                       period: int) -> float:
@@ -385,6 +553,16 @@ def noise_fbm_perlin3(x: float, y: float, z: float, octaves: int, frequency: flo
     return total / wsum
 
 
+@declare("vc-A6", c="ccl_noise_fbm_worley3",
+         args=(_X, _Y, _Z, Arg("octaves", "number of octaves", lo=1, hi=16, dtype="int32"),
+               Arg("cells", "cells per unit of octave 0 (octave i: cells 2^i)", lo=1, hi=2 ** 16, dtype="int32"),
+               _WSEED),
+         options=(METRIC, INVERSE), outputs=("n",), check=_check_fbm_worley, samples=_fbm_worley_samples,
+         summary="fBm of Worley noise with the vc-A6 octave rules: octave i = noise_worley3 with cells 2^i cells per "
+                 "unit and seed + i, weight 2^-i; divided by the sum of the weights, so the result is in [0, 1] and "
+                 "periodic with period 1. inverse applies per octave (fBm of inverse Worley, the cloud textures). "
+                 "The Perlin counterpart is noise_fbm_perlin3 (vc-2.21).",
+         references=_WORLEY_REF)
 @wp.func
 def noise_fbm_worley3(x: float, y: float, z: float, octaves: int, cells: int, seed: wp.uint32, metric: int,
                       inverse: int) -> float:
@@ -429,6 +607,10 @@ def _dnoise(perm: wp.array(dtype=wp.int32), period: int, x: float, y: float, z: 
     return (noise_perlin3(xp, yp, zp, perm, period) - noise_perlin3(xm, ym, zm, perm, period)) / d
 
 
+@declare("vc-2.22", c="ccl_noise_gradient3",
+         args=(_CX, _CY, _CZ, _SEED, _PERIOD, _H), outputs=("gradient",), derived=_PERM,
+         summary="Nabla operator applied to Perlin noise: (dN/dx, dN/dy, dN/dz). " + _CURL_SUMMARY,
+         references=_CURL_REF)
 @wp.func
 def noise_gradient3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), period: int, h: float) -> wp.vec3:
     """vc-2.22: nabla N of Perlin noise by central differences."""
@@ -436,6 +618,11 @@ def noise_gradient3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32)
                    _dnoise(perm, period, x, y, z, 2, h))
 
 
+@declare("vc-2.23", c="ccl_noise_curl3",
+         args=(_CX, _CY, _CZ, _SEED, _PERIOD, _H), outputs=("v",), derived=_PERM,
+         summary="3-D curl noise v = nabla x psi (2.23) of the offset Perlin vector potential -- reading (ii) of "
+                 "vc-A7; divergence-free. Table form ccl_noise_curl3_perm. " + _CURL_SUMMARY,
+         references=_CURL_REF)
 @wp.func
 def noise_curl3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), period: int, h: float) -> wp.vec3:
     """vc-2.23 / vc-A7 (ii): v = nabla x psi, psi = (N(p), N(p + o1), N(p + o2))."""
@@ -451,6 +638,12 @@ def noise_curl3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), pe
     return wp.vec3(vx, vy, vz)
 
 
+@declare("vc-2.24", c="ccl_noise_rot2",
+         args=(_CX, _CY, _SEED, _PERIOD, _H), outputs=("rot",), derived=_PERM,
+         summary="2-D curl (scalar) dF_y/dx - dF_x/dy of the planar noise field F = (N(p), N(p + o1)), p = (x, y, 0): "
+                 "the literal reading of the thesis (two offset evaluations, then the curl) -- a scalar, not a 2-D "
+                 "field (vc-A7 ambiguity). Equals the z component of noise_curl3 at z = 0. " + _CURL_SUMMARY,
+         references=_CURL_REF)
 @wp.func
 def noise_rot2(x: float, y: float, perm: wp.array(dtype=wp.int32), period: int, h: float) -> float:
     """vc-2.24: dF_y/dx - dF_x/dy of F = (N(p), N(p + o1)), p = (x, y, 0)."""
@@ -461,6 +654,11 @@ def noise_rot2(x: float, y: float, perm: wp.array(dtype=wp.int32), period: int, 
     return _dnoise(perm, period, q1x, q1y, q1z, 0, h) - _dnoise(perm, period, x, y, z, 1, h)
 
 
+@declare("vc-2.25", c="ccl_noise_divergence3",
+         args=(_CX, _CY, _CZ, _SEED, _PERIOD, _H), outputs=("div",), derived=_PERM,
+         summary="Divergence (sum over i = 1..3; the printed i = 0 is an index error) of the offset Perlin potential "
+                 "psi itself -- not zero in general, unlike its curl (vc-2.26). " + _CURL_SUMMARY,
+         references=_CURL_REF)
 @wp.func
 def noise_divergence3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), period: int, h: float) -> float:
     """vc-2.25: nabla . psi of the offset Perlin potential."""
@@ -474,6 +672,14 @@ def noise_divergence3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int3
         _dnoise(perm, period, q2x, q2y, q2z, 2, h)
 
 
+@declare("vc-2.26", c="ccl_noise_curl_property",
+         args=(_CX, _CY, _CZ, _SEED, _PERIOD, _H), options=(VARIANT,), outputs=("residual",),
+         derived=_PERM,
+         summary="Residual of the property claimed for curl noise v = noise_curl3 (nested central differences, same "
+                 "h). variant='corrected': nabla . v, the divergence-free property meant (~0 up to float32 round-off); "
+                 "variant='thesis': |nabla x v| for the printed 'nabla x F = 0', which does not hold (spec error 7). "
+                 + _CURL_SUMMARY,
+         references=_CURL_REF)
 @wp.func
 def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), period: int, h: float,
                         variant: int) -> float:
@@ -513,6 +719,12 @@ def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.in
     return (j00 + j11) + j22
 
 
+@declare("vc-A7", c="ccl_noise_curl2",
+         args=(_CX, _CY, _SEED, _PERIOD, _H), outputs=("v",), derived=_PERM,
+         summary="Curl noise, reading (i): 2-D stream function psi = N(x, y, 0), v = (dpsi/dy, -dpsi/dx) -- tangent to "
+                 "the level sets of psi and divergence-free. Reading (ii), the 3-D vector potential with large "
+                 "offsets, is noise_curl3 (vc-2.23). Table form ccl_noise_curl2_perm. " + _CURL_SUMMARY,
+         references=_CURL_REF)
 @wp.func
 def noise_curl2(x: float, y: float, perm: wp.array(dtype=wp.int32), period: int, h: float) -> wp.vec2:
     """vc-A7 (i): v = (dpsi/dy, -dpsi/dx), psi = N(x, y, 0)."""
@@ -521,6 +733,18 @@ def noise_curl2(x: float, y: float, perm: wp.array(dtype=wp.int32), period: int,
 
 # --- Perlin-Worley (vc-A8) ---------------------------------------------------------------------------------------
 
+@declare("vc-A8", c="ccl_noise_perlin_worley",
+         args=(Arg("p", "fBm Perlin remapped to [0, 1]", lo=0.0, hi=1.0),
+               Arg("w", "inverse-Worley fBm in [0, 1]", lo=0.0, hi=1.0)),
+         options=(COMBINATION,), outputs=("pw",),
+         summary="Perlin-Worley combination for the base texture's R channel. 'thesis' (default, §4.3.1): "
+                 "remap(P, 0, 1, W, 1)^2 = (W + P(1 - W))^2, in [W^2, 1]; 'gpu_pro_7': clamp(remap(P, W, 1, 0, 1), 0, "
+                 "1) = clamp((P - W)/(1 - W)), 0 where W = 1 (the limit for P < 1); 'hillaire': remap(P, 0, 1, W, 1), "
+                 "the unsquared form of Hillaire's TileableVolumeNoise; 'product': P W (Perlin masked by Worley); "
+                 "'average': (P + W)/2. The thesis names only the first two (fig 4.8).",
+         references=("A. Schneider, The real-time volumetric cloudscapes of Horizon: Zero Dawn, SIGGRAPH 2015",
+                     "A. Schneider, Real-Time Volumetric Cloudscapes, GPU Pro 7, 2016",
+                     "S. Hillaire, TileableVolumeNoise, https://github.com/sebh/TileableVolumeNoise, 2016"))
 @wp.func
 def noise_perlin_worley(p: float, w: float, combination: int) -> float:
     """vc-A8: 0 thesis remap(P,0,1,W,1)^2, 1 gpu_pro_7 clamp(remap(P,W,1,0,1)), 2 hillaire remap(P,0,1,W,1),
@@ -544,372 +768,15 @@ def noise_perlin_worley(p: float, w: float, combination: int) -> float:
     return r * r
 
 
-# --- element-wise evaluation kernels -------------------------------------------------------------------------------
-# Perlin-based kernels take every array argument except ``seed``, then the options, then the permutation table of
-# the seed, then the outputs (see _perlin_make_warp); the others follow the generic convention of the registry.
-
-_F = wp.array(dtype=float)
-_I = wp.array(dtype=wp.int32)
-_U = wp.array(dtype=wp.uint32)
-
-
-
-@wp.kernel
-def _eval_noise_perlin3(x: _F, y: _F, z: _F, period: _I, perm: _I, out: _F):
-    i = wp.tid()
-    out[i] = noise_perlin3(x[i], y[i], z[i], perm, period[i])
-
-
-@wp.kernel
-def _eval_noise_perlin3_tiled(x: _F, y: _F, z: _F, period: _I, perm: _I, out: _F):
-    i = wp.tid()
-    out[i] = noise_perlin3_tiled(x[i], y[i], z[i], period[i], perm)
-
-
-@wp.kernel
-def _eval_noise_perlin2(x: _F, y: _F, period: _I, interp: int, perm: _I, out: _F):
-    i = wp.tid()
-    out[i] = noise_perlin2(x[i], y[i], perm, period[i], interp)
-
-
-@wp.kernel
-def _eval_noise_worley_feature(ix: _I, iy: _I, iz: _I, cells: _I, seed: _U, ox: _F, oy: _F, oz: _F):
-    i = wp.tid()
-    o = noise_worley_feature(ix[i], iy[i], iz[i], cells[i], seed[i])
-    ox[i] = o[0]
-    oy[i] = o[1]
-    oz[i] = o[2]
-
-
-@wp.kernel
-def _eval_noise_worley3(x: _F, y: _F, z: _F, cells: _I, seed: _U, metric: int, inverse: int, out: _F):
-    i = wp.tid()
-    out[i] = noise_worley3(x[i], y[i], z[i], cells[i], seed[i], metric, inverse)
-
-
-@wp.kernel
-def _eval_noise_worley3_variants(x: _F, y: _F, z: _F, cells: _I, seed: _U, classic: _F, manhattan: _F,
-                                 inverse: _F):
-    i = wp.tid()
-    v = noise_worley3_variants(x[i], y[i], z[i], cells[i], seed[i])
-    classic[i] = v[0]
-    manhattan[i] = v[1]
-    inverse[i] = v[2]
-
-
-@wp.kernel
-def _eval_noise_worley3_bruteforce(x: _F, y: _F, z: _F, cells: _I, seed: _U, metric: int, inverse: int, out: _F):
-    i = wp.tid()
-    out[i] = noise_worley3_bruteforce(x[i], y[i], z[i], cells[i], seed[i], metric, inverse)
-
-
-@wp.kernel
-def _eval_noise_fbm_perlin3(x: _F, y: _F, z: _F, octaves: _I, frequency: _F, period: _I, perm: _I, out: _F):
-    i = wp.tid()
-    out[i] = noise_fbm_perlin3(x[i], y[i], z[i], octaves[i], frequency[i], perm, period[i])
-
-
-@wp.kernel
-def _eval_noise_fbm_worley3(x: _F, y: _F, z: _F, octaves: _I, cells: _I, seed: _U, metric: int, inverse: int,
-                            out: _F):
-    i = wp.tid()
-    out[i] = noise_fbm_worley3(x[i], y[i], z[i], octaves[i], cells[i], seed[i], metric, inverse)
-
-
-@wp.kernel
-def _eval_noise_gradient3(x: _F, y: _F, z: _F, period: _I, h: _F, perm: _I, gx: _F, gy: _F, gz: _F):
-    i = wp.tid()
-    g = noise_gradient3(x[i], y[i], z[i], perm, period[i], h[i])
-    gx[i] = g[0]
-    gy[i] = g[1]
-    gz[i] = g[2]
-
-
-@wp.kernel
-def _eval_noise_curl3(x: _F, y: _F, z: _F, period: _I, h: _F, perm: _I, vx: _F, vy: _F, vz: _F):
-    i = wp.tid()
-    v = noise_curl3(x[i], y[i], z[i], perm, period[i], h[i])
-    vx[i] = v[0]
-    vy[i] = v[1]
-    vz[i] = v[2]
-
-
-@wp.kernel
-def _eval_noise_rot2(x: _F, y: _F, period: _I, h: _F, perm: _I, out: _F):
-    i = wp.tid()
-    out[i] = noise_rot2(x[i], y[i], perm, period[i], h[i])
-
-
-@wp.kernel
-def _eval_noise_divergence3(x: _F, y: _F, z: _F, period: _I, h: _F, perm: _I, out: _F):
-    i = wp.tid()
-    out[i] = noise_divergence3(x[i], y[i], z[i], perm, period[i], h[i])
-
-
-@wp.kernel
-def _eval_noise_curl_property(x: _F, y: _F, z: _F, period: _I, h: _F, variant: int, perm: _I, out: _F):
-    i = wp.tid()
-    out[i] = noise_curl_property(x[i], y[i], z[i], perm, period[i], h[i], variant)
-
-
-@wp.kernel
-def _eval_noise_curl2(x: _F, y: _F, period: _I, h: _F, perm: _I, vx: _F, vy: _F):
-    i = wp.tid()
-    v = noise_curl2(x[i], y[i], perm, period[i], h[i])
-    vx[i] = v[0]
-    vy[i] = v[1]
-
-
-@wp.kernel
-def _eval_noise_perlin_worley(p: _F, w: _F, combination: int, out: _F):
-    i = wp.tid()
-    out[i] = noise_perlin_worley(p[i], w[i], combination)
-
-
-
-# --- NumPy-level evaluators ----------------------------------------------------------------------------------------
-
-def _perlin_make_warp(eq: Equation, device):
-    """Evaluator for Perlin-based entries: validates like Equation.bind, then launches the eval kernel once per
-    distinct seed with that seed's permutation table (the kernel takes every array but ``seed``)."""
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-    seed_pos = [a.name for a in eq.args].index("seed")
-
-    def call(*args, **kwargs):
-        shape, arrays, opts = eq.bind(*args, **kwargs)
-        n = int(math.prod(shape))
-        flat = [np.ascontiguousarray(np.broadcast_to(a, shape).ravel()) for a in arrays]
-        seeds = flat.pop(seed_pos)
-        outs = [np.empty(n, dtype=np.float32) for _ in eq.outputs]
-        for s in (np.unique(seeds) if n else ()):
-            sel = seeds == s
-            m = int(np.count_nonzero(sel))
-            ins = [wp.array(a if m == n else a[sel], device=dev) for a in flat]
-            res = [wp.empty(m, dtype=wp.float32, device=dev) for _ in eq.outputs]
-            wp.launch(eq.kernel, dim=m, inputs=[*ins, *opts, perm_array(int(s), dev)], outputs=res, device=dev)
-            for o, r in zip(outs, res):
-                o[sel] = r.numpy()
-        out = tuple(o.reshape(shape)[()] if shape == () else o.reshape(shape) for o in outs)
-        return out[0] if len(out) == 1 else out
-
-    return call
-
-
-# --- argument domains and cross-argument checks --------------------------------------------------------------------
-
-_COORD_LIM = float(2 ** 24)  # float32 keeps a fractional part below 2^24
-_CURL_LIM = float(2 ** 23)  # the curl potential adds offsets of up to ~120 lattice units
-
-
-def _coord(name, doc, lim=_COORD_LIM):
-    return Arg(name, doc, lo=-lim, hi=lim)
-
-
-_X = _coord("x", "x coordinate (lattice units of the noise)")
-_Y = _coord("y", "y coordinate")
-_Z = _coord("z", "z coordinate")
-_SEED = Arg("seed", "uint32 seed; 0 = Ken Perlin's reference permutation", lo=0, hi=4294967295, dtype="uint32",
-            default=0)
-_PERIOD = Arg("period", "0 = Perlin's lattice (repeats every 256), P >= 1 = periodic with integer period P",
-              lo=0, hi=2 ** 30, dtype="int32", default=0)
-_CELLS = Arg("cells", "Worley cells per unit period (the noise has period 1 on every axis)", lo=1, hi=2 ** 16,
-             dtype="int32")
-_WSEED = Arg("seed", "uint32 seed of the feature-point hash", lo=0, hi=4294967295, dtype="uint32", default=0)
-_H = Arg("h", "central-difference step (lattice units)", lo=0.0, hi=0.25, lo_open=True, default=FD_STEP)
-_CX, _CY, _CZ = (_coord(n, f"{n} coordinate (lattice units)", _CURL_LIM) for n in "xyz")
-
-METRIC = Option("metric", METRICS, "euclidean", "distance: 'euclidean' (L2, classic) or 'manhattan' (L1)")
-INVERSE = Option("inverse", {False: 0, True: 1}, False, "True: 1 - F1 (inverse Worley, used for clouds)")
-COMBINATION = Option("combination", COMBINATIONS, "thesis",
-                     "'thesis' remap(P,0,1,W,1)^2 (default, §4.3.1); 'gpu_pro_7' clamp(remap(P,W,1,0,1),0,1); "
-                     "'hillaire' remap(P,0,1,W,1); 'product' P*W; 'average' (P+W)/2")
-
-
-def _max_abs(x, y, z) -> np.ndarray:
-    """max(|x|, |y|, |z|) element-wise in float64 (broadcast)."""
-    return np.maximum(np.maximum(np.abs(x.astype(np.float64)), np.abs(y.astype(np.float64))),
-                      np.abs(z.astype(np.float64)))
-
-
-def _check_worley(x, y, z, cells, **_):
-    scaled = _max_abs(x, y, z) * cells
-    if np.any(scaled >= _COORD_LIM):
-        raise ValueError(f"cells * |x|, |y|, |z| must be < 2^24 (float32 position precision), got {scaled.max():g}")
-
-
-def _check_worley_bruteforce(x, y, z, cells, **_):
-    if np.any(cells > 64):
-        raise ValueError(f"cells must be in [1, 64] for the O(cells^3) brute force, got {int(cells.max())}")
-
-
-def _check_fbm_perlin(x, y, z, octaves, frequency, seed, period, **_):
-    top = 2.0 ** (octaves.astype(np.float64) - 1)
-    if np.any(period * top > 2.0 ** 30):
-        raise ValueError("period must satisfy period * 2^(octaves - 1) <= 2^30")
-    if np.any(_max_abs(x, y, z) * frequency * top >= _COORD_LIM):
-        raise ValueError("frequency * 2^(octaves - 1) * |x|, |y|, |z| must be < 2^24 (float32 position precision)")
-
-
-def _check_fbm_worley(x, y, z, octaves, cells, **_):
-    top = cells.astype(np.float64) * 2.0 ** (octaves.astype(np.float64) - 1)
-    if np.any(top > 2.0 ** 16):
-        raise ValueError("cells must satisfy cells * 2^(octaves - 1) <= 65536")
-    if np.any(_max_abs(x, y, z) * top >= _COORD_LIM):
-        raise ValueError("cells * 2^(octaves - 1) * |x|, |y|, |z| must be < 2^24 (float32 position precision)")
-
-
-# --- registry ------------------------------------------------------------------------------------------------------
-
-_PERLIN_REF = ("K. Perlin, Improving Noise, SIGGRAPH 2002 (reference code ImprovedNoise.java, "
-               "https://mrl.cs.nyu.edu/~perlin/noise/)",
-               "K. Perlin, An Image Synthesizer, SIGGRAPH 1985")
-_WORLEY_REF = ("S. Worley, A Cellular Texture Basis Function, SIGGRAPH 1996",)
-_PCG_REF = "M. Jarzynski & M. Olano, Hash Functions for GPU Rendering, JCGT 9(3), 2020 (PCG hash)"
-_CURL_REF = ("R. Bridson, J. Hourihan & M. Nordenstam, Curl-Noise for Procedural Fluid Flow, SIGGRAPH 2007",)
-
-register(Equation(
-    "vc-A1", "noise_perlin3", "ccl_noise_perlin3", noise_perlin3, _eval_noise_perlin3,
-    args=(_X, _Y, _Z, _SEED, _PERIOD), outputs=("n",), make_warp=_perlin_make_warp,
-    summary="3-D Perlin gradient noise; seed 0 is Ken Perlin's 2002 ImprovedNoise reference exactly (his "
-            "permutation, 12 edge gradients via hash & 15, quintic fade 2.20, trilinear lerp), in float32; other "
-            "seeds use a Fisher-Yates permutation driven by the PCG hash (perm_table / ccl_noise_perm_table). "
-            "Output about [-1, 1], 0 at lattice points. period 0 = Perlin's lattice, period >= 1 = exactly "
-            "periodic (vc-A2). Also: 2-D noise ccl_noise_perlin2 / noise_perlin2 (= perlin3(x, y, 0), with a "
-            "choice of interpolant quintic/cubic/linear/cosine for vc-fig-2.5, NumPy helper perlin2()), the "
-            "table-taking fast forms ccl_noise_perlin3_perm, and the interpolants ccl_interp_lerp, "
-            "ccl_interp_cosine (vc-fig-2.6). Warp functions take the permutation table (perm_array(seed)).",
-    references=_PERLIN_REF + (_PCG_REF,)))
-
-register(Equation(
-    "vc-A2", "noise_perlin3_tiled", "ccl_noise_perlin3_tiled", noise_perlin3_tiled, _eval_noise_perlin3_tiled,
-    args=(_X, _Y, _Z, Arg("period", "integer period on every axis (lattice units)", lo=1, hi=2 ** 30,
-                          dtype="int32"), _SEED),
-    outputs=("n",), make_warp=_perlin_make_warp,
-    summary="Seamless Perlin noise: noise_perlin3 with a required period P >= 1; the lattice coordinate is reduced "
-            "modulo P before hashing, so f(p + P e_i) == f(p) exactly when p + P is representable in float32.",
-    references=_PERLIN_REF[:1]))
-
-register(Equation(
-    "vc-A3", "noise_worley3", "ccl_noise_worley3", noise_worley3, _eval_noise_worley3,
-    args=(_X, _Y, _Z, _CELLS, _WSEED), options=(METRIC, INVERSE), outputs=("f1",), check=_check_worley,
-    summary="Worley (cellular) noise F1, periodic with period 1 on every axis (cells per unit = cells; cell indices "
-            "wrapped modulo cells, vc-A5). One feature point per cell from the PCG hash of the wrapped cell index "
-            "and the seed (ccl_noise_worley_feature / noise_worley_feature); the 27 neighbouring cells are searched. "
-            "F1 = distance in cell units clamped to [0, 1] (the clamp makes the 27-cell search exact). "
-            "metric='manhattan' gives L1 distances and inverse=True gives 1 - F1 (vc-A4).",
-    references=_WORLEY_REF + (_PCG_REF,)))
-
-register(Equation(
-    "vc-A4", "noise_worley3_variants", "ccl_noise_worley3_variants", noise_worley3_variants,
-    _eval_noise_worley3_variants, args=(_X, _Y, _Z, _CELLS, _WSEED), outputs=("classic", "manhattan", "inverse"),
-    check=_check_worley,
-    summary="The three Worley variants of vc-fig-2.7 at once: classic (Euclidean F1), Manhattan (L1) F1 and "
-            "inverse 1 - F1; each equals noise_worley3 (vc-A3) with the matching metric/inverse options.",
-    references=_WORLEY_REF))
-
-register(Equation(
-    "vc-A5", "noise_worley3_bruteforce", "ccl_noise_worley3_bruteforce", noise_worley3_bruteforce,
-    _eval_noise_worley3_bruteforce, args=(_X, _Y, _Z, Arg("cells", "cells per unit period", lo=1, hi=64,
-                                                          dtype="int32"), _WSEED),
-    options=(METRIC, INVERSE), outputs=("f1",), check=_check_worley_bruteforce,
-    summary="Tileable Worley noise by the literal construction of vc-A5: the cube of cells^3 feature points is "
-            "surrounded by its copies and every point tries all 27 placements of every feature point (O(cells^3) "
-            "per point). A reference: noise_worley3 (vc-A3) gives the same value with the wrapped 27-cell search "
-            "and is the function to use; it is periodic with period 1 by construction.",
-    references=_WORLEY_REF))
-
-register(Equation(
-    "vc-2.21", "noise_fbm_perlin3", "ccl_noise_fbm_perlin3", noise_fbm_perlin3, _eval_noise_fbm_perlin3,
-    args=(_X, _Y, _Z, Arg("octaves", "number of octaves", lo=1, hi=24, dtype="int32"),
-          Arg("frequency", "f_0, lattice cells per unit of x", lo=0.0, lo_open=True),
-          _SEED, Arg("period", "0, or the integer period of octave 0 in its lattice units (octave i: period 2^i); "
-                               "the fBm repeats every period/frequency", lo=0, hi=2 ** 30, dtype="int32",
-                     default=0)),
-    outputs=("n",), make_warp=_perlin_make_warp, check=_check_fbm_perlin,
-    summary="fBm N_s(p) = sum_i w_i N(f_i p) / sum_i w_i of Perlin noise with the octave rules of vc-A6 "
-            "(f_0 = frequency, f_i = 2 f_{i-1}, w_0 = 1, w_i = w_{i-1}/2), normalised by the sum of the weights so "
-            "the range stays that of one octave. The Worley counterpart is noise_fbm_worley3 (vc-A6).",
-    references=_PERLIN_REF[:1]))
-
-register(Equation(
-    "vc-A6", "noise_fbm_worley3", "ccl_noise_fbm_worley3", noise_fbm_worley3, _eval_noise_fbm_worley3,
-    args=(_X, _Y, _Z, Arg("octaves", "number of octaves", lo=1, hi=16, dtype="int32"),
-          Arg("cells", "cells per unit of octave 0 (octave i: cells 2^i)", lo=1, hi=2 ** 16, dtype="int32"),
-          _WSEED),
-    options=(METRIC, INVERSE), outputs=("n",), check=_check_fbm_worley,
-    summary="fBm of Worley noise with the vc-A6 octave rules: octave i = noise_worley3 with cells 2^i cells per "
-            "unit and seed + i, weight 2^-i; divided by the sum of the weights, so the result is in [0, 1] and "
-            "periodic with period 1. inverse applies per octave (fBm of inverse Worley, the cloud textures). "
-            "The Perlin counterpart is noise_fbm_perlin3 (vc-2.21).",
-    references=_WORLEY_REF))
-
-_CURL_SUMMARY = ("Central differences with step h (default 1/256 lattice units) over float32 Perlin noise N "
-                 "(seed, period as in vc-A1); potential psi = (N(p), N(p + o1), N(p + o2)), o1 = (100.25, -57.75, "
-                 "33.5), o2 = (-41.5, 88.25, -119.75).")
-
-register(Equation(
-    "vc-2.22", "noise_gradient3", "ccl_noise_gradient3", noise_gradient3, _eval_noise_gradient3,
-    args=(_CX, _CY, _CZ, _SEED, _PERIOD, _H), outputs=("gx", "gy", "gz"), make_warp=_perlin_make_warp,
-    summary="Nabla operator applied to Perlin noise: (dN/dx, dN/dy, dN/dz). " + _CURL_SUMMARY,
-    references=_CURL_REF))
-
-register(Equation(
-    "vc-2.23", "noise_curl3", "ccl_noise_curl3", noise_curl3, _eval_noise_curl3,
-    args=(_CX, _CY, _CZ, _SEED, _PERIOD, _H), outputs=("vx", "vy", "vz"), make_warp=_perlin_make_warp,
-    summary="3-D curl noise v = nabla x psi (2.23) of the offset Perlin vector potential -- reading (ii) of vc-A7; "
-            "divergence-free. Table form ccl_noise_curl3_perm. " + _CURL_SUMMARY,
-    references=_CURL_REF))
-
-register(Equation(
-    "vc-2.24", "noise_rot2", "ccl_noise_rot2", noise_rot2, _eval_noise_rot2,
-    args=(_CX, _CY, _SEED, _PERIOD, _H), outputs=("rot",), make_warp=_perlin_make_warp,
-    summary="2-D curl (scalar) dF_y/dx - dF_x/dy of the planar noise field F = (N(p), N(p + o1)), p = (x, y, 0): "
-            "the literal reading of the thesis (two offset evaluations, then the curl) -- a scalar, not a 2-D "
-            "field (vc-A7 ambiguity). Equals the z component of noise_curl3 at z = 0. " + _CURL_SUMMARY,
-    references=_CURL_REF))
-
-register(Equation(
-    "vc-2.25", "noise_divergence3", "ccl_noise_divergence3", noise_divergence3, _eval_noise_divergence3,
-    args=(_CX, _CY, _CZ, _SEED, _PERIOD, _H), outputs=("div",), make_warp=_perlin_make_warp,
-    summary="Divergence (sum over i = 1..3; the printed i = 0 is an index error) of the offset Perlin potential psi "
-            "itself -- not zero in general, unlike its curl (vc-2.26). " + _CURL_SUMMARY,
-    references=_CURL_REF))
-
-register(Equation(
-    "vc-2.26", "noise_curl_property", "ccl_noise_curl_property", noise_curl_property, _eval_noise_curl_property,
-    args=(_CX, _CY, _CZ, _SEED, _PERIOD, _H), options=(VARIANT,), outputs=("residual",),
-    make_warp=_perlin_make_warp,
-    summary="Residual of the property claimed for curl noise v = noise_curl3 (nested central differences, same h). "
-            "variant='corrected': nabla . v, the divergence-free property meant (~0 up to float32 round-off); "
-            "variant='thesis': |nabla x v| for the printed 'nabla x F = 0', which does not hold (spec error 7). "
-            + _CURL_SUMMARY,
-    references=_CURL_REF))
-
-register(Equation(
-    "vc-A7", "noise_curl2", "ccl_noise_curl2", noise_curl2, _eval_noise_curl2,
-    args=(_CX, _CY, _SEED, _PERIOD, _H), outputs=("vx", "vy"), make_warp=_perlin_make_warp,
-    summary="Curl noise, reading (i): 2-D stream function psi = N(x, y, 0), v = (dpsi/dy, -dpsi/dx) -- tangent to "
-            "the level sets of psi and divergence-free. Reading (ii), the 3-D vector potential with large offsets, "
-            "is noise_curl3 (vc-2.23). Table form ccl_noise_curl2_perm. " + _CURL_SUMMARY,
-    references=_CURL_REF))
-
-register(Equation(
-    "vc-A8", "noise_perlin_worley", "ccl_noise_perlin_worley", noise_perlin_worley, _eval_noise_perlin_worley,
-    args=(Arg("p", "fBm Perlin remapped to [0, 1]", lo=0.0, hi=1.0),
-          Arg("w", "inverse-Worley fBm in [0, 1]", lo=0.0, hi=1.0)),
-    options=(COMBINATION,), outputs=("pw",),
-    summary="Perlin-Worley combination for the base texture's R channel. 'thesis' (default, §4.3.1): "
-            "remap(P, 0, 1, W, 1)^2 = (W + P(1 - W))^2, in [W^2, 1]; 'gpu_pro_7': clamp(remap(P, W, 1, 0, 1), 0, 1) "
-            "= clamp((P - W)/(1 - W)), 0 where W = 1 (the limit for P < 1); 'hillaire': remap(P, 0, 1, W, 1), the "
-            "unsquared form of Hillaire's TileableVolumeNoise; 'product': P W (Perlin masked by Worley); "
-            "'average': (P + W)/2. The thesis names only the first two (fig 4.8).",
-    references=("A. Schneider, The real-time volumetric cloudscapes of Horizon: Zero Dawn, SIGGRAPH 2015",
-                "A. Schneider, Real-Time Volumetric Cloudscapes, GPU Pro 7, 2016",
-                "S. Hillaire, TileableVolumeNoise, https://github.com/sebh/TileableVolumeNoise, 2016")))
-
 # --- NumPy helpers for functions without their own catalogue ID ------------------------------------------------------
+
+@wp.kernel
+def _perlin2_kernel(x: wp.array(dtype=float), y: wp.array(dtype=float), period: int, interp: int,
+                    perm: wp.array(dtype=wp.int32), out: wp.array(dtype=float)):
+    # noise_perlin2 has no catalogue ID of its own (the 2-D form of vc-A1 for vc-fig-2.5): evaluated by perlin2()
+    i = wp.tid()
+    out[i] = noise_perlin2(x[i], y[i], perm, period, interp)
+
 
 def perlin2(x, y, seed: int = 0, period: int = 0, interp: str = "quintic", impl: str = "warp", device=None):
     """2-D Perlin noise (vc-A1) on NumPy arrays: ``noise_perlin3(x, y, 0)`` for ``interp="quintic"``; ``"cubic"``
@@ -938,9 +805,8 @@ def perlin2(x, y, seed: int = 0, period: int = 0, interp: str = "quintic", impl:
         n = xf.size
         res = wp.empty(n, dtype=wp.float32, device=dev)
         if n:
-            wp.launch(_eval_noise_perlin2, dim=n,
-                      inputs=[wp.array(xf, device=dev), wp.array(yf, device=dev),
-                              wp.array(np.full(n, int(per), np.int32), device=dev), INTERP[interp],
+            wp.launch(_perlin2_kernel, dim=n,
+                      inputs=[wp.array(xf, device=dev), wp.array(yf, device=dev), int(per), INTERP[interp],
                               perm_array(seed, dev)], outputs=[res], device=dev)
         out = res.numpy()
     out = np.asarray(out, dtype=np.float32).reshape(shape)

@@ -1,12 +1,13 @@
 """Noise-texture generator (vc §2.3.3, §4.3.1) -- Warp twins of ``cclouds/texgen.h``.
 
 * :func:`texgen_gamma` -- vc-4.6, ``C = C^(1/gamma)``.
-* :func:`base_shape_texel` -- one texel of the 128^3 RGBA base-shape texture (vc-A9, vc-A8),
-  :func:`detail_shape_texel` -- one texel of the 32^3 RGB detail texture (vc-A10),
-  :func:`curl_noise_texel` -- one texel of the generated 2-D curl-noise texture (vc-A11),
-  :func:`weather_map_texel` -- one texel of the procedural weather map (vc-A12),
-  :func:`base_shape_settings_code` -- the settings validation of vc-A13 (the C ``ccl_base_shape_settings_check``).
-* :func:`sample_trilinear_wrap` -- the renderer's trilinear sampler of a periodic power-of-two RGBA volume
+* :func:`texgen_base_shape_texel` -- one texel of the 128^3 RGBA base-shape texture (vc-A9, vc-A8),
+  :func:`texgen_detail_shape_texel` -- one texel of the 32^3 RGB detail texture (vc-A10),
+  :func:`texgen_curl_noise_texel` -- one texel of the generated 2-D curl-noise texture (vc-A11),
+  :func:`texgen_weather_map_texel` -- one texel of the procedural weather map (vc-A12),
+  :func:`texgen_base_shape_settings_code` -- the settings validation of vc-A13 (the C
+  ``ccl_texgen_base_shape_settings_check``).
+* :func:`texgen_sample_trilinear_wrap` -- the renderer's trilinear sampler of a periodic power-of-two RGBA volume
   (``wp.array3d(dtype=wp.vec4)`` indexed ``[z, y, x]``) with bit-mask wrap, exactly shift-invariant.
 * Tile kernels (first parameter ``row0``, launched through :class:`pywarp.core.runtime.TileLauncher`; for a 3-D texture
   row = z * size + y, so a 128^3 volume is 16384 rows x 128 columns).
@@ -27,15 +28,16 @@ The Python-side generator classes, settings dataclasses and the cache are in :mo
 from __future__ import annotations
 
 import math
+from dataclasses import asdict, is_dataclass
 
 import numpy as np
 import warp as wp
 
-from ..core.registry import Arg, Equation, register
+from ..core.registry import Arg, Equation, declare
 from .noise import (COMBINATION, COMBINATIONS, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3, noise_perlin_worley,
                     noise_worley3, perm_array)
 
-# Field order of the settings validation codes (1-based; 0 = valid), as checked by ccl_base_shape_settings_check.
+# Field order of the settings validation codes (1-based; 0 = valid), as checked by ccl_texgen_base_shape_settings_check.
 BASE_SHAPE_FIELDS = ("size", "perlin_octaves", "perlin_frequency", "worley_cells", "worley_weights", "combination",
                      "gamma")
 MIN_SIZE = 4  # CCL_TEXGEN_MIN_SIZE
@@ -100,8 +102,244 @@ def _coverage_shape(n: float, c: float) -> float:
     return _clamp01((n - (1.0 - c)) / c)
 
 
+# --- argument domains, checks and samples of the declared entries --------------------------------------------------
+
+_REF_SV = "A. Schneider & N. Vos, The real-time volumetric cloudscapes of Horizon: Zero Dawn, SIGGRAPH 2015 course"
+_REF_GPU7 = "A. Schneider, Real-Time Volumetric Cloudscapes, GPU Pro 7, 2016"
+_REF_HILLAIRE = "S. Hillaire, TileableVolumeNoise, https://github.com/sebh/TileableVolumeNoise, 2016"
+_REF_BRIDSON = "R. Bridson, J. Hourihan & M. Nordenstam, Curl-Noise for Procedural Fluid Flow, SIGGRAPH 2007"
+
+_COORD = 2 ** 22  # (float)i + 0.5 is exact for |i| < 2^22
+
+
+def _icoord(name):
+    return Arg(name, f"integer texel coordinate {name[-1]} (any: the texture is periodic)", lo=-_COORD, hi=_COORD,
+               dtype="int32")
+
+
+def _check_size_3d(size, **_):
+    bad = ~is_pow2(size)
+    if np.any(bad):
+        raise ValueError(f"size must be a power of two in [{MIN_SIZE}, {MAX_SIZE_3D}], "
+                         f"got {int(np.asarray(size)[bad].flat[0])}")
+
+
+def _check_lattice(name, base, octaves):
+    top = np.asarray(base, dtype=np.int64) * (2 ** (np.asarray(octaves, dtype=np.int64) - 1))
+    if np.any(top > MAX_LATTICE):
+        raise ValueError(f"{name} * 2^(octaves - 1) must be <= {MAX_LATTICE}, got {int(np.max(top))}")
+
+
+def _check_base_texel(size, perlin_octaves, perlin_frequency, **_):
+    _check_size_3d(size)
+    _check_lattice("perlin_frequency", perlin_frequency, perlin_octaves)
+
+
+_SIZE3 = Arg("size", f"texture edge, a power of two in [{MIN_SIZE}, {MAX_SIZE_3D}]", lo=MIN_SIZE, hi=MAX_SIZE_3D,
+             dtype="int32")
+_SEED = Arg("seed", "uint32 seed (Perlin: permutation of the seed, 0 = Perlin's reference; Worley layer j: seed + j)",
+            lo=0, hi=4294967295, dtype="uint32")
+_CELLS = Arg("worley_cells", "cells per texture of the lowest inverse-Worley layer (layers cells * 1, 2, 4, 8)", lo=1,
+             hi=MAX_LATTICE // 8, dtype="int32")
+_W0 = Arg("worley_w0", "fBm weight of the lowest layer in each channel's window (> 0)", lo=0.0, lo_open=True)
+_W1 = Arg("worley_w1", "fBm weight of the second layer (>= 0)", lo=0.0)
+_W2 = Arg("worley_w2", "fBm weight of the third layer (>= 0)", lo=0.0)
+_GAMMA = Arg("gamma", "gamma of vc-4.6 (> 0; 1 = identity)", lo=0.0, lo_open=True)
+
+
+def _texel_common(rng, n) -> dict:
+    """Shared valid samples of the texel entries: power-of-two sizes, periodic coordinates, weights, gamma."""
+    return {"ix": rng.integers(-300, 300, n).astype(np.int32), "iy": rng.integers(-300, 300, n).astype(np.int32),
+            "iz": rng.integers(-300, 300, n).astype(np.int32),
+            "size": (2 ** rng.integers(2, 10, n)).astype(np.int32),
+            "seed": rng.integers(0, 3, n).astype(np.uint32),  # a few distinct seeds: one launch per seed
+            "worley_cells": rng.integers(1, 9, n).astype(np.int32),
+            "worley_w0": rng.uniform(0.1, 1.0, n).astype(np.float32),
+            "worley_w1": rng.uniform(0.0, 1.0, n).astype(np.float32),
+            "worley_w2": rng.uniform(0.0, 1.0, n).astype(np.float32),
+            "gamma": rng.uniform(0.3, 3.0, n).astype(np.float32)}
+
+
+def _base_texel_samples(rng, n):
+    """Valid samples of vc-A9: perlin_frequency * 2^(perlin_octaves - 1) <= 4096. The first has one octave and a
+    frequency <= 32, so every edge of perlin_octaves and perlin_frequency stays valid when set alone."""
+    octaves = rng.integers(1, 5, n).astype(np.int32)
+    octaves[0] = 1
+    freq = rng.integers(1, 33, n).astype(np.int32)
+    return {**_texel_common(rng, n), "perlin_octaves": octaves, "perlin_frequency": freq}
+
+
+def _detail_texel_samples(rng, n):
+    """Valid samples of vc-A10 (power-of-two sizes)."""
+    c = _texel_common(rng, n)
+    return {k: c[k] for k in ("ix", "iy", "iz", "size", "seed", "worley_cells", "worley_w0", "worley_w1",
+                              "worley_w2", "gamma")}
+
+
+@wp.struct
+class SeedTables:
+    """What the base-shape texel needs of its seed: the seed itself (Worley layers seed + j) and its Perlin
+    permutation table (``noise.perm_array(seed)``), computed once per distinct seed by the evaluator."""
+
+    seed: wp.uint32
+    perm: wp.array(dtype=wp.int32)
+
+
+def seed_tables(seed: int, device=None) -> SeedTables:
+    """The :class:`SeedTables` of ``seed`` on ``device`` (the derived parameter of vc-A9)."""
+    t = SeedTables()
+    t.seed = wp.uint32(int(seed))
+    t.perm = perm_array(int(seed), device)
+    return t
+
+
+# --- custom evaluators of the entries that are not element-wise (a whole texture, a settings check) -----------------
+
+def _texture_evaluator(kind: str, name: str):
+    """make_warp / make_c of a whole-texture entry: ``fn(settings)`` with a settings object of ``kind`` (the
+    dataclasses of :mod:`pywarp.clouds.settings`, validated when built) -> float32 array of ``settings.shape``."""
+    def make(impl):
+        def factory(eq: Equation, device=None):
+            def call(settings):
+                if not (is_dataclass(settings) and hasattr(settings, "shape")):
+                    raise TypeError(f"{name}(): settings must be a texture settings object "
+                                    f"(pywarp.clouds.settings), got {type(settings).__name__}")
+                return generate(kind, settings, impl=impl, device=device)
+
+            return call
+
+        return factory if impl == "warp" else (lambda eq: factory(eq, None))
+
+    return make("warp"), make("c")
+
+
+_curl_warp, _curl_c = _texture_evaluator("curl_noise", "texgen_curl_noise")
+_weather_warp, _weather_c = _texture_evaluator("weather_map", "texgen_weather_map")
+
+
+def _settings_check_make(impl):
+    """make_warp / make_c of vc-A13: ``fn(settings)`` -> the name of the first invalid field of a base-shape settings
+    object in the order of the C check, or None. The dataclass itself refuses invalid values when built, so this
+    checks one built with ``dataclasses.replace`` or a look-alike (any object with the fields)."""
+    def factory(eq: Equation, device=None):
+        def call(settings):
+            v = {f: getattr(settings, f) for f in ("size", "perlin_octaves", "perlin_frequency", "worley_cells",
+                                                    "worley_weights", "combination", "gamma")}
+            if impl == "c":
+                from ..core.binding import ffi, lib
+
+                out = ffi().new("const char **")
+                st = settings_struct("base_shape", {**v, "seed": getattr(settings, "seed", 0)})
+                if lib().ccl_texgen_base_shape_settings_check(st, out) == 0:
+                    return None
+                return ffi().string(out[0]).decode()
+            w0, w1, w2 = v["worley_weights"]
+            comb = COMBINATIONS.get(v["combination"], -1) if isinstance(v["combination"], str) else -1
+            code = int(base_shape_settings_codes(v["size"], v["perlin_octaves"], v["perlin_frequency"],
+                                                 v["worley_cells"], w0, w1, w2, comb, v["gamma"], device=device))
+            return None if code == 0 else BASE_SHAPE_FIELDS[code - 1]
+
+        return call
+
+    return factory if impl == "warp" else (lambda eq: factory(eq, None))
+
+
+# --- whole textures (the generators' work; pywarp.clouds.textures adds the interface and the cache) ----------------
+
+_C_TYPES = {"base_shape": "ccl_base_shape_settings", "detail_shape": "ccl_detail_shape_settings",
+            "curl_noise": "ccl_curl_noise_settings", "weather_map": "ccl_weather_map_settings"}
+
+
+def settings_struct(kind: str, values: dict):
+    """A cffi ``ccl_<kind>_settings *`` holding ``values`` (dataclass field -> value), without Python validation:
+    a value that does not fit its C type raises ValueError/TypeError naming the field."""
+    from ..core.binding import ffi
+
+    f = ffi()
+    st = f.new(f"{_C_TYPES[kind]} *")
+    for name, v in values.items():
+        try:
+            if name == "worley_weights":
+                w = list(v)
+                if len(w) != 3:
+                    raise ValueError(f"worley_weights must hold 3 weights, got {len(w)}")
+                for i in range(3):
+                    st.worley_weights[i] = w[i]
+            elif name == "combination":
+                if v not in COMBINATIONS:
+                    raise ValueError(f"combination must be one of {', '.join(map(repr, COMBINATIONS))}, got {v!r}")
+                st.combination = COMBINATIONS[v]
+            else:
+                setattr(st, name, v)
+        except OverflowError:
+            raise ValueError(f"{name} is out of range of its C type, got {v!r}") from None
+        except TypeError as exc:
+            raise TypeError(f"{name}: {exc}") from None
+    return st
+
+
+def generate(kind: str, s, impl: str = "warp", device: str | None = None, launcher=None) -> np.ndarray:
+    """Texture ``kind`` ('base_shape', 'detail_shape', 'curl_noise', 'weather_map') of the settings dataclass ``s``
+    (validated when it was built; pywarp.clouds.settings) as a new float32 array of ``s.shape``. ``impl="warp"``:
+    the tile kernels through ``launcher`` (default the process-wide TileLauncher of ``device``: row bands on every
+    core); ``impl="c"``: ``ccl_texgen_<kind>``, one thread. pywarp.clouds.textures adds the generator interface and
+    the cache."""
+    if kind not in _C_TYPES:
+        raise ValueError(f"kind must be one of {', '.join(map(repr, _C_TYPES))}, got {kind!r}")
+    if impl == "c":
+        return _generate_c(kind, s)
+    if impl != "warp":
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    return _generate_warp(kind, s, device, launcher)
+
+
+def _generate_c(kind: str, s) -> np.ndarray:
+    from ..core.binding import ffi, lib, status_error
+
+    st = settings_struct(kind, asdict(s))
+    out = np.empty(s.shape, dtype=np.float32)
+    status = getattr(lib(), f"ccl_texgen_{kind}")(st, ffi().from_buffer("float[]", out), out.size)
+    status_error(status, f"ccl_texgen_{kind}")
+    return out
+
+
+def _generate_warp(kind: str, s, device, launcher) -> np.ndarray:
+    from ..core.runtime import launcher as shared_launcher
+
+    lau = launcher if launcher is not None else shared_launcher(device)
+    dev = lau.device
+    n = s.size
+    if kind == "base_shape":
+        w0, w1, w2 = s.worley_weights
+        out = wp.empty((n, n, n), dtype=wp.vec4, device=dev)
+        lau.launch(_base_shape_kernel, n * n, n,
+                   [n, s.seed, s.perlin_octaves, s.perlin_frequency, s.worley_cells, w0, w1, w2, s.gamma,
+                    COMBINATIONS[s.combination], perm_array(s.seed, dev)], [out])
+    elif kind == "detail_shape":
+        w0, w1, w2 = s.worley_weights
+        out = wp.empty((n, n, n), dtype=wp.vec3, device=dev)
+        lau.launch(_detail_shape_kernel, n * n, n, [n, s.seed, s.worley_cells, w0, w1, w2, s.gamma], [out])
+    elif kind == "curl_noise":
+        out = wp.empty((n, n), dtype=wp.vec2, device=dev)
+        lau.launch(_curl_noise_kernel, n, n, [n, s.frequency, s.fd_step, perm_array(s.seed, dev)], [out])
+    else:
+        out = wp.empty((n, n), dtype=wp.vec4, device=dev)
+        seeds = [(s.seed + i) & 0xFFFFFFFF for i in range(3)]
+        lau.launch(_weather_map_kernel, n, n,
+                   [n, s.seed, s.perlin_frequency, s.perlin_octaves, s.perlin_contrast, s.worley_cells,
+                    s.worley_octaves, COMBINATIONS[s.combination], s.coverage, s.precipitation, s.cloud_type,
+                    s.cloud_type_variation, *(perm_array(x, dev) for x in seeds)], [out])
+    return np.array(out.numpy(), dtype=np.float32, copy=True).reshape(s.shape)
+
+
 # --- vc-4.6 -----------------------------------------------------------------------------------------------------------
 
+# powf of two libms (glibc, Warp's runtime), each within 1 ulp of the exact value: <= 2 ulp apart (the default bound)
+@declare("vc-4.6", c="ccl_texgen_gamma", args=(Arg("c", "generated noise value C", lo=0.0, hi=1.0), _GAMMA),
+         outputs=("C",),
+         summary="Gamma correction of generated noise, C = C^(1/gamma), applied to every channel of the base and "
+                 "detail textures (a shaping step, not display gamma); gamma > 1 brightens, 1 is the identity (the "
+                 "default of the settings: the thesis gives none).")
 @wp.func
 def texgen_gamma(c: float, gamma: float) -> float:
     """vc-4.6: gamma correction of generated noise, C = C^(1/gamma) (gamma > 0; 1 = identity, > 1 brightens)."""
@@ -111,11 +349,11 @@ def texgen_gamma(c: float, gamma: float) -> float:
 # --- texels -----------------------------------------------------------------------------------------------------------
 
 @wp.func
-def base_shape_texel(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, perlin_octaves: int,
+def _base_shape_rgba(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, perlin_octaves: int,
                      perlin_frequency: int, worley_cells: int, worley_w0: float, worley_w1: float, worley_w2: float,
                      gamma: float, combination: int, perm: wp.array(dtype=wp.int32)) -> wp.vec4:
     """vc-A9: RGBA texel (ix, iy, iz) of the base-shape texture; ``perm`` = the permutation table of ``seed``
-    (``noise.perm_array(seed)``; the C twin builds it from the seed)."""
+    (``noise.perm_array(seed)``; the C twin builds it from the seed). The tile kernel calls this form."""
     u = _texcoord(ix, size)
     v = _texcoord(iy, size)
     w = _texcoord(iz, size)
@@ -126,10 +364,37 @@ def base_shape_texel(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, perl
                    texgen_gamma(ch[2], gamma))
 
 
+@declare("vc-A9", c="ccl_texgen_base_shape_texel",
+         args=(_icoord("ix"), _icoord("iy"), _icoord("iz"), _SIZE3, _SEED,
+               Arg("perlin_octaves", "Perlin fBm octaves", lo=1, hi=MAX_OCTAVES, dtype="int32"),
+               Arg("perlin_frequency", "Perlin lattice cells per texture (octave 0); period = frequency", lo=1,
+                   hi=MAX_LATTICE, dtype="int32"),
+               _CELLS, _W0, _W1, _W2, _GAMMA),
+         options=(COMBINATION,), outputs=("R", "G", "B", "A"), check=_check_base_texel,
+         derived={"tables": ("seed", seed_tables)}, samples=_base_texel_samples,
+         summary="One texel (ix, iy, iz) of the base-shape texture (128^3 RGBA in the thesis), texture coordinate "
+                 "(i + 0.5)/size. G, B, A: four inverse-Worley layers (cells worley_cells * 2^j, seed + j) mapped to "
+                 "three channels by a sliding fBm window (G = W0..W2, B = W1..W3, A = W2..W3 renormalised; the thesis "
+                 "leaves the mapping open). R: noise_perlin_worley(P, G, combination) with P = clamp(0.5 fBm_Perlin "
+                 "+ 0.5) (vc-A8; default 'thesis' = remap(P, 0, 1, W, 1)^2). All channels clamped to [0, 1], then "
+                 "gamma (vc-4.6). Exactly periodic: texel(i + size) == texel(i). Whole texture: "
+                 "pywarp.clouds.textures (BasicTextureGenerator.base_shape, ccl_texgen_base_shape).",
+         references=(_REF_SV, _REF_GPU7, _REF_HILLAIRE))
 @wp.func
-def detail_shape_texel(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, worley_cells: int, worley_w0: float,
-                       worley_w1: float, worley_w2: float, gamma: float) -> wp.vec3:
-    """vc-A10: RGB texel of the detail texture (inverse-Worley fBm of increasing frequency)."""
+def texgen_base_shape_texel(ix: int, iy: int, iz: int, size: int, tables: SeedTables, perlin_octaves: int,
+                            perlin_frequency: int, worley_cells: int, worley_w0: float, worley_w1: float,
+                            worley_w2: float, gamma: float,
+                            combination: int) -> tuple[float, float, float, float]:
+    """vc-A9: (R, G, B, A) of texel (ix, iy, iz); ``tables`` = the seed and its permutation table."""
+    t = _base_shape_rgba(ix, iy, iz, size, tables.seed, perlin_octaves, perlin_frequency, worley_cells, worley_w0,
+                         worley_w1, worley_w2, gamma, combination, tables.perm)
+    return t[0], t[1], t[2], t[3]
+
+
+@wp.func
+def _detail_shape_rgb(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, worley_cells: int, worley_w0: float,
+                      worley_w1: float, worley_w2: float, gamma: float) -> wp.vec3:
+    """vc-A10: RGB texel of the detail texture (inverse-Worley fBm of increasing frequency); the tile kernel's form."""
     u = _texcoord(ix, size)
     v = _texcoord(iy, size)
     w = _texcoord(iz, size)
@@ -137,8 +402,35 @@ def detail_shape_texel(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, wo
     return wp.vec3(texgen_gamma(ch[0], gamma), texgen_gamma(ch[1], gamma), texgen_gamma(ch[2], gamma))
 
 
+@declare("vc-A10", c="ccl_texgen_detail_shape_texel",
+         args=(_icoord("ix"), _icoord("iy"), _icoord("iz"), _SIZE3, _SEED, _CELLS, _W0, _W1, _W2, _GAMMA),
+         outputs=("R", "G", "B"), check=lambda size, **_: _check_size_3d(size), samples=_detail_texel_samples,
+         summary="One texel of the detail (erosion) texture (32^3 RGB in the thesis): R, G, B = inverse-Worley fBm "
+                 "of increasing frequency by the same sliding window as vc-A9 (R = W0..W2, G = W1..W3, B = W2..W3), "
+                 "clamped, gamma-corrected (vc-4.6). With weights 1, 1/2, 1/4 a channel equals noise_fbm_worley3 "
+                 "(vc-A6) of three octaves. Whole texture: BasicTextureGenerator.detail_shape / "
+                 "ccl_texgen_detail_shape.",
+         references=(_REF_SV, _REF_HILLAIRE))
 @wp.func
-def curl_noise_texel(ix: int, iy: int, size: int, frequency: int, fd_step: float,
+def texgen_detail_shape_texel(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, worley_cells: int,
+                              worley_w0: float, worley_w1: float, worley_w2: float,
+                              gamma: float) -> tuple[float, float, float]:
+    """vc-A10: (R, G, B) of texel (ix, iy, iz) of the detail texture."""
+    t = _detail_shape_rgb(ix, iy, iz, size, seed, worley_cells, worley_w0, worley_w1, worley_w2, gamma)
+    return t[0], t[1], t[2]
+
+
+# A whole texture from a settings object (not element-wise): custom evaluators through pywarp.clouds.textures.
+@declare("vc-A11", c="ccl_texgen_curl_noise", name="texgen_curl_noise", make_warp=_curl_warp, make_c=_curl_c,
+         outputs=("curl",),
+         summary="The 2-D curl-noise texture, generated (the thesis loads a shipped file): texel (ix, iy) = "
+                 "noise_curl2 = (dpsi/dy, -dpsi/dx) of Perlin noise psi at (u, v) * frequency with period = "
+                 "frequency (vc-A7 reading (i), divergence-free, exactly tileable), 2 channels in noise-lattice "
+                 "units. Call with a CurlNoiseSettings; returns float32 (size, size, 2) "
+                 "indexed [iy, ix]. Warp: texgen_curl_noise_texel per texel.",
+         references=(_REF_BRIDSON,))
+@wp.func
+def texgen_curl_noise_texel(ix: int, iy: int, size: int, frequency: int, fd_step: float,
                      perm: wp.array(dtype=wp.int32)) -> wp.vec2:
     """vc-A11: curl noise (dpsi/dy, -dpsi/dx) of Perlin noise psi at texel (ix, iy), noise-lattice units."""
     f = float(frequency)
@@ -147,12 +439,22 @@ def curl_noise_texel(ix: int, iy: int, size: int, frequency: int, fd_step: float
     return noise_curl2(x, y, perm, frequency, fd_step)
 
 
+# A whole texture from a settings object (not element-wise): custom evaluators through pywarp.clouds.textures.
+@declare("vc-A12", c="ccl_texgen_weather_map", name="texgen_weather_map", make_warp=_weather_warp,
+         make_c=_weather_c, outputs=("weather",),
+         summary="Procedural weather map (the thesis loads a shipped file): R = coverage = clamp(remap(n, 1 - c, 1, "
+                 "0, 1)) of a tileable Perlin-Worley noise n and the global coverage c; G = precipitation (the "
+                 "spec's reading of the 'blue twice' erratum) from an independent Perlin fBm; B = cloud type = "
+                 "cloud_type + cloud_type_variation (2 P - 1) clamped; A = 0 (free). Call with a WeatherMapSettings; "
+                 "returns float32 (size, size, 4). Images: "
+                 "pywarp.clouds.textures.WeatherMap.from_image. Warp: texgen_weather_map_texel per texel.",
+         references=(_REF_SV, _REF_GPU7))
 @wp.func
-def weather_map_texel(ix: int, iy: int, size: int, seed: wp.uint32, perlin_frequency: int, perlin_octaves: int,
-                      perlin_contrast: float, worley_cells: int, worley_octaves: int, combination: int,
-                      coverage: float, precipitation: float, cloud_type: float, cloud_type_variation: float,
-                      perm0: wp.array(dtype=wp.int32), perm1: wp.array(dtype=wp.int32),
-                      perm2: wp.array(dtype=wp.int32)) -> wp.vec4:
+def texgen_weather_map_texel(ix: int, iy: int, size: int, seed: wp.uint32, perlin_frequency: int,
+                             perlin_octaves: int, perlin_contrast: float, worley_cells: int, worley_octaves: int,
+                             combination: int, coverage: float, precipitation: float, cloud_type: float,
+                             cloud_type_variation: float, perm0: wp.array(dtype=wp.int32),
+                             perm1: wp.array(dtype=wp.int32), perm2: wp.array(dtype=wp.int32)) -> wp.vec4:
     """vc-A12: (coverage, precipitation, cloud type, 0); perm0/1/2 = the tables of seed, seed + 1, seed + 2."""
     u = _texcoord(ix, size)
     v = _texcoord(iy, size)
@@ -167,7 +469,7 @@ def weather_map_texel(ix: int, iy: int, size: int, seed: wp.uint32, perlin_frequ
     return wp.vec4(r, g, b, 0.0)
 
 
-# --- vc-A13: settings validation (mirror of ccl_base_shape_settings_check) ------------------------------------------
+# --- vc-A13: settings validation (mirror of ccl_texgen_base_shape_settings_check) -----------------------------------
 
 @wp.func
 def _lattice_ok(base: int, octaves: int) -> int:
@@ -178,10 +480,20 @@ def _lattice_ok(base: int, octaves: int) -> int:
     return 1
 
 
+# A settings object (a struct in C), not element-wise values: custom evaluators. The Warp twin checks the fields in
+# the order of the C check; pywarp.clouds.settings builds the settings dataclasses (vc-A13) and their defaults.
+@declare("vc-A13", c="ccl_texgen_base_shape_settings_check", make_warp=_settings_check_make("warp"),
+         make_c=_settings_check_make("c"), outputs=("field",),
+         summary="Validation of the base-shape generator settings (BaseShapeSettings of vc-A13; the thesis gives no "
+                 "values -- the documented defaults are in pywarp.clouds.settings and ccl_texgen_<kind>_settings_"
+                 "default): texgen_base_shape_settings_check(settings) returns the name of the first invalid field "
+                 "in the order of the C check, or None. Warp twin: texgen_base_shape_settings_code (0 = valid, else "
+                 "1 + the index of the field). The detail, curl-noise and weather-map settings have their own C "
+                 "checks ccl_texgen_<kind>_settings_check.")
 @wp.func
-def base_shape_settings_code(size: int, perlin_octaves: int, perlin_frequency: int, worley_cells: int,
-                             worley_w0: float, worley_w1: float, worley_w2: float, combination: int,
-                             gamma: float) -> int:
+def texgen_base_shape_settings_code(size: int, perlin_octaves: int, perlin_frequency: int, worley_cells: int,
+                                    worley_w0: float, worley_w1: float, worley_w2: float, combination: int,
+                                    gamma: float) -> int:
     """vc-A13: 0 when the base-shape settings are valid, else 1 + the index of the first invalid field in
     BASE_SHAPE_FIELDS (the order of the C check)."""
     if size < _MIN_SIZE or size > _MAX_SIZE_3D or (size & (size - 1)) != 0:
@@ -226,7 +538,7 @@ def _axis_t(x: float) -> float:
 
 
 @wp.func
-def sample_trilinear_wrap(tex: wp.array3d(dtype=wp.vec4), size_mask: int, p: wp.vec3) -> wp.vec4:
+def texgen_sample_trilinear_wrap(tex: wp.array3d(dtype=wp.vec4), size_mask: int, p: wp.vec3) -> wp.vec4:
     """Trilinear sample of the periodic RGBA volume ``tex[z, y, x]`` (edge size_mask + 1, a power of two) at texture
     coordinates p (1 = one period, texel centres at (i + 0.5) / size); indices wrap with ``& size_mask``. Like
     GL_REPEAT + GL_LINEAR; sampling p and p + 1 gives identical results (weights depend on frac(p * size) only)."""
@@ -273,7 +585,7 @@ def _base_shape_kernel(row0: int, size: int, seed: wp.uint32, perlin_octaves: in
     row = row0 + i
     iz = row // size
     iy = row - iz * size
-    out[iz, iy, j] = base_shape_texel(j, iy, iz, size, seed, perlin_octaves, perlin_frequency, worley_cells,
+    out[iz, iy, j] = _base_shape_rgba(j, iy, iz, size, seed, perlin_octaves, perlin_frequency, worley_cells,
                                       worley_w0, worley_w1, worley_w2, gamma, combination, perm)
 
 
@@ -284,7 +596,7 @@ def _detail_shape_kernel(row0: int, size: int, seed: wp.uint32, worley_cells: in
     row = row0 + i
     iz = row // size
     iy = row - iz * size
-    out[iz, iy, j] = detail_shape_texel(j, iy, iz, size, seed, worley_cells, worley_w0, worley_w1, worley_w2, gamma)
+    out[iz, iy, j] = _detail_shape_rgb(j, iy, iz, size, seed, worley_cells, worley_w0, worley_w1, worley_w2, gamma)
 
 
 @wp.kernel
@@ -292,7 +604,7 @@ def _curl_noise_kernel(row0: int, size: int, frequency: int, fd_step: float, per
                        out: wp.array2d(dtype=wp.vec2)):
     i, j = wp.tid()
     iy = row0 + i
-    out[iy, j] = curl_noise_texel(j, iy, size, frequency, fd_step, perm)
+    out[iy, j] = texgen_curl_noise_texel(j, iy, size, frequency, fd_step, perm)
 
 
 @wp.kernel
@@ -303,7 +615,7 @@ def _weather_map_kernel(row0: int, size: int, seed: wp.uint32, perlin_frequency:
                         perm2: wp.array(dtype=wp.int32), out: wp.array2d(dtype=wp.vec4)):
     i, j = wp.tid()
     iy = row0 + i
-    out[iy, j] = weather_map_texel(j, iy, size, seed, perlin_frequency, perlin_octaves, perlin_contrast,
+    out[iy, j] = texgen_weather_map_texel(j, iy, size, seed, perlin_frequency, perlin_octaves, perlin_contrast,
                                    worley_cells, worley_octaves, combination, coverage, precipitation, cloud_type,
                                    cloud_type_variation, perm0, perm1, perm2)
 
@@ -312,54 +624,19 @@ def _weather_map_kernel(row0: int, size: int, seed: wp.uint32, perlin_frequency:
 def _sample_kernel(tex: wp.array3d(dtype=wp.vec4), size_mask: int, p: wp.array(dtype=wp.vec3),
                    out: wp.array(dtype=wp.vec4)):
     i = wp.tid()
-    out[i] = sample_trilinear_wrap(tex, size_mask, p[i])
-
-
-# --- element-wise evaluation kernels ----------------------------------------------------------------------------------
-
-_F = wp.array(dtype=float)
-_I = wp.array(dtype=wp.int32)
-_U = wp.array(dtype=wp.uint32)
+    out[i] = texgen_sample_trilinear_wrap(tex, size_mask, p[i])
 
 
 @wp.kernel
-def _eval_texgen_gamma(c: _F, gamma: _F, out: _F):
+def _settings_code_kernel(size: wp.array(dtype=wp.int32), perlin_octaves: wp.array(dtype=wp.int32),
+                          perlin_frequency: wp.array(dtype=wp.int32), worley_cells: wp.array(dtype=wp.int32),
+                          worley_w0: wp.array(dtype=float), worley_w1: wp.array(dtype=float),
+                          worley_w2: wp.array(dtype=float), combination: wp.array(dtype=wp.int32),
+                          gamma: wp.array(dtype=float), out: wp.array(dtype=wp.int32)):
+    # the settings check over arrays of settings, for base_shape_settings_codes (vc-A13 is not element-wise)
     i = wp.tid()
-    out[i] = texgen_gamma(c[i], gamma[i])
-
-
-@wp.kernel
-def _eval_base_shape_texel(ix: _I, iy: _I, iz: _I, size: _I, perlin_octaves: _I, perlin_frequency: _I,
-                           worley_cells: _I, worley_w0: _F, worley_w1: _F, worley_w2: _F, gamma: _F,
-                           combination: int, seed: wp.uint32, perm: _I, r: _F, g: _F, b: _F, a: _F):
-    """Every array but ``seed``, the option, then the seed and its permutation table, then the outputs."""
-    i = wp.tid()
-    t = base_shape_texel(ix[i], iy[i], iz[i], size[i], seed, perlin_octaves[i], perlin_frequency[i], worley_cells[i],
-                         worley_w0[i], worley_w1[i], worley_w2[i], gamma[i], combination, perm)
-    r[i] = t[0]
-    g[i] = t[1]
-    b[i] = t[2]
-    a[i] = t[3]
-
-
-@wp.kernel
-def _eval_detail_shape_texel(ix: _I, iy: _I, iz: _I, size: _I, seed: _U, worley_cells: _I, worley_w0: _F,
-                             worley_w1: _F, worley_w2: _F, gamma: _F, r: _F, g: _F, b: _F):
-    i = wp.tid()
-    t = detail_shape_texel(ix[i], iy[i], iz[i], size[i], seed[i], worley_cells[i], worley_w0[i], worley_w1[i],
-                           worley_w2[i], gamma[i])
-    r[i] = t[0]
-    g[i] = t[1]
-    b[i] = t[2]
-
-
-@wp.kernel
-def _eval_base_shape_settings_code(size: _I, perlin_octaves: _I, perlin_frequency: _I, worley_cells: _I,
-                                   worley_w0: _F, worley_w1: _F, worley_w2: _F, combination: _I, gamma: _F,
-                                   out: _I):
-    i = wp.tid()
-    out[i] = base_shape_settings_code(size[i], perlin_octaves[i], perlin_frequency[i], worley_cells[i],
-                                      worley_w0[i], worley_w1[i], worley_w2[i], combination[i], gamma[i])
+    out[i] = texgen_base_shape_settings_code(size[i], perlin_octaves[i], perlin_frequency[i], worley_cells[i],
+                                             worley_w0[i], worley_w1[i], worley_w2[i], combination[i], gamma[i])
 
 
 # --- NumPy-level helpers ----------------------------------------------------------------------------------------------
@@ -371,7 +648,7 @@ def is_pow2(n) -> np.ndarray:
 
 def base_shape_settings_codes(size, perlin_octaves, perlin_frequency, worley_cells, worley_w0, worley_w1, worley_w2,
                               combination, gamma, device=None) -> np.ndarray:
-    """Evaluate :func:`base_shape_settings_code` on NumPy arrays (no validation: any values; int32/float32)."""
+    """Evaluate :func:`texgen_base_shape_settings_code` on NumPy arrays (no validation: any values; int32/float32)."""
     from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
@@ -383,14 +660,14 @@ def base_shape_settings_codes(size, perlin_octaves, perlin_frequency, worley_cel
     n = int(math.prod(shape))
     out = wp.zeros(max(n, 1), dtype=wp.int32, device=dev)
     if n:
-        wp.launch(_eval_base_shape_settings_code, dim=n, inputs=[wp.array(a, device=dev) for a in flat],
+        wp.launch(_settings_code_kernel, dim=n, inputs=[wp.array(a, device=dev) for a in flat],
                   outputs=[out], device=dev)
     return out.numpy()[:n].reshape(shape)
 
 
 def sample_trilinear_wrap_np(tex, p, impl: str = "warp", device=None) -> np.ndarray:
     """Sample an RGBA volume ``tex`` of shape (n, n, n, 4) (n a power of two, indexed [z, y, x, c]) at texture
-    coordinates ``p`` of shape (..., 3) with :func:`sample_trilinear_wrap` (``impl="warp"``) or
+    coordinates ``p`` of shape (..., 3) with :func:`texgen_sample_trilinear_wrap` (``impl="warp"``) or
     ``ccl_texgen_sample_trilinear_wrap`` (``impl="c"``). Returns float32 (..., 4)."""
     tex = np.ascontiguousarray(tex, dtype=np.float32)
     if tex.ndim != 4 or tex.shape[3] != 4 or not (tex.shape[0] == tex.shape[1] == tex.shape[2]):
@@ -427,190 +704,3 @@ def sample_trilinear_wrap_np(tex, p, impl: str = "warp", device=None) -> np.ndar
     else:
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
     return res.reshape(p.shape[:-1] + (4,))
-
-
-# --- registry: argument domains and checks ----------------------------------------------------------------------------
-
-_COORD = 2 ** 22  # (float)i + 0.5 is exact for |i| < 2^22
-
-
-def _icoord(name):
-    return Arg(name, f"integer texel coordinate {name[-1]} (any: the texture is periodic)", lo=-_COORD, hi=_COORD,
-               dtype="int32")
-
-
-def _check_size_3d(size, **_):
-    bad = ~is_pow2(size)
-    if np.any(bad):
-        raise ValueError(f"size must be a power of two in [{MIN_SIZE}, {MAX_SIZE_3D}], "
-                         f"got {int(np.asarray(size)[bad].flat[0])}")
-
-
-def _check_lattice(name, base, octaves):
-    top = np.asarray(base, dtype=np.int64) * (2 ** (np.asarray(octaves, dtype=np.int64) - 1))
-    if np.any(top > MAX_LATTICE):
-        raise ValueError(f"{name} * 2^(octaves - 1) must be <= {MAX_LATTICE}, got {int(np.max(top))}")
-
-
-def _check_base_texel(size, perlin_octaves, perlin_frequency, **_):
-    _check_size_3d(size)
-    _check_lattice("perlin_frequency", perlin_frequency, perlin_octaves)
-
-
-_SIZE3 = Arg("size", f"texture edge, a power of two in [{MIN_SIZE}, {MAX_SIZE_3D}]", lo=MIN_SIZE, hi=MAX_SIZE_3D,
-             dtype="int32")
-_SEED = Arg("seed", "uint32 seed (Perlin: permutation of the seed, 0 = Perlin's reference; Worley layer j: seed + j)",
-            lo=0, hi=4294967295, dtype="uint32")
-_CELLS = Arg("worley_cells", "cells per texture of the lowest inverse-Worley layer (layers cells * 1, 2, 4, 8)", lo=1,
-             hi=MAX_LATTICE // 8, dtype="int32")
-_W0 = Arg("worley_w0", "fBm weight of the lowest layer in each channel's window (> 0)", lo=0.0, lo_open=True)
-_W1 = Arg("worley_w1", "fBm weight of the second layer (>= 0)", lo=0.0)
-_W2 = Arg("worley_w2", "fBm weight of the third layer (>= 0)", lo=0.0)
-_GAMMA = Arg("gamma", "gamma of vc-4.6 (> 0; 1 = identity)", lo=0.0, lo_open=True)
-
-
-def _base_texel_make_warp(eq: Equation, device):
-    """Validate like Equation.bind, then launch once per distinct seed with its permutation table."""
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-    seed_pos = [a.name for a in eq.args].index("seed")
-
-    def call(*args, **kwargs):
-        shape, arrays, opts = eq.bind(*args, **kwargs)
-        n = int(math.prod(shape))
-        flat = [np.ascontiguousarray(np.broadcast_to(a, shape).ravel()) for a in arrays]
-        seeds = flat.pop(seed_pos)
-        outs = [np.empty(n, dtype=np.float32) for _ in eq.outputs]
-        for s in (np.unique(seeds) if n else ()):
-            sel = seeds == s
-            m = int(np.count_nonzero(sel))
-            ins = [wp.array(a if m == n else a[sel], device=dev) for a in flat]
-            res = [wp.empty(m, dtype=wp.float32, device=dev) for _ in eq.outputs]
-            wp.launch(eq.kernel, dim=m, inputs=[*ins, *opts, int(s), perm_array(int(s), dev)], outputs=res,
-                      device=dev)
-            for o, r in zip(outs, res):
-                o[sel] = r.numpy()
-        out = tuple(o.reshape(shape)[()] if shape == () else o.reshape(shape) for o in outs)
-        return out[0] if len(out) == 1 else out
-
-    call.__signature__ = eq.signature()
-    return call
-
-
-# --- registry: whole-texture evaluators (settings object or keyword fields) -------------------------------------------
-
-def _settings_from_call(cls, settings, fields, what):
-    if settings is not None:
-        if fields:
-            raise TypeError(f"{what}(): pass either a {cls.__name__} or keyword fields, not both")
-        if not isinstance(settings, cls):
-            raise TypeError(f"{what}(): settings must be a {cls.__name__}, got {type(settings).__name__}")
-        return settings
-    return cls(**fields)
-
-
-def _texture_evaluator(kind: str, settings_cls_name: str, name: str):
-    def make(impl):
-        def factory(eq: Equation, device=None):
-            def call(settings=None, **fields):
-                from ..clouds import textures
-
-                cls = getattr(textures, settings_cls_name)
-                s = _settings_from_call(cls, settings, fields, name)
-                return textures.generate(kind, s, impl=impl, device=device)
-
-            return call
-
-        return factory if impl == "warp" else (lambda eq: factory(eq, None))
-
-    return make("warp"), make("c")
-
-
-_curl_warp, _curl_c = _texture_evaluator("curl_noise", "CurlNoiseSettings", "curl_noise_texture")
-_weather_warp, _weather_c = _texture_evaluator("weather_map", "WeatherMapSettings", "weather_map_texture")
-
-
-def _settings_make(impl):
-    def factory(eq: Equation, device=None):
-        def call(kind: str = "base_shape", **fields):
-            from ..clouds import textures
-
-            return textures.texture_settings(kind, impl=impl, **fields)
-
-        return call
-
-    return factory if impl == "warp" else (lambda eq: factory(eq, None))
-
-
-# --- registry ---------------------------------------------------------------------------------------------------------
-
-_REF_SV = "A. Schneider & N. Vos, The real-time volumetric cloudscapes of Horizon: Zero Dawn, SIGGRAPH 2015 course"
-_REF_GPU7 = "A. Schneider, Real-Time Volumetric Cloudscapes, GPU Pro 7, 2016"
-_REF_HILLAIRE = "S. Hillaire, TileableVolumeNoise, https://github.com/sebh/TileableVolumeNoise, 2016"
-_REF_BRIDSON = "R. Bridson, J. Hourihan & M. Nordenstam, Curl-Noise for Procedural Fluid Flow, SIGGRAPH 2007"
-
-register(Equation(
-    "vc-4.6", "texgen_gamma", "ccl_texgen_gamma", texgen_gamma, _eval_texgen_gamma,
-    args=(Arg("c", "generated noise value C", lo=0.0, hi=1.0), _GAMMA), outputs=("C",),
-    summary="Gamma correction of generated noise, C = C^(1/gamma), applied to every channel of the base and detail "
-            "textures (a shaping step, not display gamma); gamma > 1 brightens, 1 is the identity (the default of "
-            "the settings: the thesis gives none).",
-    references=()))
-
-register(Equation(
-    "vc-A9", "base_shape_texel", "ccl_texgen_base_shape_texel", base_shape_texel, _eval_base_shape_texel,
-    args=(_icoord("ix"), _icoord("iy"), _icoord("iz"), _SIZE3, _SEED,
-          Arg("perlin_octaves", "Perlin fBm octaves", lo=1, hi=MAX_OCTAVES, dtype="int32"),
-          Arg("perlin_frequency", "Perlin lattice cells per texture (octave 0); period = frequency", lo=1,
-              hi=MAX_LATTICE, dtype="int32"),
-          _CELLS, _W0, _W1, _W2, _GAMMA),
-    options=(COMBINATION,), outputs=("R", "G", "B", "A"), check=_check_base_texel, make_warp=_base_texel_make_warp,
-    summary="One texel (ix, iy, iz) of the base-shape texture (128^3 RGBA in the thesis), texture coordinate "
-            "(i + 0.5)/size. G, B, A: four inverse-Worley layers (cells worley_cells * 2^j, seed + j) mapped to three "
-            "channels by a sliding fBm window (G = W0..W2, B = W1..W3, A = W2..W3 renormalised; the thesis leaves "
-            "the mapping open). R: noise_perlin_worley(P, G, combination) with P = clamp(0.5 fBm_Perlin + 0.5) "
-            "(vc-A8; default 'thesis' = remap(P, 0, 1, W, 1)^2). All channels clamped to [0, 1], then gamma "
-            "(vc-4.6). Exactly periodic: texel(i + size) == texel(i). Whole texture: pywarp.clouds.textures "
-            "(BasicTextureGenerator.base_shape, ccl_texgen_base_shape).",
-    references=(_REF_SV, _REF_GPU7, _REF_HILLAIRE)))
-
-register(Equation(
-    "vc-A10", "detail_shape_texel", "ccl_texgen_detail_shape_texel", detail_shape_texel, _eval_detail_shape_texel,
-    args=(_icoord("ix"), _icoord("iy"), _icoord("iz"), _SIZE3, _SEED, _CELLS, _W0, _W1, _W2, _GAMMA),
-    outputs=("R", "G", "B"), check=lambda size, **_: _check_size_3d(size),
-    summary="One texel of the detail (erosion) texture (32^3 RGB in the thesis): R, G, B = inverse-Worley fBm of "
-            "increasing frequency by the same sliding window as vc-A9 (R = W0..W2, G = W1..W3, B = W2..W3), "
-            "clamped, gamma-corrected (vc-4.6). With weights 1, 1/2, 1/4 a channel equals noise_fbm_worley3 "
-            "(vc-A6) of three octaves. Whole texture: BasicTextureGenerator.detail_shape / ccl_texgen_detail_shape.",
-    references=(_REF_SV, _REF_HILLAIRE)))
-
-register(Equation(
-    "vc-A11", "curl_noise_texture", "ccl_texgen_curl_noise", curl_noise_texel, _curl_noise_kernel,
-    make_warp=_curl_warp, make_c=_curl_c, outputs=("curl",),
-    summary="The 2-D curl-noise texture, generated (the thesis loads a shipped file): texel (ix, iy) = "
-            "noise_curl2 = (dpsi/dy, -dpsi/dx) of Perlin noise psi at (u, v) * frequency with period = frequency "
-            "(vc-A7 reading (i), divergence-free, exactly tileable), 2 channels in noise-lattice units. Call with a "
-            "CurlNoiseSettings or its fields as keywords; returns float32 (size, size, 2) indexed [iy, ix].",
-    references=(_REF_BRIDSON,)))
-
-register(Equation(
-    "vc-A12", "weather_map_texture", "ccl_texgen_weather_map", weather_map_texel, _weather_map_kernel,
-    make_warp=_weather_warp, make_c=_weather_c, outputs=("weather",),
-    summary="Procedural weather map (the thesis loads a shipped file): R = coverage = clamp(remap(n, 1 - c, 1, 0, "
-            "1)) of a tileable Perlin-Worley noise n and the global coverage c; G = precipitation (the spec's "
-            "reading of the 'blue twice' erratum) from an independent Perlin fBm; B = cloud type = cloud_type + "
-            "cloud_type_variation (2 P - 1) clamped; A = 0 (free). Call with a WeatherMapSettings or its fields; "
-            "returns float32 (size, size, 4). Images: pywarp.clouds.textures.WeatherMap.from_image.",
-    references=(_REF_SV, _REF_GPU7)))
-
-register(Equation(
-    "vc-A13", "texture_settings", "ccl_base_shape_settings_check", base_shape_settings_code,
-    _eval_base_shape_settings_code, make_warp=_settings_make("warp"), make_c=_settings_make("c"),
-    outputs=("settings",),
-    summary="The generator settings BaseShapeSettings, DetailShapeSettings (+ CurlNoiseSettings, "
-            "WeatherMapSettings) with documented defaults (the thesis gives none). texture_settings(kind, **fields) "
-            "returns the validated dataclass (kind 'base_shape', 'detail_shape', 'curl_noise', 'weather_map'); "
-            "impl='c' validates with ccl_<kind>_settings_check instead. Bad fields raise ValueError naming the "
-            "field. Warp twin: base_shape_settings_code (the C check's field order).",
-    references=()))

@@ -86,8 +86,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     NX, NY = np.meshgrid(gn, gn)
 
     def curl_noise(x, y):
-        vx, vy = pywarp.noise_curl2(x, y)  # seed 0, h = 1/256 (defaults)
-        return vx.astype(np.float64), vy.astype(np.float64)
+        v = pywarp.noise_curl2(x, y).astype(np.float64)  # seed 0, h = 1/256 (defaults); shape (..., 2)
+        return v[..., 0], v[..., 1]
 
     div = div_central(curl_noise, NX, NY, h=h)
     ax.imshow(div, cmap="PuOr_r", vmin=-vlim, vmax=vlim, origin="lower", extent=(0, L, 0, L))

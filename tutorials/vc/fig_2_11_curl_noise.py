@@ -61,11 +61,12 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     # %%
     def perlin2d(x, y):
-        return pywarp.noise_curl2(x, y)  # seed 0, h = 1/256 lattice units (defaults)
+        v = pywarp.noise_curl2(x, y)  # seed 0, h = 1/256 lattice units (defaults); shape (..., 2)
+        return v[..., 0], v[..., 1]
 
     def perlin3d(x, y):
-        vx, vy, vz = pywarp.noise_curl3(x, y, z3)
-        return vx, vy, vz
+        v = pywarp.noise_curl3(x, y, z3)  # shape (..., 3)
+        return v[..., 0], v[..., 1], v[..., 2]
 
     # %% [markdown]
     # (c): Worley noise as the stream function. Coordinates are in cells; the noise has period 1, so the library

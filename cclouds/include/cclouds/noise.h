@@ -93,15 +93,14 @@ CCL_API float ccl_noise_perlin2_perm(float x, float y, const uint8_t *perm, int3
 /* 2-D Perlin gradient noise for a seed. Ref: vc-A1. See ccl_noise_perlin2_perm. */
 CCL_API float ccl_noise_perlin2(float x, float y, uint32_t seed, int32_t period, ccl_noise_interp interp);
 
-/* ---- Worley cellular noise (vc-A3, vc-A4, vc-A5) ------------------------------------------------------------------ */
+/* ---- Worley cellular noise (vc-A3, vc-A4, vc-A5) ----------------------------------------------------------------- */
 
 /* Feature point of lattice cell (ix, iy, iz) of a Worley lattice with `cells` cells per unit: the cell index is
  * wrapped modulo `cells` and hashed with the seed, h0 = H(wx + H(wy + H(wz + H(seed)))), h1 = H(h0), h2 = H(h1)
- * (H = ccl_hash_pcg); the offsets inside the cell are (h >> 9) / 2^23 in [0, 1). Writes the offsets (cell units)
- * through out_x, out_y, out_z; the feature point lies at ((ix + out_x) / cells, ...) in noise coordinates.
+ * (H = ccl_hash_pcg); the offsets inside the cell are (h >> 9) / 2^23 in [0, 1). Returns the offsets o (cell units,
+ * each in [0, 1)); the feature point lies at ((ix + o.x) / cells, ...) in noise coordinates.
  * Ref: vc-A3 step 1 (one feature point per cell). cells >= 1. */
-CCL_API void ccl_noise_worley_feature(int32_t ix, int32_t iy, int32_t iz, int32_t cells, uint32_t seed,
-                                      float *out_x, float *out_y, float *out_z);
+CCL_API ccl_vec3 ccl_noise_worley_feature(int32_t ix, int32_t iy, int32_t iz, int32_t cells, uint32_t seed);
 
 /* Worley (cellular) noise F1, periodic with period 1 on every axis. Ref: vc-A3 (Worley 1996), vc-A4 (metric,
  * inverse), vc-A5 (tileable).
@@ -126,7 +125,7 @@ CCL_API void ccl_noise_worley3_variants(float x, float y, float z, int32_t cells
 CCL_API float ccl_noise_worley3_bruteforce(float x, float y, float z, int32_t cells, uint32_t seed,
                                            ccl_worley_metric metric, int inverse);
 
-/* ---- fBm (vc-2.21, vc-A6) ----------------------------------------------------------------------------------------- */
+/* ---- fBm (vc-2.21, vc-A6) -------------------------------------------------------------------------------------- */
 
 /* fBm of Perlin noise N_s(p) = sum_i w_i N(f_i p) / sum_i w_i, i = 0 .. octaves-1, with f_0 = frequency,
  * f_i = 2 f_{i-1}, w_0 = 1, w_i = w_{i-1} / 2 (vc-2.21 with the octave rules of vc-A6). Normalised by the sum of the
@@ -154,16 +153,16 @@ CCL_API float ccl_noise_fbm_worley3(float x, float y, float z, int32_t octaves, 
  * psi(p) = (N(p), N(p + o1), N(p + o2)) with the large offsets o1 = (100.25, -57.75, 33.5),
  * o2 = (-41.5, 88.25, -119.75) (lattice units; non-integer so the three components are not lattice-aligned). */
 
-/* Gradient nabla N = (dN/dx, dN/dy, dN/dz) of Perlin noise by central differences. Ref: vc-2.22. h in (0, 0.25]. */
-CCL_API void ccl_noise_gradient3(float x, float y, float z, uint32_t seed, int32_t period, float h, float *out_x,
-                                 float *out_y, float *out_z);
+/* Gradient nabla N = (dN/dx, dN/dy, dN/dz) of Perlin noise by central differences, returned as a vector (lattice
+ * units^-1). Ref: vc-2.22. x, y, z: position (lattice units); seed, period as ccl_noise_perlin3; h in (0, 0.25]. */
+CCL_API ccl_vec3 ccl_noise_gradient3(float x, float y, float z, uint32_t seed, int32_t period, float h);
 
-/* Curl noise, 3-D reading: v = nabla x psi (vc-2.23) of the offset Perlin potential psi (see above).
- * Ref: vc-2.23, vc-A7 reading (ii) (Bridson, Hourihan & Nordenstam 2007). Divergence-free (vc-2.26). */
-CCL_API void ccl_noise_curl3_perm(float x, float y, float z, const uint8_t *perm, int32_t period, float h,
-                                  float *out_x, float *out_y, float *out_z);
-CCL_API void ccl_noise_curl3(float x, float y, float z, uint32_t seed, int32_t period, float h, float *out_x,
-                             float *out_y, float *out_z);
+/* Curl noise, 3-D reading: v = nabla x psi (vc-2.23) of the offset Perlin potential psi (see above), returned as a
+ * vector (components of the order of 1-5). Ref: vc-2.23, vc-A7 reading (ii) (Bridson, Hourihan & Nordenstam 2007).
+ * Divergence-free (vc-2.26). x, y, z: position (lattice units); seed (or the table perm), period as
+ * ccl_noise_perlin3; h in (0, 0.25]. */
+CCL_API ccl_vec3 ccl_noise_curl3_perm(float x, float y, float z, const uint8_t *perm, int32_t period, float h);
+CCL_API ccl_vec3 ccl_noise_curl3(float x, float y, float z, uint32_t seed, int32_t period, float h);
 
 /* 2-D curl (scalar circulation density) dF_y/dx - dF_x/dy of the planar noise field F = (N(p), N(p + o1)),
  * p = (x, y, 0) -- the literal reading of the thesis' "evaluate twice with a large offset, take the curl", which
@@ -181,11 +180,11 @@ CCL_API float ccl_noise_divergence3(float x, float y, float z, uint32_t seed, in
 CCL_API float ccl_noise_curl_property(float x, float y, float z, uint32_t seed, int32_t period, float h,
                                       ccl_variant variant);
 
-/* Curl noise, 2-D reading: v = (dpsi/dy, -dpsi/dx) of the stream function psi = perlin3(x, y, 0). Tangent to the
- * level sets of psi and divergence-free. Ref: vc-A7 reading (i) (Bridson et al. 2007, 2-D). */
-CCL_API void ccl_noise_curl2_perm(float x, float y, const uint8_t *perm, int32_t period, float h, float *out_x,
-                                  float *out_y);
-CCL_API void ccl_noise_curl2(float x, float y, uint32_t seed, int32_t period, float h, float *out_x, float *out_y);
+/* Curl noise, 2-D reading: v = (dpsi/dy, -dpsi/dx) of the stream function psi = perlin3(x, y, 0), returned as a
+ * 2-vector. Tangent to the level sets of psi and divergence-free. Ref: vc-A7 reading (i) (Bridson et al. 2007, 2-D).
+ * x, y: position (lattice units); seed (or the table perm), period as ccl_noise_perlin3; h in (0, 0.25]. */
+CCL_API ccl_vec2 ccl_noise_curl2_perm(float x, float y, const uint8_t *perm, int32_t period, float h);
+CCL_API ccl_vec2 ccl_noise_curl2(float x, float y, uint32_t seed, int32_t period, float h);
 
 /* ---- Perlin-Worley combination (vc-A8) ------------------------------------------------------------------------- */
 

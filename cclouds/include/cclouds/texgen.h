@@ -45,7 +45,7 @@ extern "C" {
 #define CCL_TEXGEN_MAX_LATTICE 4096    /* highest lattice frequency: frequency * 2^(octaves - 1), worley_cells * 8 */
 
 /* Settings of the base-shape texture (vc-A9, vc-A13 "BaseShapeSettings"; the thesis gives no default values).
- * Defaults (ccl_base_shape_settings_default), with the reasons:
+ * Defaults (ccl_texgen_base_shape_settings_default), with the reasons:
  *   size 128              -- vc-A9 (128^3 RGBA).
  *   seed 0                -- Perlin's reference permutation for the Perlin part.
  *   perlin_octaves 3      -- Hillaire's TileableVolumeNoise (the EA code adopted by the thesis) uses 3 octaves.
@@ -134,25 +134,25 @@ CCL_API float ccl_texgen_gamma(float c, float gamma);
 /* ---- settings (vc-A13) ------------------------------------------------------------------------------------------- */
 
 /* Documented defaults (see the struct comments for the reasons). Ref: vc-A13. */
-CCL_API ccl_base_shape_settings ccl_base_shape_settings_default(void);
-CCL_API ccl_detail_shape_settings ccl_detail_shape_settings_default(void);
-CCL_API ccl_curl_noise_settings ccl_curl_noise_settings_default(void);
-CCL_API ccl_weather_map_settings ccl_weather_map_settings_default(void);
+CCL_API ccl_base_shape_settings ccl_texgen_base_shape_settings_default(void);
+CCL_API ccl_detail_shape_settings ccl_texgen_detail_shape_settings_default(void);
+CCL_API ccl_curl_noise_settings ccl_texgen_curl_noise_settings_default(void);
+CCL_API ccl_weather_map_settings ccl_texgen_weather_map_settings_default(void);
 
 /* Validate settings: CCL_OK, or CCL_EINVAL with *out_field = the name of the first invalid field (the C struct field
  * name, e.g. "size", "worley_weights", "gamma"); *out_field = NULL when valid. s == NULL gives CCL_EINVAL and "s".
  * out_field may be NULL. Ref: vc-A13. */
-CCL_API ccl_status ccl_base_shape_settings_check(const ccl_base_shape_settings *s, const char **out_field);
-CCL_API ccl_status ccl_detail_shape_settings_check(const ccl_detail_shape_settings *s, const char **out_field);
-CCL_API ccl_status ccl_curl_noise_settings_check(const ccl_curl_noise_settings *s, const char **out_field);
-CCL_API ccl_status ccl_weather_map_settings_check(const ccl_weather_map_settings *s, const char **out_field);
+CCL_API ccl_status ccl_texgen_base_shape_settings_check(const ccl_base_shape_settings *s, const char **out_field);
+CCL_API ccl_status ccl_texgen_detail_shape_settings_check(const ccl_detail_shape_settings *s, const char **out_field);
+CCL_API ccl_status ccl_texgen_curl_noise_settings_check(const ccl_curl_noise_settings *s, const char **out_field);
+CCL_API ccl_status ccl_texgen_weather_map_settings_check(const ccl_weather_map_settings *s, const char **out_field);
 
 /* ---- single texels (element-wise forms) -------------------------------------------------------------------------- */
 
 /* One texel (ix, iy, iz) of the base-shape texture (vc-A9, vc-A8, vc-4.6); the arguments are the fields of
  * ccl_base_shape_settings (see there and the header comment). Integer coordinates may be any int32 (the texture is
  * periodic). Rebuilds the permutation table of `seed` on each call (~1 us): the whole-texture function builds it once.
- * Writes R, G, B, A in [0, 1]. Domain: as ccl_base_shape_settings_check (asserted in debug builds). */
+ * Writes R, G, B, A in [0, 1]. Domain: as ccl_texgen_base_shape_settings_check (asserted in debug builds). */
 CCL_API void ccl_texgen_base_shape_texel(int32_t ix, int32_t iy, int32_t iz, int32_t size, uint32_t seed,
                                          int32_t perlin_octaves, int32_t perlin_frequency, int32_t worley_cells,
                                          float worley_w0, float worley_w1, float worley_w2, float gamma,
