@@ -94,7 +94,7 @@ def cmd_figures(args) -> int:
     written = figures.run(paths, Path(args.out), quick=args.quick, progress=not args.no_progress, failures=failures)
     print(f"{len(written)} figure files from {len(paths) - len(failures)} tutorials written under {args.out}")
     for path, exc in failures:
-        print(f"pywarp: error: {path.name}: {type(exc).__name__}: {exc}", file=sys.stderr)
+        print(f"pywarp figures: error: {path.name}: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
     return 1 if failures else 0
 
 

@@ -70,7 +70,7 @@ def test_cli_figures_only_and_bad_selection(tmp_path):
     res = subprocess.run([sys.executable, "-m", "pywarp", "figures", "--only", "fig-9.99", "--out", str(tmp_path)],
                          capture_output=True, text=True)
     assert res.returncode == 2
-    assert res.stderr.strip().splitlines()[-1] == "pywarp: error: --only: no tutorial reproduces fig-9.99"
+    assert res.stderr.strip().splitlines()[-1] == "pywarp figures: error: --only: no tutorial reproduces fig-9.99"
 
 
 def test_figure_index_is_up_to_date():
