@@ -229,9 +229,9 @@ def _samples_max_check(obj, name, v):
 
 def _advanced_check(obj, name, v):
     if v:
-        from .cloudscape import _check_params, param_values  # the C check of ccl_cloudscape_params
+        from .cparams import check_params, param_values  # the C check of ccl_cloudscape_params
 
-        _check_params(param_values(obj))
+        check_params(param_values(obj))
 
 
 _NOTHING = "nothing"

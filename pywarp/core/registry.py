@@ -314,7 +314,7 @@ _REGISTRY: dict[str, Equation] = {}
 
 
 def register(eq: Equation) -> Equation:
-    """Add an entry under each of its IDs (normally through :func:`declare`)."""
+    """Add an entry under each of its IDs (called by :func:`declare`)."""
     for cid in eq.ids:
         if cid in _REGISTRY:
             raise RuntimeError(f"{cid} registered twice ({_REGISTRY[cid].name} and {eq.name})")
@@ -504,8 +504,6 @@ def _flat(arg: Arg, x: np.ndarray, shape: tuple) -> np.ndarray:
 def _warp_eval(eq: Equation, device: str | None):
     import warp as wp
 
-    if _legacy(eq):
-        return _legacy_warp_eval(eq, device)
 
     from .runtime import resolve_device
 
@@ -582,8 +580,6 @@ def _c_eval(eq: Equation):
 
     if eq.c_symbol is None:
         raise NotImplementedError(f"{eq.id} has no C implementation")
-    if _legacy(eq):
-        return _legacy_c_eval(eq)
     f, lb = _ffi(), _lib()
     fn = getattr(lb, eq.c_symbol)
     n_ptr, ret_first, status = c_layout(eq)
@@ -636,9 +632,9 @@ def equation(cid: str, impl: str = "warp", device: str | None = None) -> Callabl
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
     eq = get(cid)
     if impl == "warp":
-        fn = eq.make_warp(eq, device) if eq.make_warp else (_legacy_warp_eval if _legacy(eq) else _warp_eval)(eq, device)
+        fn = eq.make_warp(eq, device) if eq.make_warp else _warp_eval(eq, device)
     else:
-        fn = eq.make_c(eq) if eq.make_c else (_legacy_c_eval if _legacy(eq) else _c_eval)(eq)
+        fn = eq.make_c(eq) if eq.make_c else _c_eval(eq)
     fn.__name__ = eq.name
     fn.__qualname__ = eq.name
     fn.__doc__ = eq.docstring()
@@ -664,47 +660,3 @@ def missing(seed: str | None = None, computational: bool | None = None) -> list[
         rows.append((cid, {**e, "reason": not_computational_reason(cid)}))
     return rows
 
-
-# --- transitional: entries registered with a hand-written kernel (removed once every module uses @declare) ---------
-
-def _legacy(eq: Equation) -> bool:
-    return eq.kernel is not None and not eq.out_specs
-
-
-def _legacy_warp_eval(eq: Equation, device: str | None):
-    import warp as wp
-
-    from .runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def call(*args, **kwargs):
-        shape, arrays, opts = eq.bind(*args, **kwargs)
-        n = int(math.prod(shape))
-        outs_np = [np.empty(n, dtype=np.float32) for _ in eq.outputs]
-        if n:
-            ins = [wp.array(np.ascontiguousarray(np.broadcast_to(a, shape).ravel()), device=dev) for a in arrays]
-            outs = [wp.empty(n, dtype=wp.float32, device=dev) for _ in eq.outputs]
-            wp.launch(eq.kernel, dim=n, inputs=[*ins, *opts], outputs=outs, device=dev)
-            outs_np = [o.numpy() for o in outs]
-        res = tuple(o.reshape(shape)[()] if shape == () else o.reshape(shape) for o in outs_np)
-        return res[0] if len(res) == 1 else res
-
-    return call
-
-
-def _legacy_c_eval(eq: Equation):
-    from .binding import vectorize
-
-    def call(*args, **kwargs):
-        shape, arrays, opts = eq.bind(*args, **kwargs)
-        fn = vectorize(eq.c_symbol, n_out=len(eq.outputs), out_pointers=eq.extra.get("c_out_pointers"),
-                       extra=tuple(opts))
-        res = fn(*arrays) if arrays else fn()
-        if len(eq.outputs) == 1:
-            res = (res,)
-        res = tuple(np.asarray(r, dtype=np.float32).reshape(shape) for r in res)
-        res = tuple(r[()] if shape == () else r for r in res)
-        return res[0] if len(res) == 1 else res
-
-    return call

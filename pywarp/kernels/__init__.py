@@ -1,7 +1,8 @@
 """Warp twins of the cclouds C headers: ``pywarp/kernels/<topic>.py`` mirrors ``cclouds/include/cclouds/<topic>.h``.
 
 Each topic module defines ``@wp.func`` functions with the C names minus the ``ccl_`` prefix (usable from your own
-kernels), one element-wise ``@wp.kernel`` per function for NumPy evaluation, and registers its catalogue entries.
+kernels), each declared once with its catalogue ID(s) by ``@declare`` (``pywarp.core.registry``), which generates
+the element-wise evaluation kernel.
 Every topic module is one Warp module, compiled once and cached on disk.
 """
 from __future__ import annotations

@@ -482,7 +482,8 @@ def _lattice_ok(base: int, octaves: int) -> int:
 
 # A settings object (a struct in C), not element-wise values: custom evaluators. The Warp twin checks the fields in
 # the order of the C check; pywarp.clouds.settings builds the settings dataclasses (vc-A13) and their defaults.
-@declare("vc-A13", c="ccl_texgen_base_shape_settings_check", make_warp=_settings_check_make("warp"),
+@declare("vc-A13", c="ccl_texgen_base_shape_settings_check", name="texgen_base_shape_settings_check",
+         make_warp=_settings_check_make("warp"),
          make_c=_settings_check_make("c"), outputs=("field",),
          summary="Validation of the base-shape generator settings (BaseShapeSettings of vc-A13; the thesis gives no "
                  "values -- the documented defaults are in pywarp.clouds.settings and ccl_texgen_<kind>_settings_"
