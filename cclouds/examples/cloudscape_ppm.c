@@ -79,8 +79,13 @@ int main(int argc, char **argv)
 
     ccl_cloudscape_params_default(&params);
     sky.kind = CCL_SKY_PREETHAM;
-    ccl_sky_sun_direction(35.0f, 150.0f, &sky.sun[0], &sky.sun[1], &sky.sun[2]);
-    if (ccl_preetham_init(2.5f, 0.9599311f /* 90 - 35 degrees */, 0.05f, CCL_VARIANT_CORRECTED, &sky.preetham) ||
+    {
+        const ccl_vec3 s = ccl_sky_sun_direction(35.0f, 150.0f);
+        sky.sun[0] = s.x;
+        sky.sun[1] = s.y;
+        sky.sun[2] = s.z;
+    }
+    if (ccl_sky_preetham_init(2.5f, 0.9599311f /* 90 - 35 degrees */, 0.05f, CCL_VARIANT_CORRECTED, &sky.preetham) ||
         ccl_camera_look_at(eye, target, up, 1.0471976f /* 60 degrees */, (float)width / (float)height, 0.01f,
                            1000.0f, &cam) ||
         ccl_cloudscape_render(&params, &tex, &sky, &cam, width, height, 0, img, (size_t)width * height * 3u)) {
