@@ -19,5 +19,7 @@
 #include "cclouds/sky.h"
 #include "cclouds/reproj.h"
 #include "cclouds/cloudscape.h"
+#include "cclouds/valuenoise.h"
+#include "cclouds/voxel.h"
 
 #endif /* CCLOUDS_CCLOUDS_H */
