@@ -21,5 +21,7 @@
 #include "cclouds/cloudscape.h"
 #include "cclouds/valuenoise.h"
 #include "cclouds/voxel.h"
+#include "cclouds/flight.h"
+#include "cclouds/volume.h"
 
 #endif /* CCLOUDS_CCLOUDS_H */

@@ -1,0 +1,150 @@
+/*
+ * cclouds/volume.h -- volume rendering of uint8 cloud volumes in a sky: the stand-in for SimVoleon, the Coin3D
+ * extension the oc text displays its cloud arrays with (§1, §5.2.1), plus the two survey methods the text describes
+ * without formulas, in kind: metaballs (oc-4.2) and textured ellipsoids (oc-4.3). pywarp/kernels/volume.py mirrors
+ * every function operation by operation; the tests compare the two at sampled pixels.
+ *
+ * A scene is a sky, a flat ground, up to CCL_VOLUME_MAX_GRIDS cloud boxes and optionally the aircraft of
+ * cclouds/flight.h. World units are metres, y up.
+ *
+ * A grid (ccl_volume_grid) is an nx x ny x nz uint8 array, index (z * ny + y) * nx + x ([z][y][x], NumPy's C order of
+ * an array of shape (nz, ny, nx)); 0 = invisible ... 255 = opaque (oc-5.2.1), placed in an axis-aligned box from
+ * origin to origin + extent: the per-axis extents are the scaling of oc-5.2.3-scale. The march works in VOXEL space
+ * (v = (x - origin) * n / extent per axis, voxel centres at i + 0.5), so a stretched cloud keeps its optical depth
+ * across (its matter is spread, not multiplied).
+ *
+ * One pixel (ccl_volume_pixel):
+ *   d      = ccl_camera_ray(pixel); jitter j = ccl_hash_unit(ccl_hash_pcg(x + 65536 y)) when p->jitter, else 0.5
+ *   t_hit  = the aircraft's distance along d (sphere tracing of ccl_flight_aircraft, <= CCL_VOLUME_AIRCRAFT_STEPS
+ *            steps inside its bounding sphere), +inf if missed
+ *   B      = background: the shaded aircraft at t_hit, else the ground where d.y < 0 (fogged), else the sky
+ *   grids  = visited in the order of their entry distance along d (ties: lower index first); each one marched alone
+ *            from max(t_enter, 0) to min(t_exit, t_hit) with step dt = step_voxels / |d_v| (d_v = d in voxel space),
+ *            at most max_steps samples, sample k at t_enter + (k + j) dt:
+ *              rho   = trilinear density / 255;  skip when 0
+ *              alpha = 1 - exp(-tau_per_voxel * rho * step_voxels)
+ *              L     = sun_colour * T_sun * 4 pi HG(dot(d, sun), g) + mix(ambient_bottom, ambient_top, v.y / ny)
+ *                      with T_sun the trilinear sample of the grid's precomputed light volume (ccl_volume_light)
+ *              C    += T alpha L;  T *= 1 - alpha;  stop when T < exit_transmittance
+ *            then aerial fog on the grid's part: f = exp(-max(t_enter, 0) / fog_distance);
+ *            C_total += T_total (f C + (1 - f)(1 - T) sky_horizon),  T_total *= T
+ *   colour = C_total + T_total B (display-linear; the image kernels clamp to [0, 1] and encode sRGB).
+ * Boxes that overlap are composited one after the other (not interleaved): place clouds in separate boxes.
+ * Simple sun lighting, documented: single scattering of the sun attenuated inside the cloud's own box only (no
+ * cloud shadows on other clouds, the ground or the aircraft), a Henyey-Greenstein phase, a height-graded ambient
+ * term standing in for the sky light; the ground and the aircraft are Lambertian.
+ */
+#ifndef CCLOUDS_VOLUME_H
+#define CCLOUDS_VOLUME_H
+
+#include "cclouds/camera.h"
+#include "cclouds/common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define CCL_VOLUME_MAX_GRIDS 16
+#define CCL_VOLUME_AIRCRAFT_STEPS 64
+
+/* One cloud volume placed in the world (not owned). */
+typedef struct ccl_volume_grid {
+    const unsigned char *density; /* nx * ny * nz voxels [z][y][x]: 0 invisible ... 255 opaque */
+    const float *light;           /* the same layout: transmittance towards the sun in [0, 1] (ccl_volume_light) */
+    int nx, ny, nz;               /* >= 1 */
+    ccl_vec3 origin;              /* world position of the box's minimum corner [m] */
+    ccl_vec3 extent;              /* world size of the box per axis [m], > 0 */
+} ccl_volume_grid;
+
+/* Everything else of a frame (defaults and reasons: ccl_volume_params_default, volume.c). */
+typedef struct ccl_volume_params {
+    ccl_vec3 sun;               /* unit vector towards the sun */
+    ccl_vec3 sun_colour;        /* direct sunlight, display-linear */
+    ccl_vec3 ambient_top;       /* ambient light at the top of a cloud box (and on the aircraft from above) */
+    ccl_vec3 ambient_bottom;    /* ambient light at the bottom of a cloud box */
+    ccl_vec3 sky_zenith;        /* sky colour straight up */
+    ccl_vec3 sky_horizon;       /* sky colour at the horizon; also the colour of the aerial fog */
+    ccl_vec3 ground_a;          /* the two colours the fields of the ground are mixed from */
+    ccl_vec3 ground_b;
+    float sun_glow;             /* strength of the glow around the sun in the sky */
+    float sun_glow_power;       /* its falloff: glow * max(dot(d, sun), 0)^power */
+    float field_size;           /* edge of one field of the ground pattern [m] */
+    float fog_distance;         /* e-folding distance of the aerial fog [m] */
+    float tau_per_voxel;        /* optical depth of one voxel length at density 255, view rays */
+    float light_tau_per_voxel;  /* the same towards the sun (ccl_volume_light) */
+    float step_voxels;          /* view-ray step in voxel lengths */
+    float light_step_voxels;    /* light-ray step in voxel lengths (ccl_volume_light) */
+    float exit_transmittance;   /* early ray termination below this transmittance */
+    int max_steps;              /* most samples per grid and ray */
+    float g;                    /* Henyey-Greenstein asymmetry of the cloud phase function, (-1, 1) */
+    int jitter;                 /* 1: per-pixel hashed start offset (no slicing artefacts); 0: midpoints */
+    int aircraft;               /* 1: draw the aircraft of ccl_flight_aircraft */
+    ccl_vec3 aircraft_position; /* its centre of gravity E [m] */
+    ccl_vec3 aircraft_forward;  /* body axes (ccl_flight_axes), orthonormal */
+    ccl_vec3 aircraft_right;
+    ccl_vec3 aircraft_up;
+    float aircraft_scale;       /* world metres per model metre, > 0 */
+} ccl_volume_params;
+
+/* The documented defaults (reasons in volume.c). */
+CCL_API void ccl_volume_params_default(ccl_volume_params *out);
+
+/* Validate parameters and grids (count in [0, CCL_VOLUME_MAX_GRIDS], sizes >= 1, extents > 0, non-NULL arrays, unit
+ * sun and axes, finite values, steps > 0, max_steps in [1, 100000], g in (-1, 1)). Returns CCL_OK or CCL_EINVAL
+ * with *out_field = the first bad field (static string; out_field may be NULL). */
+CCL_API ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume_grid *grids, int count,
+                                    const char **out_field);
+
+/* Trilinear sample of a uint8 grid at a voxel-space position v (voxel centres at i + 0.5, indices clamped to the
+ * grid), divided by 255: in [0, 1]. */
+CCL_API float ccl_volume_sample(const unsigned char *density, int nx, int ny, int nz, ccl_vec3 v);
+
+/* The same for a float grid (the light volume). */
+CCL_API float ccl_volume_sample_float(const float *values, int nx, int ny, int nz, ccl_vec3 v);
+
+/* Entry and exit of the ray eye + t dir through the grid's box (slab test in voxel space; t in world units along
+ * dir, which need not be unit). Returns 1 and *out_t0 <= *out_t1 when the line meets the box with t1 > 0, else 0. */
+CCL_API int ccl_volume_box(const ccl_volume_grid *grid, ccl_vec3 eye, ccl_vec3 dir, float *out_t0, float *out_t1);
+
+/* Light volume of one grid: for every voxel centre, exp(-light_tau_per_voxel * sum rho * light_step_voxels) over
+ * samples k = 1, 2, ... at (k) light_step_voxels towards the sun in voxel space until the box is left (the
+ * precomputation the text proposes as a speed-up, §7: the lighting does not change while the sun and the cloud do
+ * not). grid->light is ignored; out_light holds nx * ny * nz floats. Returns CCL_EINVAL for a bad grid or
+ * parameters, CCL_OK otherwise. */
+CCL_API ccl_status ccl_volume_light(const ccl_volume_params *p, const ccl_volume_grid *grid, float *out_light,
+                                    size_t out_len);
+
+/* The sky colour in direction d (unit): sky_horizon + (sky_zenith - sky_horizon) sqrt(max(d.y, 0)) + sun_colour
+ * sun_glow max(dot(d, sun), 0)^sun_glow_power. Display-linear. */
+CCL_API ccl_vec3 ccl_volume_sky(const ccl_volume_params *p, ccl_vec3 d);
+
+/* The background of a ray without clouds: the aircraft (when hit), else the ground (d.y < 0 and eye.y > 0: field
+ * colour mix(ground_a, ground_b, ccl_hash_unit(hash of the field cell)) lit by (0.35 + 0.65 max(sun.y, 0)) and
+ * fogged towards sky_horizon by exp(-t / fog_distance)), else ccl_volume_sky. *out_t: the distance of the aircraft
+ * hit (the clouds are marched up to it) or +inf. Display-linear. */
+CCL_API ccl_vec3 ccl_volume_background(const ccl_volume_params *p, ccl_vec3 eye, ccl_vec3 d, float *out_t);
+
+/* The display-linear colour of pixel (x, y) of a width x height frame (see the top of this header). grids[count]
+ * with their light volumes; inputs must have passed ccl_volume_check. out_rgb[3]. */
+CCL_API void ccl_volume_pixel(const ccl_volume_params *p, const ccl_volume_grid *grids, int count,
+                              const ccl_camera *cam, int x, int y, int width, int height, float *out_rgb);
+
+/* Metaball field contribution of one source (Ref: oc-4.2: sources with a centre, a radius and a strength; the text
+ * gives no field function: Wyvill's soft-object kernel is used, strength (1 - r^2/R^2)^3 for r < R, else 0).
+ * distance r >= 0 from the source's centre, radius R > 0, strength any finite; returns the contribution, between 0
+ * and strength. A cloud base is the sum over the sources, thresholded. */
+CCL_API float ccl_volume_metaball(float distance, float radius, float strength);
+
+/* Opacity of a textured ellipsoid (Ref: oc-4.3, Gardner 1985's translucency; the text gives no formulas). p: the
+ * point relative to the ellipsoid's centre [m]; radii > 0 its semi-axes; texture in [0, 1] the texturing function
+ * at p (Perlin/value-noise fBm standing in for Gardner's sum of sines, as the text suggests); threshold t1 and ramp
+ * d > 0: with q = |p / radii|^2 and g = 1 - q (1 at the centre, 0 on the surface), opacity =
+ * clamp((texture - t1 - d (1 - g)) / d, 0, 1): the texture decides the inside, and the edge is eaten away towards
+ * the surface. Returns the opacity in [0, 1]. */
+CCL_API float ccl_volume_ellipsoid(ccl_vec3 p, ccl_vec3 radii, float texture, float threshold, float ramp);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CCLOUDS_VOLUME_H */

@@ -1,0 +1,754 @@
+"""Volume rendering of uint8 cloud volumes in a sky -- Warp twins of ``cclouds/volume.h``, the stand-in for SimVoleon
+(the Coin3D volume renderer of the oc text), and the survey extras metaballs (oc-4.2) and textured ellipsoids
+(oc-4.3).
+
+The pixel (``ccl_volume_pixel``, :func:`volume_pixel`): camera ray; the aircraft (sphere tracing of
+:func:`pywarp.kernels.flight.flight_aircraft`), else the fogged ground, else the sky as background; the cloud grids in
+the order of their entry distance, each marched in voxel space (emission-absorption, optical depth tau_per_voxel per
+voxel length at density 255) with sun light from a precomputed light volume (:data:`light_kernel`, ``ccl_volume_light``:
+transmittance towards the sun inside the cloud's own box), a Henyey-Greenstein phase and a height-graded ambient
+term; aerial fog on each cloud by its entry distance. The full description is at the top of ``cclouds/volume.h``.
+
+Data layout on the Warp side: every grid's voxels in one flat ``uint8`` array (``density``) and its light volume in
+one flat ``float32`` array (``light``), each grid's part starting at ``VolumeGrid.offset``, voxel (x, y, z) of a grid
+at ``offset + (z * ny + y) * nx + x`` (the C layout of an array of shape (nz, ny, nx)).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+import warp as wp
+
+from ..core.registry import Arg, declare
+from .camera import camera_ray
+from .colour import colour_srgb_encode
+from .flight import flight_aircraft
+from .hash import hash_pcg, hash_unit
+from .phase import phase_hg
+
+BIG_T = wp.constant(3.0e38)
+MAX_GRIDS = 16          # CCL_VOLUME_MAX_GRIDS
+AIRCRAFT_STEPS = wp.constant(64)  # CCL_VOLUME_AIRCRAFT_STEPS
+AIRCRAFT_BOUND = wp.constant(6.3)
+FOUR_PI = wp.constant(float(np.float32(4.0) * np.float32(math.pi)))  # 4.0f * CCL_PI_F, folded as in C
+_INV_255 = wp.constant(float(np.float32(1.0) / np.float32(255.0)))
+_U65536 = wp.constant(wp.uint32(65536))
+_U73856093 = wp.constant(wp.uint32(73856093))
+
+
+@wp.struct
+class VolumeGrid:
+    """A grid placed in the world (``ccl_volume_grid`` without its pointers: ``offset`` into the flat arrays)."""
+
+    origin: wp.vec3
+    extent: wp.vec3
+    nx: int
+    ny: int
+    nz: int
+    offset: int
+
+
+@wp.struct
+class VolumeParams:
+    """Mirror of ``ccl_volume_params`` (defaults and reasons: :class:`VolumeLook` and cclouds/src/volume.c)."""
+
+    sun: wp.vec3
+    sun_colour: wp.vec3
+    ambient_top: wp.vec3
+    ambient_bottom: wp.vec3
+    sky_zenith: wp.vec3
+    sky_horizon: wp.vec3
+    ground_a: wp.vec3
+    ground_b: wp.vec3
+    sun_glow: float
+    sun_glow_power: float
+    field_size: float
+    fog_distance: float
+    tau_per_voxel: float
+    light_tau_per_voxel: float
+    step_voxels: float
+    light_step_voxels: float
+    exit_transmittance: float
+    max_steps: int
+    g: float
+    jitter: int
+    aircraft: int
+    aircraft_position: wp.vec3
+    aircraft_forward: wp.vec3
+    aircraft_right: wp.vec3
+    aircraft_up: wp.vec3
+    aircraft_scale: float
+
+
+_VEC_FIELDS = {"sun", "sun_colour", "ambient_top", "ambient_bottom", "sky_zenith", "sky_horizon", "ground_a",
+               "ground_b", "aircraft_position", "aircraft_forward", "aircraft_right", "aircraft_up"}
+_INT_FIELDS = {"max_steps", "jitter", "aircraft"}
+
+
+def default_values() -> dict:
+    """The defaults of ``ccl_volume_params_default`` (the values and reasons are in cclouds/src/volume.c; the flight
+    scene's settings expose them with the same reasons)."""
+    # the sun of the C default, elevation 35 deg and azimuth 150 deg, with its float32 constants and operations
+    return {"sun": (float(np.float32(0.81915206) * np.float32(0.5)), float(np.float32(0.57357645)),
+                    float(-(np.float32(0.81915206) * np.float32(-0.8660254)))),
+            "sun_colour": (1.0, 0.96, 0.88), "ambient_top": (0.42, 0.47, 0.56), "ambient_bottom": (0.22, 0.24, 0.29),
+            "sky_zenith": (0.16, 0.33, 0.65), "sky_horizon": (0.62, 0.72, 0.85), "ground_a": (0.16, 0.27, 0.10),
+            "ground_b": (0.36, 0.33, 0.18), "sun_glow": 0.6, "sun_glow_power": 64.0, "field_size": 180.0,
+            "fog_distance": 6000.0, "tau_per_voxel": 0.35, "light_tau_per_voxel": 0.25, "step_voxels": 1.0,
+            "light_step_voxels": 1.0, "exit_transmittance": 0.01, "max_steps": 512, "g": 0.3, "jitter": 1,
+            "aircraft": 0, "aircraft_position": (0.0, 0.0, 0.0), "aircraft_forward": (0.0, 0.0, -1.0),
+            "aircraft_right": (1.0, 0.0, 0.0), "aircraft_up": (0.0, 1.0, 0.0), "aircraft_scale": 1.0}
+
+
+def sun_direction(elevation_deg: float, azimuth_deg: float) -> tuple:
+    """Unit vector towards the sun: azimuth 0 = -z, positive towards +x (the cloudscape's convention), float32
+    operations as the C default."""
+    e, a = np.float32(math.radians(elevation_deg)), np.float32(math.radians(azimuth_deg))
+    ce, se, ca, sa = np.cos(e), np.sin(e), np.cos(a), np.sin(a)
+    return (float(ce * sa), float(se), float(-(ce * ca)))
+
+
+def check_values(values: dict) -> None:
+    """Validate a parameter dict with ``ccl_volume_check``'s rules (no grids); ValueError naming the field."""
+    for name, v in values.items():
+        if name in _VEC_FIELDS:
+            a = np.asarray(v, dtype=np.float64)
+            if a.shape != (3,) or not np.all(np.isfinite(a)):
+                raise ValueError(f"{name} must be 3 finite numbers, got {v!r}")
+        elif not (isinstance(v, (int, float)) and math.isfinite(v)):
+            raise ValueError(f"{name} must be a finite number, got {v!r}")
+    for name in ("sun",) + (("aircraft_forward", "aircraft_right", "aircraft_up") if values.get("aircraft") else ()):
+        n = float(np.linalg.norm(np.asarray(values[name], dtype=np.float64)))
+        if abs(n - 1.0) > 1e-3:
+            raise ValueError(f"{name} must be a unit vector, got |v| = {n:.6g}")
+    rules = {"sun_glow": (0.0, None, False), "sun_glow_power": (0.0, None, True), "field_size": (0.0, None, True),
+             "fog_distance": (0.0, None, True), "tau_per_voxel": (0.0, None, False),
+             "light_tau_per_voxel": (0.0, None, False), "step_voxels": (0.05, None, False),
+             "light_step_voxels": (0.05, None, False), "max_steps": (1, 100000, False)}
+    for name, (lo, hi, open_lo) in rules.items():
+        v = values[name]
+        if (v <= lo if open_lo else v < lo) or (hi is not None and v > hi):
+            dom = f"{'(' if open_lo else '['}{lo:g}, {'inf)' if hi is None else f'{hi:g}]'}"
+            raise ValueError(f"{name} must be in {dom}, got {v!r}")
+    if not 0.0 <= values["exit_transmittance"] < 1.0:
+        raise ValueError(f"exit_transmittance must be in [0, 1), got {values['exit_transmittance']!r}")
+    if not -1.0 < values["g"] < 1.0:
+        raise ValueError(f"g must be in (-1, 1), got {values['g']!r}")
+    if values["aircraft"] and not values["aircraft_scale"] > 0:
+        raise ValueError(f"aircraft_scale must be in (0, inf), got {values['aircraft_scale']!r}")
+
+
+def warp_params(values: dict) -> VolumeParams:
+    s = VolumeParams()
+    for name, v in values.items():
+        if name in _VEC_FIELDS:
+            setattr(s, name, wp.vec3(*[float(x) for x in v]))
+        elif name in _INT_FIELDS:
+            setattr(s, name, int(v))
+        else:
+            setattr(s, name, float(v))
+    return s
+
+
+def c_params(values: dict):
+    from ..core.binding import ffi
+
+    p = ffi().new("ccl_volume_params *")
+    for name, v in values.items():
+        if name in _VEC_FIELDS:
+            vec = getattr(p, name)
+            vec.x, vec.y, vec.z = (float(x) for x in v)
+        elif name in _INT_FIELDS:
+            setattr(p, name, int(v))
+        else:
+            setattr(p, name, float(v))
+    return p
+
+
+# --- sampling -----------------------------------------------------------------------------------------------------------
+
+@wp.func
+def _tri_mix(fx: float, fy: float, fz: float, c000: float, c100: float, c010: float, c110: float, c001: float,
+             c101: float, c011: float, c111: float) -> float:
+    a = c000 + (c100 - c000) * fx
+    b = c010 + (c110 - c010) * fx
+    c = c001 + (c101 - c001) * fx
+    d = c011 + (c111 - c011) * fx
+    e = a + (b - a) * fy
+    f = c + (d - c) * fy
+    return e + (f - e) * fz
+
+
+@wp.func
+def _idx(offset: int, nx: int, ny: int, x: int, y: int, z: int) -> int:
+    return offset + (z * ny + y) * nx + x
+
+
+@wp.func
+def volume_sample(density: wp.array(dtype=wp.uint8), offset: int, nx: int, ny: int, nz: int, v: wp.vec3) -> float:
+    """Twin of ``ccl_volume_sample`` (the grid's voxels start at ``offset`` of the flat array)."""
+    ux = v[0] - 0.5
+    uy = v[1] - 0.5
+    uz = v[2] - 0.5
+    ix = wp.floor(ux)
+    iy = wp.floor(uy)
+    iz = wp.floor(uz)
+    fx = ux - ix
+    fy = uy - iy
+    fz = uz - iz
+    x0 = wp.clamp(int(ix), 0, nx - 1)
+    x1 = wp.clamp(int(ix) + 1, 0, nx - 1)
+    y0 = wp.clamp(int(iy), 0, ny - 1)
+    y1 = wp.clamp(int(iy) + 1, 0, ny - 1)
+    z0 = wp.clamp(int(iz), 0, nz - 1)
+    z1 = wp.clamp(int(iz) + 1, 0, nz - 1)
+    r = _tri_mix(fx, fy, fz,
+                 float(density[_idx(offset, nx, ny, x0, y0, z0)]), float(density[_idx(offset, nx, ny, x1, y0, z0)]),
+                 float(density[_idx(offset, nx, ny, x0, y1, z0)]), float(density[_idx(offset, nx, ny, x1, y1, z0)]),
+                 float(density[_idx(offset, nx, ny, x0, y0, z1)]), float(density[_idx(offset, nx, ny, x1, y0, z1)]),
+                 float(density[_idx(offset, nx, ny, x0, y1, z1)]), float(density[_idx(offset, nx, ny, x1, y1, z1)]))
+    return r * _INV_255
+
+
+@wp.func
+def volume_sample_float(values: wp.array(dtype=float), offset: int, nx: int, ny: int, nz: int, v: wp.vec3) -> float:
+    """Twin of ``ccl_volume_sample_float``."""
+    ux = v[0] - 0.5
+    uy = v[1] - 0.5
+    uz = v[2] - 0.5
+    ix = wp.floor(ux)
+    iy = wp.floor(uy)
+    iz = wp.floor(uz)
+    fx = ux - ix
+    fy = uy - iy
+    fz = uz - iz
+    x0 = wp.clamp(int(ix), 0, nx - 1)
+    x1 = wp.clamp(int(ix) + 1, 0, nx - 1)
+    y0 = wp.clamp(int(iy), 0, ny - 1)
+    y1 = wp.clamp(int(iy) + 1, 0, ny - 1)
+    z0 = wp.clamp(int(iz), 0, nz - 1)
+    z1 = wp.clamp(int(iz) + 1, 0, nz - 1)
+    return _tri_mix(fx, fy, fz,
+                    values[_idx(offset, nx, ny, x0, y0, z0)], values[_idx(offset, nx, ny, x1, y0, z0)],
+                    values[_idx(offset, nx, ny, x0, y1, z0)], values[_idx(offset, nx, ny, x1, y1, z0)],
+                    values[_idx(offset, nx, ny, x0, y0, z1)], values[_idx(offset, nx, ny, x1, y0, z1)],
+                    values[_idx(offset, nx, ny, x0, y1, z1)], values[_idx(offset, nx, ny, x1, y1, z1)])
+
+
+@wp.func
+def _voxel_scale(g: VolumeGrid) -> wp.vec3:
+    return wp.vec3(float(g.nx) / g.extent[0], float(g.ny) / g.extent[1], float(g.nz) / g.extent[2])
+
+
+@wp.func
+def _slab(o: float, d: float, n: float, t0: float, t1: float):
+    a0 = t0
+    a1 = t1
+    ok = int(1)
+    if d == 0.0:
+        if not (o >= 0.0 and o <= n):
+            ok = 0
+    else:
+        inv = 1.0 / d
+        a = (0.0 - o) * inv
+        b = (n - o) * inv
+        if a > b:
+            tmp = a
+            a = b
+            b = tmp
+        if a > a0:
+            a0 = a
+        if b < a1:
+            a1 = b
+        if not (a0 <= a1):
+            ok = 0
+    return ok, a0, a1
+
+
+@wp.func
+def volume_box(g: VolumeGrid, eye: wp.vec3, d: wp.vec3):
+    """Twin of ``ccl_volume_box``: (hit, t0, t1)."""
+    sc = _voxel_scale(g)
+    t0 = float(-BIG_T)
+    t1 = float(BIG_T)
+    ox = (eye[0] - g.origin[0]) * sc[0]
+    oy = (eye[1] - g.origin[1]) * sc[1]
+    oz = (eye[2] - g.origin[2]) * sc[2]
+    hit = int(0)
+    okx, t0, t1 = _slab(ox, d[0] * sc[0], float(g.nx), t0, t1)
+    if okx != 0:
+        oky, t0, t1 = _slab(oy, d[1] * sc[1], float(g.ny), t0, t1)
+        if oky != 0:
+            okz, t0, t1 = _slab(oz, d[2] * sc[2], float(g.nz), t0, t1)
+            if okz != 0 and t1 > 0.0:
+                hit = 1
+    return hit, t0, t1
+
+
+# --- the light volume ---------------------------------------------------------------------------------------------------
+
+@wp.kernel
+def light_kernel(p: VolumeParams, g: VolumeGrid, density: wp.array(dtype=wp.uint8),
+                 # output: the grid's light volume (its own array, offset 0)
+                 out: wp.array(dtype=float)):
+    """Twin of ``ccl_volume_light``: one thread per voxel."""
+    i = wp.tid()
+    nx = g.nx
+    ny = g.ny
+    nz = g.nz
+    ix = i % nx
+    iy = (i // nx) % ny
+    iz = i // (nx * ny)
+    sc = _voxel_scale(g)
+    s_v = wp.vec3(p.sun[0] * sc[0], p.sun[1] * sc[1], p.sun[2] * sc[2])
+    ln = wp.length(s_v)
+    s_v = s_v * (1.0 / ln)
+    step = p.light_step_voxels
+    tau = p.light_tau_per_voxel * step
+    fnx = float(nx)
+    fny = float(ny)
+    fnz = float(nz)
+    max_k = int(wp.ceil(wp.sqrt(fnx * fnx + fny * fny + fnz * fnz) / step)) + 1
+    c = wp.vec3(float(ix) + 0.5, float(iy) + 0.5, float(iz) + 0.5)
+    total = float(0.0)
+    for k in range(1, max_k + 1):
+        q = c + s_v * (float(k) * step)
+        if q[0] < 0.0 or q[1] < 0.0 or q[2] < 0.0 or q[0] > fnx or q[1] > fny or q[2] > fnz:
+            break
+        total = total + volume_sample(density, g.offset, nx, ny, nz, q)
+    out[i] = wp.exp(-tau * total)
+
+
+# --- background: sky, ground, aircraft ----------------------------------------------------------------------------------
+
+@wp.func
+def volume_sky(p: VolumeParams, d: wp.vec3) -> wp.vec3:
+    """Twin of ``ccl_volume_sky``."""
+    up = wp.where(d[1] > 0.0, d[1], 0.0)
+    c = wp.dot(d, p.sun)
+    c = wp.where(c > 0.0, c, 0.0)
+    glow = p.sun_glow * wp.pow(c, p.sun_glow_power)
+    up = wp.sqrt(up)
+    col = p.sky_horizon + (p.sky_zenith - p.sky_horizon) * up
+    return col + p.sun_colour * glow
+
+
+@wp.func
+def _to_model(p: VolumeParams, w: wp.vec3) -> wp.vec3:
+    return wp.vec3(wp.dot(w, p.aircraft_right), wp.dot(w, p.aircraft_up), -wp.dot(w, p.aircraft_forward))
+
+
+@wp.func
+def _aircraft_hit(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
+    """(t [world], part, model-frame hit point); t = BIG_T when missed."""
+    inv = 1.0 / p.aircraft_scale
+    o = _to_model(p, eye - p.aircraft_position) * inv
+    dm = _to_model(p, d)
+    b = wp.dot(o, dm)
+    c = wp.dot(o, o) - AIRCRAFT_BOUND * AIRCRAFT_BOUND
+    disc = b * b - c
+    result = float(BIG_T)
+    part_hit = int(0)
+    q_hit = wp.vec3(0.0, 0.0, 0.0)
+    if disc > 0.0:
+        disc = wp.sqrt(disc)
+        t = -b - disc
+        t_far = -b + disc
+        if t_far > 0.0:
+            if t < 0.0:
+                t = 0.0
+            for k in range(AIRCRAFT_STEPS):
+                q = o + dm * t
+                dist, part = flight_aircraft(q)
+                if dist < 0.002:
+                    part_hit = part
+                    q_hit = q
+                    result = t * p.aircraft_scale
+                    break
+                t = t + dist
+                if t > t_far:
+                    break
+    return result, part_hit, q_hit
+
+
+@wp.func
+def _aircraft_colour(p: VolumeParams, q: wp.vec3, part: int) -> wp.vec3:
+    h = 0.01
+    nx0, _a = flight_aircraft(wp.vec3(q[0] + h, q[1], q[2]))
+    nx1, _b = flight_aircraft(wp.vec3(q[0] - h, q[1], q[2]))
+    ny0, _c = flight_aircraft(wp.vec3(q[0], q[1] + h, q[2]))
+    ny1, _d = flight_aircraft(wp.vec3(q[0], q[1] - h, q[2]))
+    nz0, _e = flight_aircraft(wp.vec3(q[0], q[1], q[2] + h))
+    nz1, _f = flight_aircraft(wp.vec3(q[0], q[1], q[2] - h))
+    n = wp.normalize(wp.vec3(nx0 - nx1, ny0 - ny1, nz0 - nz1))
+    nw = (p.aircraft_right * n[0] + p.aircraft_up * n[1]) + p.aircraft_forward * (-n[2])
+    base = wp.vec3(0.08, 0.12, 0.2)
+    if part == 0:
+        base = wp.vec3(0.85, 0.85, 0.82)
+    elif part == 1:
+        base = wp.vec3(0.75, 0.12, 0.08)
+    elif part == 2:
+        base = wp.vec3(0.75, 0.12, 0.08)
+    ndl = wp.dot(nw, p.sun)
+    ndl = wp.where(ndl > 0.0, ndl, 0.0)
+    up = 0.5 + 0.5 * nw[1]
+    lit = p.sun_colour * ndl + (p.ambient_top * up + p.ambient_bottom * (1.0 - up))
+    return wp.vec3(base[0] * lit[0], base[1] * lit[1], base[2] * lit[2])
+
+
+@wp.func
+def _mix3(a: wp.vec3, b: wp.vec3, t: float) -> wp.vec3:
+    return a + (b - a) * t
+
+
+@wp.func
+def volume_background(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
+    """Twin of ``ccl_volume_background``: (colour, aircraft distance or BIG_T)."""
+    col = wp.vec3(0.0, 0.0, 0.0)
+    t_out = float(BIG_T)
+    done = int(0)
+    if p.aircraft != 0:
+        t_hit, part, q = _aircraft_hit(p, eye, d)
+        if t_hit < BIG_T:
+            t_out = t_hit
+            col = _aircraft_colour(p, q, part)
+            done = 1
+    if done == 0:
+        if d[1] < 0.0 and eye[1] > 0.0:
+            t = -eye[1] / d[1]
+            gx = eye[0] + t * d[0]
+            gz = eye[2] + t * d[2]
+            fx = wp.floor(gx / p.field_size)
+            fz = wp.floor(gz / p.field_size)
+            fx = wp.clamp(fx, -1.0e9, 1.0e9)
+            fz = wp.clamp(fz, -1.0e9, 1.0e9)
+            cx = wp.uint32(int(fx))
+            cz = wp.uint32(int(fz))
+            h = hash_pcg((cx * _U73856093) ^ hash_pcg(cz))
+            u = hash_unit(h)
+            sun_up = wp.where(p.sun[1] > 0.0, p.sun[1], 0.0)
+            ground = _mix3(p.ground_a, p.ground_b, u) * (0.35 + 0.65 * sun_up)
+            f = wp.exp(-t / p.fog_distance)
+            col = _mix3(p.sky_horizon, ground, f)
+        else:
+            col = volume_sky(p, d)
+    return col, t_out
+
+
+# --- the pixel ----------------------------------------------------------------------------------------------------------
+
+@wp.func
+def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int, density: wp.array(dtype=wp.uint8),
+                 light: wp.array(dtype=float), inv_view_proj_rot: wp.mat44, eye: wp.vec3, x: int, y: int, width: int,
+                 height: int) -> wp.vec3:
+    """Twin of ``ccl_volume_pixel``: the display-linear colour of pixel (x, y)."""
+    d = camera_ray(inv_view_proj_rot, x, y, width, height)
+    jitter = float(0.5)
+    if p.jitter != 0:
+        jitter = hash_unit(hash_pcg(wp.uint32(x) + _U65536 * wp.uint32(y)))
+    total_t = float(1.0)
+    bg, t_hit = volume_background(p, eye, d)
+    total = wp.vec3(0.0, 0.0, 0.0)
+    mu = wp.clamp(wp.dot(d, p.sun), -1.0, 1.0)
+    phase = FOUR_PI * phase_hg(mu, p.g)
+    last_t = float(-BIG_T)
+    last_i = int(-1)
+    for k in range(count):
+        best = int(-1)
+        best_t0 = float(BIG_T)
+        best_t1 = float(0.0)
+        for i in range(count):
+            hit, t0, t1 = volume_box(grids[i], eye, d)
+            if hit == 0:
+                continue
+            if t0 < last_t or (t0 == last_t and i <= last_i):
+                continue
+            if best < 0 or t0 < best_t0:
+                best = i
+                best_t0 = t0
+                best_t1 = t1
+        if best < 0:
+            break
+        last_t = best_t0
+        last_i = best
+        g = grids[best]
+        col = wp.vec3(0.0, 0.0, 0.0)
+        trans = float(1.0)
+        t_start = wp.where(best_t0 > 0.0, best_t0, 0.0)
+        t_end = wp.where(best_t1 < t_hit, best_t1, t_hit)
+        sc = _voxel_scale(g)
+        o_v = wp.vec3((eye[0] - g.origin[0]) * sc[0], (eye[1] - g.origin[1]) * sc[1], (eye[2] - g.origin[2]) * sc[2])
+        d_v = wp.vec3(d[0] * sc[0], d[1] * sc[1], d[2] * sc[2])
+        dt = p.step_voxels / wp.length(d_v)
+        a_step = p.tau_per_voxel * p.step_voxels
+        n = int(0)
+        if t_end > t_start:
+            steps = wp.ceil((t_end - t_start) / dt)
+            if steps < float(p.max_steps):
+                n = int(steps)
+            else:
+                n = p.max_steps
+        for s in range(n):
+            t = t_start + (float(s) + jitter) * dt
+            if t > t_end:
+                break
+            v = o_v + d_v * t
+            rho = volume_sample(density, g.offset, g.nx, g.ny, g.nz, v)
+            if rho <= 0.0:
+                continue
+            alpha = 1.0 - wp.exp(-a_step * rho)
+            tl = volume_sample_float(light, g.offset, g.nx, g.ny, g.nz, v)
+            hfrac = wp.clamp(v[1] / float(g.ny), 0.0, 1.0)
+            amb = _mix3(p.ambient_bottom, p.ambient_top, hfrac)
+            lc = p.sun_colour * (tl * phase) + amb
+            col = col + lc * (trans * alpha)
+            trans = trans * (1.0 - alpha)
+            if trans < p.exit_transmittance:
+                break
+        fog = wp.exp(-t_start / p.fog_distance)
+        col = col * fog + p.sky_horizon * ((1.0 - fog) * (1.0 - trans))
+        total = total + col * total_t
+        total_t = total_t * trans
+        if total_t < p.exit_transmittance:
+            break
+    return wp.vec3(total[0] + total_t * bg[0], total[1] + total_t * bg[1], total[2] + total_t * bg[2])
+
+
+# --- image kernels (TileLauncher convention) ----------------------------------------------------------------------------
+
+@wp.kernel
+def render_kernel(row0: int, p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
+                  density: wp.array(dtype=wp.uint8), light: wp.array(dtype=float), inv_view_proj_rot: wp.mat44,
+                  eye: wp.vec3, width: int, height: int,
+                  # output: sRGB uint8
+                  out: wp.array3d(dtype=wp.uint8)):
+    """One row band: the pixel, clamped to [0, 1], sRGB-encoded, rounded to uint8."""
+    i, j = wp.tid()
+    y = row0 + i
+    c = volume_pixel(p, grids, count, density, light, inv_view_proj_rot, eye, j, y, width, height)
+    for ch in range(3):
+        e = colour_srgb_encode(wp.clamp(c[ch], 0.0, 1.0))
+        out[y, j, ch] = wp.uint8(int(e * 255.0 + 0.5))
+
+
+@wp.kernel
+def pixels_kernel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int, density: wp.array(dtype=wp.uint8),
+                  light: wp.array(dtype=float), inv_view_proj_rot: wp.mat44, eye: wp.vec3,
+                  xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32), width: int, height: int,
+                  out: wp.array2d(dtype=float)):
+    """:func:`volume_pixel` at chosen pixels (the Warp side of the comparison with ``ccl_volume_pixel``)."""
+    k = wp.tid()
+    c = volume_pixel(p, grids, count, density, light, inv_view_proj_rot, eye, xs[k], ys[k], width, height)
+    out[k, 0] = c[0]
+    out[k, 1] = c[1]
+    out[k, 2] = c[2]
+
+
+# --- survey extras: metaballs (oc-4.2) and textured ellipsoids (oc-4.3) --------------------------------------------------
+
+@declare("oc-4.2", c="ccl_volume_metaball",
+         args=(Arg("distance", "distance from the source's centre", lo=0.0, sample_range=(0.0, 10.0)),
+               Arg("radius", "the source's radius of influence R", lo=0.0, lo_open=True, sample_range=(0.1, 10.0)),
+               Arg("strength", "the source's strength", sample_range=(-5.0, 5.0))),
+         outputs=("field",),
+         summary="Metaball field of one source (centre, radius, strength as the text lists them; the text gives no "
+                 "field function, Wyvill's soft-object kernel stands in): strength (1 - r^2/R^2)^3 for r < R, else 0. "
+                 "A cloud base is the thresholded sum over the sources (tutorials/oc/fig_4_01_metaballs.py).",
+         references=("Kučera 2006, §4.2", "Wyvill, McPheeters & Wyvill, Data structure for soft objects, "
+                                           "The Visual Computer 2(4), 1986"))
+@wp.func
+def volume_metaball(distance: float, radius: float, strength: float) -> float:
+    q = (distance * distance) / (radius * radius)
+    r = 0.0 * strength
+    if not (q >= 1.0):
+        w = 1.0 - q
+        r = strength * (w * w * w)
+    return r
+
+
+@declare("oc-4.3", c="ccl_volume_ellipsoid",
+         args=(Arg("p", "point relative to the ellipsoid's centre", sample_range=(-5.0, 5.0)),
+               Arg("radii", "semi-axes (each > 0)", lo=0.0, lo_open=True, sample_range=(0.5, 5.0)),
+               Arg("texture", "texturing function at p (noise fBm) in [0, 1]", lo=0.0, hi=1.0),
+               Arg("threshold", "Gardner's threshold T1", lo=0.0, hi=1.0),
+               Arg("ramp", "Gardner's ramp D (> 0)", lo=0.0, lo_open=True, hi=1.0)),
+         outputs=("opacity",),
+         summary="Opacity of a textured ellipsoid (Gardner 1985 in kind; the text gives no formula): q = |p/radii|^2, "
+                 "g = 1 - q, opacity = clamp((texture - T1 - D (1 - g)) / D, 0, 1): the texture decides, the edge is "
+                 "eaten away towards the surface.",
+         references=("Kučera 2006, §4.3", "Gardner, Visual simulation of clouds, SIGGRAPH 1985"))
+@wp.func
+def volume_ellipsoid(p: wp.vec3, radii: wp.vec3, texture: float, threshold: float, ramp: float) -> float:
+    qx = p[0] / radii[0]
+    qy = p[1] / radii[1]
+    qz = p[2] / radii[2]
+    q = qx * qx + qy * qy + qz * qz
+    g = 1.0 - q
+    o = (texture - threshold - ramp * (1.0 - g)) / ramp
+    if o < 0.0:
+        o = 0.0
+    if o > 1.0:
+        o = 1.0
+    return o
+
+
+# --- scenes of grids on the host ----------------------------------------------------------------------------------------
+
+@dataclass
+class PlacedVolume:
+    """A uint8 volume (shape (nz, ny, nx), C order) placed in a box from ``origin`` with size ``extent`` [m]."""
+
+    density: np.ndarray
+    origin: tuple
+    extent: tuple
+
+    def __post_init__(self):
+        a = np.asarray(self.density)
+        if a.dtype != np.uint8 or a.ndim != 3 or min(a.shape) < 1:
+            raise ValueError(f"density must be a non-empty uint8 array of shape (nz, ny, nx), got {a.dtype} "
+                             f"{a.shape}")
+        self.density = np.ascontiguousarray(a)
+        for name in ("origin", "extent"):
+            v = np.asarray(getattr(self, name), dtype=np.float64)
+            if v.shape != (3,) or not np.all(np.isfinite(v)):
+                raise ValueError(f"{name} must be 3 finite numbers, got {getattr(self, name)!r}")
+            setattr(self, name, tuple(float(x) for x in v))
+        if min(self.extent) <= 0:
+            raise ValueError(f"extent must be > 0 on every axis, got {self.extent}")
+
+
+@dataclass
+class VolumeSet:
+    """Grids and their light volumes as the kernels read them (flat arrays + :class:`VolumeGrid` records)."""
+
+    volumes: list
+    light: list = field(default_factory=list)  # float32 arrays of the volumes' shapes
+    device: str = "cpu"
+    _wp: dict = field(default_factory=dict, repr=False)
+
+    def __post_init__(self):
+        if len(self.volumes) > MAX_GRIDS:
+            raise ValueError(f"at most {MAX_GRIDS} volumes, got {len(self.volumes)}")
+
+    def records(self) -> list:
+        out, offset = [], 0
+        for v in self.volumes:
+            nz, ny, nx = v.density.shape
+            g = VolumeGrid()
+            g.origin = wp.vec3(*v.origin)
+            g.extent = wp.vec3(*v.extent)
+            g.nx, g.ny, g.nz, g.offset = nx, ny, nz, offset
+            out.append(g)
+            offset += v.density.size
+        return out
+
+    def compute_light(self, values: dict, launcher=None) -> None:
+        """The light volume of every grid (Warp, one thread per voxel)."""
+        p = warp_params(values)
+        self.light = []
+        for v, rec in zip(self.volumes, self.records()):
+            rec.offset = 0
+            d = wp.array(v.density.ravel(), dtype=wp.uint8, device=self.device)
+            out = wp.empty(v.density.size, dtype=float, device=self.device)
+            wp.launch(light_kernel, dim=v.density.size, inputs=[p, rec, d], outputs=[out], device=self.device)
+            self.light.append(out.numpy().reshape(v.density.shape))
+        self._wp = {}
+
+    def warp(self):
+        """(grids, count, density, light) for the kernels."""
+        if not self._wp:
+            recs = self.records()
+            n = len(recs)
+            dens = np.concatenate([v.density.ravel() for v in self.volumes]) if n else np.zeros(1, np.uint8)
+            light = (np.concatenate([np.asarray(l, np.float32).ravel() for l in self.light]) if n
+                     else np.zeros(1, np.float32))
+            grids = wp.array(recs if n else [VolumeGrid()], dtype=VolumeGrid, device=self.device)
+            self._wp = {"grids": grids, "count": n,
+                        "density": wp.array(dens, dtype=wp.uint8, device=self.device),
+                        "light": wp.array(light, dtype=float, device=self.device)}
+        w = self._wp
+        return w["grids"], w["count"], w["density"], w["light"]
+
+
+def c_grids(vset: VolumeSet):
+    """``ccl_volume_grid[count]`` pointing into the NumPy arrays of ``vset`` (kept alive with the returned tuple)."""
+    from ..core.binding import ffi
+
+    f = ffi()
+    n = len(vset.volumes)
+    arr = f.new("ccl_volume_grid[]", max(n, 1))
+    keep = []
+    for k, v in enumerate(vset.volumes):
+        d = np.ascontiguousarray(v.density)
+        lt = np.ascontiguousarray(np.asarray(vset.light[k], dtype=np.float32))
+        keep += [d, lt]
+        bd, bl = f.from_buffer("unsigned char[]", d), f.from_buffer("float[]", lt)
+        keep += [bd, bl]
+        arr[k].density = f.cast("const unsigned char *", bd)
+        arr[k].light = f.cast("const float *", bl)
+        arr[k].nz, arr[k].ny, arr[k].nx = d.shape
+        arr[k].origin.x, arr[k].origin.y, arr[k].origin.z = v.origin
+        arr[k].extent.x, arr[k].extent.y, arr[k].extent.z = v.extent
+    return arr, keep
+
+
+def light_c(values: dict, volume: PlacedVolume) -> np.ndarray:
+    """``ccl_volume_light`` of one volume (the C reference of :meth:`VolumeSet.compute_light`)."""
+    from ..core.binding import ffi, lib, status_error
+
+    f, lb = ffi(), lib()
+    vs = VolumeSet([volume], [np.zeros(volume.density.shape, np.float32)])
+    arr, keep = c_grids(vs)
+    out = np.empty(volume.density.shape, np.float32)
+    status_error(lb.ccl_volume_light(c_params(values), arr, f.from_buffer("float[]", out), out.size),
+                 "ccl_volume_light")
+    del keep
+    return out
+
+
+def _c_camera(cam):
+    from ..core.binding import ffi
+
+    c = ffi().new("ccl_camera *")
+    c.eye.x, c.eye.y, c.eye.z = (float(v) for v in cam.eye)
+    for name in ("view", "proj", "view_proj", "inv_view_proj", "inv_view_proj_rot"):
+        arr = getattr(c, name)
+        for i, v in enumerate(cam.column_major(name)):
+            arr[i] = float(v)
+    return c
+
+
+def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: int) -> np.ndarray:
+    """``ccl_volume_pixel`` at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
+    from ..core.binding import ffi, lib
+
+    f, lb = ffi(), lib()
+    params = c_params(values)
+    arr, keep = c_grids(vset)
+    fld = f.new("const char **")
+    if lb.ccl_volume_check(params, arr, len(vset.volumes), fld) != 0:
+        raise ValueError(f"ccl_volume_check rejected {f.string(fld[0]).decode()}")
+    cam = _c_camera(camera)
+    out = np.empty((len(xs), 3), np.float32)
+    rgb = f.new("float[3]")
+    for k, (x, y) in enumerate(zip(xs, ys)):
+        lb.ccl_volume_pixel(params, arr, len(vset.volumes), cam, int(x), int(y), width, height, rgb)
+        out[k] = rgb[0], rgb[1], rgb[2]
+    del keep
+    return out
+
+
+def pixels_warp(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: int,
+                device: str | None = None) -> np.ndarray:
+    """:func:`volume_pixel` at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
+    grids, count, dens, light = vset.warp()
+    dev = vset.device
+    xa = wp.array(np.asarray(xs, np.int32), dtype=wp.int32, device=dev)
+    ya = wp.array(np.asarray(ys, np.int32), dtype=wp.int32, device=dev)
+    out = wp.zeros((len(xs), 3), dtype=float, device=dev)
+    wp.launch(pixels_kernel, dim=len(xs), inputs=[warp_params(values), grids, count, dens, light,
+                                                  camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), xa, ya,
+                                                  width, height], outputs=[out], device=dev)
+    return out.numpy()
