@@ -19,6 +19,7 @@
 #include "cclouds/sky.h"
 #include "cclouds/reproj.h"
 #include "cclouds/cloudscape.h"
+#include "cclouds/terrain.h"
 #include "cclouds/valuenoise.h"
 #include "cclouds/voxel.h"
 #include "cclouds/flight.h"
