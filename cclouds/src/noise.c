@@ -357,6 +357,28 @@ float ccl_noise_fbm_perlin3(float x, float y, float z, int32_t octaves, float fr
     return ccl_noise_fbm_perlin3_perm(x, y, z, octaves, frequency, table_for(seed, buf), period);
 }
 
+float ccl_noise_fbm_perlin2_perm(ccl_vec2 p, int32_t octaves, const uint8_t *perm, float amplitude, float frequency,
+                                 float gain, float lacunarity)
+{
+    float value = 0.0f, amp = amplitude, f = frequency;
+    int32_t i;
+    CCL_REQUIRE(octaves >= 1 && octaves <= 24);
+    CCL_REQUIRE(perm != NULL);
+    for (i = 0; i < octaves; ++i) { /* Kod 7.9, operation by operation */
+        value += amp * ccl_noise_perlin2_perm(f * p.x, f * p.y, perm, 0, CCL_INTERP_QUINTIC);
+        amp *= gain;
+        f *= lacunarity;
+    }
+    return value;
+}
+
+float ccl_noise_fbm_perlin2(ccl_vec2 p, int32_t octaves, uint32_t seed, float amplitude, float frequency, float gain,
+                            float lacunarity)
+{
+    uint8_t buf[CCL_NOISE_PERM_SIZE];
+    return ccl_noise_fbm_perlin2_perm(p, octaves, table_for(seed, buf), amplitude, frequency, gain, lacunarity);
+}
+
 float ccl_noise_fbm_worley3(float x, float y, float z, int32_t octaves, int32_t cells, uint32_t seed,
                             ccl_worley_metric metric, int inverse)
 {

@@ -10,7 +10,9 @@
   lattice coordinate modulo P before hashing, so ``f(p + P) == f(p)`` exactly.
 * Worley noise (vc-A3, A4, A5): ``cells`` cells per unit, periodic with period 1 by construction; F1 in cell units
   clamped to [0, 1]; metric Euclidean or Manhattan; inverse = 1 - F1.
-* fBm (vc-2.21, vc-A6): f_i = 2 f_{i-1}, w_i = w_{i-1} / 2, normalised by the sum of the weights.
+* fBm (vc-2.21, vc-A6): f_i = 2 f_{i-1}, w_i = w_{i-1} / 2, normalised by the sum of the weights. The terrain demo's
+  unnormalised 2-D fBm (pt-alg-3.2, Kod 7.9: A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2) is noise_fbm_perlin2; the
+  demo's noise (pt-alg-3.1) is the Perlin noise of vc-A1.
 * Curl noise (vc-2.22 .. 2.26, vc-A7): central differences with step ``h`` (default 1/256), 2-D stream-function and
   3-D vector-potential readings.
 * :func:`noise_perlin_worley` (vc-A8).
@@ -281,7 +283,7 @@ def _grad3(hash: int, x: float, y: float, z: float) -> float:
     return u + v
 
 
-@declare("vc-A1", c="ccl_noise_perlin3",
+@declare("vc-A1", "pt-alg-3.1", c="ccl_noise_perlin3",
          args=(_X, _Y, _Z, _SEED, _PERIOD), outputs=("n",), derived=_PERM,
          summary="3-D Perlin gradient noise; seed 0 is Ken Perlin's 2002 ImprovedNoise reference exactly (his "
                  "permutation, 12 edge gradients via hash & 15, quintic fade 2.20, trilinear lerp), in float32; other "
@@ -290,7 +292,14 @@ def _grad3(hash: int, x: float, y: float, z: float) -> float:
                  "periodic (vc-A2). Also: 2-D noise ccl_noise_perlin2 / noise_perlin2 (= perlin3(x, y, 0), with a "
                  "choice of interpolant quintic/cubic/linear/cosine for vc-fig-2.5, NumPy helper perlin2()), the "
                  "table-taking fast forms ccl_noise_perlin3_perm, and the interpolants ccl_interp_lerp, "
-                 "ccl_interp_cosine (vc-fig-2.6). Warp functions take the permutation table (perm_array(seed)).",
+                 "ccl_interp_cosine (vc-fig-2.6). Warp functions take the permutation table (perm_array(seed)). "
+                 "pt-alg-3.1: the terrain demo's undefined noise() is this noise (its 2-D slice z = 0, "
+                 "noise_perlin2, inside the fBm of pt-alg-3.2). The text's steps (lattice, pseudo-random gradient per "
+                 "corner, dot products with p - c, weights by distance) are these, except that Perlin's 12 edge "
+                 "gradients have length sqrt(2), not 1 -- a fixed scale of the output. Range of the 2-D slice: [-1, 1] "
+                 "(the sqrt(n)/2 |g| bound of n-D gradient noise, = 1 for n = 2, |g| = sqrt(2); measured max 0.997 "
+                 "on a 24 x 24 grid in each of the 256^2 lattice cells), so the demo's fBm obeys "
+                 "|fBm| <= 2 (1 - 0.5^octaves). 3-D: bound sqrt(3/2) = 1.22, measured max 0.995.",
          references=_PERLIN_REF + (_PCG_REF,))
 @wp.func
 def noise_perlin3(x: float, y: float, z: float, perm: wp.array(dtype=wp.int32), period: int) -> float:
@@ -551,6 +560,62 @@ def noise_fbm_perlin3(x: float, y: float, z: float, octaves: int, frequency: flo
         if per > 0 and per <= 0x3FFFFFFF:
             per *= 2
     return total / wsum
+
+
+def _check_fbm_perlin2(p, octaves, frequency, lacunarity, **_):
+    top = frequency.astype(np.float64) * lacunarity.astype(np.float64) ** (octaves.astype(np.float64) - 1)
+    reach = np.max(np.abs(p.astype(np.float64)), axis=-1) * top
+    if np.any(reach >= _COORD_LIM):
+        raise ValueError("p: |p| * frequency * lacunarity^(octaves - 1) must be < 2^24 (float32 position precision), "
+                         f"got {reach.max():g}")
+
+
+def _fbm_perlin2_samples(rng, n):
+    """Valid (p, octaves, seed, amplitude, frequency, gain, lacunarity): |p| frequency lacunarity^(octaves-1) < 2^24.
+    The first sample has one octave, frequency 1/2 and |p| < 1, so each edge of p, octaves, frequency and lacunarity
+    stays valid when set alone."""
+    octaves = rng.integers(1, 11, n).astype(np.int32)
+    octaves[0] = 1
+    frequency = rng.uniform(0.1, 4.0, n).astype(np.float32)
+    frequency[0] = 0.5
+    lacunarity = rng.uniform(1.0, 3.0, n).astype(np.float32)
+    lacunarity[0] = 2.0
+    p = rng.uniform(-50.0, 50.0, (n, 2)).astype(np.float32)
+    p[0] = (0.3, -0.7)
+    return {"p": p, "octaves": octaves, "seed": rng.integers(0, 3, n).astype(np.uint32),
+            "amplitude": rng.uniform(0.0, 4.0, n).astype(np.float32), "frequency": frequency,
+            "gain": rng.uniform(0.0, 1.0, n).astype(np.float32), "lacunarity": lacunarity}
+
+
+@declare("pt-alg-3.2", c="ccl_noise_fbm_perlin2",
+         args=(Arg("p", "2-D position (the terrain's (x, z) in Kod 7.9)", lo=-_COORD_LIM, hi=_COORD_LIM, lo_open=True,
+                   hi_open=True, sample_range=(-50.0, 50.0)),
+               Arg("octaves", "number of octaves N", lo=1, hi=24, dtype="int32"),
+               _SEED,
+               Arg("amplitude", "A0, amplitude of octave 0 (1.0 printed)", lo=0.0, hi=1e6, default=1.0),
+               Arg("frequency", "F0, frequency of octave 0 (0.5 printed)", lo=0.0, hi=1e4, lo_open=True, default=0.5),
+               Arg("gain", "g, amplitude ratio of successive octaves (0.5 printed)", lo=0.0, hi=1.0, default=0.5),
+               Arg("lacunarity", "lambda, frequency ratio of successive octaves (2.0 printed)", lo=1.0, hi=4.0,
+                   default=2.0)),
+         outputs=("value",), derived=_PERM, check=_check_fbm_perlin2, samples=_fbm_perlin2_samples,
+         summary="The terrain demo's fBm (pt §3.2, Kod 7.9): sum_i A0 g^i N(F0 lambda^i p), i = 0 .. N-1, NOT "
+                 "normalised (unlike vc-2.21), in the operation order of Kod 7.9; N = 2-D Perlin noise "
+                 "(noise_perlin2, the z = 0 slice of vc-A1 = pt-alg-3.1). Defaults are the printed A0 = 1, F0 = 0.5, "
+                 "g = 0.5, lambda = 2; for |N| <= 1, |fBm| <= A0 (1 - g^N) / (1 - g) = 2 (1 - 0.5^N) printed.",
+         references=_PERLIN_REF[:1] + ("F. K. Musgrave, in Ebert et al., Texturing & Modeling, 3rd ed., 2003 "
+                                       "(fBm: gain and lacunarity)",))
+@wp.func
+def noise_fbm_perlin2(p: wp.vec2, octaves: int, perm: wp.array(dtype=wp.int32), amplitude: float, frequency: float,
+                      gain: float, lacunarity: float) -> float:
+    """pt-alg-3.2: value += amplitude * noise(frequency * p); amplitude *= gain; frequency *= lacunarity."""
+    value = float(0.0)
+    amp = amplitude
+    f = frequency
+    for _i in range(octaves):
+        value += amp * noise_perlin2(f * p[0], f * p[1], perm, 0, 0)
+        amp *= gain
+        f *= lacunarity
+    return value
 
 
 @declare("vc-A6", c="ccl_noise_fbm_worley3",

@@ -140,6 +140,21 @@ CCL_API float ccl_noise_fbm_perlin3_perm(float x, float y, float z, int32_t octa
 CCL_API float ccl_noise_fbm_perlin3(float x, float y, float z, int32_t octaves, float frequency, uint32_t seed,
                                     int32_t period);
 
+/* Unnormalised 2-D fBm of the terrain demo: sum_i A0 g^i N(F0 lambda^i p), i = 0 .. octaves-1, with N = the 2-D Perlin
+ * noise ccl_noise_perlin2_perm (quintic fade, period 0; the z = 0 slice of vc-A1), evaluated in the order of Kod 7.9:
+ * value += amplitude * noise(frequency * p); amplitude *= gain; frequency *= lacunarity.
+ * Ref: pt-alg-3.2 (fBm, printed A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2 of Kod 7.9). Unlike vc-2.21 it is NOT divided
+ * by the sum of the weights: for noise in [-1, 1] and 0 <= gain <= 1, |fBm| <= A0 (1 - g^octaves) / (1 - g)
+ * (2 (1 - 0.5^octaves) with the printed values).
+ * p: position (|p| * frequency * lacunarity^(octaves-1) < 2^24); octaves in [1, 24]; perm from ccl_noise_perm_table;
+ * amplitude A0 >= 0; frequency F0 > 0; gain in [0, 1]; lacunarity in [1, 4]. */
+CCL_API float ccl_noise_fbm_perlin2_perm(ccl_vec2 p, int32_t octaves, const uint8_t *perm, float amplitude,
+                                         float frequency, float gain, float lacunarity);
+
+/* The 2-D fBm of pt-alg-3.2 for a seed (seed 0 = Perlin's table). Ref: pt-alg-3.2. See ccl_noise_fbm_perlin2_perm. */
+CCL_API float ccl_noise_fbm_perlin2(ccl_vec2 p, int32_t octaves, uint32_t seed, float amplitude, float frequency,
+                                    float gain, float lacunarity);
+
 /* fBm of Worley noise: sum_i w_i W(p; cells * 2^i) / sum_i w_i with w_i = 2^-i (vc-2.21, vc-A6), periodic with
  * period 1. octaves in [1, 16]; cells >= 1 with cells * 2^(octaves-1) <= 2^16; metric and inverse as in
  * ccl_noise_worley3 (inverse applies per octave). Output [0, 1]. */

@@ -1,0 +1,187 @@
+/* Signed distance functions, ray tracing and sphere tracing, pt §4 - §5. See cclouds/sdf.h. */
+#include "cclouds/sdf.h"
+#include "cclouds/noise.h"
+#include "internal.h"
+
+#include <math.h>
+
+static ccl_vec3 v3(float x, float y, float z)
+{
+    ccl_vec3 r;
+    r.x = x;
+    r.y = y;
+    r.z = z;
+    return r;
+}
+
+float ccl_sdf_sphere(ccl_vec3 p, float s)
+{
+    return ccl_vec3_length(p) - s;
+}
+
+float ccl_sdf_box(ccl_vec3 p, ccl_vec3 b)
+{
+    ccl_vec3 d = v3(fabsf(p.x) - b.x, fabsf(p.y) - b.y, fabsf(p.z) - b.z);
+    float inside = fminf(fmaxf(d.x, fmaxf(d.y, d.z)), 0.0f);
+    return inside + ccl_vec3_length(v3(fmaxf(d.x, 0.0f), fmaxf(d.y, 0.0f), fmaxf(d.z, 0.0f)));
+}
+
+float ccl_sdf_torus(ccl_vec3 p, ccl_vec2 t)
+{
+    float qx = sqrtf(p.x * p.x + p.z * p.z) - t.x;
+    return sqrtf(qx * qx + p.y * p.y) - t.y;
+}
+
+float ccl_sdf_ellipsoid(ccl_vec3 p, ccl_vec3 r)
+{
+    return (ccl_vec3_length(v3(p.x / r.x, p.y / r.y, p.z / r.z)) - 1.0f) * fminf(fminf(r.x, r.y), r.z);
+}
+
+void ccl_sdf_primitives(ccl_vec3 p, float s, ccl_vec3 b, ccl_vec2 t, ccl_vec3 r, float *out_sphere, float *out_box,
+                        float *out_torus, float *out_ellipsoid)
+{
+    if (out_sphere) *out_sphere = ccl_sdf_sphere(p, s);
+    if (out_box) *out_box = ccl_sdf_box(p, b);
+    if (out_torus) *out_torus = ccl_sdf_torus(p, t);
+    if (out_ellipsoid) *out_ellipsoid = ccl_sdf_ellipsoid(p, r);
+}
+
+float ccl_sdf_union(float d1, float d2)
+{
+    return fminf(d1, d2);
+}
+
+float ccl_sdf_intersect(float d1, float d2)
+{
+    return fmaxf(d1, d2);
+}
+
+float ccl_sdf_subtract(float d1, float d2)
+{
+    return fmaxf(-d2, d1);
+}
+
+float ccl_sdf_smooth_union(float d1, float d2, float k)
+{
+    float h = 0.5f + 0.5f * (d1 - d2) / k;
+    CCL_REQUIRE(k > 0.0f);
+    h = fminf(fmaxf(h, 0.0f), 1.0f);
+    return d1 * (1.0f - h) + d2 * h - k * h * (1.0f - h);
+}
+
+static float glsl_mod(float x, float y)
+{
+    return x - y * floorf(x / y);
+}
+
+ccl_vec3 ccl_sdf_repeat(ccl_vec3 p, ccl_vec3 c, ccl_variant variant)
+{
+    if (variant != CCL_VARIANT_THESIS) {
+        p.x = p.x + 0.5f * c.x;
+        p.y = p.y + 0.5f * c.y;
+        p.z = p.z + 0.5f * c.z;
+    }
+    return v3(glsl_mod(p.x, c.x) - 0.5f * c.x, glsl_mod(p.y, c.y) - 0.5f * c.y, glsl_mod(p.z, c.z) - 0.5f * c.z);
+}
+
+void ccl_sdf_operators(float d1, float d2, float k, ccl_vec3 p, ccl_vec3 c, ccl_variant variant, float *out_union,
+                       float *out_intersection, float *out_subtraction, float *out_smooth_union,
+                       ccl_vec3 *out_repeat)
+{
+    if (out_union) *out_union = ccl_sdf_union(d1, d2);
+    if (out_intersection) *out_intersection = ccl_sdf_intersect(d1, d2);
+    if (out_subtraction) *out_subtraction = ccl_sdf_subtract(d1, d2);
+    if (out_smooth_union) *out_smooth_union = ccl_sdf_smooth_union(d1, d2, k);
+    if (out_repeat) *out_repeat = ccl_sdf_repeat(p, c, variant);
+}
+
+/* ---- demonstration scenes ------------------------------------------------------------------------------------- */
+
+/* Displacement of scene 5: amplitude, noise frequency and the bound of |grad perlin3| used for the Lipschitz factor
+ * (the gradient of Perlin's improved noise stays below 4 lattice units^-1). */
+#define DISP_AMPLITUDE 0.12f
+#define DISP_FREQUENCY 3.0f
+#define DISP_GRAD_BOUND 4.0f
+
+static float scene_eval(ccl_vec3 p, const uint8_t *perm, int scene)
+{
+    const ccl_vec3 cube = v3(0.7f, 0.7f, 0.7f);
+    switch (scene) {
+    case CCL_SDF_SCENE_PRIMITIVES: {
+        float d = ccl_sdf_sphere(v3(p.x + 3.75f, p.y, p.z), 0.8f);
+        ccl_vec2 t;
+        t.x = 0.7f;
+        t.y = 0.25f;
+        d = ccl_sdf_union(d, ccl_sdf_box(v3(p.x + 1.25f, p.y, p.z), cube));
+        d = ccl_sdf_union(d, ccl_sdf_torus(v3(p.x - 1.25f, p.y, p.z), t));
+        return ccl_sdf_union(d, ccl_sdf_ellipsoid(v3(p.x - 3.75f, p.y, p.z), v3(0.9f, 0.6f, 0.45f)));
+    }
+    case CCL_SDF_SCENE_UNION:
+        return ccl_sdf_union(ccl_sdf_box(p, cube), ccl_sdf_sphere(p, 0.9f));
+    case CCL_SDF_SCENE_INTERSECTION:
+        return ccl_sdf_intersect(ccl_sdf_box(p, cube), ccl_sdf_sphere(p, 0.9f));
+    case CCL_SDF_SCENE_SUBTRACTION:
+        return ccl_sdf_subtract(ccl_sdf_box(p, cube), ccl_sdf_sphere(p, 0.9f));
+    case CCL_SDF_SCENE_REPETITION: {
+        ccl_vec3 q = ccl_sdf_repeat(p, v3(1.2f, 1.2f, 1.2f), CCL_VARIANT_THESIS);
+        q.y = p.y;
+        return ccl_sdf_sphere(q, 0.35f);
+    }
+    case CCL_SDF_SCENE_DISPLACEMENT: {
+        float n = ccl_noise_perlin3_perm(DISP_FREQUENCY * p.x, DISP_FREQUENCY * p.y, DISP_FREQUENCY * p.z, perm, 0);
+        return (ccl_sdf_sphere(p, 1.0f) - DISP_AMPLITUDE * n) /
+               (1.0f + DISP_AMPLITUDE * DISP_FREQUENCY * DISP_GRAD_BOUND);
+    }
+    default:
+        return ccl_sdf_smooth_union(ccl_sdf_ellipsoid(v3(p.x + 0.5f, p.y, p.z), v3(1.0f, 0.5f, 0.6f)),
+                                    ccl_sdf_sphere(v3(p.x - 0.7f, p.y - 0.15f, p.z), 0.6f), 1.0f);
+    }
+}
+
+float ccl_sdf_scene(ccl_vec3 p, uint32_t seed, int scene)
+{
+    uint8_t perm[CCL_NOISE_PERM_SIZE];
+    ccl_noise_perm_table(seed, perm);
+    return scene_eval(p, perm, scene);
+}
+
+float ccl_sdf_ray_sphere(ccl_vec3 ro, ccl_vec3 rd, ccl_vec3 centre, float radius)
+{
+    ccl_vec3 oc = ccl_vec3_sub(ro, centre);
+    float b = ccl_vec3_dot(oc, rd);
+    float c = ccl_vec3_dot(oc, oc) - radius * radius;
+    float disc = b * b - c, s, t0, t1;
+    CCL_REQUIRE(radius > 0.0f);
+    if (disc < 0.0f) return -1.0f;
+    s = sqrtf(disc);
+    t0 = -b - s;
+    t1 = -b + s;
+    if (t0 >= 0.0f) return t0;
+    if (t1 >= 0.0f) return t1;
+    return -1.0f;
+}
+
+float ccl_sdf_sphere_trace(ccl_vec3 ro, ccl_vec3 rd, int32_t max_steps, float precision, float max_t, uint32_t seed,
+                           int scene, int *out_steps, int *out_hit)
+{
+    uint8_t perm[CCL_NOISE_PERM_SIZE];
+    float t = 0.0f;
+    int32_t i;
+    int steps = 0, hit = 0;
+    CCL_REQUIRE(max_steps >= 1);
+    CCL_REQUIRE(precision > 0.0f);
+    ccl_noise_perm_table(seed, perm);
+    for (i = 0; i < max_steps; ++i) {
+        float d = scene_eval(ccl_vec3_add(ro, ccl_vec3_scale(rd, t)), perm, scene);
+        steps = i + 1;
+        if (d < precision) {
+            hit = 1;
+            break;
+        }
+        t += d;
+        if (t > max_t) break;
+    }
+    if (out_steps) *out_steps = steps;
+    if (out_hit) *out_hit = hit;
+    return t;
+}
