@@ -1,0 +1,178 @@
+"""The terrain technique (pt-alg-6 in our terms): the demo's one full-screen fragment shader becomes one Warp image
+kernel launched as row bands on every core; the CPU side holds the camera and the settings.
+
+    from pywarp.terrain.technique import render_image
+    img = render_image(TerrainSettings(width=640, height=360))      # uint8 (360, 640, 3)
+
+One frame (``TerrainTechnique.render``): per pixel, m x m sub-sample rays (pt-code-7.1/7.2: the camera of
+:mod:`pywarp.kernels.camera`, fov 90 deg), each shaded by ``terrain_shade`` (pt-code-7.3: march, normal, materials,
+shadow, light, water, clouds, fog), averaged and clamped (pt-alg-7.1.6); colours are display values (the demo's
+GLSL writes them without gamma). The same pixel exists in C (``ccl_terrain_pixel``): :func:`render_pixels_c`.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+import warp as wp
+
+from ..core.registry import equation
+from ..core.runtime import init, launcher as shared_launcher
+
+init()
+
+from ..kernels import camera as CAM  # noqa: E402
+from ..kernels import terrain as K  # noqa: E402
+from ..kernels.noise import perm_array  # noqa: E402
+from .settings import TerrainSettings  # noqa: E402
+
+
+@dataclass(frozen=True)
+class TerrainPose:
+    """Camera position (units, y up), yaw/pitch (deg; yaw 0 = -z, positive towards +x) and vertical FOV (deg)."""
+
+    x: float = -22.0
+    y: float = 9.0
+    z: float = 30.0
+    yaw_deg: float = 0.0
+    pitch_deg: float = -8.0
+    fov_y_deg: float = 90.0
+
+    @classmethod
+    def from_settings(cls, s: TerrainSettings) -> "TerrainPose":
+        return cls(s.camera_x, s.camera_y, s.camera_z, s.camera_yaw_deg, s.camera_pitch_deg, s.fov_y_deg)
+
+    def forward(self) -> np.ndarray:
+        y, p = math.radians(self.yaw_deg), math.radians(self.pitch_deg)
+        return np.array([math.sin(y) * math.cos(p), math.sin(p), -math.cos(y) * math.cos(p)])
+
+    def camera(self, width: int, height: int) -> CAM.Camera:
+        """pt-code-7.2: cameraPosition and cameraTarget = position + forward, world up (0, 1, 0)."""
+        eye = np.array([self.x, self.y, self.z])
+        return CAM.camera_look_at(eye, eye + self.forward(), (0.0, 1.0, 0.0), math.radians(self.fov_y_deg),
+                                  width / height, 0.01, 1000.0)
+
+
+class TerrainTechnique:
+    """``init`` (parameters, Perlin table, buffers), ``update(**changes)``, ``render(pose)``, ``resize``."""
+
+    def __init__(self, settings: TerrainSettings | None = None):
+        self.settings = settings or TerrainSettings()
+        self.frame = 0
+        self._buffers = None
+        self.init()
+
+    def init(self) -> None:
+        s = self.settings
+        self.launcher = shared_launcher(s.device, s.threads)
+        self.device = self.launcher.device
+        self.values = s.params()
+        self.params = K.warp_params(self.values)  # checked by ccl_terrain_params_check
+        self.perm = perm_array(s.seed, self.device)
+        self.resize(s.width, s.height)
+
+    def update(self, **changes) -> None:
+        """Change settings; only a new size or device reallocates, every other change is a new parameter struct."""
+        old = self.settings
+        new = replace(old, **changes)
+        stale = new.invalidated(old)
+        self.settings = new
+        if "device" in stale:
+            self.launcher = shared_launcher(new.device, new.threads)
+            self.device = self.launcher.device
+        self.values = new.params()
+        self.params = K.warp_params(self.values)
+        self.perm = perm_array(new.seed, self.device)
+        if stale & {"size", "device"}:
+            self.resize(new.width, new.height)
+
+    def resize(self, width: int, height: int) -> None:
+        if (width, height) != (self.settings.width, self.settings.height):
+            self.settings = replace(self.settings, width=width, height=height)
+        dev = self.device
+        self._buffers = {"out": wp.zeros((height, width, 3), dtype=float, device=dev),
+                         "steps": wp.zeros((height, width), dtype=wp.int32, device=dev)}
+
+    def render(self, pose: TerrainPose | None = None, progress=None, encode: bool = True) -> np.ndarray:
+        """One frame: uint8 (height, width, 3), or the float colours in [0, 1] when ``encode=False``. ``progress``
+        is called with fractions of the frame (summing to 1) as row bands finish."""
+        s = self.settings
+        pose = pose or TerrainPose.from_settings(s)
+        cam = pose.camera(s.width, s.height)
+        b = self._buffers
+        band_done = None if progress is None else (lambda n, total=s.height: progress(n / total))
+        self.launcher.launch(K.render_kernel, s.height, s.width,
+                             [self.params, self.perm, cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), s.width,
+                              s.height], [b["out"], b["steps"]], progress=band_done)
+        self.frame += 1
+        img = b["out"].numpy()
+        if not np.all(np.isfinite(img)):
+            raise RuntimeError("the render produced non-finite pixels")
+        if not encode:
+            return img.copy()
+        return (img * 255.0 + 0.5).astype(np.uint8)
+
+    def steps_taken(self) -> np.ndarray:
+        """View-march height evaluations per pixel of the last frame (summed over the sub-samples)."""
+        return self._buffers["steps"].numpy().copy()
+
+
+def render_image(settings: TerrainSettings | None = None, pose: TerrainPose | None = None) -> np.ndarray:
+    """One uint8 image (height, width, 3) of the terrain."""
+    return TerrainTechnique(settings).render(pose)
+
+
+def render_pixels_c(settings: TerrainSettings, xs, ys, pose: TerrainPose | None = None) -> tuple:
+    """The C reference ``ccl_terrain_pixel`` at pixels (xs[k], ys[k]): (colours (k, 3) in [0, 1], steps (k,))."""
+    s = settings
+    pose = pose or TerrainPose.from_settings(s)
+    return equation("pt-alg-7.1.6", impl="c")(np.asarray(xs), np.asarray(ys), s.width, s.height, pose.camera(s.width, s.height),
+                                 s.params())
+
+
+def render_pixels_warp(settings: TerrainSettings, xs, ys, pose: TerrainPose | None = None) -> tuple:
+    """The Warp ``terrain_pixel`` at pixels (xs[k], ys[k]) -- the other side of :func:`render_pixels_c`."""
+    s = settings
+    pose = pose or TerrainPose.from_settings(s)
+    return equation("pt-alg-7.1.6", device=s.device)(np.asarray(xs), np.asarray(ys), s.width, s.height,
+                                              pose.camera(s.width, s.height), s.params())
+
+
+def ground_height(settings: TerrainSettings, x, z, octaves: int | None = None) -> np.ndarray:
+    """Terrain height at (x, z) with the settings' heightmap (default: the marched octaves)."""
+    s = settings
+    return K.height(x, z, octaves or s.march_octaves, s.height_scale, s.horizontal_scale, s.seed, s.heightmap,
+                    s.device)
+
+
+def walk_path(frames: int, settings: TerrainSettings) -> list[TerrainPose]:
+    """The camera path of ``pywarp animate terrain`` (a scripted walk standing in for the demo's mouse + W): from
+    the settings' camera, 3 units per frame along the heading, the heading swinging +-20 deg (one slow S-curve),
+    the eye kept at its start height above max(ground, water) -- the ground smoothed over 12 units so that the
+    camera glides over small bumps -- and the pitch of the settings."""
+    if isinstance(frames, bool) or not isinstance(frames, int) or frames < 1:
+        raise ValueError(f"frames must be an integer >= 1, got {frames!r}")
+    s = settings
+    step = 3.0
+    yaw0 = s.camera_yaw_deg
+    xs, zs, yaws = [s.camera_x], [s.camera_z], []
+    for i in range(frames):
+        u = i / max(frames - 1, 1)
+        yaw = yaw0 + 20.0 * math.sin(2.0 * math.pi * u)
+        yaws.append(yaw)
+        if i < frames - 1:
+            a = math.radians(yaw)
+            xs.append(xs[-1] + step * math.sin(a))
+            zs.append(zs[-1] - step * math.cos(a))
+    xs_a, zs_a = np.array(xs), np.array(zs)
+    # ground under the camera, smoothed over +-6 units along and across the path
+    offs = np.linspace(-6.0, 6.0, 5)
+    gx = xs_a[:, None, None] + offs[None, :, None]
+    gz = zs_a[:, None, None] + offs[None, None, :]
+    ground = ground_height(s, gx, gz).reshape(frames, -1).mean(axis=1)
+    ground = np.maximum(ground, s.water_level)
+    clearance = s.camera_y - max(float(ground[0]), s.water_level)
+    clearance = max(clearance, 2.0)
+    return [TerrainPose(float(xs_a[i]), float(ground[i] + clearance), float(zs_a[i]), yaws[i], s.camera_pitch_deg,
+                        s.fov_y_deg) for i in range(frames)]
