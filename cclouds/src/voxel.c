@@ -17,11 +17,11 @@ ccl_voxel_settings ccl_voxel_settings_default(void)
     s.seed = 0u;
     s.persistence = 0.5f;
     s.interpolation = CCL_VALUENOISE_LINEAR;
-    s.smoothing = CCL_VALUENOISE_SMOOTH_NONE;
+    s.smoothing = CCL_VALUENOISE_SMOOTH_ELIAS;
     s.variant = CCL_VARIANT_CORRECTED;
     s.border = CCL_VOXEL_BORDER_ZERO;
     s.sin_radius = 0.125f;
-    s.cover = 96.0f;
+    s.cover = 128.0f;
     s.sharpness = 0.96f;
     return s;
 }

@@ -84,11 +84,10 @@ class CloudArraySettings(Settings):
                                doc="up-sampling interpolant: linear (trilinear), cosine, or the printed cubic",
                                reason="'linear': the 3-D analogue of the text's bilinear up-sampling, 'mainly used "
                                       "for real time' (§5.1.4.1)")
-    smoothing: str = param("none", choices=tuple(SMOOTHINGS), invalidates="textures", group="cloud array",
+    smoothing: str = param("elias", choices=tuple(SMOOTHINGS), invalidates="textures", group="cloud array",
                            doc="smoothing of the noise added at each level (oc-5.1.3)",
-                           reason="'none': §5.2.1 adds 'random noise' at each level and the up-sampling already "
-                                  "smooths; Elias's weights would shrink the noise's spread to a quarter and the "
-                                  "useful cover range with it")
+                           reason="'elias': Elias's weights; with raw per-voxel noise the finest levels make a "
+                                  "speckled 'popcorn' cloud, smoothed the clouds are compact")
     variant: str = param("corrected", choices=tuple(VARIANTS), invalidates="textures", group="cloud array",
                          doc="persistence schedule: 'corrected' p^l, 'thesis' the printed squaring p^(2^l)",
                          reason="'corrected': the reading of the cited tutorial (spec erratum 3)")
@@ -99,11 +98,12 @@ class CloudArraySettings(Settings):
     sin_radius: float = param(0.125, unit="of the edge", lo=0.0, lo_open=True, hi=0.5, invalidates="textures",
                               group="cloud array", doc="radius of the SIN rounding as a fraction of the edge",
                               reason="0.125: one level-0 cell (size/8); the text gives no radius")
-    cover: float = param(96.0, unit="0..255", lo=0.0, hi=255.0, invalidates="textures", group="cloud array",
+    cover: float = param(128.0, unit="0..255", lo=0.0, hi=255.0, invalidates="textures", group="cloud array",
                          doc="cloudCover: noise threshold in 0..255 units; a LARGER cover gives LESS cloud (the "
                              "text's 'how big a cloud we want' reads inverted)",
-                         reason="96: with the zero border the interior noise averages about 115, so 96 leaves one "
-                                "or a few compact clouds inside the box")
+                         reason="128, the middle of the range: the smoothed noise spreads little around its mean "
+                                "(about 0.4 x 255 with the zero border's fall-off), so 128 keeps the brightest 15-30 % "
+                                "of the voxels -- one or a few compact clouds inside the box")
     sharpness: float = param(0.96, lo=0.0, hi=1.0, lo_open=True, hi_open=True, invalidates="textures",
                              group="cloud array",
                              doc="cloudSharpness in (0, 1): near 0 hard edges, near 1 soft, faint edges",

@@ -57,14 +57,14 @@ extern "C" {
  *   persistence 0.5     -- Elias's example value; the text only says 0-1 and that lower values look better (5.5).
  *   interpolation LINEAR-- trilinear, the 3-D analogue of the bilinear up-sampling of §5.1.1; "mainly used for
  *                          real-time computation" (§5.1.4.1).
- *   smoothing NONE      -- §5.2.1 adds "random noise" at each level; the up-sampling already smooths (Elias's
- *                          weights would shrink the noise's spread to a quarter and the filter's useful cover range
- *                          with it). Any CCL_VALUENOISE_SMOOTH_* is accepted.
+ *   smoothing ELIAS     -- Elias's weights (oc-5.1.3) on the noise added at each level: with raw per-voxel noise
+ *                          the finest levels make a speckled "popcorn" cloud; smoothed, the clouds are compact.
  *   variant CORRECTED   -- amplitude persistence^l (CCL_VARIANT_THESIS: the printed squaring).
  *   border ZERO         -- the method the text adopts (oc-5.2.3.2).
  *   sin_radius 0.125    -- radius of the SIN rounding as a fraction of the edge: one level-0 cell (size/8).
- *   cover 96            -- threshold in 0..255 units: with the zero border the noise of the interior averages
- *                          about 0.45 x 255 = 115, so 96 leaves one or a few compact clouds inside the box.
+ *   cover 128           -- threshold in 0..255 units, the middle of the range: smoothed noise spreads little
+ *                          around its mean (about 0.4 x 255 with the zero border's fall-off), so 128 keeps the
+ *                          brightest 15-30 % of the voxels -- one or a few compact clouds inside the box.
  *   sharpness 0.96      -- soft but visible edges: 255 (1 - 0.96^c) reaches half density at c = 17 units above the
  *                          cover (Elias's tutorial uses values of this order). */
 typedef struct ccl_voxel_settings {
