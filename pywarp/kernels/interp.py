@@ -5,7 +5,10 @@
 * :func:`interp_lerp` (Perlin's lerp, argument order (t, a, b)) and :func:`interp_cosine` (cosine interpolation),
   the curves vc-fig-2.6 compares the fades with; they have no catalogue ID of their own (vc-A1 step 3 names them
   without a formula), so they are helpers, not registry entries. :func:`interpolants` evaluates all four curves on
-  NumPy arrays.
+  NumPy arrays. The oc text's printed listings (oc-5.1.4.1 ``Linear_Interp(a, b, x) = a*(1-x) + b*x``, oc-5.1.4.2
+  ``Cosine_Interp``) are the same functions in exact arithmetic but not in float32 -- the printed blend gives exactly
+  b at x = 1, ``a + t(b - a)`` need not -- and take (a, b, x): they are their own entries,
+  :func:`pywarp.kernels.valuenoise.valuenoise_linear` / ``valuenoise_cosine`` (with the printed cubic, oc-5.1.4.3).
 * :func:`interp_remap` (vc-2.27), the linear range remap used by the cloud density model.
 """
 from __future__ import annotations
