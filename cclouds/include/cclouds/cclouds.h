@@ -19,6 +19,8 @@
 #include "cclouds/sky.h"
 #include "cclouds/reproj.h"
 #include "cclouds/cloudscape.h"
+#include "cclouds/optics.h"
+#include "cclouds/rain.h"
 #include "cclouds/draw.h"
 #include "cclouds/fractal.h"
 #include "cclouds/sdf.h"
