@@ -1,0 +1,171 @@
+"""The terrain scene (pt): the Warp render against the C reference pixel, the settings pinned to the C defaults, the
+technique (update, resize), the image's content, the walk path and the command line."""
+from __future__ import annotations
+
+import dataclasses
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from pywarp.kernels import terrain as K
+from pywarp.terrain.settings import TEST_HEIGHTMAP, TerrainSettings
+from pywarp.terrain.technique import (TerrainPose, TerrainTechnique, render_pixels_c, render_pixels_warp,
+                                      ground_height, walk_path)
+
+SMALL = dict(width=96, height=54)
+
+
+@pytest.fixture(scope="module")
+def final_image():
+    tech = TerrainTechnique(TerrainSettings(width=192, height=108))
+    return tech.render(encode=False), tech.steps_taken()
+
+
+@pytest.mark.spec("pt-alg-7.1.6", "pt-code-7.3", "pt-alg-7.3.4", "pt-alg-7.3-material")
+@pytest.mark.parametrize("changes", [
+    {},
+    {"march": "bisect"},
+    {"shadows": "hard", "fog": "corrected", "clouds": "thesis", "time_s": 7.5},
+    {"rays_per_pixel": 4, "stage": "materials"},
+    {"stage": "atmosphere", "seed": 5, "water_level": 0.0},
+    dict(TEST_HEIGHTMAP, march="fixed", step_size=0.5),
+], ids=["final", "bisect", "hard-thesis", "ss4-materials", "atmosphere-seed5", "test-fixed"])
+def test_warp_pixels_match_the_c_reference(changes):
+    """The C reference pixel (ccl_terrain_pixel) and the Warp pixel perform the same float32 operations in the same
+    order with the same libm calls: the results are expected bit-identical, and so are the step counts."""
+    s = TerrainSettings(**SMALL, **changes)
+    rng = np.random.default_rng(7)
+    xs, ys = rng.integers(0, s.width, 24), rng.integers(0, s.height, 24)
+    cw, sw = render_pixels_warp(s, xs, ys)
+    cc, sc = render_pixels_c(s, xs, ys)
+    np.testing.assert_array_equal(cw, cc)
+    np.testing.assert_array_equal(sw, sc)
+
+
+@pytest.mark.spec("pt-alg-7.1.6")
+def test_the_frame_is_the_pixel_function():
+    s = TerrainSettings(**SMALL)
+    tech = TerrainTechnique(s)
+    img = tech.render(encode=False)
+    xs, ys = np.array([0, 13, 95, 50]), np.array([0, 40, 53, 20])
+    cw, sw = render_pixels_warp(s, xs, ys)
+    np.testing.assert_array_equal(img[ys, xs], cw)
+    np.testing.assert_array_equal(tech.steps_taken()[ys, xs], sw)
+
+
+def test_settings_defaults_are_the_c_defaults():
+    c = K.params_default()
+    mine = TerrainSettings().params()
+    for name, v in c.items():
+        if name in ("sun", "seed"):
+            continue  # the sun comes from the settings' elevation and azimuth
+        got = mine[name]
+        if isinstance(v, tuple):
+            np.testing.assert_allclose(np.float32(got), np.float32(v), err_msg=name)
+        else:
+            assert np.float32(got) == np.float32(v), name
+
+
+def test_bad_settings_name_the_field():
+    with pytest.raises(ValueError, match="max_steps"):
+        TerrainSettings(max_steps=0)
+    with pytest.raises(ValueError, match="rays_per_pixel"):
+        TerrainSettings(rays_per_pixel=3)
+    with pytest.raises(ValueError, match="normal_octaves_min"):
+        TerrainSettings(normal_octaves_max=3, normal_octaves_min=4)
+    with pytest.raises(ValueError, match="material_high"):
+        TerrainSettings(material_low=5.0, material_high=5.0)
+    with pytest.raises(ValueError, match="fog"):
+        TerrainSettings(fog="sometimes")
+    with pytest.raises(ValueError, match="precision"):
+        K.c_params({"precision": float("nan")})
+
+
+@pytest.mark.spec("pt-code-7.3", "pt-alg-7.3.4", "pt-7.3", "pt-code-7.10", "pt-code-7.11")
+def test_final_image_has_sky_terrain_water_and_the_sun(final_image):
+    img, steps = final_image
+    assert np.all(np.isfinite(img)) and img.min() >= 0.0 and img.max() <= 1.0
+    s = TerrainSettings(width=192, height=108)
+    top = img[:8].reshape(-1, 3).mean(0)
+    assert top[2] > top[0]  # blue sky at the top
+    assert steps[:8].mean() < steps[-8:].mean()  # sky rays leave early, ground rays march
+    # the sun glow: the brightest pixel lies towards the sun (left half, upper half)
+    lum = img.mean(-1)
+    y, x = np.unravel_index(np.argmax(lum), lum.shape)
+    assert x < s.width // 2 and y < s.height // 2 and lum[y, x] > 0.95
+    # water in view: stage 'final' differs from 'atmosphere' only where there is water
+    no_water = TerrainTechnique(dataclasses.replace(s, stage="atmosphere")).render(encode=False)
+    wet = np.any(np.abs(img - no_water) > 1e-6, axis=-1)
+    assert 0.02 < wet.mean() < 0.6
+    assert not wet[:20].any()  # no water in the sky
+
+
+@pytest.mark.spec("pt-code-7.6", "pt-code-7.7")
+def test_shadows_darken_and_soft_shadows_lie_between_none_and_hard():
+    base = TerrainSettings(**SMALL, stage="materials")
+    imgs = {k: TerrainTechnique(dataclasses.replace(base, shadows=k)).render(encode=False).mean()
+            for k in ("none", "soft", "hard")}
+    assert imgs["hard"] < imgs["none"] and imgs["soft"] < imgs["none"]
+
+
+def test_same_seed_same_image_other_seed_differs():
+    s = TerrainSettings(**SMALL)
+    a = TerrainTechnique(s).render()
+    b = TerrainTechnique(s).render()
+    c = TerrainTechnique(dataclasses.replace(s, seed=3)).render()
+    assert np.array_equal(a, b) and not np.array_equal(a, c)
+
+
+def test_update_and_resize():
+    tech = TerrainTechnique(TerrainSettings(**SMALL))
+    a = tech.render()
+    tech.update(time_s=30.0)  # clouds and waves move
+    b = tech.render()
+    assert a.shape == b.shape and not np.array_equal(a, b)
+    tech.resize(40, 30)
+    assert tech.render().shape == (30, 40, 3)
+    with pytest.raises(ValueError, match="step_scale"):
+        tech.update(step_scale=0.0)
+
+
+def test_walk_path_stays_above_ground_and_water():
+    s = TerrainSettings()
+    poses = walk_path(30, s)
+    assert len(poses) == 30 and isinstance(poses[0], TerrainPose)
+    xs = np.array([p.x for p in poses])
+    zs = np.array([p.z for p in poses])
+    ys = np.array([p.y for p in poses])
+    ground = np.maximum(ground_height(s, xs, zs), s.water_level)
+    assert np.all(ys - ground > 1.0)
+    assert np.hypot(xs[-1] - xs[0], zs[-1] - zs[0]) > 40.0
+    with pytest.raises(ValueError, match="frames"):
+        walk_path(0, s)
+
+
+def _cli(*args, timeout=240):
+    return subprocess.run([sys.executable, "-m", "pywarp", *args], capture_output=True, text=True, timeout=timeout)
+
+
+def test_cli_render_animate_and_bad_option(tmp_path):
+    out = tmp_path / "t.png"
+    r = _cli("render", "terrain", "--width", "64", "--height", "36", "--out", str(out), "--no-progress")
+    assert r.returncode == 0, r.stderr
+    assert out.exists() and "scene terrain" in r.stdout
+    gif = tmp_path / "w.gif"
+    r = _cli("animate", "terrain", "--frames", "3", "--width", "32", "--height", "18", "--out", str(gif),
+             "--no-progress")
+    assert r.returncode == 0, r.stderr
+    assert gif.exists() and "path walk" in r.stdout
+    r = _cli("render", "terrain", "--max-steps", "0", "--out", str(tmp_path / "x.png"), "--no-progress")
+    assert r.returncode == 2 and "--max-steps" in r.stderr and not (tmp_path / "x.png").exists()
+
+
+def test_cli_bench_supersampling_json():
+    r = _cli("bench", "terrain", "supersampling", "--width", "24", "--height", "16", "--json")
+    assert r.returncode == 0, r.stderr
+    res = json.loads(r.stdout.strip().splitlines()[-1])
+    assert [row["rays_per_pixel"] for row in res["rows"]] == [1, 4, 16]
+    assert res["rows"][2]["cost_ratio"] > 2.0
