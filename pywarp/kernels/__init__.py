@@ -15,7 +15,7 @@ _init()
 
 #: Topic modules, in the order of the C umbrella header.
 TOPICS = ("camera", "phase", "media", "hash", "interp", "noise", "texgen", "clouds",
-          "raymarch", "colour", "sky", "reproj", "cloudscape", "draw", "fractal", "sdf", "terrain", "optics", "rain", "valuenoise", "voxel", "flight", "volume")
+          "raymarch", "colour", "sky", "reproj", "cloudscape", "draw", "fractal", "sdf", "terrain", "optics", "rain", "valuenoise", "voxel", "particles", "flight", "volume")
 
 
 def load_all() -> None:

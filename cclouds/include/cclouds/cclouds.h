@@ -27,6 +27,7 @@
 #include "cclouds/terrain.h"
 #include "cclouds/valuenoise.h"
 #include "cclouds/voxel.h"
+#include "cclouds/particles.h"
 #include "cclouds/flight.h"
 #include "cclouds/volume.h"
 

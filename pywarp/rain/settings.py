@@ -1,0 +1,192 @@
+"""Settings of the rain scene (rr), each field declared once with its parameter spec (:mod:`pywarp.core.params`).
+
+The text (Rejdova 2009, after Rousseau et al. 2006) fixes the spawn box, the respawn level, the 4x slow-down, the
+Gaussian sizes around 1.3 mm, the 512 x 512 mask and capture, the capture's 150 deg FOV and the 7 streak taps; every
+other value is ours, with its reason. This module imports neither Warp nor the C library.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..core.params import Settings, param
+
+#: Drop shapes of Table 2.1 (a in mm), selected by the T key (rr-tab-A).
+SHAPES = ("0.5", "1.0", "3.0", "4.5")
+#: Mask methods (rr-alg-3.1.1; ccl_rain_mask_method order): sphere, the application's outline, the exact trace.
+MASKS = ("sphere", "outline", "exact")
+MODES = ("streaks", "drops")
+FILTERS = ("nearest", "linear")
+#: A built-in analytic background (sky gradient, horizon, checkered ground, coloured posts): fast, for tests and
+#: figures. Any registered scene other than rain is a background too.
+PANORAMA = "panorama"
+
+
+def _check_background(obj, name, v):
+    if v == PANORAMA:
+        return
+    from ..core.scenes import scenes
+
+    names = [n for n in scenes() if n != "rain"]
+    if v not in names:
+        raise ValueError(f"{name} must be one of {', '.join(map(repr, [PANORAMA] + names))}, got {v!r}")
+
+
+def _check_size(obj, name, v):
+    import numpy as np  # float32, as ccl_particles_params_check
+
+    m, w = np.float32(obj.size_mm), np.float32(obj.size_spread_mm)
+    if not (m - np.float32(0.5) * w >= np.float32(0.1) and m + np.float32(0.5) * w <= np.float32(4.5)):
+        raise ValueError(f"{name} must keep size_mm +- size_spread_mm/2 within [0.1, 4.5] mm (Tables 2.1, 2.2), got "
+                         f"{obj.size_mm:g} +- {obj.size_spread_mm:g}/2")
+
+
+_G_IMAGE, _G_RAIN, _G_LOOK, _G_CAM, _G_BG, _G_RUN = "image", "rain", "drop look", "camera", "background", "runtime"
+
+
+@dataclass(frozen=True)
+class RainSettings(Settings):
+    """Every parameter of a rain frame, with its unit, default and the reason for it. Immutable: change with
+    ``dataclasses.replace`` or :meth:`pywarp.rain.technique.RainTechnique.update`."""
+
+    width: int = param(640, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group=_G_IMAGE,
+                       doc="image width", reason="640 x 360: the issue's benchmark frame")
+    height: int = param(360, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group=_G_IMAGE,
+                        doc="image height", reason="640 x 360: the issue's benchmark frame")
+    mode: str = param("streaks", choices=MODES, group=_G_RAIN,
+                      doc="drops (rr-code-5.2.3) or retinal-persistence streaks (rr-code-5.2.4); the F key",
+                      reason="streaks: the text's final rain (figs 6.4, 6.6, 6.8)")
+    drops: int = param(3000, kind="int", lo=0, hi=1000000, group=_G_RAIN, cli="--drops",
+                       doc="requested number of drops (G/H keys)",
+                       reason="3000: heavy rain at 640 x 360 that still lets the background through; Table 6.2 "
+                              "measures 0 - 50 000")
+    shape: str = param("1.0", choices=SHAPES, invalidates="textures", group=_G_RAIN,
+                       doc="drop shape: the Table 2.1 radius a (mm) whose Beard-Chuang outline the mask takes (T key)",
+                       reason="1.0: the typical drop of the text's §3.1 (1 mm radius ~ 10 px)")
+    mask: str = param("outline", choices=MASKS, invalidates="textures", group=_G_RAIN,
+                      doc="refraction mask: sphere, outline (the application: the shape's outline, a sphere's "
+                          "refraction) or exact (rays traced through the Beard-Chuang drop)",
+                      reason="outline: what the application did (rr-alg-3.1.1, spec erratum 12)")
+    size_mm: float = param(1.3, unit="mm", lo=0.1, hi=4.5, group=_G_RAIN, cli="--size",
+                           doc="mean drop radius of the particle sizes, Gauss(1, 1.3, 8)'s 1.3 (B/N keys)",
+                           reason="1.3: the text's mean size (rr-code-5.2.2), read as a radius (Table 2.2 is indexed "
+                                  "by radius)")
+    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, group=_G_RAIN, cli="--size-spread",
+                                  doc="Gauss(1, 1.3, 8)'s 1, read as the width of the averaged uniforms: radii in "
+                                      "size +- spread/2, standard deviation spread / sqrt(12 samples)",
+                                  reason="1: the printed argument; with 8 samples sigma = 0.10 mm, so ~68 % of the "
+                                         "drops are within 0.1 mm of 1.3 mm (the text's ~66 %)")
+    size_samples: int = param(8, kind="int", lo=1, hi=64, group=_G_RAIN,
+                              doc="Gauss(1, 1.3, 8)'s 8, read as the number of uniforms averaged (Irwin-Hall)",
+                              reason="8: the printed argument")
+    slowdown: float = param(4.0, lo=0.0, lo_open=True, hi=1000.0, group=_G_RAIN,
+                            doc="terminal speeds of Table 2.2 divided by this", reason="4: the application's")
+    metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, group=_G_RAIN,
+                                   doc="one scene unit in metres (speeds in m/s become units/s)",
+                                   reason="1: not given (spec erratum 17); the 2 x 0.25 x 3 box is then a few metres "
+                                          "around the viewer")
+    wind_x: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, group=_G_RAIN, cli="--wind-x",
+                          doc="horizontal wind along x (our extension; drops drift and wrap in the box)",
+                          reason="0: the text has no wind")
+    wind_z: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, group=_G_RAIN, cli="--wind-z",
+                          doc="horizontal wind along z (our extension)", reason="0: the text has no wind")
+    warm_start: bool = param(True, group=_G_RAIN,
+                             doc="start with every requested drop in the air (off: one drop added per frame, as the "
+                                 "listing)",
+                             reason="on: a single image shows the requested count (the listing needs `drops` frames "
+                                    "to fill the box)")
+    variant: str = param("corrected", choices=("corrected", "thesis"), group=_G_RAIN,
+                         doc="particle counter of rr-code-5.2.2: corrected (+1 per frame) or thesis (the printed "
+                             "decrement: no drop is ever created)",
+                         reason="corrected: the listing's evident intent")
+    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, group=_G_RAIN,
+                      doc="seed of every particle draw; the same seed gives the same rain", reason="0")
+    time_s: float = param(0.0, unit="s", lo=0.0, hi=1e6, group=_G_RAIN, cli="--time",
+                          doc="simulated time since the start (animate advances it; dt = its change, scaled by "
+                              "clock_rate)",
+                          reason="0: the first frame")
+    clock_rate: float = param(0.05, lo=0.0, hi=100.0, group=_G_RAIN,
+                              doc="rain seconds per second of the time field",
+                              reason="0.05: `pywarp animate` advances the time by --time-scale (default 20) "
+                                     "seconds per video second; 0.05 makes that real time")
+    frame_dt: float = param(1.0 / 30.0, unit="s", lo=1e-4, hi=0.1, group=_G_RAIN,
+                            doc="largest simulation step (a longer time change is simulated in steps of this)",
+                            reason="1/30: the frame time of a 30 fps application")
+    persistence_ms: float = param(75.0, unit="ms", lo=60.0, hi=90.0, group=_G_LOOK,
+                                  doc="retinal persistence: the streak is the fall during this time (rr-alg-3.2.3)",
+                                  reason="75: the middle of the text's 60 - 90 ms")
+    billboard_scale: float = param(8.0, lo=0.1, hi=1000.0, group=_G_LOOK,
+                                   doc="drop billboards drawn this many times their true size",
+                                   reason="8: a 1.3 mm drop 1 m away is 0.4 px at true size at 360 px and 60 deg; "
+                                          "the text's drops are ~10 px (§3.1); 8x gives ~3 px there and ~10 px at "
+                                          "0.3 m")
+    opacity: float = param(1.0, lo=0.0, hi=1.0, group=_G_LOOK,
+                           doc="opacity of a drop pixel (mode drops)",
+                           reason="1: the shader writes the refracted colour (alpha 1 from the mask)")
+    streak_opacity: float = param(0.5, lo=0.0, hi=1.0, group=_G_LOOK,
+                                  doc="opacity of a streak pixel whose 7 taps all hit (fewer hits: proportionally "
+                                      "less) -- the text's reduced alpha, amount not given",
+                                  reason="0.5: streaks stay see-through where they cross (fig 3.8 uses opaque "
+                                         "streaks: 1)")
+    near_clip: float = param(0.5, unit="units", lo=0.01, hi=10.0, group=_G_LOOK,
+                             doc="drops nearer than this to the eye (along the view) are not drawn",
+                             reason="0.5: nearer drops would cover tens of pixels and hide the scene")
+    filter: str = param("nearest", choices=FILTERS, group=_G_LOOK,
+                        doc="capture filtering: nearest (rr-alg-3.1.2) or linear (rr-code-5.2.1-c's GL_LINEAR)",
+                        reason="nearest: the text says it suffices")
+    capture_size: int = param(512, unit="px", kind="int", lo=16, hi=4096, invalidates="size", group=_G_LOOK,
+                              doc="edge of the square wide-angle capture", reason="512: the text's (rr-alg-3.1.2)")
+    capture_fov_deg: float = param(150.0, unit="deg", lo=1.0, hi=170.0, group=_G_LOOK, cli="--capture-fov",
+                                   doc="vertical FOV of the capture camera (rr-der-3.2.1)",
+                                   reason="150: the text's contract (the exact drop FOV is 165 deg, rr-der-3.2.1)")
+    mask_size: int = param(512, unit="px", kind="int", lo=8, hi=4096, invalidates="textures", group=_G_LOOK,
+                           doc="edge of the refraction mask", reason="512: the text's (rr-alg-3.1.1)")
+    camera_yaw_deg: float = param(0.0, unit="deg", lo=-360.0, hi=360.0, group=_G_CAM, cli="--yaw",
+                                  doc="camera heading, 0 = -z (passed to the background scene)",
+                                  reason="0: looking along -z")
+    camera_pitch_deg: float = param(2.0, unit="deg", lo=-89.0, hi=89.0, group=_G_CAM, cli="--pitch",
+                                    doc="camera pitch (passed to the background scene)",
+                                    reason="2: the horizon across the frame, so drops show sky and ground upside down")
+    fov_y_deg: float = param(60.0, unit="deg", lo=1.0, hi=170.0, group=_G_CAM, cli="--fov",
+                             doc="vertical field of view of the view", reason="60: a natural view")
+    background: str = param("clouds", check=_check_background, invalidates="sky", group=_G_BG,
+                            doc="background: 'panorama' (built-in analytic sky and ground) or any registered scene "
+                                "(its settings' width, height, fov_y_deg, camera_yaw_deg and camera_pitch_deg are set "
+                                "from ours)",
+                            reason="clouds: the vc cloudscape, a real rendered background")
+    background_options: dict = param({"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05}, cli=None,
+                                     invalidates="sky", group=_G_BG,
+                                     doc="settings of the background scene by name",
+                                     reason="clouds: an overcast, dark rain sky seen from 50 m")
+    device: str = param("cpu", invalidates="device", group=_G_RUN, doc="Warp device: cpu, or cuda:N where present",
+                        reason="cpu: nothing requires a GPU")
+    threads: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, invalidates="device", group=_G_RUN,
+                                default_text="one per core", doc="worker threads of the tile launcher",
+                                reason="None: one per core (PYWARP_THREADS overrides)")
+
+    def particle_values(self) -> dict:
+        """The particle-system parameters (``pywarp.kernels.particles.DEFAULTS`` fields) of these settings."""
+        return dict(size_mean_mm=self.size_mm, size_spread_mm=self.size_spread_mm, size_samples=self.size_samples,
+                    slowdown=self.slowdown, metres_per_unit=self.metres_per_unit,
+                    wind=(self.wind_x / self.metres_per_unit, 0.0, self.wind_z / self.metres_per_unit),
+                    seed=self.seed)
+
+
+#: rr-tab-A: the controls of the application (Appendix A.1), as data: key -> (action, the settings field it changes,
+#: how). The viewer binds them; step sizes are not given by the text (spec erratum 16), ours are here.
+CONTROLS = (
+    {"key": "W", "action": "step forward", "field": None, "change": "camera forward"},
+    {"key": "S", "action": "step backward", "field": None, "change": "camera backward"},
+    {"key": "A", "action": "turn left", "field": "camera_yaw_deg", "change": -5.0},
+    {"key": "D", "action": "turn right", "field": "camera_yaw_deg", "change": +5.0},
+    {"key": "Q", "action": "move up", "field": None, "change": "camera up"},
+    {"key": "E", "action": "move down", "field": None, "change": "camera down"},
+    {"key": "Y", "action": "look up", "field": "camera_pitch_deg", "change": +5.0},
+    {"key": "C", "action": "look down", "field": "camera_pitch_deg", "change": -5.0},
+    {"key": "P", "action": "pause / start the simulation", "field": "clock_rate", "change": "toggle 0"},
+    {"key": "F", "action": "toggle drops / streaks", "field": "mode", "change": "cycle"},
+    {"key": "T", "action": "select the drop shape (Table 2.1)", "field": "shape", "change": "cycle"},
+    {"key": "G", "action": "decrease the number of drops", "field": "drops", "change": "x 0.5"},
+    {"key": "H", "action": "increase the number of drops", "field": "drops", "change": "x 2"},
+    {"key": "B", "action": "decrease the drop size", "field": "size_mm", "change": -0.1},
+    {"key": "N", "action": "increase the drop size", "field": "size_mm", "change": +0.1},
+)

@@ -1,0 +1,340 @@
+"""The rain technique (rr-alg-4.1's classes, on the platform's init / update / render / resize design):
+
+* the background (TERRAIN + SKYBOX of the application): any registered scene rendered through its own technique, or
+  the built-in analytic :class:`Panorama`; rendered twice and cached -- the view at the output size and the
+  wide-angle capture (FBOBJECT, rr-alg-3.1.2: the viewer's pose, FOVy 150 deg, 512 x 512);
+* DROP: the refraction mask of the chosen shape (rr-alg-3.1.1, ``pywarp.kernels.rain``), built once per shape;
+* RAIN PARTICLE: :class:`pywarp.kernels.particles.ParticleSystem` (rr-code-5.2.2), advanced by the time field;
+* SHADER + POST OBJECT: the particles projected to billboards (drops, or streaks, rr-alg-3.2.3) and composited over
+  the view by the refraction / persistence shaders (rr-code-5.2.3 / 5.2.4) in one multi-core Warp pass.
+
+    from pywarp.rain.technique import RainTechnique
+    from pywarp.rain.settings import RainSettings
+    img = RainTechnique(RainSettings(background="panorama")).render()     # uint8 (360, 640, 3)
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+import warp as wp
+
+from ..core.runtime import init, launcher as shared_launcher
+
+init()
+
+from ..kernels import particles as P  # noqa: E402
+from .settings import PANORAMA, RainSettings  # noqa: E402
+
+
+# --- the camera ----------------------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class RainPose:
+    """Orientation of the view (the rain box follows the eye, so only the orientation matters to the drops)."""
+
+    yaw_deg: float = 0.0
+    pitch_deg: float = 2.0
+    fov_y_deg: float = 60.0
+
+    @classmethod
+    def from_settings(cls, s: RainSettings) -> "RainPose":
+        return cls(s.camera_yaw_deg, s.camera_pitch_deg, s.fov_y_deg)
+
+    def basis(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(right, up, forward) unit vectors (world, y up; yaw 0 looks along -z)."""
+        y, p = math.radians(self.yaw_deg), math.radians(self.pitch_deg)
+        f = np.array([math.sin(y) * math.cos(p), math.sin(p), -math.cos(y) * math.cos(p)])
+        s = np.cross(f, [0.0, 1.0, 0.0])
+        s /= np.linalg.norm(s)
+        return s, np.cross(s, f), f
+
+
+# --- backgrounds ---------------------------------------------------------------------------------------------------------
+
+class Panorama:
+    """A built-in analytic background (display-encoded RGB in [0, 1]): a grey rain sky brightening to the horizon, a
+    checkered ground plane 1.7 m below the eye (2 m squares) and a ring of coloured posts 40 m away -- enough structure
+    to read the refraction (each drop shows it upside down). A function of the view direction only."""
+
+    def render(self, pose: RainPose, width: int, height: int, fov_y_deg: float) -> np.ndarray:
+        s, u, f = pose.basis()
+        t = math.tan(math.radians(fov_y_deg) / 2.0)
+        xs = (2.0 * (np.arange(width) + 0.5) / width - 1.0) * t * width / height
+        ys = (1.0 - 2.0 * (np.arange(height) + 0.5) / height) * t
+        d = f[None, None, :] + xs[None, :, None] * s[None, None, :] + ys[:, None, None] * u[None, None, :]
+        d /= np.linalg.norm(d, axis=-1, keepdims=True)
+        return self.colour(d)
+
+    @staticmethod
+    def colour(d: np.ndarray) -> np.ndarray:
+        dy = d[..., 1]
+        sky_t = np.clip(dy, 0.0, 1.0)[..., None] ** 0.5
+        sky = (1.0 - sky_t) * np.array([0.72, 0.75, 0.80]) + sky_t * np.array([0.38, 0.42, 0.50])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dist = np.where(dy < -1e-4, -1.7 / dy, np.inf)
+        gx, gz = d[..., 0] * dist, d[..., 2] * dist
+        with np.errstate(invalid="ignore"):
+            check = ((np.floor(gx / 2.0) + np.floor(gz / 2.0)) % 2 == 0)[..., None]
+        ground = np.where(check, np.array([0.22, 0.36, 0.16]), np.array([0.45, 0.40, 0.30]))
+        fade = np.exp(-np.nan_to_num(dist, posinf=1e9) / 80.0)[..., None]
+        ground = fade * ground + (1.0 - fade) * np.array([0.62, 0.64, 0.66])
+        img = np.where((dy < -1e-4)[..., None], ground, sky)
+        # posts: 12 vertical cylinders of radius 1.5 m at 40 m, from the ground to 8 m up
+        az = np.arctan2(d[..., 0], -d[..., 2])
+        k = np.round(az / (2 * np.pi / 12))
+        off = np.abs(az - k * 2 * np.pi / 12) * 40.0
+        horiz = np.sqrt(d[..., 0] ** 2 + d[..., 2] ** 2)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            h = 40.0 * dy / horiz
+        post = (off < 1.5) & (h > -1.7) & (h < 8.0)
+        hues = np.array([[0.85, 0.20, 0.15], [0.95, 0.75, 0.15], [0.20, 0.45, 0.85], [0.90, 0.90, 0.90]])
+        pc = hues[(k.astype(np.int64) % 4)]
+        img = np.where(post[..., None], pc * (0.6 + 0.4 * (1.0 - off / 1.5))[..., None], img)
+        return img.astype(np.float32)
+
+
+class SceneBackground:
+    """A registered scene as the background: its settings (``options``, then width, height, fov_y_deg,
+    camera_yaw_deg, camera_pitch_deg where it has those fields) and its technique's ``render``."""
+
+    def __init__(self, name: str, options: dict, device: str = "cpu", threads=None):
+        from ..core.scenes import scene
+
+        self.scene = scene(name)
+        fields = {f.name for f in dataclasses.fields(self.scene.settings)}
+        unknown = set(options) - fields
+        if unknown:
+            raise ValueError(f"background_options has no field(s) {sorted(unknown)} in scene {name!r}")
+        base = dict(options)
+        for k, v in (("device", device), ("threads", threads)):
+            if k in fields:
+                base[k] = v
+        self.fields = fields
+        self.base = self.scene.settings(**base)
+        self._techniques: dict = {}
+
+    def render(self, pose: RainPose, width: int, height: int, fov_y_deg: float) -> np.ndarray:
+        changes = {k: v for k, v in (("width", width), ("height", height), ("fov_y_deg", fov_y_deg),
+                                     ("camera_yaw_deg", pose.yaw_deg), ("camera_pitch_deg", pose.pitch_deg))
+                   if k in self.fields}
+        key = (width, height)
+        tech = self._techniques.get(key)
+        if tech is None:
+            tech = self._techniques[key] = self.scene.technique(replace(self.base, **changes))
+        else:
+            tech.update(**changes)
+        return tech.render().astype(np.float32) / 255.0
+
+
+def make_background(s: RainSettings):
+    if s.background == PANORAMA:
+        return Panorama()
+    return SceneBackground(s.background, s.background_options, s.device, s.threads)
+
+
+# --- the drop mask (DROP) ------------------------------------------------------------------------------------------------
+
+_MASKS: dict = {}
+
+
+def drop_mask(shape: str, method: str, size: int) -> tuple[np.ndarray, float]:
+    """The refraction mask (size, size, 4) of a Table 2.1 shape by ``method`` and its half-size in units of a (the
+    billboard of a drop of radius r is r L/a wide): ``pywarp.kernels.rain`` (rr-alg-3.1.1), cached."""
+    key = (shape, method, size)
+    if key not in _MASKS:
+        _MASKS[key] = _build_mask(float(shape), method, size)
+    return _MASKS[key]
+
+
+def _build_mask(a: float, method: str, size: int) -> tuple[np.ndarray, float]:
+    from ..kernels import rain as R
+
+    m = R.drop_mask(size, a, method=method)
+    extent = 1.0 if method == "sphere" else float(np.asarray(R.drop_extent(a)).ravel()[0]) / a
+    return np.ascontiguousarray(m, np.float32), extent
+
+
+def sphere_mask(size: int, n_water: float = 1.33) -> np.ndarray:
+    """A sphere's refraction mask in NumPy float64 (an independent check of ``pywarp.kernels.rain.drop_mask``) (rays along +z through both surfaces; (0, 0, 0) where the exit
+    is totally reflected), the encoding of ``ccl_rain_mask``: row 0 the top, (x, y, z) the exit direction (x right,
+    y up, z away from the viewer), a the inside flag."""
+    j = np.arange(size)
+    u = 2.0 * (j + 0.5) / size - 1.0
+    uu, vv = np.meshgrid(u, -u)
+    r2 = uu * uu + vv * vv
+    inside = r2 < 1.0
+    zz = -np.sqrt(np.clip(1.0 - r2, 0.0, 1.0))
+    n = np.stack([uu, vv, zz], -1)  # outward normal at the entry point (towards the viewer)
+    d = np.array([0.0, 0.0, 1.0])
+
+    def refract(d, n, eta):
+        cos_i = -np.sum(d * n, -1, keepdims=True)
+        k = 1.0 - eta * eta * (1.0 - cos_i * cos_i)
+        t = eta * d + (eta * cos_i - np.sqrt(np.clip(k, 0.0, None))) * n
+        return t, k[..., 0]
+
+    t1, _ = refract(np.broadcast_to(d, n.shape), n, 1.0 / n_water)
+    p_exit = n - 2.0 * np.sum(n * t1, -1, keepdims=True) * t1  # second intersection of the chord
+    t2, k2 = refract(t1, -p_exit, n_water)
+    out = np.zeros((size, size, 4), np.float32)
+    ok = inside & (k2 >= 0.0)
+    out[..., :3] = np.where(ok[..., None], t2, 0.0)
+    out[..., 3] = inside
+    return out
+
+
+# --- sprites (the vertex stage) ------------------------------------------------------------------------------------------
+
+def sprites(state: dict, pose: RainPose, width: int, height: int, s: RainSettings, extent: float,
+            streaks: bool) -> np.ndarray:
+    """Billboards (k, 6) (``pywarp.kernels.particles.SPRITE_FIELDS``) of the particles in view, far first: each
+    drop's centre projected with the view camera, its billboard radius r L/a * billboard_scale on screen; streaks
+    (rr-alg-3.2.3) reach up by the fall during the persistence time (``particles_streak``), their taps spaced by its
+    tap offset."""
+    pos = np.asarray(state["pos"], np.float32).reshape(-1, 3)
+    if not len(pos):
+        return np.zeros((0, 6), np.float32)
+    r_s, u_s, f_s = pose.basis()
+    xc = pos @ r_s.astype(np.float32)
+    yc = pos @ u_s.astype(np.float32)
+    depth = pos @ f_s.astype(np.float32)
+    focal = np.float32(0.5 * height / math.tan(math.radians(pose.fov_y_deg) / 2.0))
+    radius_w = (state["radius_mm"] * np.float32(extent * 1e-3 / s.metres_per_unit * s.billboard_scale)).astype(
+        np.float32)
+    keep = depth > s.near_clip
+    xc, yc, depth, radius_w, speed = xc[keep], yc[keep], depth[keep], radius_w[keep], state["speed"][keep]
+    cx = np.float32(0.5 * width) + focal * xc / depth
+    cy = np.float32(0.5 * height) - focal * yc / depth
+    rad = focal * radius_w / depth
+    half = rad.copy()
+    tap = np.zeros_like(rad)
+    if streaks:
+        length, tap = P.particles_streak_np(speed, s.persistence_ms * 1e-3, radius_w)
+        lpx = focal * length / depth
+        cy = cy - 0.5 * lpx  # the trace lies above the drop: its earlier positions
+        half = rad + 0.5 * lpx
+    out = np.stack([cx, cy, rad, half, tap, depth], 1).astype(np.float32)
+    on = (cx + half > 0) & (cx - half < width) & (cy + half > 0) & (cy - half < height) & (rad > 0)
+    out = out[on]
+    return out[np.argsort(-out[:, 5], kind="stable")]
+
+
+# --- the technique -------------------------------------------------------------------------------------------------------
+
+class RainTechnique:
+    """Rain over a background scene: ``init`` (background, mask, particles), ``update`` (settings, time),
+    ``render`` (one frame), ``resize``. The background view and capture are cached per pose and size (a still camera
+    pays for them once)."""
+
+    def __init__(self, settings: RainSettings | None = None):
+        self.settings = (settings or RainSettings()).validate()
+        self.background = None
+        self._cache: dict = {}
+        self._device_cache: dict = {}
+        self.init()
+
+    def init(self) -> None:
+        s = self.settings
+        self.launcher = shared_launcher(s.device, s.threads)
+        self.device = self.launcher.device
+        self.background = make_background(s)
+        self.mask, self.extent = drop_mask(s.shape, s.mask, s.mask_size)
+        self._mask_wp = None
+        self._reset_particles()
+        self.resize(s.width, s.height)
+
+    def _reset_particles(self) -> None:
+        s = self.settings
+        self.system = P.ParticleSystem(max(s.drops, 1), device=self.device, variant=s.variant,
+                                       **s.particle_values())
+        if s.warm_start:
+            self.system.fill(s.drops)
+        self.t = 0.0
+
+    def update(self, **changes) -> None:
+        old = self.settings
+        new = replace(old, **changes)
+        self.settings = new
+        changed = new.changed(old)
+        stale = new.invalidated(old)
+        if "device" in stale:
+            self.init()
+            return
+        if "sky" in stale:
+            self.background = make_background(new)
+            self._cache.clear()
+        if "textures" in stale:
+            self.mask, self.extent = drop_mask(new.shape, new.mask, new.mask_size)
+        particle_fields = {"size_mm", "size_spread_mm", "size_samples", "slowdown", "metres_per_unit", "wind_x",
+                           "wind_z", "seed", "variant", "warm_start"}
+        if changed & particle_fields or new.drops > self.system.capacity:
+            self._reset_particles()
+        if stale & {"size"}:
+            self.resize(new.width, new.height)
+
+    def resize(self, width: int, height: int) -> None:
+        if (width, height) != (self.settings.width, self.settings.height):
+            self.settings = replace(self.settings, width=width, height=height)
+
+    def _advance(self) -> None:
+        s = self.settings
+        target = s.time_s * s.clock_rate
+        if target < self.t - 1e-9:
+            self._reset_particles()
+        steps = 0
+        while self.t < target - 1e-9 and steps < 100000:
+            dt = min(s.frame_dt, target - self.t)
+            self.system.step(s.drops, dt)
+            self.t += dt
+            steps += 1
+        if self.system.count > s.drops:  # a lowered count (G key) takes effect at once
+            self.system.step(s.drops, 0.0)
+
+    def images(self, pose: RainPose) -> tuple[np.ndarray, np.ndarray]:
+        """(view, capture) of the background for ``pose`` (cached): display-encoded RGB float32."""
+        s = self.settings
+        key = (pose, s.width, s.height, s.capture_size, s.capture_fov_deg)
+        if key not in self._cache:
+            self._cache.clear()
+            view = self.background.render(pose, s.width, s.height, pose.fov_y_deg)
+            capture = self.background.render(replace(pose, fov_y_deg=s.capture_fov_deg), s.capture_size,
+                                             s.capture_size, s.capture_fov_deg)
+            self._cache[key] = (np.ascontiguousarray(view, np.float32), np.ascontiguousarray(capture, np.float32))
+        return self._cache[key]
+
+    def frame_inputs(self, pose: RainPose | None = None) -> dict:
+        """Everything the compositing pass takes for the current state (for tests and the C comparison)."""
+        s = self.settings
+        pose = pose or RainPose.from_settings(s)
+        self._advance()
+        view, capture = self.images(pose)
+        sp = sprites(self.system.state(), pose, s.width, s.height, s, self.extent, s.mode == "streaks")
+        return dict(background=view, capture=capture, mask=self.mask, sprites=sp,
+                    fov_view=math.radians(pose.fov_y_deg), fov_capture=math.radians(s.capture_fov_deg),
+                    streaks=s.mode == "streaks", filter=s.filter,
+                    opacity=s.streak_opacity if s.mode == "streaks" else s.opacity)
+
+    def render(self, pose: RainPose | None = None, progress=None, encode: bool = True) -> np.ndarray:
+        """One frame: uint8 (height, width, 3), or the float frame with ``encode=False``."""
+        ins = self.frame_inputs(pose)
+        out = P.composite(**ins, launcher=self.launcher, cache=self._device_cache)
+        if progress is not None:
+            progress(1.0)
+        if not encode:
+            return out
+        return (np.clip(out, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+
+
+def render_image(settings: RainSettings | None = None, pose: RainPose | None = None) -> np.ndarray:
+    """One uint8 image of rain."""
+    return RainTechnique(settings).render(pose)
+
+
+def still_path(frames: int, settings: RainSettings) -> list:
+    """The camera of the settings for every frame (the rain falls; the cached background is rendered once)."""
+    if frames < 1:
+        raise ValueError(f"frames must be >= 1, got {frames}")
+    return [RainPose.from_settings(settings)] * frames

@@ -1,0 +1,113 @@
+"""The rain scene (rr): settings, registration, render/animate over a background, determinism, the Warp frame against
+the C reference at sampled pixels, drops that look like drops (inverted scene) and streaks that fall."""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from pywarp.core.scenes import scene
+from pywarp.kernels import particles as P
+from pywarp.rain.settings import CONTROLS, RainSettings
+from pywarp.rain.technique import Panorama, RainPose, RainTechnique, sphere_mask
+
+SMALL = dict(width=160, height=90, background="panorama", drops=1500, capture_size=128, mask_size=128)
+
+
+@pytest.mark.spec("rr-alg-4.1", "rr-tab-A")
+def test_scene_registered_with_controls_table():
+    sc = scene("rain")
+    assert sc.settings is RainSettings and "still" in sc.paths and "drops" in sc.benchmarks
+    assert [c["key"] for c in CONTROLS] == list("WSADQEYCPFTGHBN")  # Appendix A.1, in order
+    fields = {f.name for f in dataclasses.fields(RainSettings)}
+    assert all(c["field"] is None or c["field"] in fields for c in CONTROLS)
+
+
+def test_settings_refuse_bad_values():
+    with pytest.raises(ValueError, match="drops"):
+        RainSettings(drops=-1)
+    with pytest.raises(ValueError, match="persistence_ms"):
+        RainSettings(persistence_ms=120.0)
+    with pytest.raises(ValueError, match="size_spread_mm"):
+        RainSettings(size_mm=4.3, size_spread_mm=1.0)
+    with pytest.raises(ValueError, match="background"):
+        RainSettings(background="nowhere")
+    with pytest.raises(ValueError, match="shape"):
+        RainSettings(shape="2.0")
+
+
+@pytest.mark.spec("rr-alg-3.1.1")
+def test_scene_mask_matches_an_independent_sphere():
+    from pywarp.kernels import rain as R
+
+    m = np.asarray(R.drop_mask(64, 1.0, method="sphere"))
+    ref = sphere_mask(64)
+    np.testing.assert_array_equal(m[..., 3] > 0, ref[..., 3] > 0)
+    ok = (ref[..., 3] > 0) & (ref[..., 2] > 0) & (m[..., 2] > 0)
+    np.testing.assert_allclose(m[ok][:, :3], ref[ok][:, :3], atol=2e-5)
+
+
+@pytest.mark.spec("rr-code-5.2.3", "rr-code-5.2.4", "rr-alg-3.1.2")
+@pytest.mark.parametrize("mode", ["drops", "streaks"])
+def test_frame_warp_matches_c_at_sampled_pixels_and_is_deterministic(mode):
+    s = RainSettings(**SMALL, mode=mode, seed=5, time_s=4.0)
+    tech = RainTechnique(s)
+    img = tech.render(encode=False)
+    again = RainTechnique(s).render(encode=False)
+    np.testing.assert_array_equal(img, again)
+    ins = tech.frame_inputs()
+    assert len(ins["sprites"]) > 100
+    bg = ins["background"]
+    changed = np.nonzero(np.any(np.abs(img - bg) > 1e-6, axis=2))
+    assert len(changed[0]) > 0.02 * s.width * s.height
+    rng = np.random.default_rng(0)
+    k = rng.choice(len(changed[0]), 150, replace=False)
+    ys = np.concatenate([changed[0][k], rng.integers(0, s.height, 50)])
+    xs = np.concatenate([changed[1][k], rng.integers(0, s.width, 50)])
+    c = P.composite_pixels(**ins, xs=xs, ys=ys, impl="c")
+    np.testing.assert_allclose(img[ys, xs], c, atol=1e-6)
+
+
+@pytest.mark.spec("rr-alg-3.1", "rr-code-5.2.3")
+def test_drops_show_the_scene_upside_down():
+    # one big drop in the middle of the view: its upper half sees the ground (darker, greener), its lower half the
+    # sky -- the inversion of a refracting sphere (fig 2.4)
+    w, h = 200, 120
+    pose = RainPose(0.0, 0.0, 60.0)
+    pano = Panorama()
+    view = pano.render(pose, w, h, 60.0)
+    cap = pano.render(RainPose(0.0, 0.0, 150.0), 256, 256, 150.0)
+    sp = np.array([[100.0, 60.0, 30.0, 30.0, 0.0, 1.0]], np.float32)
+    out = P.composite(view, cap, sphere_mask(128), sp, math.radians(60))
+    top = out[38:52, 92:108].mean(axis=(0, 1))
+    bottom = out[68:82, 92:108].mean(axis=(0, 1))
+    assert top[1] > top[2] and bottom[2] > bottom[1]  # green ground on top, blue-grey sky below
+
+
+@pytest.mark.spec("rr-code-5.2.2", "rr-alg-3.2.3")
+def test_animation_makes_the_rain_fall():
+    tech = RainTechnique(RainSettings(**SMALL, mode="streaks"))
+    y0 = tech.system.state()["pos"][:, 1].copy()
+    a = tech.render()
+    tech.update(time_s=1.0)  # 0.05 s of rain at the default clock rate
+    b = tech.render()
+    y1 = tech.system.state()["pos"][:, 1]
+    fell = y0 - y1
+    speeds = tech.system.state()["speed"]
+    moved = fell > 0  # not respawned
+    np.testing.assert_allclose(fell[moved], speeds[moved] * 0.05, rtol=1e-4, atol=1e-6)
+    assert np.abs(a.astype(int) - b.astype(int)).max() > 20
+    tech.update(drops=100)
+    tech.render()
+    assert tech.system.count == 100  # the G key takes effect at once
+
+
+def test_cli_render_rain(tmp_path):
+    from pywarp.cli.main import main
+
+    out = tmp_path / "rain.png"
+    assert main(["render", "rain", "--background", "panorama", "--width", "96", "--height", "64", "--drops", "300",
+                 "--capture-size", "64", "--mask-size", "64", "--out", str(out), "--no-progress"]) == 0
+    assert out.stat().st_size > 1000
