@@ -97,6 +97,7 @@ ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume_grid *g
         const ccl_volume_grid *gr = &grids[i];
         if (gr->density == NULL) bad = "density";
         else if (gr->light == NULL) bad = "light";
+        else if (gr->occupancy == NULL) bad = "occupancy";
         else if (gr->nx < 1 || gr->ny < 1 || gr->nz < 1 || gr->nx > 4096 || gr->ny > 4096 || gr->nz > 4096)
             bad = "size";
         else if (!finite_v(gr->origin)) bad = "origin";
@@ -207,6 +208,7 @@ ccl_status ccl_volume_light(const ccl_volume_params *p, const ccl_volume_grid *g
     if (grid == NULL || out_light == NULL) return CCL_EINVAL;
     g = *grid;
     g.light = out_light; /* checked non-NULL only */
+    g.occupancy = (const unsigned char *)out_light;
     if (ccl_volume_check(p, &g, 1, NULL) != CCL_OK) return CCL_EINVAL;
     if (out_len != (size_t)g.nx * (size_t)g.ny * (size_t)g.nz) return CCL_EINVAL;
     sc = voxel_scale(&g);
@@ -234,6 +236,64 @@ ccl_status ccl_volume_light(const ccl_volume_params *p, const ccl_volume_grid *g
                 out_light[((size_t)iz * (size_t)g.ny + (size_t)iy) * (size_t)g.nx + (size_t)ix] = expf(-tau * sum);
             }
     return CCL_OK;
+}
+
+static int bricks(int n) { return (n + CCL_VOLUME_BRICK - 1) / CCL_VOLUME_BRICK; }
+
+ccl_status ccl_volume_occupancy(const ccl_volume_grid *grid, unsigned char *out, size_t out_len)
+{
+    ccl_volume_params p;
+    ccl_volume_grid g;
+    int bx, by, bz, mx, my, mz;
+    if (grid == NULL || out == NULL) return CCL_EINVAL;
+    ccl_volume_params_default(&p);
+    g = *grid;
+    g.light = (const float *)(const void *)out;
+    g.occupancy = out;
+    if (ccl_volume_check(&p, &g, 1, NULL) != CCL_OK) return CCL_EINVAL;
+    mx = bricks(g.nx); my = bricks(g.ny); mz = bricks(g.nz);
+    if (out_len != (size_t)mx * (size_t)my * (size_t)mz) return CCL_EINVAL;
+    for (bz = 0; bz < mz; ++bz)
+        for (by = 0; by < my; ++by)
+            for (bx = 0; bx < mx; ++bx) {
+                const int e = CCL_VOLUME_BRICK;
+                int x, y, z, any = 0;
+                int x0 = clampi(bx * e - 1, 0, g.nx - 1), x1 = clampi(bx * e + e, 0, g.nx - 1);
+                int y0 = clampi(by * e - 1, 0, g.ny - 1), y1 = clampi(by * e + e, 0, g.ny - 1);
+                int z0 = clampi(bz * e - 1, 0, g.nz - 1), z1 = clampi(bz * e + e, 0, g.nz - 1);
+                for (z = z0; z <= z1 && !any; ++z)
+                    for (y = y0; y <= y1 && !any; ++y)
+                        for (x = x0; x <= x1; ++x)
+                            if (g.density[((size_t)z * (size_t)g.ny + (size_t)y) * (size_t)g.nx + (size_t)x] > 0) {
+                                any = 1;
+                                break;
+                            }
+                out[((size_t)bz * (size_t)my + (size_t)by) * (size_t)mx + (size_t)bx] = (unsigned char)any;
+            }
+    return CCL_OK;
+}
+
+/* distance along the voxel-space ray o + t d to the exit of the brick (bx, by, bz) */
+static float brick_exit(ccl_vec3 o, ccl_vec3 d, int bx, int by, int bz)
+{
+    const float b = (float)CCL_VOLUME_BRICK;
+    float te = BIG_T;
+    if (d.x != 0.0f) {
+        float plane = d.x > 0.0f ? ((float)bx + 1.0f) * b : (float)bx * b;
+        float t = (plane - o.x) / d.x;
+        te = t < te ? t : te;
+    }
+    if (d.y != 0.0f) {
+        float plane = d.y > 0.0f ? ((float)by + 1.0f) * b : (float)by * b;
+        float t = (plane - o.y) / d.y;
+        te = t < te ? t : te;
+    }
+    if (d.z != 0.0f) {
+        float plane = d.z > 0.0f ? ((float)bz + 1.0f) * b : (float)bz * b;
+        float t = (plane - o.z) / d.z;
+        te = t < te ? t : te;
+    }
+    return te;
 }
 
 ccl_vec3 ccl_volume_sky(const ccl_volume_params *p, ccl_vec3 d)
@@ -396,7 +456,7 @@ void ccl_volume_pixel(const ccl_volume_params *p, const ccl_volume_grid *grids, 
             float trans = 1.0f, t_start = best_t0 > 0.0f ? best_t0 : 0.0f;
             float t_end = best_t1 < t_hit ? best_t1 : t_hit;
             float dt, a_step, fog;
-            int n, s;
+            int n, s, mx, my, mz;
             grid_ray(g, eye, d, &o_v, &d_v);
             dt = p->step_voxels / ccl_vec3_length(d_v);
             a_step = p->tau_per_voxel * p->step_voxels;
@@ -405,17 +465,45 @@ void ccl_volume_pixel(const ccl_volume_params *p, const ccl_volume_grid *grids, 
                 float steps = ceilf((t_end - t_start) / dt);
                 n = steps < (float)p->max_steps ? (int)steps : p->max_steps;
             }
-            for (s = 0; s < n; ++s) {
+            mx = bricks(g->nx); my = bricks(g->ny); mz = bricks(g->nz);
+            s = 0;
+            while (s < n) {
                 float t = t_start + ((float)s + jitter) * dt;
                 ccl_vec3 v;
                 float rho, alpha, tl, hfrac;
                 ccl_vec3 amb, light;
+                int bx, by, bz;
+                tri_t tri;
                 if (t > t_end) break;
                 v = ccl_vec3_add(o_v, ccl_vec3_scale(d_v, t));
-                rho = ccl_volume_sample(g->density, g->nx, g->ny, g->nz, v);
-                if (rho <= 0.0f) continue;
+                bx = clampi((int)floorf(v.x * 0.25f), 0, mx - 1);
+                by = clampi((int)floorf(v.y * 0.25f), 0, my - 1);
+                bz = clampi((int)floorf(v.z * 0.25f), 0, mz - 1);
+                if (g->occupancy[((size_t)bz * (size_t)my + (size_t)by) * (size_t)mx + (size_t)bx] == 0) {
+                    /* empty brick: every sample inside it is 0; go to the first sample at or after its exit */
+                    float te = brick_exit(o_v, d_v, bx, by, bz);
+                    float next = ceilf((te - t_start) / dt - jitter);
+                    s = next > (float)(s + 1) ? (next < (float)n ? (int)next : n) : s + 1;
+                    continue;
+                }
+                s = s + 1;
+                /* ccl_volume_sample and ccl_volume_sample_float at v, sharing the weights */
+                tri = tri_setup(g->nx, g->ny, g->nz, v);
+                {
+                    size_t sy = (size_t)g->nx, sz = (size_t)g->nx * (size_t)g->ny;
+                    size_t i000 = (size_t)tri.z0 * sz + (size_t)tri.y0 * sy, i010 = (size_t)tri.z0 * sz + (size_t)tri.y1 * sy;
+                    size_t i001 = (size_t)tri.z1 * sz + (size_t)tri.y0 * sy, i011 = (size_t)tri.z1 * sz + (size_t)tri.y1 * sy;
+                    const unsigned char *dd = g->density;
+                    const float *ll = g->light;
+                    size_t x0 = (size_t)tri.x0, x1 = (size_t)tri.x1;
+                    rho = tri_mix(&tri, (float)dd[i000 + x0], (float)dd[i000 + x1], (float)dd[i010 + x0],
+                                  (float)dd[i010 + x1], (float)dd[i001 + x0], (float)dd[i001 + x1], (float)dd[i011 + x0],
+                                  (float)dd[i011 + x1]) * (1.0f / 255.0f);
+                    if (rho <= 0.0f) continue;
+                    tl = tri_mix(&tri, ll[i000 + x0], ll[i000 + x1], ll[i010 + x0], ll[i010 + x1], ll[i001 + x0],
+                                 ll[i001 + x1], ll[i011 + x0], ll[i011 + x1]);
+                }
                 alpha = 1.0f - expf(-a_step * rho);
-                tl = ccl_volume_sample_float(g->light, g->nx, g->ny, g->nz, v);
                 hfrac = v.y / (float)g->ny;
                 hfrac = hfrac < 0.0f ? 0.0f : (hfrac > 1.0f ? 1.0f : hfrac);
                 amb = mix3(p->ambient_bottom, p->ambient_top, hfrac);

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 #: Modules that register a scene when imported, in listing order; the first one's scene is the default.
-SCENE_MODULES = ("pywarp.clouds.scene", "pywarp.rain.scene", "pywarp.terrain.scene")
+SCENE_MODULES = ("pywarp.clouds.scene", "pywarp.rain.scene", "pywarp.terrain.scene", "pywarp.flight.scene")
 #: The scene of ``pywarp render`` and friends when none is named (the README's commands).
 DEFAULT_SCENE = "clouds"
 

@@ -32,6 +32,7 @@ BIG_T = wp.constant(3.0e38)
 MAX_GRIDS = 16          # CCL_VOLUME_MAX_GRIDS
 AIRCRAFT_STEPS = wp.constant(64)  # CCL_VOLUME_AIRCRAFT_STEPS
 AIRCRAFT_BOUND = wp.constant(6.3)
+BRICK = 4  # CCL_VOLUME_BRICK
 FOUR_PI = wp.constant(float(np.float32(4.0) * np.float32(math.pi)))  # 4.0f * CCL_PI_F, folded as in C
 _INV_255 = wp.constant(float(np.float32(1.0) / np.float32(255.0)))
 _U65536 = wp.constant(wp.uint32(65536))
@@ -48,6 +49,7 @@ class VolumeGrid:
     ny: int
     nz: int
     offset: int
+    boffset: int  # start of the grid's bricks in the flat occupancy array
 
 
 @wp.struct
@@ -437,11 +439,36 @@ def volume_background(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
     return col, t_out
 
 
+@wp.func
+def _brick_exit(o: wp.vec3, d: wp.vec3, bx: int, by: int, bz: int) -> float:
+    b = 4.0
+    te = float(BIG_T)
+    if d[0] != 0.0:
+        plane = float(bx) * b
+        if d[0] > 0.0:
+            plane = (float(bx) + 1.0) * b
+        t = (plane - o[0]) / d[0]
+        te = wp.where(t < te, t, te)
+    if d[1] != 0.0:
+        plane = float(by) * b
+        if d[1] > 0.0:
+            plane = (float(by) + 1.0) * b
+        t = (plane - o[1]) / d[1]
+        te = wp.where(t < te, t, te)
+    if d[2] != 0.0:
+        plane = float(bz) * b
+        if d[2] > 0.0:
+            plane = (float(bz) + 1.0) * b
+        t = (plane - o[2]) / d[2]
+        te = wp.where(t < te, t, te)
+    return te
+
+
 # --- the pixel ----------------------------------------------------------------------------------------------------------
 
 @wp.func
 def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int, density: wp.array(dtype=wp.uint8),
-                 light: wp.array(dtype=float), inv_view_proj_rot: wp.mat44, eye: wp.vec3, x: int, y: int, width: int,
+                 light: wp.array(dtype=float), occupancy: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44, eye: wp.vec3, x: int, y: int, width: int,
                  height: int) -> wp.vec3:
     """Twin of ``ccl_volume_pixel``: the display-linear colour of pixel (x, y)."""
     d = camera_ray(inv_view_proj_rot, x, y, width, height)
@@ -490,16 +517,58 @@ def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
                 n = int(steps)
             else:
                 n = p.max_steps
-        for s in range(n):
+        mx = (g.nx + 3) // 4
+        my = (g.ny + 3) // 4
+        mz = (g.nz + 3) // 4
+        s = int(0)
+        while s < n:
             t = t_start + (float(s) + jitter) * dt
             if t > t_end:
                 break
             v = o_v + d_v * t
-            rho = volume_sample(density, g.offset, g.nx, g.ny, g.nz, v)
+            bx = wp.clamp(int(wp.floor(v[0] * 0.25)), 0, mx - 1)
+            by = wp.clamp(int(wp.floor(v[1] * 0.25)), 0, my - 1)
+            bz = wp.clamp(int(wp.floor(v[2] * 0.25)), 0, mz - 1)
+            if occupancy[g.boffset + (bz * my + by) * mx + bx] == wp.uint8(0):
+                te = _brick_exit(o_v, d_v, bx, by, bz)
+                nxt = wp.ceil((te - t_start) / dt - jitter)
+                if nxt > float(s + 1):
+                    if nxt < float(n):
+                        s = int(nxt)
+                    else:
+                        s = n
+                else:
+                    s = s + 1
+                continue
+            s = s + 1
+            # volume_sample and volume_sample_float at v, sharing the weights
+            ux = v[0] - 0.5
+            uy = v[1] - 0.5
+            uz = v[2] - 0.5
+            ix = wp.floor(ux)
+            iy = wp.floor(uy)
+            iz = wp.floor(uz)
+            fx = ux - ix
+            fy = uy - iy
+            fz = uz - iz
+            x0 = wp.clamp(int(ix), 0, g.nx - 1)
+            x1 = wp.clamp(int(ix) + 1, 0, g.nx - 1)
+            y0 = wp.clamp(int(iy), 0, g.ny - 1)
+            y1 = wp.clamp(int(iy) + 1, 0, g.ny - 1)
+            z0 = wp.clamp(int(iz), 0, g.nz - 1)
+            z1 = wp.clamp(int(iz) + 1, 0, g.nz - 1)
+            i000 = g.offset + (z0 * g.ny + y0) * g.nx
+            i010 = g.offset + (z0 * g.ny + y1) * g.nx
+            i001 = g.offset + (z1 * g.ny + y0) * g.nx
+            i011 = g.offset + (z1 * g.ny + y1) * g.nx
+            rho = _tri_mix(fx, fy, fz, float(density[i000 + x0]), float(density[i000 + x1]),
+                           float(density[i010 + x0]), float(density[i010 + x1]), float(density[i001 + x0]),
+                           float(density[i001 + x1]), float(density[i011 + x0]), float(density[i011 + x1])) * _INV_255
             if rho <= 0.0:
                 continue
+            tl = _tri_mix(fx, fy, fz, light[i000 + x0], light[i000 + x1], light[i010 + x0], light[i010 + x1],
+                          light[i001 + x0], light[i001 + x1], light[i011 + x0], light[i011 + x1])
             alpha = 1.0 - wp.exp(-a_step * rho)
-            tl = volume_sample_float(light, g.offset, g.nx, g.ny, g.nz, v)
             hfrac = wp.clamp(v[1] / float(g.ny), 0.0, 1.0)
             amb = _mix3(p.ambient_bottom, p.ambient_top, hfrac)
             lc = p.sun_colour * (tl * phase) + amb
@@ -520,14 +589,15 @@ def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
 
 @wp.kernel
 def render_kernel(row0: int, p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
-                  density: wp.array(dtype=wp.uint8), light: wp.array(dtype=float), inv_view_proj_rot: wp.mat44,
-                  eye: wp.vec3, width: int, height: int,
+                  density: wp.array(dtype=wp.uint8), light: wp.array(dtype=float),
+                  occupancy: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44, eye: wp.vec3, width: int,
+                  height: int,
                   # output: sRGB uint8
                   out: wp.array3d(dtype=wp.uint8)):
     """One row band: the pixel, clamped to [0, 1], sRGB-encoded, rounded to uint8."""
     i, j = wp.tid()
     y = row0 + i
-    c = volume_pixel(p, grids, count, density, light, inv_view_proj_rot, eye, j, y, width, height)
+    c = volume_pixel(p, grids, count, density, light, occupancy, inv_view_proj_rot, eye, j, y, width, height)
     for ch in range(3):
         e = colour_srgb_encode(wp.clamp(c[ch], 0.0, 1.0))
         out[y, j, ch] = wp.uint8(int(e * 255.0 + 0.5))
@@ -535,12 +605,13 @@ def render_kernel(row0: int, p: VolumeParams, grids: wp.array(dtype=VolumeGrid),
 
 @wp.kernel
 def pixels_kernel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int, density: wp.array(dtype=wp.uint8),
-                  light: wp.array(dtype=float), inv_view_proj_rot: wp.mat44, eye: wp.vec3,
-                  xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32), width: int, height: int,
+                  light: wp.array(dtype=float), occupancy: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44,
+                  eye: wp.vec3, xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32), width: int, height: int,
                   out: wp.array2d(dtype=float)):
     """:func:`volume_pixel` at chosen pixels (the Warp side of the comparison with ``ccl_volume_pixel``)."""
     k = wp.tid()
-    c = volume_pixel(p, grids, count, density, light, inv_view_proj_rot, eye, xs[k], ys[k], width, height)
+    c = volume_pixel(p, grids, count, density, light, occupancy, inv_view_proj_rot, eye, xs[k], ys[k], width,
+                     height)
     out[k, 0] = c[0]
     out[k, 1] = c[1]
     out[k, 2] = c[2]
@@ -619,6 +690,26 @@ class PlacedVolume:
             raise ValueError(f"extent must be > 0 on every axis, got {self.extent}")
 
 
+def occupancy(density: np.ndarray) -> np.ndarray:
+    """Brick occupancy of a uint8 volume (nz, ny, nx), as ``ccl_volume_occupancy``: brick b of 4^3 voxels is 1 when
+    any voxel of indices 4 b - 1 .. 4 b + 4 (clamped) is > 0 -- every voxel a trilinear sample inside it can touch."""
+    d = np.asarray(density) > 0
+    shape = tuple(-(-n // BRICK) for n in d.shape)
+    out = np.zeros(shape, np.uint8)
+    for bz in range(shape[0]):
+        z0, z1 = max(bz * BRICK - 1, 0), min(bz * BRICK + BRICK, d.shape[0] - 1) + 1
+        slab_z = d[z0:z1]
+        if not slab_z.any():
+            continue
+        for by in range(shape[1]):
+            y0, y1 = max(by * BRICK - 1, 0), min(by * BRICK + BRICK, d.shape[1] - 1) + 1
+            row = slab_z[:, y0:y1].any(axis=(0, 1))
+            for bx in range(shape[2]):
+                x0, x1 = max(bx * BRICK - 1, 0), min(bx * BRICK + BRICK, d.shape[2] - 1) + 1
+                out[bz, by, bx] = row[x0:x1].any()
+    return out
+
+
 @dataclass
 class VolumeSet:
     """Grids and their light volumes as the kernels read them (flat arrays + :class:`VolumeGrid` records)."""
@@ -633,15 +724,16 @@ class VolumeSet:
             raise ValueError(f"at most {MAX_GRIDS} volumes, got {len(self.volumes)}")
 
     def records(self) -> list:
-        out, offset = [], 0
+        out, offset, boffset = [], 0, 0
         for v in self.volumes:
             nz, ny, nx = v.density.shape
             g = VolumeGrid()
             g.origin = wp.vec3(*v.origin)
             g.extent = wp.vec3(*v.extent)
-            g.nx, g.ny, g.nz, g.offset = nx, ny, nz, offset
+            g.nx, g.ny, g.nz, g.offset, g.boffset = nx, ny, nz, offset, boffset
             out.append(g)
             offset += v.density.size
+            boffset += occupancy(v.density).size
         return out
 
     def compute_light(self, values: dict, launcher=None) -> None:
@@ -657,19 +749,21 @@ class VolumeSet:
         self._wp = {}
 
     def warp(self):
-        """(grids, count, density, light) for the kernels."""
+        """(grids, count, density, light, occupancy) for the kernels."""
         if not self._wp:
             recs = self.records()
             n = len(recs)
             dens = np.concatenate([v.density.ravel() for v in self.volumes]) if n else np.zeros(1, np.uint8)
             light = (np.concatenate([np.asarray(l, np.float32).ravel() for l in self.light]) if n
                      else np.zeros(1, np.float32))
+            occ = np.concatenate([occupancy(v.density).ravel() for v in self.volumes]) if n else np.zeros(1, np.uint8)
             grids = wp.array(recs if n else [VolumeGrid()], dtype=VolumeGrid, device=self.device)
             self._wp = {"grids": grids, "count": n,
                         "density": wp.array(dens, dtype=wp.uint8, device=self.device),
-                        "light": wp.array(light, dtype=float, device=self.device)}
+                        "light": wp.array(light, dtype=float, device=self.device),
+                        "occupancy": wp.array(occ, dtype=wp.uint8, device=self.device)}
         w = self._wp
-        return w["grids"], w["count"], w["density"], w["light"]
+        return w["grids"], w["count"], w["density"], w["light"], w["occupancy"]
 
 
 def c_grids(vset: VolumeSet):
@@ -683,11 +777,13 @@ def c_grids(vset: VolumeSet):
     for k, v in enumerate(vset.volumes):
         d = np.ascontiguousarray(v.density)
         lt = np.ascontiguousarray(np.asarray(vset.light[k], dtype=np.float32))
-        keep += [d, lt]
+        oc = np.ascontiguousarray(occupancy(d))
         bd, bl = f.from_buffer("unsigned char[]", d), f.from_buffer("float[]", lt)
-        keep += [bd, bl]
+        bo = f.from_buffer("unsigned char[]", oc)
+        keep += [d, lt, oc, bd, bl, bo]
         arr[k].density = f.cast("const unsigned char *", bd)
         arr[k].light = f.cast("const float *", bl)
+        arr[k].occupancy = f.cast("const unsigned char *", bo)
         arr[k].nz, arr[k].ny, arr[k].nx = d.shape
         arr[k].origin.x, arr[k].origin.y, arr[k].origin.z = v.origin
         arr[k].extent.x, arr[k].extent.y, arr[k].extent.z = v.extent
@@ -743,12 +839,12 @@ def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: 
 def pixels_warp(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: int,
                 device: str | None = None) -> np.ndarray:
     """:func:`volume_pixel` at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
-    grids, count, dens, light = vset.warp()
+    grids, count, dens, light, occ = vset.warp()
     dev = vset.device
     xa = wp.array(np.asarray(xs, np.int32), dtype=wp.int32, device=dev)
     ya = wp.array(np.asarray(ys, np.int32), dtype=wp.int32, device=dev)
     out = wp.zeros((len(xs), 3), dtype=float, device=dev)
-    wp.launch(pixels_kernel, dim=len(xs), inputs=[warp_params(values), grids, count, dens, light,
+    wp.launch(pixels_kernel, dim=len(xs), inputs=[warp_params(values), grids, count, dens, light, occ,
                                                   camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), xa, ya,
                                                   width, height], outputs=[out], device=dev)
     return out.numpy()

@@ -80,8 +80,8 @@ def test_pixels_warp_vs_c():
 
 def test_render_is_deterministic_for_any_thread_count():
     vals, vs, cam = scene()
-    g, n, d, l = vs.warp()
-    args = [V.warp_params(vals), g, n, d, l, cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), 160, 90]
+    g, n, d, l, o = vs.warp()
+    args = [V.warp_params(vals), g, n, d, l, o, cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), 160, 90]
     imgs = []
     for workers in (1, 2, 3):
         out = wp.zeros((90, 160, 3), dtype=wp.uint8)
@@ -93,6 +93,27 @@ def test_render_is_deterministic_for_any_thread_count():
     # sky above (blue > red), ground below (green > blue), clouds bright near the centre
     assert img[2, :, 2].mean() > img[2, :, 0].mean()
     assert img[-2, :, 1].mean() > img[-2, :, 2].mean()
+
+
+def test_occupancy_numpy_vs_c_and_conservative():
+    from pywarp.core.binding import ffi, lib
+
+    rng = np.random.default_rng(11)
+    for shape in [(8, 8, 8), (9, 13, 6), (24, 24, 24)]:
+        d = np.where(rng.random(shape) < 0.02, 200, 0).astype(np.uint8)
+        occ = V.occupancy(d)
+        vs = V.VolumeSet([V.PlacedVolume(d, (0, 0, 0), (1, 1, 1))], [np.zeros(shape, np.float32)])
+        arr, keep = V.c_grids(vs)
+        out = np.zeros(occ.shape, np.uint8)
+        assert lib().ccl_volume_occupancy(arr, ffi().from_buffer("unsigned char[]", out), out.size) == 0
+        np.testing.assert_array_equal(occ, out)
+        # conservative: a voxel > 0 marks its own brick and the bricks whose trilinear reach includes it
+        for z, y, x in zip(*np.nonzero(d)):
+            assert occ[z // 4, y // 4, x // 4] == 1
+            if x % 4 == 3 and x // 4 + 1 < occ.shape[2]:
+                assert occ[z // 4, y // 4, x // 4 + 1] == 1
+            if x % 4 == 0 and x >= 4:
+                assert occ[z // 4, y // 4, x // 4 - 1] == 1
 
 
 def test_empty_scene_and_opaque_cloud():

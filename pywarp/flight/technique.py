@@ -1,0 +1,188 @@
+"""The flight technique (init / update / render / resize, the scene interface of pywarp.core.scenes): cloud arrays
+of the oc text (:func:`pywarp.kernels.voxel.cloud_volume`) placed along a scripted flight, their light volumes, and
+the volume renderer of :mod:`pywarp.kernels.volume` (row bands on every core through
+:class:`pywarp.core.runtime.TileLauncher`) with the aircraft of :mod:`pywarp.kernels.flight`.
+
+    from pywarp.flight.technique import FlightTechnique, FlightPose
+    tech = FlightTechnique()                    # FlightSettings() defaults: 7 clouds of 64^3, 640 x 360
+    img = tech.render(FlightPose(8.0))          # uint8 (360, 640, 3): the chase view 8 s into the flight
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+import warp as wp
+
+from ..core.runtime import init, launcher as shared_launcher
+
+init()
+
+from ..kernels import camera as CAM  # noqa: E402
+from ..kernels import flight as F  # noqa: E402
+from ..kernels import volume as V  # noqa: E402
+from . import script as S  # noqa: E402
+from .settings import VIEWS, FlightSettings  # noqa: E402
+
+
+@dataclass(frozen=True)
+class FlightPose:
+    """A moment of the scripted flight and the camera that looks at it (``chase`` or ``cockpit``)."""
+
+    time_s: float = 6.0
+    view: str = "chase"
+
+    def __post_init__(self):
+        if isinstance(self.time_s, bool) or not isinstance(self.time_s, (int, float)) or not math.isfinite(
+                self.time_s) or self.time_s < 0:
+            raise ValueError(f"time_s must be a finite number >= 0, got {self.time_s!r}")
+        if self.view not in VIEWS:
+            raise ValueError(f"view must be one of {', '.join(map(repr, VIEWS))}, got {self.view!r}")
+
+
+@dataclass(frozen=True)
+class AircraftState:
+    position: tuple
+    heading: float
+    pitch: float
+    roll: float
+    speed: float
+
+
+class FlightTechnique:
+    """The flight scene's technique. ``volumes``: the placed cloud arrays with their light volumes
+    (:class:`pywarp.kernels.volume.VolumeSet`); ``trajectory``: the scripted flight
+    (:class:`pywarp.kernels.flight.Trajectory`)."""
+
+    def __init__(self, settings: FlightSettings | None = None, script=None):
+        self.settings = (settings or FlightSettings()).validate()
+        self.script = tuple(script) if script is not None else S.DEFAULT_SCRIPT
+        self.launcher = shared_launcher(self.settings.device, self.settings.threads)
+        self.device = self.launcher.device
+        self.volumes = None
+        self.trajectory = None
+        self._out = None
+        self.init()
+
+    # --- init / update / resize ----------------------------------------------------------------------------------
+    def init(self) -> None:
+        self._build_flight()
+        self._build_clouds()
+        self._build_light()
+        self.resize(self.settings.width, self.settings.height)
+
+    def _build_flight(self) -> None:
+        s = self.settings
+        self.trajectory = F.simulate(self.script, s.flight_duration_s, dt=S.DT, start=s.start_state(),
+                                     model=s.flight_model(), device=self.device)
+
+    def _build_clouds(self) -> None:
+        from ..kernels.voxel import cloud_volume
+
+        s = self.settings
+        boxes = S.cloud_boxes(s, self.trajectory)
+        vols = [V.PlacedVolume(cloud_volume(s.cloud_array(k), device=self.device, launcher=self.launcher),
+                               origin, extent) for k, (origin, extent) in enumerate(boxes)]
+        self.volumes = V.VolumeSet(vols, device=self.device)
+
+    def _build_light(self) -> None:
+        self.volumes.compute_light(self.settings.volume_values())
+
+    def update(self, **changes) -> None:
+        """Change settings; what each change invalidates comes from the specs: ``textures`` (clouds, flight) rebuilds
+        the flight and the clouds, ``sky`` (sun, light) the light volumes, ``size`` the frame buffer."""
+        old = self.settings
+        new = replace(old, **changes)
+        stale = new.invalidated(old)
+        self.settings = new
+        if "device" in stale:
+            self.launcher = shared_launcher(new.device, new.threads)
+            self.device = self.launcher.device
+        if stale & {"textures", "device"}:
+            self._build_flight()
+            self._build_clouds()
+        if stale & {"textures", "device", "sky"}:
+            self._build_light()
+        if stale & {"size", "device"}:
+            self.resize(new.width, new.height)
+
+    def resize(self, width: int, height: int) -> None:
+        if (width, height) != (self.settings.width, self.settings.height):
+            self.settings = replace(self.settings, width=width, height=height)
+        self._out = wp.zeros((height, width, 3), dtype=wp.uint8, device=self.device)
+
+    # --- the aircraft and the camera -----------------------------------------------------------------------------
+    def aircraft(self, time_s: float) -> AircraftState:
+        """The aircraft at ``time_s`` (the last simulation step at or before it; the start state at 0)."""
+        tr = self.trajectory
+        if time_s < float(tr.time[0]) or len(tr.time) == 0:
+            st = self.settings.start_state()
+            return AircraftState(tuple(st.position), st.heading, 0.0, 0.0, st.speed)
+        k = tr.at(time_s)
+        return AircraftState(tuple(float(x) for x in tr.position[k]), float(tr.heading[k]), float(tr.pitch[k]),
+                             float(tr.roll[k]), float(tr.speed[k]))
+
+    def view(self, pose: FlightPose) -> tuple[CAM.Camera, dict]:
+        """(camera, volume parameter values) of ``pose``."""
+        s = self.settings
+        a = self.aircraft(pose.time_s)
+        f, r, u = F.axes(a.heading, a.pitch, a.roll)
+        pos = np.asarray(a.position, dtype=np.float64)
+        values = s.volume_values()
+        aspect = s.width / s.height
+        fov = math.radians(s.fov_y_deg)
+        if pose.view == "chase":
+            fh = np.array([math.sin(a.heading), 0.0, -math.cos(a.heading)])
+            eye = pos - fh * s.chase_distance_m + np.array([0.0, s.chase_height_m, 0.0])
+            eye[1] = max(eye[1], 2.0)
+            target = pos + fh * 25.0 + np.array([0.0, 2.0, 0.0])
+            cam = CAM.camera_look_at(eye, target, (0.0, 1.0, 0.0), fov, aspect, 0.1, 1.0e5)
+            values.update(aircraft=1, aircraft_position=tuple(pos), aircraft_forward=f, aircraft_right=r,
+                          aircraft_up=u)
+        else:
+            # the pilot's eye above the cabin, looking along the nose; the horizon banks with the aircraft
+            eye = pos + np.asarray(u) * 0.9 + np.asarray(f) * 1.4
+            cam = CAM.camera_look_at(eye, eye + np.asarray(f) * 100.0, u, fov, aspect, 0.1, 1.0e5)
+            values.update(aircraft=0)
+        return cam, values
+
+    # --- render ---------------------------------------------------------------------------------------------------
+    def render(self, pose: FlightPose | None = None, progress=None) -> np.ndarray:
+        """One frame, uint8 sRGB (height, width, 3). ``pose`` (default: the settings' time and view);
+        ``progress(fraction)`` per finished band."""
+        s = self.settings
+        pose = pose or FlightPose(s.time_s, s.view)
+        cam, values = self.view(pose)
+        grids, count, dens, light, occ = self.volumes.warp()
+        h, w = s.height, s.width
+        band_done = None if progress is None else (lambda n: progress(n / h))
+        self.launcher.launch(V.render_kernel, h, w,
+                             [V.warp_params(values), grids, count, dens, light, occ, cam.mat44("inv_view_proj_rot"),
+                              cam.eye_vec3(), w, h], [self._out], progress=band_done)
+        return self._out.numpy().copy()
+
+    def render_pixels_c(self, xs, ys, pose: FlightPose | None = None) -> np.ndarray:
+        """``ccl_volume_pixel`` (the C reference) at pixels (xs[k], ys[k]) of ``pose``: display-linear RGB (k, 3)."""
+        s = self.settings
+        cam, values = self.view(pose or FlightPose(s.time_s, s.view))
+        return V.pixels_c(values, self.volumes, cam, xs, ys, s.width, s.height)
+
+    def render_pixels_warp(self, xs, ys, pose: FlightPose | None = None) -> np.ndarray:
+        """:func:`pywarp.kernels.volume.volume_pixel` at the same pixels (the Warp side of the comparison)."""
+        s = self.settings
+        cam, values = self.view(pose or FlightPose(s.time_s, s.view))
+        return V.pixels_warp(values, self.volumes, cam, xs, ys, s.width, s.height)
+
+
+def path_poses(frames: int, settings: FlightSettings, view: str) -> list[FlightPose]:
+    """``frames`` moments spread evenly over the whole scripted flight (0 .. flight_duration_s)."""
+    if isinstance(frames, bool) or not isinstance(frames, int) or frames < 1:
+        raise ValueError(f"frames must be an integer >= 1, got {frames!r}")
+    d = settings.flight_duration_s
+    return [FlightPose(d * i / max(frames - 1, 1), view) for i in range(frames)]
+
+
+def render_image(settings: FlightSettings | None = None, pose: FlightPose | None = None) -> np.ndarray:
+    """One uint8 sRGB image of the flight scene."""
+    return FlightTechnique(settings).render(pose)
