@@ -84,7 +84,7 @@ def test_missing_lists_only_computational_ids(tmp_path):
     assert [r["id"] for r in rows] == [cid for cid, _ in missing(computational=True)]
     assert {r["kind"] for r in rows} <= set(COMPUTATIONAL_KINDS)
     ids = {r["id"] for r in rows}
-    assert "pt-3.1" in ids and "vc-2.13" not in ids and not any("-fig-" in i or "-M" in i for i in ids)
+    assert "vc-2.13" not in ids and not any("-fig-" in i or "-M" in i for i in ids)
     table = _cli("--missing", columns=100, tmp_path=tmp_path)
     assert "not implemented" in table and "--figures" in table
     assert {line.split()[0] for line in table.splitlines() if line[:3] in ("vc-", "pt-", "rr-", "oc-")} == ids
@@ -99,12 +99,13 @@ def test_figures_true_status(tmp_path):
     # reproduced: by its tutorial, with the committed output
     r = by_id["vc-fig-4.9"]
     assert r["status"] == "reproduced" and r["tutorial"] == "tutorials/vc/fig_2_15_height_gradients.py"
-    assert r["outputs"] == ["fig-4.9.png"] and r["committed"] == [True]
+    # "committed" is known when pywarp runs from the checkout, None when installed (CI): check the file here
+    assert r["outputs"] == ["fig-4.9.png"] and r["committed"] in ([True], None)
+    assert (ROOT / "figures" / "vc" / "fig-4.9.png").is_file()
     # a photograph stood in for by renders is not "reproduced"
     assert by_id["vc-fig-2.2"]["status"] == "stand-in" and by_id["vc-fig-2.2"]["note"]
     # not reproduced, with the reason
     assert by_id["vc-fig-2.3"]["status"] == "not reproduced" and "photograph" in by_id["vc-fig-2.3"]["note"]
-    assert by_id["pt-fig-3.1"]["status"] == "not reproduced" and by_id["pt-fig-3.1"]["tutorial"] is None
     # measurements
     assert by_id["vc-M4"]["status"] == "measured" and "pywarp bench" in by_id["vc-M4"]["note"]
     assert by_id["vc-M1"]["status"] == "not measured"
@@ -112,7 +113,8 @@ def test_figures_true_status(tmp_path):
         assert r["status"] in figures.FIGURE_STATUSES + figures.MEASUREMENT_STATUSES
         if r["status"] in ("reproduced", "stand-in"):
             assert r["tutorial"] and (ROOT / r["tutorial"]).is_file() and r["outputs"]
-            assert all(r["committed"]), r  # every reproduced figure's output is committed
+            seed = r["id"].split("-")[0]
+            assert all((ROOT / "figures" / seed / o).is_file() for o in r["outputs"]), r  # outputs are committed
         if r["status"] == "not reproduced":
             assert r["tutorial"] is None and r["note"]
     table = _cli("--figures", "--seed", "vc", columns=120, tmp_path=tmp_path)
