@@ -24,7 +24,7 @@ def test_clouds_is_registered_and_the_default():
     assert set(sc.benchmarks) == {"tiles", "cloudscape", "textures", "reprojection"}
     assert {"camera_altitude_km", "camera_pitch_deg", "camera_yaw_deg"} <= set(sc.path().start_fields)
     assert sc.outputs["render"] == "cloudscape.png"
-    with pytest.raises(ValueError, match=r"^scene must be one of 'clouds', got 'nope'$"):
+    with pytest.raises(ValueError, match=r"^scene must be one of 'clouds'(, '[a-z]+')*, got 'nope'$"):
         scenes.scene("nope")
     with pytest.raises(ValueError, match=r"^path must be one of 'flythrough', got 'orbit'$"):
         sc.path("orbit")
@@ -105,7 +105,8 @@ def test_cli_bench_every_benchmark_has_json_and_honours_device(fake_benchmarks, 
     (["bench", "nope"], "benchmark must be one of 'tiles', 'cloudscape', 'textures', 'reprojection' (scene clouds), "
                         "got 'nope'"),
     (["bench", "clouds"], "benchmark missing: pywarp bench clouds {tiles,cloudscape,textures,reprojection}"),
-    (["bench", "terrain", "tiles"], "scene must be one of 'clouds', got 'terrain'"),
+    (["bench", "clouds", "drops"], "benchmark must be one of 'tiles', 'cloudscape', 'textures', 'reprojection' "
+                                   "(scene clouds), got 'drops'"),
 ])
 def test_cli_bench_bad_arguments(fake_benchmarks, capsys, argv, message):
     with pytest.raises(SystemExit) as exc:
