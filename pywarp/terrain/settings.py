@@ -80,10 +80,11 @@ class TerrainSettings(Settings):
                              doc="vertical field of view",
                              reason="90: the demo's camera (Kod 7.1-7.2: image plane at distance 1, half-height 1)")
     # --- sun --------------------------------------------------------------------------------------------------------------
-    sun_elevation_deg: float = param(14.0, unit="deg", lo=0.5, hi=90.0, group="sun", cli="--sun-elevation",
+    sun_elevation_deg: float = param(20.0, unit="deg", lo=0.5, hi=90.0, group="sun", cli="--sun-elevation",
                                      doc="sun elevation above the horizon",
-                                     reason="14: a low afternoon sun, long soft shadows, the glow just above the "
-                                            "hills")
+                                     reason="20: a low afternoon sun with long shadows, the glow in view above the "
+                                            "hills; above asin(1/k) = 14.5 deg so that the soft shadow (k = 4) leaves "
+                                            "open flat ground lit (its clearance k d / t ~ k sin e)")
     sun_azimuth_deg: float = param(-30.0, unit="deg", group="sun", cli="--sun-azimuth",
                                    doc="sun azimuth, 0 = -z, positive towards +x",
                                    reason="-30: in view, left of centre, so the sun glow of Kod 7.10 shows")
