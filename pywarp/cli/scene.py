@@ -156,32 +156,39 @@ def cmd_scenes(args) -> int:
 
 
 def cmd_render(args) -> int:
-    from ..core.output import IMAGE_SUFFIXES, check_output_path, write_png
+    from ..core import linear
+    from ..core.output import IMAGE_SUFFIXES, check_output_path
 
     sc = get_scene(args.scene)
-    out = check_output_path(args.out or sc.outputs.get("render", f"{sc.name}.png"), IMAGE_SUFFIXES)
+    out = check_output_path(args.out or sc.outputs.get("render", f"{sc.name}.png"),
+                            IMAGE_SUFFIXES + linear.LINEAR_SUFFIXES)
     settings = settings_from_args(sc, args, "render")
     height = getattr(settings, "height", 1)
     with _progress_bar(height, "render", "rows", args.no_progress) as bar:
         bar.set_postfix_str("textures")
         tech = sc.technique(settings)
+        if linear.is_linear(out):
+            linear.check_linear(tech, sc.name)
         bar.set_postfix_str(f"{settings.width}x{settings.height}")
-        img = tech.render(progress=lambda fraction: bar.update(fraction * height))
+        progress = lambda fraction: bar.update(fraction * height)  # noqa: E731
+        img = linear.render_linear(tech, progress=progress) if linear.is_linear(out) else tech.render(progress=progress)
         bar.n = height
         bar.refresh()
-    write_png(out, img)
-    print(f"wrote {out} ({img.shape[1]}x{img.shape[0]}, scene {sc.name})")
+    linear.write_image(out, img, args.exr_precision)
+    print(f"wrote {out} ({img.shape[1]}x{img.shape[0]}, scene {sc.name}"
+          + (", display-linear" if linear.is_linear(out) else "") + ")")
     return 0
 
 
 def cmd_animate(args) -> int:
-    from ..core.output import VIDEO_SUFFIXES, VideoWriter, check_output_path
+    from ..core import animation, linear
 
     sc = get_scene(args.scene)
-    out = check_output_path(args.out or sc.outputs.get("animate", f"{sc.name}.mp4"), VIDEO_SUFFIXES)
     anim = from_options(AnimateOptions, args, dest_prefix="anim_")
+    sink = animation.open_sink(args.out or sc.outputs.get("animate", f"{sc.name}.mp4"), anim.fps, args.exr_precision)
+    out = getattr(sink, "pattern", None) or sink.writer.path
     settings = settings_from_args(sc, args, "animate")
-    if out.suffix.lower() == ".mp4" and (settings.width % 2 or settings.height % 2):
+    if str(out).lower().endswith(".mp4") and (settings.width % 2 or settings.height % 2):
         raise ValueError(f"--width and --height must be even for MP4, got {settings.width}x{settings.height}")
     try:
         path = sc.path(args.path)
@@ -189,13 +196,12 @@ def cmd_animate(args) -> int:
         raise ValueError(f"--{exc}") from None
     poses = path.poses(anim.frames, settings)
     tech = sc.technique(settings)
-    t0 = getattr(settings, sc.time_field) if sc.time_field else 0.0
-    with VideoWriter(out, fps=anim.fps) as video, \
-            _progress_bar(anim.frames, "animate", "frames", args.no_progress) as bar:
-        for i, pose in enumerate(poses):
-            if sc.time_field:
-                tech.update(**{sc.time_field: t0 + i / anim.fps * anim.time_scale})
-            video.add(tech.render(pose))
+    if sink.linear:
+        linear.check_linear(tech, sc.name)
+    times = animation.frame_times(settings, sc.time_field, anim.frames, anim.fps, anim.time_scale)
+    with sink, _progress_bar(anim.frames, "animate", "frames", args.no_progress) as bar:
+        for i, img in animation.render_frames(tech, poses, times, sc.time_field, sink.linear):
+            sink.add(img, i)
             bar.update(1)
     print(f"wrote {out} ({anim.frames} frames, {settings.width}x{settings.height}, scene {sc.name}, path {path.name}"
           + (f", reprojection {'on' if settings.reprojection else 'off'}" if hasattr(settings, "reprojection")
@@ -253,8 +259,11 @@ def add_scene_commands(sub) -> None:
     _scene_arg(r)
     _add_scene_options(r, "render")
     r.add_argument("--out", default=None, metavar="PATH",
-                   help=f"output PNG, checked writable before any work (default: "
+                   help=f"output .png (sRGB, 8 bit), or .exr / .npy (display-linear float RGB before the sRGB "
+                        f"encoding; scenes with a linear image), checked writable before any work (default: "
                         f"{default.outputs.get('render', 'SCENE.png')})")
+    r.add_argument("--exr-precision", choices=("half", "float"), default="half",
+                   help="pixel type of an .exr output (default: half)")
     r.add_argument("--no-progress", action="store_true", help="no progress bar")
     r.set_defaults(run=cmd_render)
 
@@ -277,8 +286,11 @@ def add_scene_commands(sub) -> None:
                         + (f", {path.name} for {default.name})" if path else ")"))
     _add_scene_options(a, "animate")
     a.add_argument("--out", default=None, metavar="PATH",
-                   help=f"output .mp4 or .gif, checked writable before any work (default: "
+                   help=f"output .mp4 or .gif, or numbered frames with a %%04d field: frames/frame_%%04d.png "
+                        f"(sRGB), .exr or .npy (display-linear float); checked writable before any work (default: "
                         f"{default.outputs.get('animate', 'SCENE.mp4')})")
+    a.add_argument("--exr-precision", choices=("half", "float"), default="half",
+                   help="pixel type of .exr frames (default: half)")
     a.add_argument("--no-progress", action="store_true", help="no progress bar")
     a.set_defaults(run=cmd_animate)
 

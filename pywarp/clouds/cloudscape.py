@@ -304,6 +304,12 @@ class CloudscapeTechnique:
             raise RuntimeError("the render produced non-finite pixels")
         return (out * 255.0 + 0.5).astype(np.uint8)
 
+    def render_linear(self, pose: CameraPose | None = None, progress=None) -> np.ndarray:
+        """The linear-image hook (:mod:`pywarp.core.linear`): one frame exactly as :meth:`render` (same frame
+        counter and reprojection history), returned as display-linear float32 RGB (height, width, 3) before the
+        clamp and the sRGB encoding of ``render``'s uint8 image."""
+        return np.asarray(self.render(pose, encode=False, progress=progress), dtype=np.float32)
+
     def samples_taken(self) -> np.ndarray:
         """View samples marched per pixel in the last frame (pixels not rendered keep older counts)."""
         return self._buffers["samples"].numpy().copy()
