@@ -430,21 +430,25 @@ void ccl_volume_pixel(const ccl_volume_params *p, const ccl_volume_grid *grids, 
     ccl_vec3 total = v3(0.0f, 0.0f, 0.0f);
     float mu = ccl_vec3_dot(d, p->sun), phase;
     float last_t = -BIG_T;
+    float box_t0[CCL_VOLUME_MAX_GRIDS], box_t1[CCL_VOLUME_MAX_GRIDS];
+    int box_hit[CCL_VOLUME_MAX_GRIDS];
     int last_i = -1, k;
     mu = mu < -1.0f ? -1.0f : (mu > 1.0f ? 1.0f : mu); /* two unit vectors: |dot| may exceed 1 by an ulp */
     phase = 4.0f * CCL_PI_F * ccl_phase_hg(mu, p->g);
+    /* every box's entry and exit once; then the grids in the order of their entry */
+    for (k = 0; k < count; ++k) box_hit[k] = ccl_volume_box(&grids[k], eye, d, &box_t0[k], &box_t1[k]);
     for (k = 0; k < count; ++k) {
         /* the next grid along the ray: smallest entry after (last_t, last_i) */
         int best = -1, i;
         float best_t0 = BIG_T, best_t1 = 0.0f;
         for (i = 0; i < count; ++i) {
-            float t0, t1;
-            if (!ccl_volume_box(&grids[i], eye, d, &t0, &t1)) continue;
+            float t0 = box_t0[i];
+            if (!box_hit[i]) continue;
             if (t0 < last_t || (t0 == last_t && i <= last_i)) continue;
             if (best < 0 || t0 < best_t0) {
                 best = i;
                 best_t0 = t0;
-                best_t1 = t1;
+                best_t1 = box_t1[i];
             }
         }
         if (best < 0) break;

@@ -33,6 +33,7 @@ MAX_GRIDS = 16          # CCL_VOLUME_MAX_GRIDS
 AIRCRAFT_STEPS = wp.constant(64)  # CCL_VOLUME_AIRCRAFT_STEPS
 AIRCRAFT_BOUND = wp.constant(6.3)
 BRICK = 4  # CCL_VOLUME_BRICK
+_Vgrid = wp.types.vector(length=MAX_GRIDS, dtype=wp.float32)  # per-grid values of one ray
 FOUR_PI = wp.constant(float(np.float32(4.0) * np.float32(math.pi)))  # 4.0f * CCL_PI_F, folded as in C
 _INV_255 = wp.constant(float(np.float32(1.0) / np.float32(255.0)))
 _U65536 = wp.constant(wp.uint32(65536))
@@ -482,20 +483,29 @@ def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
     phase = FOUR_PI * phase_hg(mu, p.g)
     last_t = float(-BIG_T)
     last_i = int(-1)
+    # every box's entry and exit once (a miss: entry BIG_T, never chosen); then the grids in the order of entry
+    box_t0 = _Vgrid()
+    box_t1 = _Vgrid()
+    box_hit = _Vgrid()
+    for k in range(count):
+        hit, t0, t1 = volume_box(grids[k], eye, d)
+        box_t0[k] = t0
+        box_t1[k] = t1
+        box_hit[k] = float(hit)
     for k in range(count):
         best = int(-1)
         best_t0 = float(BIG_T)
         best_t1 = float(0.0)
         for i in range(count):
-            hit, t0, t1 = volume_box(grids[i], eye, d)
-            if hit == 0:
+            if box_hit[i] == 0.0:
                 continue
+            t0 = box_t0[i]
             if t0 < last_t or (t0 == last_t and i <= last_i):
                 continue
             if best < 0 or t0 < best_t0:
                 best = i
                 best_t0 = t0
-                best_t1 = t1
+                best_t1 = box_t1[i]
         if best < 0:
             break
         last_t = best_t0
@@ -847,4 +857,25 @@ def pixels_warp(values: dict, vset: VolumeSet, camera, xs, ys, width: int, heigh
     wp.launch(pixels_kernel, dim=len(xs), inputs=[warp_params(values), grids, count, dens, light, occ,
                                                   camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), xa, ya,
                                                   width, height], outputs=[out], device=dev)
+    return out.numpy()
+
+
+def render(vset: VolumeSet, values: dict, camera, width: int, height: int, launcher=None) -> np.ndarray:
+    """A whole frame of ``vset`` (light volumes computed) seen by ``camera`` (:func:`pywarp.kernels.camera.
+    camera_look_at`): uint8 sRGB (height, width, 3), row bands on every core (``launcher``: default the process-wide
+    :class:`pywarp.core.runtime.TileLauncher` of the set's device)."""
+    from ..core.runtime import launcher as shared_launcher
+
+    check_values(values)
+    for name, v in (("width", width), ("height", height)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not 1 <= v <= 16384:
+            raise ValueError(f"{name} must be an integer in [1, 16384], got {v!r}")
+    if len(vset.light) != len(vset.volumes):
+        raise ValueError("the light volumes are missing: call vset.compute_light(values) first")
+    lau = launcher or shared_launcher(vset.device)
+    grids, count, dens, light, occ = vset.warp()
+    out = wp.zeros((height, width, 3), dtype=wp.uint8, device=vset.device)
+    lau.launch(render_kernel, height, width,
+               [warp_params(values), grids, count, dens, light, occ, camera.mat44("inv_view_proj_rot"),
+                camera.eye_vec3(), int(width), int(height)], [out])
     return out.numpy()

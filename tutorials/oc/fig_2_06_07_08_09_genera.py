@@ -1,0 +1,83 @@
+"""Figures oc-fig-2.6, oc-fig-2.7, oc-fig-2.8 and oc-fig-2.9 (photographs of nimbostratus, stratocumulus, stratus and
+cumulus), stand-ins rendered by the vc cloudscape from the same library -- a tie between the two texts.
+
+The oc text shows photographs of the ten cloud genera (§2.1.2); the volumetric cloud layer of the vc thesis models
+low clouds by a cloud type per ground position (0 stratus, 0.5 stratocumulus, 1 cumulus: the weather map's blue
+channel, vc-A12, with the height gradients of vc-4.7), so four of the genera have a stand-in: stratus (type 0,
+coverage 0.9), stratocumulus (type 0.5, coverage 0.7), cumulus (type 1, coverage 0.3) and a nimbostratus-like
+overcast (type 0.5, coverage 1, precipitation 1: the absorption of vc-2.31 grows with precipitation, so the layer is
+dark grey). The gradients are read as printed (advanced={'gradient_clamp': 0}, see tutorials/vc/fig_2_02_cloud_types.py),
+the weather map's type spread is 0. Camera 0.3 km up looking 18 deg up, 55 deg field of view; sun 30 deg high at
+azimuth 120 deg; seed 0; 480 x 270. The other genera are high or middle clouds, outside the vc layer
+(pywarp/data/figure_status.json). Outputs: figures/oc/fig-2.6.png, fig-2.7.png, fig-2.8.png, fig-2.9.png.
+"""
+# %% [markdown]
+# The low genera differ in how much of the sky they cover and in their vertical profile: stratus is a thin uniform
+# sheet, stratocumulus a lumpy layer of rolls and patches, cumulus separate heaps with flat bases, nimbostratus a
+# thick dark layer that hides the sun. The vc renderer's weather map carries exactly these degrees of freedom --
+# coverage, cloud type and precipitation -- so each genus is one setting of it.
+
+# %%
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from pywarp.clouds import textures as T  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique, RenderTextures  # noqa: E402
+
+GENERA = (("fig-2.6.png", "nimbostratus-like overcast (type 0.5, coverage 1, precipitation 1)",
+           dict(cloud_type=0.5, coverage=1.0, precipitation=1.0)),
+          ("fig-2.7.png", "stratocumulus (type 0.5, coverage 0.7)", dict(cloud_type=0.5, coverage=0.7)),
+          ("fig-2.8.png", "stratus (type 0, coverage 0.9)", dict(cloud_type=0.0, coverage=0.9)),
+          ("fig-2.9.png", "cumulus (type 1, coverage 0.3)", dict(cloud_type=1.0, coverage=0.3)))
+SCENE = dict(precipitation=0.2, seed=0, sun_elevation_deg=30.0, sun_azimuth_deg=120.0, camera_altitude_km=0.3,
+             camera_pitch_deg=18.0, fov_y_deg=55.0, advanced={"gradient_clamp": 0})
+FULL = dict(width=480, height=270)
+QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
+
+
+def textures_for(s: CloudscapeSettings, generator) -> RenderTextures:
+    """The renderer's textures with the weather map's type spread set to 0 (one genus everywhere)."""
+    tex = generator.textures(
+        T.BaseShapeSettings(size=s.base_size, seed=s.seed), T.DetailShapeSettings(size=s.detail_size, seed=s.seed),
+        T.CurlNoiseSettings(size=s.curl_size, seed=s.seed),
+        T.WeatherMapSettings(size=s.weather_size, seed=s.seed, coverage=s.coverage, precipitation=s.precipitation,
+                             cloud_type=s.cloud_type, cloud_type_variation=0.0))
+    return RenderTextures.from_textures(tex, s.device)
+
+
+def main(out_dir, quick: bool = False) -> list[Path]:
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    gen = T.BasicTextureGenerator()
+    written = []
+    for name, title, genus in GENERA:
+        s = CloudscapeSettings(**(QUICK if quick else FULL), **{**SCENE, **genus})
+        img = CloudscapeTechnique(s, textures=textures_for(s, gen)).render()
+        h, w = img.shape[:2]
+        fig = plt.figure(figsize=(w / 100, h / 100 + 0.35), dpi=100)
+        ax = fig.add_axes([0, 0, 1, h / (h + 35)])
+        ax.imshow(img)
+        ax.axis("off")
+        fig.text(0.5, 1 - 17 / (h + 35), f"stand-in: {title}", ha="center", va="center", fontsize=8)
+        path = out_dir / name
+        fig.savefig(path, dpi=100)
+        plt.close(fig)
+        written.append(path)
+    return written
+
+
+if __name__ == "__main__":
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", default="figures/oc")
+    ap.add_argument("--quick", action="store_true")
+    a = ap.parse_args()
+    for f in main(a.out, a.quick):
+        print(f)
