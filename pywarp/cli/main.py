@@ -5,6 +5,7 @@
     pywarp equations [--seed KEY] [--missing | --figures] [--format table|csv|markdown|json]
                                                   traceability matrix: ID, title, C, Warp, tests, figures
     pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...]
+    pywarp notebooks [--out DIR] [--seed KEY] [--quick]   every figure tutorial as a Jupyter notebook
     pywarp bench tiles|cloudscape|textures|reprojection [--width W] [--height H] [--repeat N] [--workers N]
                  [--device D] [--json]
 
@@ -25,6 +26,7 @@ from pathlib import Path
 
 from ..core.catalogue import SEEDS as _SEED_TEXTS
 from .equations import add_equations_command
+from .notebooks import add_notebooks_command
 
 SEEDS = tuple(_SEED_TEXTS)
 
@@ -109,6 +111,7 @@ def build_parser() -> argparse.ArgumentParser:
     p._commands = sub  # main() routes errors to the command's own parser
 
     add_equations_command(sub)
+    add_notebooks_command(sub)
 
     f = sub.add_parser("figures", help="regenerate the figures by running the tutorials")
     f.add_argument("--seed", choices=SEEDS, help="only the tutorials of this text: " + ", ".join(SEEDS)
