@@ -111,7 +111,6 @@ def build_parser() -> argparse.ArgumentParser:
     p._commands = sub  # main() routes errors to the command's own parser
 
     add_equations_command(sub)
-    add_notebooks_command(sub)
 
     f = sub.add_parser("figures", help="regenerate the figures by running the tutorials")
     f.add_argument("--seed", choices=SEEDS, help="only the tutorials of this text: " + ", ".join(SEEDS)
@@ -122,6 +121,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--only", nargs="+", metavar="FIG", help="only these figures, e.g. fig-4.9 or vc-fig-4.9")
     f.add_argument("--no-progress", action="store_true", help="no progress bar")
     f.set_defaults(run=cmd_figures)
+    add_notebooks_command(sub)
 
     from .scene import add_scene_commands  # scenes, render, animate, bench: built from the scene registry
 
