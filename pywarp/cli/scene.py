@@ -1,4 +1,4 @@
-"""``pywarp scenes``, ``pywarp render|animate [SCENE]`` and ``pywarp bench [SCENE] BENCHMARK``, built from the scene
+"""``pywarp scenes``, ``pywarp render|animate [SCENE]`` and ``pywarp bench [SCENE] [BENCHMARK]``, built from the scene
 registry (:mod:`pywarp.core.scenes`) and the settings' parameter specs (:mod:`pywarp.core.params`).
 
 The scene is optional and defaults to ``clouds``, so ``pywarp render``, ``pywarp render --sun-elevation 8 --out
@@ -95,16 +95,17 @@ def _add_scene_options(parser: argparse.ArgumentParser, command: str) -> None:
                                            help=text)
 
 
-def settings_from_args(sc, args: argparse.Namespace, command: str):
+def settings_from_args(sc, args: argparse.Namespace, command: str, defaults: dict | None = None):
     """The scene's settings from the parsed options: every given option parsed and validated (errors name it), the
-    command's defaults, then the settings' own checks (errors reworded to name the option)."""
+    command's defaults (``defaults`` under them), then the settings' own checks (errors reworded to name the
+    option)."""
     options = {p.name: p.option for p in specs(sc.settings) if p.option is not None}
     allowed = {o for n, o in options.items() if n not in sc.command_exclude.get(command, ())}
     given = {k[4:] for k in vars(args) if k.startswith("opt_")}
     for dest in sorted(given):
         if not any(_dest(o)[4:] == dest for o in allowed):
             raise ValueError(f"--{dest.replace('_', '-')} is not an option of scene {sc.name!r}")
-    values = dict(sc.command_defaults.get(command, {}))
+    values = {**(defaults or {}), **sc.command_defaults.get(command, {})}
     for p in specs(sc.settings):
         opt = options.get(p.name)
         if opt is None or opt not in allowed or not hasattr(args, _dest(opt)):
@@ -215,9 +216,10 @@ def cmd_bench(args) -> int:
         sc = get_scene(names[0])
         name = names[1]
     elif names[0] in all_scenes() and names[0] not in get_scene().benchmarks:
-        sc = get_scene(names[0])
-        raise ValueError(f"benchmark missing: pywarp bench {sc.name} "
-                         f"{{{','.join(sc.benchmarks)}}}")
+        sc = get_scene(names[0])  # `pywarp bench <scene>`: the scene's default benchmark
+        name = sc.default_benchmark or next(iter(sc.benchmarks), None)
+        if name is None:
+            raise ValueError(f"scene {sc.name!r} has no benchmarks")
     else:
         sc, name = get_scene(), names[0]
     if name not in sc.benchmarks:
@@ -237,6 +239,38 @@ def cmd_bench(args) -> int:
     sys.stdout.flush()
     b.print(result, args.json)
     return 0
+
+
+def view_defaults(sc) -> dict:
+    """Settings defaults of ``pywarp view``: ``command_defaults["view"]``, else 640 x 360 where the settings have a
+    width and a height (the issue's interactive size)."""
+    names = {p.name for p in specs(sc.settings)}
+    return {"width": 640, "height": 360} if {"width", "height"} <= names else {}
+
+
+def cmd_view(args) -> int:
+    from ..viewer import Script, check_window, view
+
+    sc = get_scene(args.scene)
+    if args.benchmark is not None and not args.benchmark > 0:
+        raise ValueError(f"--benchmark must be > 0 seconds, got {args.benchmark:g}")
+    window = not args.no_window
+    if window:
+        check_window()
+    settings = settings_from_args(sc, args, "view", view_defaults(sc))
+    script = Script.load(args.script) if args.script else None
+    if args.screenshot_at:
+        from pathlib import Path
+
+        events = [] if script is None else list(script.events)
+        for t in args.screenshot_at:
+            if not t >= 0:
+                raise ValueError(f"--screenshot-at must be >= 0 seconds, got {t:g}")
+            events.append({"t": t, "screenshot": str(Path(args.screenshot_dir) / f"{sc.name}-{t:g}s.png")})
+        script = Script.parse(events)
+    return view(sc, settings, window=window, script=script, benchmark=args.benchmark, as_json=args.json,
+                screenshot_dir=args.screenshot_dir, window_screenshot=args.window_screenshot,
+                state_out=args.state_out, seconds=args.seconds)
 
 
 # --- the parsers ---------------------------------------------------------------------------------------------------------
@@ -294,6 +328,40 @@ def add_scene_commands(sub) -> None:
     a.add_argument("--no-progress", action="store_true", help="no progress bar")
     a.set_defaults(run=cmd_animate)
 
+    v = sub.add_parser("view", help="open a scene in an interactive window (fly, panel of every setting)",
+                       formatter_class=fmt,
+                       description="Open a scene in a window: its image beside a panel of every setting (unit, range "
+                                   "and help on hover; changes apply live), frame time and frames/s. Keys: the "
+                                   "scene's (F1 shows them), F12 screenshot, Esc quit. Renders at reduced resolution "
+                                   "while the view moves and refines when it stops. Default size 640 x 360. Needs a "
+                                   "display (run under `xvfb-run -a` without one) unless --no-window.\n\n"
+                                   "scenes: " + ", ".join(all_scenes()))
+    _scene_arg(v)
+    _add_scene_options(v, "view")
+    v.add_argument("--benchmark", type=float, default=None, metavar="SECONDS",
+                   help="benchmark mode: hold the scene's benchmark keys (the free-fly default: D + Left, circling at constant altitude) and "
+                        "count the frames shown for SECONDS after a warm-up; prints frames/s against the target")
+    v.add_argument("--json", action="store_true", help="with --benchmark: print one JSON object as the last line")
+    v.add_argument("--script", default=None, metavar="FILE",
+                   help="play a JSON list of timed events: {\"t\": 0, \"key\": \"W\", \"hold\": 1.5}, "
+                        "{\"t\": 2, \"set\": {\"coverage\": 0.7}}, {\"t\": 3, \"screenshot\": \"a.png\"}, "
+                        "{\"t\": 4, \"quit\": true}; the clock steps 1/30 s per frame, so the same script gives "
+                        "the same screenshots; the viewer quits when it ends")
+    v.add_argument("--screenshot-at", type=float, action="append", default=[], metavar="SECONDS",
+                   help="save the refined frame at this script time (repeatable) as SCENE-<t>s.png in "
+                        "--screenshot-dir")
+    v.add_argument("--screenshot-dir", default=".", metavar="DIR",
+                   help="folder of F12 and --screenshot-at screenshots (default: the current folder)")
+    v.add_argument("--window-screenshot", default=None, metavar="PATH",
+                   help="save the whole window (panel and image) as PNG when the viewer exits")
+    v.add_argument("--state-out", default=None, metavar="PATH",
+                   help="write the final state (settings, frames shown, screenshots) as JSON on exit")
+    v.add_argument("--no-window", action="store_true",
+                   help="run the session without a window (benchmarks and scripts on machines without a display)")
+    v.add_argument("--seconds", type=float, default=None, metavar="SECONDS",
+                   help="quit after this long (wall time)")
+    v.set_defaults(run=cmd_view)
+
     lines = []
     for sc in all_scenes().values():
         for bname, bm in sc.benchmarks.items():
@@ -301,7 +369,8 @@ def add_scene_commands(sub) -> None:
             lines.append(f"  {sc.name} {bname}: {bm.description} (defaults: {opts or '-'})")
     b = sub.add_parser("bench", help="run a benchmark and print ratios measured in one run",
                        formatter_class=fmt,
-                       description="Run a benchmark of a scene: pywarp bench [SCENE] BENCHMARK. Numbers are measured "
+                       description="Run a benchmark of a scene: pywarp bench [SCENE] [BENCHMARK] (a scene alone runs its default "
+                                   "benchmark). Numbers are measured "
                                    "in one run (best of --repeat after a warm-up); ratios compare them.\n\n"
                                    "benchmarks:\n" + "\n".join(lines))
     b.add_argument("first", metavar="[SCENE]",

@@ -30,6 +30,7 @@ def _lazy(module: str, name: str):
 
 SCENE = register(Scene(
     name="clouds",
+    default_benchmark="cloudscape",
     description="volumetric cloudscape of the vc thesis: Preetham or gradient sky, cloud-layer raymarch, reprojection",
     settings=CloudscapeSettings,
     technique=make_technique,

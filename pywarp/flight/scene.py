@@ -37,6 +37,7 @@ def _lazy(module: str, name: str):
 
 SCENE = register(Scene(
     name="flight",
+    default_benchmark="all",
     description="oc flight simulator: value-noise cloud volumes (SimVoleon stand-in volume renderer) and an aircraft "
                 "flown through and around them by a script of key presses",
     settings=FlightSettings,
