@@ -214,9 +214,19 @@ int ccl_particles_tap(const float *mask, int mask_size, const float *capture, in
     return 1;
 }
 
-ccl_vec3 ccl_particles_shade_pixel(const ccl_particles_sprite *sprites, int n, const float *mask, int mask_size,
-                                   const float *capture, int capture_size, int x, int y, ccl_vec2 p_o, float scale,
-                                   int filter, int streaks, float opacity, ccl_vec3 bg)
+static ccl_vec3 light_tap(const ccl_particles_lights *L, ccl_vec3 p, const float *nt, ccl_vec3 c_o)
+{
+    ccl_vec3 n, eye = {0.0f, 0.0f, 0.0f};
+    n.x = nt[0] * L->right.x + nt[1] * L->up.x + nt[2] * L->forward.x;
+    n.y = nt[0] * L->right.y + nt[1] * L->up.y + nt[2] * L->forward.y;
+    n.z = nt[0] * L->right.z + nt[1] * L->up.z + nt[2] * L->forward.z;
+    return ccl_rain_light_colour(c_o, L->ambient, p, n, eye, L->l1, L->c_l1, L->l2, L->c_l2, L->r_half, L->variant);
+}
+
+static ccl_vec3 shade(const ccl_particles_sprite *sprites, const ccl_vec3 *positions, int n, const float *mask,
+                      const float *normals, int mask_size, const float *capture, int capture_size, int x, int y,
+                      ccl_vec2 p_o, float scale, int filter, int streaks, float opacity,
+                      const ccl_particles_lights *lights, ccl_vec3 bg)
 {
     float px = (float)x + 0.5f, py = (float)y + 0.5f;
     ccl_vec3 c = bg;
@@ -236,8 +246,15 @@ ccl_vec3 ccl_particles_shade_pixel(const ccl_particles_sprite *sprites, int n, c
             hi = CCL_PARTICLES_STREAK_TAPS / 2;
         }
         for (i = lo; i <= hi; ++i) {
-            if (ccl_particles_tap(mask, mask_size, capture, capture_size, mu, mv - (float)i * s->tap_offset, p_o,
-                                  scale, filter, &rgb)) {
+            float tv = mv - (float)i * s->tap_offset;
+            if (ccl_particles_tap(mask, mask_size, capture, capture_size, mu, tv, p_o, scale, filter, &rgb)) {
+                if (lights) {
+                    /* the texel ccl_particles_tap read (it hit, so mu and tv are in [0, 1)) */
+                    int mx = clampi((int)(mu * (float)mask_size), 0, mask_size - 1);
+                    int my = clampi((int)(tv * (float)mask_size), 0, mask_size - 1);
+                    rgb = light_tap(lights, positions[j], normals + 3 * ((size_t)my * (size_t)mask_size + (size_t)mx),
+                                    rgb);
+                }
                 sum.x += rgb.x;
                 sum.y += rgb.y;
                 sum.z += rgb.z;
@@ -251,6 +268,24 @@ ccl_vec3 ccl_particles_shade_pixel(const ccl_particles_sprite *sprites, int n, c
         c.z = c.z + (sum.z / (float)hits - c.z) * alpha;
     }
     return c;
+}
+
+ccl_vec3 ccl_particles_shade_pixel(const ccl_particles_sprite *sprites, int n, const float *mask, int mask_size,
+                                   const float *capture, int capture_size, int x, int y, ccl_vec2 p_o, float scale,
+                                   int filter, int streaks, float opacity, ccl_vec3 bg)
+{
+    return shade(sprites, NULL, n, mask, NULL, mask_size, capture, capture_size, x, y, p_o, scale, filter, streaks,
+                 opacity, NULL, bg);
+}
+
+ccl_vec3 ccl_particles_shade_pixel_lit(const ccl_particles_sprite *sprites, const ccl_vec3 *positions, int n,
+                                       const float *mask, const float *normals, int mask_size, const float *capture,
+                                       int capture_size, int x, int y, ccl_vec2 p_o, float scale, int filter,
+                                       int streaks, float opacity, const ccl_particles_lights *lights, ccl_vec3 bg)
+{
+    if (lights && (!positions || !normals)) lights = NULL;
+    return shade(sprites, positions, n, mask, normals, mask_size, capture, capture_size, x, y, p_o, scale, filter,
+                 streaks, opacity, lights, bg);
 }
 
 ccl_status ccl_particles_composite(const float *background, int width, int height, const ccl_particles_sprite *sprites,

@@ -1,5 +1,5 @@
 /* C unit tests of cclouds/particles.h: spawn box and sizes, particle counts of both variants, determinism, streaks,
- * the capture lookup, the compositing of a uniform capture. */
+ * the capture lookup, the compositing of a uniform capture, the lit pixel's closed form. */
 #include <math.h>
 #include <string.h>
 
@@ -163,6 +163,63 @@ static void test_uniform_capture_gives_its_colour(void)
     CCL_CHECK_CLOSE(c.x, 0.0, 0.0); /* outside the billboard: the background */
 }
 
+static void test_lit_pixel_closed_form(void)
+{
+    /* one drop at p = (0, 0, -1) straight ahead, every normal facing the eye (mask frame (0, 0, -1) -> scene (0, 0, 1)
+     * with forward = -z), light 1 behind the eye at (0, 0, 1): dist 2, V_PE = V_PL = V_N, A1 = C_L / (1 + (2/2)^2) =
+     * C_L / 2, A2 = 1, A3 = max(0, -1 * 2) = 0; C_F = C_O C_amb + C_L / 2 */
+    static float mask[8 * 8 * 4], normals[8 * 8 * 3], capture[4 * 4 * 3];
+    ccl_particles_sprite s = {10.0f, 10.0f, 4.0f, 4.0f, 0.0f, 1.0f};
+    ccl_vec3 pos = {0.0f, 0.0f, -1.0f};
+    ccl_particles_lights L;
+    ccl_vec2 p_o = {0.5f, 0.5f};
+    ccl_vec3 bg = {0.0f, 0.0f, 0.0f}, c, u;
+    int i;
+    for (i = 0; i < 8 * 8; ++i) {
+        mask[4 * i] = 0.1f;
+        mask[4 * i + 1] = -0.2f;
+        mask[4 * i + 2] = 0.9f;
+        mask[4 * i + 3] = 1.0f;
+        normals[3 * i] = 0.0f;
+        normals[3 * i + 1] = 0.0f;
+        normals[3 * i + 2] = -1.0f;
+    }
+    for (i = 0; i < 4 * 4 * 3; i += 3) {
+        capture[i] = 0.25f;
+        capture[i + 1] = 0.5f;
+        capture[i + 2] = 0.75f;
+    }
+    memset(&L, 0, sizeof L);
+    L.ambient.x = L.ambient.y = L.ambient.z = 1.0f;
+    L.r_half = 2.0f;
+    L.variant = CCL_VARIANT_CORRECTED;
+    L.right.x = 1.0f;
+    L.up.y = 1.0f;
+    L.forward.z = -1.0f;
+    /* lights off, ambient 1: the unlit colour */
+    c = ccl_particles_shade_pixel_lit(&s, &pos, 1, mask, normals, 8, capture, 4, 10, 10, p_o, 0.13f,
+                                      CCL_PARTICLES_NEAREST, 0, 1.0f, &L, bg);
+    u = ccl_particles_shade_pixel(&s, 1, mask, 8, capture, 4, 10, 10, p_o, 0.13f, CCL_PARTICLES_NEAREST, 0, 1.0f, bg);
+    CCL_CHECK(c.x == u.x && c.y == u.y && c.z == u.z);
+    L.l1.z = 1.0f;
+    L.c_l1.x = L.c_l1.y = L.c_l1.z = 0.2f;
+    c = ccl_particles_shade_pixel_lit(&s, &pos, 1, mask, normals, 8, capture, 4, 10, 10, p_o, 0.13f,
+                                      CCL_PARTICLES_NEAREST, 0, 1.0f, &L, bg);
+    CCL_CHECK_CLOSE(c.x, 0.35, 1e-6);
+    CCL_CHECK_CLOSE(c.y, 0.6, 1e-6);
+    CCL_CHECK_CLOSE(c.z, 0.85, 1e-6);
+    /* ambient scales the refracted colour */
+    L.c_l1.x = L.c_l1.y = L.c_l1.z = 0.0f;
+    L.ambient.y = 0.5f;
+    c = ccl_particles_shade_pixel_lit(&s, &pos, 1, mask, normals, 8, capture, 4, 10, 10, p_o, 0.13f,
+                                      CCL_PARTICLES_NEAREST, 0, 1.0f, &L, bg);
+    CCL_CHECK_CLOSE(c.y, 0.25, 1e-7);
+    /* NULL lights: the unlit pixel */
+    c = ccl_particles_shade_pixel_lit(&s, &pos, 1, mask, normals, 8, capture, 4, 10, 10, p_o, 0.13f,
+                                      CCL_PARTICLES_NEAREST, 0, 1.0f, NULL, bg);
+    CCL_CHECK(c.y == u.y);
+}
+
 int main(void)
 {
     CCL_RUN(test_params_default_and_check);
@@ -173,5 +230,6 @@ int main(void)
     CCL_RUN(test_streak);
     CCL_RUN(test_capture_uv);
     CCL_RUN(test_uniform_capture_gives_its_colour);
+    CCL_RUN(test_lit_pixel_closed_form);
     return ccl_test_report();
 }

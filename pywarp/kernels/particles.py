@@ -26,7 +26,7 @@ import warp as wp
 
 from ..core.registry import VARIANT, Arg, Option, declare
 from .hash import hash_pcg, hash_unit
-from .rain import rain_terminal_speed
+from .rain import rain_light_colour, rain_terminal_speed
 
 MAX_SIZE_SAMPLES = 64  # CCL_PARTICLES_MAX_SIZE_SAMPLES
 STREAK_TAPS = 7  # CCL_PARTICLES_STREAK_TAPS
@@ -501,6 +501,180 @@ def particles_shade_sprite(c: wp.vec3, sprites: wp.array2d(dtype=float), j: int,
     return out
 
 
+# --- the light-drop model in the compositing pass (rr-A1..rr-A3, rr-CF; the text never implemented it) --------------
+
+@wp.struct
+class ParticlesLights:
+    """Warp twin of ``ccl_particles_lights`` (field by field; see :func:`light_params`)."""
+
+    l1: wp.vec3
+    c_l1: wp.vec3
+    l2: wp.vec3
+    c_l2: wp.vec3
+    ambient: wp.vec3
+    r_half: float
+    variant: int
+    right: wp.vec3
+    up: wp.vec3
+    forward: wp.vec3
+
+
+#: Lights of the compositing pass (``ccl_particles_lights``): positions in camera-relative scene units (y up, the eye
+#: at the origin), colours RGB (0 = off), the view basis that turns mask normals into that frame. Off by default:
+#: the text's application has no lights (rr-A1..rr-CF are its "possible future extension").
+LIGHT_DEFAULTS = dict(l1=(0.0, 0.0, 0.0), c_l1=(0.0, 0.0, 0.0), l2=(0.0, 0.0, 0.0), c_l2=(0.0, 0.0, 0.0),
+                      ambient=(1.0, 1.0, 1.0), r_half=1.0, variant="corrected", right=(1.0, 0.0, 0.0),
+                      up=(0.0, 1.0, 0.0), forward=(0.0, 0.0, -1.0))
+
+
+def check_lights(values: dict) -> dict:
+    """``values`` (fields of :data:`LIGHT_DEFAULTS`, missing ones defaulted) checked; ValueError naming the field."""
+    unknown = set(values) - set(LIGHT_DEFAULTS)
+    if unknown:
+        raise ValueError(f"unknown light parameter(s) {sorted(unknown)}; known: {sorted(LIGHT_DEFAULTS)}")
+    v = {**LIGHT_DEFAULTS, **values}
+    for name in ("l1", "c_l1", "l2", "c_l2", "ambient", "right", "up", "forward"):
+        a = np.asarray(v[name], np.float64)
+        if a.shape != (3,) or not np.all(np.isfinite(a)) or np.any(np.abs(a) > 1e30):
+            raise ValueError(f"{name} must be 3 finite numbers, got {v[name]!r}")
+        if name in ("c_l1", "c_l2", "ambient") and np.any(a < 0):
+            raise ValueError(f"{name} must be >= 0 per channel, got {v[name]!r}")
+        if name in ("right", "up", "forward") and abs(np.linalg.norm(a) - 1.0) > 1e-3:
+            raise ValueError(f"{name} must be a unit vector, got {v[name]!r}")
+        v[name] = tuple(float(x) for x in a)
+    r = v["r_half"]
+    if isinstance(r, bool) or not isinstance(r, (int, float, np.integer, np.floating)) or not (
+            math.isfinite(r) and 0.0 < r <= 1e30):
+        raise ValueError(f"r_half must be > 0, got {r!r}")
+    v["r_half"] = float(r)
+    var = v["variant"]
+    v["variant"] = var if isinstance(var, int) and not isinstance(var, bool) and var in (0, 1) else \
+        VARIANT.check(var)  # idempotent: a checked dict (variant 0/1) passes again
+    return v
+
+
+def lights_on(v: dict) -> bool:
+    """Whether checked light values change any colour (a light with a colour, or an ambient other than 1)."""
+    return any(v["c_l1"]) or any(v["c_l2"]) or tuple(v["ambient"]) != (1.0, 1.0, 1.0)
+
+
+def light_params(**values) -> ParticlesLights:
+    """A checked :class:`ParticlesLights`."""
+    v = check_lights(values)
+    L = ParticlesLights()
+    for k in ("l1", "c_l1", "l2", "c_l2", "ambient", "right", "up", "forward"):
+        setattr(L, k, wp.vec3(*v[k]))
+    L.r_half = v["r_half"]
+    L.variant = int(v["variant"])
+    return L
+
+
+def c_lights(**values):
+    """The same lights as a cffi ``ccl_particles_lights *``."""
+    from ..core.binding import ffi
+
+    v = check_lights(values)
+    c = ffi().new("ccl_particles_lights *")
+    for k in ("l1", "c_l1", "l2", "c_l2", "ambient", "right", "up", "forward"):
+        vec = getattr(c, k)
+        vec.x, vec.y, vec.z = v[k]
+    c.r_half = v["r_half"]
+    c.variant = int(v["variant"])
+    return c
+
+
+@wp.func
+def _light_tap(L: ParticlesLights, p: wp.vec3, normals: wp.array(dtype=float), t: int, c_o: wp.vec3) -> wp.vec3:
+    """C_F of one tap (``light_tap`` of particles.c): the texel's entry normal (packed, :func:`pack_normals`) turned
+    into the scene frame, then rr-CF with the eye at the origin."""
+    nx = normals[3 * t]
+    ny = normals[3 * t + 1]
+    nz = normals[3 * t + 2]
+    n = wp.vec3(nx * L.right[0] + ny * L.up[0] + nz * L.forward[0],
+                nx * L.right[1] + ny * L.up[1] + nz * L.forward[1],
+                nx * L.right[2] + ny * L.up[2] + nz * L.forward[2])
+    return rain_light_colour(c_o, L.ambient, p, n, wp.vec3(0.0, 0.0, 0.0), L.l1, L.c_l1, L.l2, L.c_l2, L.r_half,
+                             L.variant)
+
+
+@wp.func
+def _tap_packed(offsets: wp.array(dtype=float), mask_size: int, capture: wp.array(dtype=float), capture_size: int,
+                mask_u: float, mask_v: float, p_o: wp.vec2, scale: float, filt: int):
+    """:func:`particles_tap` on the packed mask of :func:`pack_mask` (the same values, x/z and y/z read instead of
+    divided; NaN where the texel has no ray)."""
+    rgb = wp.vec3(0.0, 0.0, 0.0)
+    hit = int(0)
+    t = int(0)
+    if mask_u >= 0.0 and mask_u < 1.0 and mask_v >= 0.0 and mask_v < 1.0:
+        mx = wp.clamp(int(mask_u * float(mask_size)), 0, mask_size - 1)
+        my = wp.clamp(int(mask_v * float(mask_size)), 0, mask_size - 1)
+        t = mx * mask_size + my
+        qx = offsets[2 * t]
+        if qx == qx:
+            uc = p_o[0] + scale * qx
+            vc = p_o[1] - scale * offsets[2 * t + 1]
+            rgb = particles_fetch(capture, capture_size, uc, vc, filt)
+            hit = 1
+    return hit, rgb, t
+
+
+@wp.func
+def _shade_sprite_packed(c: wp.vec3, sprites: wp.array2d(dtype=float), j: int, offsets: wp.array(dtype=float),
+                         mask_size: int, capture: wp.array(dtype=float), capture_size: int, px: float, py: float,
+                         p_o: wp.vec2, scale: float, filt: int, streaks: int, opacity: float, lit: int,
+                         positions: wp.array(dtype=wp.vec3), normals: wp.array(dtype=float),
+                         L: ParticlesLights) -> wp.vec3:
+    """:func:`particles_shade_sprite` with :func:`_tap_packed` (the frame kernel's form; the same operations); with
+    ``lit`` every hit's colour goes through :func:`_light_tap` (``ccl_particles_shade_pixel_lit``)."""
+    dx = px - sprites[j, 0]
+    dy = py - sprites[j, 1]
+    radius = sprites[j, 2]
+    out = c
+    if wp.abs(dx) < radius and wp.abs(dy) < sprites[j, 3]:
+        mu = dx / (2.0 * radius) + 0.5
+        mv = dy / (2.0 * sprites[j, 3]) + 0.5
+        lo = int(0)
+        hi = int(0)
+        if streaks != 0:
+            lo = -(STREAK_TAPS // 2)
+            hi = STREAK_TAPS // 2
+        s = wp.vec3(0.0, 0.0, 0.0)
+        hits = int(0)
+        for i in range(lo, hi + 1):
+            h, rgb, t = _tap_packed(offsets, mask_size, capture, capture_size, mu, mv - float(i) * sprites[j, 4],
+                                    p_o, scale, filt)
+            if h != 0 and lit != 0:
+                rgb = _light_tap(L, positions[j], normals, t, rgb)
+            if h != 0:
+                s = wp.vec3(s[0] + rgb[0], s[1] + rgb[1], s[2] + rgb[2])
+                hits = hits + 1
+        if hits > 0:
+            alpha = opacity
+            if streaks != 0:
+                alpha = opacity * (float(hits) / float(STREAK_TAPS))
+            out = wp.vec3(c[0] + (s[0] / float(hits) - c[0]) * alpha, c[1] + (s[1] / float(hits) - c[1]) * alpha,
+                          c[2] + (s[2] / float(hits) - c[2]) * alpha)
+    return out
+
+
+def pack_mask(mask: np.ndarray) -> np.ndarray:
+    """The refraction mask (n, n, 4) as the frame kernel reads it: per texel (x / z, y / z) in float32 (the quotients
+    the shader forms), NaN where the texel is outside the drop or has no ray (a <= 0 or z <= 0), stored COLUMN-major
+    (texel (row my, column mx) at 2 (mx n + my)): a streak's taps walk down one mask column, so they share cache lines
+    (the row-major RGBA mask made every tap a cache miss). Half the memory, no division per tap, the same values."""
+    m = np.asarray(mask, np.float32)
+    ok = (m[..., 3] > 0) & (m[..., 2] > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = np.stack([np.where(ok, m[..., 0] / m[..., 2], np.float32(np.nan)),
+                      np.where(ok, m[..., 1] / m[..., 2], np.float32(np.nan))], -1).astype(np.float32)
+    return np.ascontiguousarray(q.transpose(1, 0, 2)).reshape(-1)
+
+
+def pack_normals(normals: np.ndarray) -> np.ndarray:
+    """The mask's entry normals (n, n, 3) column-major like :func:`pack_mask` (texel (my, mx) at 3 (mx n + my))."""
+    return np.ascontiguousarray(np.asarray(normals, np.float32).transpose(1, 0, 2)).reshape(-1)
+
+
 @wp.func
 def particles_pixel_uv(x: int, y: int, width: int, height: int, fov_view: float, fov_capture: float) -> wp.vec2:
     """P_o of pixel (x, y): its centre's NDC through :func:`particles_capture_uv`."""
@@ -508,29 +682,51 @@ def particles_pixel_uv(x: int, y: int, width: int, height: int, fov_view: float,
     return particles_capture_uv(ndc, float(width) / float(height), fov_view, fov_capture)
 
 
+@wp.func
+def particles_uv_ratio(fov_view: float, fov_capture: float) -> float:
+    """tan(fov_view/2) / tan(fov_capture/2): the factor of :func:`particles_capture_uv`, the same float32 operations."""
+    return wp.tan(0.5 * fov_view) / wp.tan(0.5 * fov_capture)
+
+
 @wp.kernel
-def composite_kernel(row0: int, background: wp.array3d(dtype=float), sprites: wp.array2d(dtype=float),
-                     tile_start: wp.array(dtype=int), tile_items: wp.array(dtype=int), tile: int, tiles_x: int,
-                     mask: wp.array(dtype=float), mask_size: int, capture: wp.array(dtype=float), capture_size: int,
-                     fov_view: float, fov_capture: float, scale: float, filt: int, streaks: int, opacity: float,
-                     out: wp.array3d(dtype=float)):
-    """The rain frame (TileLauncher row bands): per pixel, the background then the sprites of its screen tile, far
-    to near (rr-code-5.2.3 / rr-code-5.2.4)."""
-    i, x = wp.tid()
-    y = row0 + i
+def uv_ratio_kernel(fov_view: float, fov_capture: float, out: wp.array(dtype=float)):
+    """The frame's capture ratio, once (the pixels then need no tangent: 2 tan per pixel were a third of an empty
+    frame's time)."""
+    out[0] = particles_uv_ratio(fov_view, fov_capture)
+
+
+@wp.kernel
+def composite_kernel(row0: int, active: wp.array(dtype=int), background: wp.array3d(dtype=float),
+                     sprites: wp.array2d(dtype=float), tile_start: wp.array(dtype=int), tile_items: wp.array(dtype=int),
+                     tile: int, tiles_x: int, offsets: wp.array(dtype=float), mask_size: int,
+                     capture: wp.array(dtype=float), capture_size: int, ratio: wp.array(dtype=float), scale: float,
+                     filt: int, streaks: int, opacity: float, lit: int, positions: wp.array(dtype=wp.vec3),
+                     normals: wp.array(dtype=float), L: ParticlesLights, out: wp.array3d(dtype=float)):
+    """The rain frame over the screen tiles that hold sprites (TileLauncher bands of ``active``, one thread per pixel
+    of a tile; ``out`` holds the background already, the other tiles are not touched): per pixel, the background then
+    the sprites of its tile, far to near (rr-code-5.2.3 / rr-code-5.2.4). The same operations as
+    ``ccl_particles_shade_pixel`` with P_o of ``ccl_particles_capture_uv`` (its ratio computed once per frame by
+    :func:`uv_ratio_kernel` with the same expression)."""
+    i, k = wp.tid()
+    t = active[row0 + i]
+    x = (t % tiles_x) * tile + k % tile
+    y = (t // tiles_x) * tile + k // tile
     h = background.shape[0]
     w = background.shape[1]
-    c = wp.vec3(background[y, x, 0], background[y, x, 1], background[y, x, 2])
-    t = (y // tile) * tiles_x + x // tile
-    p_o = particles_pixel_uv(x, y, w, h, fov_view, fov_capture)
-    px = float(x) + 0.5
-    py = float(y) + 0.5
-    for k in range(tile_start[t], tile_start[t + 1]):
-        c = particles_shade_sprite(c, sprites, tile_items[k], mask, mask_size, capture, capture_size, px, py, p_o,
-                                   scale, filt, streaks, opacity)
-    out[y, x, 0] = c[0]
-    out[y, x, 1] = c[1]
-    out[y, x, 2] = c[2]
+    if x < w and y < h:
+        c = wp.vec3(background[y, x, 0], background[y, x, 1], background[y, x, 2])
+        ndc = wp.vec2(2.0 * ((float(x) + 0.5) / float(w)) - 1.0, 1.0 - 2.0 * ((float(y) + 0.5) / float(h)))
+        aspect = float(w) / float(h)
+        r = ratio[0]
+        p_o = wp.vec2(0.5 + 0.5 * (ndc[0] * aspect * r), 0.5 - 0.5 * (ndc[1] * r))
+        px = float(x) + 0.5
+        py = float(y) + 0.5
+        for j in range(tile_start[t], tile_start[t + 1]):
+            c = _shade_sprite_packed(c, sprites, tile_items[j], offsets, mask_size, capture, capture_size, px, py,
+                                     p_o, scale, filt, streaks, opacity, lit, positions, normals, L)
+        out[y, x, 0] = c[0]
+        out[y, x, 1] = c[1]
+        out[y, x, 2] = c[2]
 
 
 @wp.kernel
@@ -560,41 +756,46 @@ def capture_scale(fov_capture: float) -> float:
     return float(np.float32(0.5) / np.tan(np.float32(0.5) * np.float32(fov_capture)))
 
 
-def bin_sprites(sprites: np.ndarray, width: int, height: int, tile: int = 16) -> tuple[np.ndarray, np.ndarray, int]:
+def bin_sprites(sprites: np.ndarray, width: int, height: int, tile: int = 8) -> tuple[np.ndarray, np.ndarray, int]:
     """Screen-tile lists of the sprites (a conservative bounding box per sprite, one pixel of margin): (tile_start
-    (tiles + 1,), tile_items, tiles_x); within a tile the sprites keep their order (far first)."""
+    (tiles + 1,), tile_items, tiles_x); within a tile the sprites keep their order (far first). Vectorised NumPy: the
+    (sprite, tile) pairs are generated sprite by sprite and stably sorted by tile (a counting sort's result)."""
     tiles_x = -(-width // tile)
     tiles_y = -(-height // tile)
     ntiles = tiles_x * tiles_y
     s = np.asarray(sprites, np.float32).reshape(-1, 6)
+    empty = np.zeros(ntiles + 1, np.int32), np.zeros(0, np.int32), tiles_x
     if not len(s):
-        return np.zeros(ntiles + 1, np.int32), np.zeros(1, np.int32), tiles_x
-    x0 = np.clip(np.floor((s[:, 0] - s[:, 2]) - 1.0) // tile, 0, tiles_x - 1).astype(np.int64)
-    x1 = np.clip(np.floor((s[:, 0] + s[:, 2]) + 1.0) // tile, 0, tiles_x - 1).astype(np.int64)
-    y0 = np.clip(np.floor((s[:, 1] - s[:, 3]) - 1.0) // tile, 0, tiles_y - 1).astype(np.int64)
-    y1 = np.clip(np.floor((s[:, 1] + s[:, 3]) + 1.0) // tile, 0, tiles_y - 1).astype(np.int64)
+        return empty
     on = ((s[:, 0] + s[:, 2] >= 0) & (s[:, 0] - s[:, 2] <= width) & (s[:, 1] + s[:, 3] >= 0)
           & (s[:, 1] - s[:, 3] <= height))
     idx = np.nonzero(on)[0]
-    nx = (x1 - x0 + 1)[idx]
-    ny = (y1 - y0 + 1)[idx]
-    per = nx * ny
+    if not len(idx):
+        return empty
+    s = s[idx]
+    x0 = np.clip(np.floor((s[:, 0] - s[:, 2]) - np.float32(1.0)) // tile, 0, tiles_x - 1).astype(np.int64)
+    x1 = np.clip(np.floor((s[:, 0] + s[:, 2]) + np.float32(1.0)) // tile, 0, tiles_x - 1).astype(np.int64)
+    y0 = np.clip(np.floor((s[:, 1] - s[:, 3]) - np.float32(1.0)) // tile, 0, tiles_y - 1).astype(np.int64)
+    y1 = np.clip(np.floor((s[:, 1] + s[:, 3]) + np.float32(1.0)) // tile, 0, tiles_y - 1).astype(np.int64)
+    nx = x1 - x0 + 1
+    per = nx * (y1 - y0 + 1)
     total = int(per.sum())
-    if total == 0:
-        return np.zeros(ntiles + 1, np.int32), np.zeros(1, np.int32), tiles_x
-    owner = np.repeat(idx, per)
-    k = np.arange(total) - np.repeat(np.cumsum(per) - per, per)
-    tx = x0[owner] + k % np.repeat(nx, per)
-    ty = y0[owner] + k // np.repeat(nx, per)
-    t = ty * tiles_x + tx
-    order = np.lexsort((owner, t))  # by tile, then sprite order
-    items = owner[order].astype(np.int32)
+    first = np.repeat(np.cumsum(per) - per, per)
+    k = np.arange(total, dtype=np.int64) - first
+    nxr = np.repeat(nx, per)
+    t = (np.repeat(y0, per) + k // nxr) * tiles_x + np.repeat(x0, per) + k % nxr
+    order = np.argsort(t, kind="stable")  # by tile; within a tile the generation order = sprite order
+    items = np.repeat(idx.astype(np.int32), per)[order]
     start = np.zeros(ntiles + 1, np.int64)
-    np.add.at(start, t + 1, 1)
-    return np.cumsum(start).astype(np.int32), items, tiles_x
+    start[1:] = np.cumsum(np.bincount(t, minlength=ntiles))
+    return start.astype(np.int32), items, tiles_x
 
 
-def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, streaks, filter, opacity):
+def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, streaks, filter, opacity,
+                    checked: dict | None = None):
+    """The checked inputs of the compositing pass. ``checked``: a dict the caller keeps between frames; a background,
+    capture or mask array that is the same object as one already found finite is not scanned again (the rain
+    technique passes its own cached images every frame)."""
     bg = np.ascontiguousarray(background, np.float32)
     if bg.ndim != 3 or bg.shape[2] != 3 or bg.shape[0] < 1 or bg.shape[1] < 1:
         raise ValueError(f"background must be an (height, width, 3) image, got shape {np.shape(background)}")
@@ -608,8 +809,12 @@ def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, s
     if len(sp) > MAX_COUNT:
         raise ValueError(f"sprites must hold at most {MAX_COUNT} sprites, got {len(sp)}")
     for name, a in (("background", bg), ("capture", cap), ("mask", m), ("sprites", sp)):
+        if checked is not None and name != "sprites" and checked.get(name) is a:
+            continue
         if not np.all(np.isfinite(a)):
             raise ValueError(f"{name} must be finite (no NaN or Inf)")
+        if checked is not None and name != "sprites":
+            checked[name] = a
     if len(sp) and not np.all(sp[:, 2] > 0):
         raise ValueError("sprites radius (column 2) must be > 0")
     if len(sp) and not np.all(sp[:, 3] >= sp[:, 2]):
@@ -624,46 +829,101 @@ def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, s
     return bg, cap, m, sp, float(fv), float(fc), int(bool(streaks)), FILTERS[filter], float(op)
 
 
+#: Screen tile edge of the compositing pass (pixels): 8 halves the sprite tests per pixel of 16 for thin streaks
+#: (a streak 2-3 px wide covers a fifth of a 16-px tile's columns) at the same binning cost.
+TILE = 8
+
+
+def _light_args(lights, positions, normals, sp, m):
+    """(checked light values or None when they change nothing, positions (k, 3), normals (n, n, 3))."""
+    if lights is None:
+        return None, None, None
+    if not isinstance(lights, dict):
+        raise TypeError(f"lights must be a dict of ccl_particles_lights fields, got {type(lights).__name__}")
+    v = check_lights(lights)
+    if not lights_on(v):
+        return None, None, None
+    pos = np.ascontiguousarray(np.asarray(positions if positions is not None else np.zeros((0, 3)), np.float32))
+    if pos.shape != (len(sp), 3) or not np.all(np.isfinite(pos)):
+        raise ValueError(f"positions must be ({len(sp)}, 3) finite drop centres (one per sprite), got shape "
+                         f"{pos.shape}")
+    nrm = np.ascontiguousarray(np.asarray(normals if normals is not None else np.zeros((0, 0, 3)), np.float32))
+    if nrm.shape != m.shape[:2] + (3,) or not np.all(np.isfinite(nrm)):
+        raise ValueError(f"normals must be the mask's ({m.shape[0]}, {m.shape[1]}, 3) finite entry normals, got "
+                         f"shape {nrm.shape}")
+    return v, pos, nrm
+
+
 def composite(background, capture, mask, sprites, fov_view, fov_capture=math.radians(150.0), streaks=False,
-              filter="nearest", opacity=1.0, *, device=None, launcher=None, tile: int = 16,
-              cache: dict | None = None) -> np.ndarray:
+              filter="nearest", opacity=1.0, *, lights: dict | None = None, positions=None, normals=None,
+              device=None, launcher=None, tile: int = TILE, cache: dict | None = None) -> np.ndarray:
     """rr-code-5.2.3 / rr-code-5.2.4 over a whole frame on the Warp device: ``background`` (H, W, 3), the ``capture``
     (n, n, 3), the drop ``mask`` (m, m, 4), ``sprites`` (k, 6) in compositing order (far first; columns
-    :data:`SPRITE_FIELDS`). Returns the frame (H, W, 3) float32. ``cache``: a dict the caller keeps between frames;
-    the device copies of unchanged background, capture and mask arrays (the same NumPy objects) are reused."""
+    :data:`SPRITE_FIELDS`). Returns the frame (H, W, 3) float32.
+
+    The sprites are binned into ``tile`` x ``tile`` screen tiles (:func:`bin_sprites`); the frame starts as a copy
+    of the background and only the tiles that hold a sprite are shaded (one thread per pixel, TileLauncher bands of
+    those tiles), so an empty frame costs a copy. ``cache``: a dict the caller keeps between frames; unchanged
+    background, capture and mask arrays (the same NumPy objects) are neither checked nor copied to the device again.
+
+    ``lights``: the light-drop model (rr-A1..rr-CF, ``ccl_particles_shade_pixel_lit``) -- a dict of the fields of
+    :data:`LIGHT_DEFAULTS`; then ``positions`` (k, 3) (each sprite's drop centre, camera-relative scene units) and
+    ``normals`` (the mask's (m, m, 3) entry normals, ``pywarp.kernels.rain.drop_mask(..., normals=True)``) are
+    required. Lights that change nothing (no colour, ambient 1) skip the model: the unlit frame, bit for bit."""
     from ..core.runtime import launcher as shared_launcher
 
+    tile = int(Arg("tile", lo=1, hi=256, dtype="int32").check(tile))
+    checked = None if cache is None else cache.setdefault("checked", {})
     bg, cap, m, sp, fv, fc, st, filt, op = _composite_args(background, capture, mask, sprites, fov_view,
-                                                           fov_capture, streaks, filter, opacity)
+                                                           fov_capture, streaks, filter, opacity, checked)
+    lv, pos, nrm = _light_args(lights, positions, normals, sp, m)
     lau = launcher or shared_launcher(device)
     dev = lau.device
+    cpu = dev.startswith("cpu")
     h, w = bg.shape[:2]
     start, items, tiles_x = bin_sprites(sp, w, h, tile)
-    def on_device(name, a, flat):
+    active = np.nonzero(start[1:] > start[:-1])[0].astype(np.int32)
+    if not len(active):
+        return bg.copy()
+
+    def on_device(a, dtype=float):
+        # CPU: the NumPy memory itself (no copy); the caller keeps ``a`` alive until the launch returns
+        return wp.array(a, dtype=dtype, device=dev, copy=not cpu)
+
+    def cached(name, a):
         hit = None if cache is None else cache.get(name)
         if hit is not None and hit[0] is a and hit[1].device == wp.get_device(dev):
             return hit[1]
-        arr = wp.array(a.ravel() if flat else a, dtype=float, device=dev)
+        flat = (pack_mask(a) if name == "mask" else pack_normals(a) if name == "normals"
+                else a if name == "background" else a.reshape(-1))
+        arr = on_device(flat)  # on the CPU the Warp array keeps the NumPy memory it aliases alive
         if cache is not None:
             cache[name] = (a, arr)
         return arr
 
-    out = wp.empty((h, w, 3), dtype=float, device=dev)
-    lau.launch(composite_kernel, h, w,
-               [on_device("background", bg, False), wp.array(sp if len(sp) else np.zeros((1, 6), np.float32),
-                                                             dtype=float, device=dev),
-                wp.array(start, dtype=int, device=dev), wp.array(items, dtype=int, device=dev), tile, tiles_x,
-                on_device("mask", m, True), m.shape[0], on_device("capture", cap, True), cap.shape[0], fv, fc,
-                capture_scale(fc), filt, st, op], [out])
-    return out.numpy()
+    frame = bg.copy()
+    out = on_device(frame)
+    ratio = wp.empty(1, dtype=float, device=dev)
+    wp.launch(uv_ratio_kernel, dim=1, inputs=[fv, fc], outputs=[ratio], device=dev)
+    lau.launch(composite_kernel, len(active), tile * tile,
+               [on_device(active, int), cached("background", bg), on_device(sp), on_device(start, int),
+                on_device(items, int), tile, tiles_x, cached("mask", m), m.shape[0], cached("capture", cap),
+                cap.shape[0], ratio, capture_scale(fc), filt, st, op, int(lv is not None),
+                on_device(pos, wp.vec3) if lv is not None else wp.zeros(1, dtype=wp.vec3, device=dev),
+                cached("normals", nrm) if lv is not None else wp.zeros(3, dtype=float, device=dev),
+                light_params(**lv) if lv is not None else ParticlesLights()], [out])
+    return frame if cpu else out.numpy()
 
 
 def composite_pixels(background, capture, mask, sprites, xs, ys, fov_view, fov_capture=math.radians(150.0),
-                     streaks=False, filter="nearest", opacity=1.0, *, impl="warp", device=None) -> np.ndarray:
+                     streaks=False, filter="nearest", opacity=1.0, *, lights: dict | None = None, positions=None,
+                     normals=None, impl="warp", device=None) -> np.ndarray:
     """The composited colour at pixels (xs[k], ys[k]), every sprite tested (no tiles): (k, 3) float32.
-    ``impl='c'``: ``ccl_particles_shade_pixel`` (the C reference)."""
+    ``impl='c'``: ``ccl_particles_shade_pixel`` (the C reference), with ``lights`` (as :func:`composite`)
+    ``ccl_particles_shade_pixel_lit``; the Warp form here has no lights (the frame kernel has)."""
     bg, cap, m, sp, fv, fc, st, filt, op = _composite_args(background, capture, mask, sprites, fov_view,
                                                            fov_capture, streaks, filter, opacity)
+    lv, pos, nrm = _light_args(lights, positions, normals, sp, m)
     h, w = bg.shape[:2]
     xs = np.asarray(xs, np.int32).ravel()
     ys = np.asarray(ys, np.int32).ravel()
@@ -679,16 +939,26 @@ def composite_pixels(background, capture, mask, sprites, xs, ys, fov_view, fov_c
         spp = f.cast("ccl_particles_sprite *", f.from_buffer("float[]", sp)) if len(sp) else f.NULL
         mp = f.cast("const float *", f.from_buffer("float[]", m))
         cp = f.cast("const float *", f.from_buffer("float[]", cap))
+        if lv is not None:
+            pp = f.cast("ccl_vec3 *", f.from_buffer("float[]", pos)) if len(pos) else f.NULL
+            np_ = f.cast("const float *", f.from_buffer("float[]", nrm))
+            lc = c_lights(**lv)
         out = np.empty((len(xs), 3), np.float32)
         aspect = float(np.float32(w) / np.float32(h))
         for k, (x, y) in enumerate(zip(xs.tolist(), ys.tolist())):
             ndc = (float(np.float32(2.0) * ((np.float32(x) + np.float32(0.5)) / np.float32(w)) - np.float32(1.0)),
                    float(np.float32(1.0) - np.float32(2.0) * ((np.float32(y) + np.float32(0.5)) / np.float32(h))))
             p_o = lb.ccl_particles_capture_uv(ndc, aspect, fv, fc)
-            c = lb.ccl_particles_shade_pixel(spp, len(sp), mp, m.shape[0], cp, cap.shape[0], x, y, p_o, scale, filt,
-                                             st, op, tuple(float(v) for v in bg[y, x]))
+            if lv is None:
+                c = lb.ccl_particles_shade_pixel(spp, len(sp), mp, m.shape[0], cp, cap.shape[0], x, y, p_o, scale,
+                                                 filt, st, op, tuple(float(v) for v in bg[y, x]))
+            else:
+                c = lb.ccl_particles_shade_pixel_lit(spp, pp, len(sp), mp, np_, m.shape[0], cp, cap.shape[0], x, y,
+                                                     p_o, scale, filt, st, op, lc, tuple(float(v) for v in bg[y, x]))
             out[k] = c.x, c.y, c.z
         return out
+    if lv is not None:
+        raise ValueError("lights: the per-pixel Warp form has none; use impl='c' or composite()")
     if impl != "warp":
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
     from ..core.runtime import resolve_device
@@ -751,4 +1021,6 @@ declare("rr-code-5.2.3", "rr-code-5.2.4", c="ccl_particles_composite", name="par
 
 
 __all__ = ["ParticlesParams", "ParticleSystem", "DEFAULTS", "params", "c_params", "check_params", "composite",
+           "ParticlesLights", "LIGHT_DEFAULTS", "check_lights", "lights_on", "light_params", "c_lights", "pack_mask",
+           "pack_normals", "TILE",
            "composite_pixels", "bin_sprites", "capture_scale", "FILTERS", "SPRITE_FIELDS", "STREAK_TAPS"]

@@ -41,6 +41,12 @@ def _check_size(obj, name, v):
 
 
 _G_IMAGE, _G_RAIN, _G_LOOK, _G_CAM, _G_BG, _G_RUN = "image", "rain", "drop look", "camera", "background", "runtime"
+_G_LIGHT = "lights"
+
+
+def _check_colour(obj, name, v):
+    if any(c < 0.0 for c in v):
+        raise ValueError(f"{name} must be >= 0 per channel, got {v!r}")
 
 
 @dataclass(frozen=True)
@@ -140,6 +146,31 @@ class RainSettings(Settings):
                                    reason="150: the text's contract (the exact drop FOV is 165 deg, rr-der-3.2.1)")
     mask_size: int = param(512, unit="px", kind="int", lo=8, hi=4096, invalidates="textures", group=_G_LOOK,
                            doc="edge of the refraction mask", reason="512: the text's (rr-alg-3.1.1)")
+    light1_pos: tuple = param((0.5, 0.45, -1.6), unit="units", length=3, group=_G_LIGHT,
+                              doc="position of point light 1 (rr-A1..rr-CF), camera-relative scene units (x right, y "
+                                  "up, -z ahead at yaw 0; the eye at the origin, like the rain box)",
+                              reason="up and to the right, just beyond the drops (the box reaches z = -1.5): a lamp "
+                                     "close enough for rr-A1's DistFact to matter")
+    light1_colour: tuple = param((0.0, 0.0, 0.0), length=3, check=_check_colour, group=_G_LIGHT,
+                                 doc="colour C_L of light 1 (RGB >= 0; 0 = off)",
+                                 reason="off: the text's application has no lights (rr-A1..rr-CF are its future "
+                                        "extension); a warm lamp is e.g. (1.0, 0.8, 0.5)")
+    light2_pos: tuple = param((-0.7, -0.2, -1.0), unit="units", length=3, group=_G_LIGHT,
+                              doc="position of point light 2 (rr-CF's second light)",
+                              reason="low on the left, so that the two lights hit the drops from opposite sides")
+    light2_colour: tuple = param((0.0, 0.0, 0.0), length=3, check=_check_colour, group=_G_LIGHT,
+                                 doc="colour C_L of light 2 (RGB >= 0; 0 = off)", reason="off, as light 1")
+    light_ambient: tuple = param((1.0, 1.0, 1.0), length=3, check=_check_colour, group=_G_LIGHT,
+                                 doc="C_amb of rr-CF: the refracted colour is multiplied by it",
+                                 reason="1: the refracted scene keeps its colour (the capture is already lit)")
+    light_r_half: float = param(1.0, unit="units", lo=0.0, lo_open=True, hi=1000.0, group=_G_LIGHT,
+                                doc="rr-A1's DistFact = 1 / (1 + (d / r_half)^2): the distance at which a light has "
+                                    "half its intensity",
+                                reason="1 (1 m): the text gives no form; nearby lights (a lamp a metre or two away) "
+                                       "light the drops, far ones fade like an inverse square")
+    light_variant: str = param("corrected", choices=("corrected", "thesis"), group=_G_LIGHT,
+                               doc="rr-A1: corrected (V_PE . V_N clamped at 0) or thesis (unclamped, as printed)",
+                               reason="corrected: a normal facing away from the eye gets no light")
     camera_yaw_deg: float = param(0.0, unit="deg", lo=-360.0, hi=360.0, group=_G_CAM, cli="--yaw",
                                   doc="camera heading, 0 = -z (passed to the background scene)",
                                   reason="0: looking along -z")
@@ -162,6 +193,12 @@ class RainSettings(Settings):
     threads: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, invalidates="device", group=_G_RUN,
                                 default_text="one per core", doc="worker threads of the tile launcher",
                                 reason="None: one per core (PYWARP_THREADS overrides)")
+
+    def light_values(self) -> dict:
+        """The lights of these settings as ``pywarp.kernels.particles.LIGHT_DEFAULTS`` fields (without the view
+        basis, which the technique adds)."""
+        return dict(l1=self.light1_pos, c_l1=self.light1_colour, l2=self.light2_pos, c_l2=self.light2_colour,
+                    ambient=self.light_ambient, r_half=self.light_r_half, variant=self.light_variant)
 
     def particle_values(self) -> dict:
         """The particle-system parameters (``pywarp.kernels.particles.DEFAULTS`` fields) of these settings."""

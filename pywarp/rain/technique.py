@@ -6,7 +6,10 @@
 * DROP: the refraction mask of the chosen shape (rr-alg-3.1.1, ``pywarp.kernels.rain``), built once per shape;
 * RAIN PARTICLE: :class:`pywarp.kernels.particles.ParticleSystem` (rr-code-5.2.2), advanced by the time field;
 * SHADER + POST OBJECT: the particles projected to billboards (drops, or streaks, rr-alg-3.2.3) and composited over
-  the view by the refraction / persistence shaders (rr-code-5.2.3 / 5.2.4) in one multi-core Warp pass.
+  the view by the refraction / persistence shaders (rr-code-5.2.3 / 5.2.4) in one multi-core Warp pass over the
+  screen tiles that hold drops;
+* the light-drop model the text describes but never built (rr-A1..rr-A3, rr-CF): two point lights, off by default
+  (settings ``light1_*``, ``light2_*``, ``light_ambient``, ``light_r_half``, ``light_variant``).
 
     from pywarp.rain.technique import RainTechnique
     from pywarp.rain.settings import RainSettings
@@ -75,7 +78,8 @@ class Panorama:
         sky = (1.0 - sky_t) * np.array([0.72, 0.75, 0.80]) + sky_t * np.array([0.38, 0.42, 0.50])
         with np.errstate(divide="ignore", invalid="ignore"):
             dist = np.where(dy < -1e-4, -1.7 / dy, np.inf)
-        gx, gz = d[..., 0] * dist, d[..., 2] * dist
+        with np.errstate(invalid="ignore"):  # sky directions: inf * 0 -> NaN, never used (the sky is chosen)
+            gx, gz = d[..., 0] * dist, d[..., 2] * dist
         with np.errstate(invalid="ignore"):
             check = ((np.floor(gx / 2.0) + np.floor(gz / 2.0)) % 2 == 0)[..., None]
         ground = np.where(check, np.array([0.22, 0.36, 0.16]), np.array([0.45, 0.40, 0.30]))
@@ -140,21 +144,22 @@ def make_background(s: RainSettings):
 _MASKS: dict = {}
 
 
-def drop_mask(shape: str, method: str, size: int) -> tuple[np.ndarray, float]:
-    """The refraction mask (size, size, 4) of a Table 2.1 shape by ``method`` and its half-size in units of a (the
-    billboard of a drop of radius r is r L/a wide): ``pywarp.kernels.rain`` (rr-alg-3.1.1), cached."""
+def drop_mask(shape: str, method: str, size: int) -> tuple[np.ndarray, float, np.ndarray]:
+    """The refraction mask (size, size, 4) of a Table 2.1 shape by ``method``, its half-size in units of a (the
+    billboard of a drop of radius r is r L/a wide) and its entry normals (size, size, 3) (the light-drop model):
+    ``pywarp.kernels.rain`` (rr-alg-3.1.1), cached."""
     key = (shape, method, size)
     if key not in _MASKS:
         _MASKS[key] = _build_mask(float(shape), method, size)
     return _MASKS[key]
 
 
-def _build_mask(a: float, method: str, size: int) -> tuple[np.ndarray, float]:
+def _build_mask(a: float, method: str, size: int) -> tuple[np.ndarray, float, np.ndarray]:
     from ..kernels import rain as R
 
-    m = R.drop_mask(size, a, method=method)
+    m, normals = R.drop_mask(size, a, method=method, normals=True)
     extent = 1.0 if method == "sphere" else float(np.asarray(R.drop_extent(a)).ravel()[0]) / a
-    return np.ascontiguousarray(m, np.float32), extent
+    return np.ascontiguousarray(m, np.float32), extent, np.ascontiguousarray(normals, np.float32)
 
 
 def sphere_mask(size: int, n_water: float = 1.33) -> np.ndarray:
@@ -189,14 +194,15 @@ def sphere_mask(size: int, n_water: float = 1.33) -> np.ndarray:
 # --- sprites (the vertex stage) ------------------------------------------------------------------------------------------
 
 def sprites(state: dict, pose: RainPose, width: int, height: int, s: RainSettings, extent: float,
-            streaks: bool) -> np.ndarray:
+            streaks: bool, positions: bool = False):
     """Billboards (k, 6) (``pywarp.kernels.particles.SPRITE_FIELDS``) of the particles in view, far first: each
     drop's centre projected with the view camera, its billboard radius r L/a * billboard_scale on screen; streaks
     (rr-alg-3.2.3) reach up by the fall during the persistence time (``particles_streak``), their taps spaced by its
-    tap offset."""
+    tap offset. With ``positions=True`` also the drops' centres (k, 3) in the same order (the light-drop model)."""
     pos = np.asarray(state["pos"], np.float32).reshape(-1, 3)
     if not len(pos):
-        return np.zeros((0, 6), np.float32)
+        empty = np.zeros((0, 6), np.float32)
+        return (empty, np.zeros((0, 3), np.float32)) if positions else empty
     r_s, u_s, f_s = pose.basis()
     xc = pos @ r_s.astype(np.float32)
     yc = pos @ u_s.astype(np.float32)
@@ -206,6 +212,7 @@ def sprites(state: dict, pose: RainPose, width: int, height: int, s: RainSetting
         np.float32)
     keep = depth > s.near_clip
     xc, yc, depth, radius_w, speed = xc[keep], yc[keep], depth[keep], radius_w[keep], state["speed"][keep]
+    centres = pos[keep]
     cx = np.float32(0.5 * width) + focal * xc / depth
     cy = np.float32(0.5 * height) - focal * yc / depth
     rad = focal * radius_w / depth
@@ -218,8 +225,9 @@ def sprites(state: dict, pose: RainPose, width: int, height: int, s: RainSetting
         half = rad + 0.5 * lpx
     out = np.stack([cx, cy, rad, half, tap, depth], 1).astype(np.float32)
     on = (cx + half > 0) & (cx - half < width) & (cy + half > 0) & (cy - half < height) & (rad > 0)
-    out = out[on]
-    return out[np.argsort(-out[:, 5], kind="stable")]
+    order = np.argsort(-out[on][:, 5], kind="stable")
+    out = out[on][order]
+    return (out, np.ascontiguousarray(centres[on][order])) if positions else out
 
 
 # --- the technique -------------------------------------------------------------------------------------------------------
@@ -241,8 +249,7 @@ class RainTechnique:
         self.launcher = shared_launcher(s.device, s.threads)
         self.device = self.launcher.device
         self.background = make_background(s)
-        self.mask, self.extent = drop_mask(s.shape, s.mask, s.mask_size)
-        self._mask_wp = None
+        self.mask, self.extent, self.normals = drop_mask(s.shape, s.mask, s.mask_size)
         self._reset_particles()
         self.resize(s.width, s.height)
 
@@ -267,7 +274,7 @@ class RainTechnique:
             self.background = make_background(new)
             self._cache.clear()
         if "textures" in stale:
-            self.mask, self.extent = drop_mask(new.shape, new.mask, new.mask_size)
+            self.mask, self.extent, self.normals = drop_mask(new.shape, new.mask, new.mask_size)
         particle_fields = {"size_mm", "size_spread_mm", "size_samples", "slowdown", "metres_per_unit", "wind_x",
                            "wind_z", "seed", "variant", "warm_start"}
         if changed & particle_fields or new.drops > self.system.capacity:
@@ -311,11 +318,20 @@ class RainTechnique:
         pose = pose or RainPose.from_settings(s)
         self._advance()
         view, capture = self.images(pose)
-        sp = sprites(self.system.state(), pose, s.width, s.height, s, self.extent, s.mode == "streaks")
-        return dict(background=view, capture=capture, mask=self.mask, sprites=sp,
-                    fov_view=math.radians(pose.fov_y_deg), fov_capture=math.radians(s.capture_fov_deg),
-                    streaks=s.mode == "streaks", filter=s.filter,
-                    opacity=s.streak_opacity if s.mode == "streaks" else s.opacity)
+        lights = dict(s.light_values())
+        lit = P.lights_on(P.check_lights(lights))
+        out = sprites(self.system.state(), pose, s.width, s.height, s, self.extent, s.mode == "streaks",
+                      positions=lit)
+        sp = out[0] if lit else out
+        ins = dict(background=view, capture=capture, mask=self.mask, sprites=sp,
+                   fov_view=math.radians(pose.fov_y_deg), fov_capture=math.radians(s.capture_fov_deg),
+                   streaks=s.mode == "streaks", filter=s.filter,
+                   opacity=s.streak_opacity if s.mode == "streaks" else s.opacity)
+        if lit:  # the light-drop model (rr-A1..rr-CF): off unless a light has a colour or the ambient is not 1
+            r, u, f = pose.basis()
+            lights.update(right=tuple(r), up=tuple(u), forward=tuple(f))
+            ins.update(lights=lights, positions=out[1], normals=self.normals)
+        return ins
 
     def render(self, pose: RainPose | None = None, progress=None, encode: bool = True) -> np.ndarray:
         """One frame: uint8 (height, width, 3), or the float frame with ``encode=False``."""

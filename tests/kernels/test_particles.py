@@ -179,3 +179,121 @@ def test_composite_refuses_bad_input(rng):
     bad[0, 2] = 0
     with pytest.raises(ValueError, match="radius"):
         pywarp.equation("rr-code-5.2.3", impl="c")(bg, cap, mask, bad, math.radians(60))
+
+
+# --- the frame pass: binning, tiles, packed mask (the images must not depend on them) -------------------------------
+
+def test_binning_lists_every_sprite_of_a_tile_in_order(rng):
+    _, _, _, sp = _scene(rng, h=50, w=70, n=40, streaks=True)
+    for tile in (1, 5, 8, 16):
+        start, items, tiles_x = P.bin_sprites(sp, 70, 50, tile)
+        tiles_y = -(-50 // tile)
+        assert start.shape == (tiles_x * tiles_y + 1,) and start[0] == 0 and start[-1] == len(items)
+        assert np.all(np.diff(start) >= 0)
+        for t in range(tiles_x * tiles_y):
+            tx, ty = t % tiles_x, t // tiles_x
+            # brute force: the sprites whose box (1 px margin) meets the tile, in array order
+            want = [j for j, s in enumerate(sp)
+                    if s[0] + s[2] >= 0 and s[0] - s[2] <= 70 and s[1] + s[3] >= 0 and s[1] - s[3] <= 50
+                    and min(max(math.floor(s[0] - s[2] - 1) // tile, 0), tiles_x - 1) <= tx
+                    <= min(max(math.floor(s[0] + s[2] + 1) // tile, 0), tiles_x - 1)
+                    and min(max(math.floor(s[1] - s[3] - 1) // tile, 0), tiles_y - 1) <= ty
+                    <= min(max(math.floor(s[1] + s[3] + 1) // tile, 0), tiles_y - 1)]
+            assert items[start[t]:start[t + 1]].tolist() == want
+    start, items, _ = P.bin_sprites(np.zeros((0, 6), np.float32), 70, 50, 8)
+    assert len(items) == 0 and not start.any()
+
+
+@pytest.mark.spec("rr-code-5.2.3", "rr-code-5.2.4")
+@pytest.mark.parametrize("streaks", [False, True])
+def test_frame_does_not_depend_on_the_tile_size(rng, streaks):
+    bg, cap, mask, sp = _scene(rng, h=37, w=53, n=30, streaks=streaks)
+    kw = dict(fov_view=math.radians(60), streaks=streaks, filter="linear", opacity=0.7)
+    frames = [P.composite(bg, cap, mask, sp, tile=t, **kw) for t in (1, 4, 8, 16, 64)]
+    for f in frames[1:]:
+        np.testing.assert_array_equal(f, frames[0])
+    np.testing.assert_array_equal(P.composite(bg, cap, mask, sp[:0], **kw), bg)  # no sprite: the background
+    far = sp.copy()
+    far[:, 0] += 1000.0  # every sprite off screen
+    np.testing.assert_array_equal(P.composite(bg, cap, mask, far, **kw), bg)
+
+
+def test_packed_mask_holds_the_shader_quotients_column_major(rng):
+    from pywarp.rain.technique import sphere_mask
+
+    m = sphere_mask(16)
+    q = P.pack_mask(m).reshape(16, 16, 2)  # [column, row]
+    ok = (m[..., 3] > 0) & (m[..., 2] > 0)
+    for my in range(16):
+        for mx in range(16):
+            if ok[my, mx]:
+                assert q[mx, my, 0] == np.float32(m[my, mx, 0]) / np.float32(m[my, mx, 2])
+                assert q[mx, my, 1] == np.float32(m[my, mx, 1]) / np.float32(m[my, mx, 2])
+            else:
+                assert np.isnan(q[mx, my]).all()
+    nrm = rng.normal(size=(16, 16, 3)).astype(np.float32)
+    np.testing.assert_array_equal(P.pack_normals(nrm).reshape(16, 16, 3), nrm.transpose(1, 0, 2))
+
+
+# --- the light-drop model in the frame (rr-A1..rr-CF) --------------------------------------------------------------
+
+def _lit_inputs(rng, streaks):
+    from pywarp.kernels import rain as R
+
+    bg, cap, _, sp = _scene(rng, h=30, w=48, n=25, streaks=streaks)
+    mask, normals = R.drop_mask(32, 1.0, method="sphere", normals=True)
+    pos = np.stack([rng.uniform(-1, 1, len(sp)), rng.uniform(-1, 1, len(sp)), -sp[:, 5]], 1).astype(np.float32)
+    lights = dict(l1=(0.5, 0.4, -1.6), c_l1=(1.0, 0.8, 0.5), l2=(-0.7, -0.2, -1.0), c_l2=(0.3, 0.5, 1.0),
+                  ambient=(0.9, 1.0, 1.1), r_half=1.0, right=(1.0, 0.0, 0.0), up=(0.0, 1.0, 0.0),
+                  forward=(0.0, 0.0, -1.0))
+    return bg, cap, np.asarray(mask), sp, pos, np.asarray(normals), lights
+
+
+@pytest.mark.spec("rr-CF", "rr-A1", "rr-A2", "rr-A3")
+@pytest.mark.parametrize("streaks", [False, True])
+@pytest.mark.parametrize("variant", ["corrected", "thesis"])
+def test_lit_frame_matches_the_c_reference(rng, streaks, variant):
+    bg, cap, mask, sp, pos, normals, lights = _lit_inputs(rng, streaks)
+    lights["variant"] = variant
+    kw = dict(fov_view=math.radians(60), streaks=streaks, filter="nearest", opacity=0.8)
+    lit = P.composite(bg, cap, mask, sp, lights=lights, positions=pos, normals=normals, **kw)
+    unlit = P.composite(bg, cap, mask, sp, **kw)
+    ys, xs = np.nonzero(np.any(unlit != bg, axis=2))
+    assert len(ys) > 50
+    c = P.composite_pixels(bg, cap, mask, sp, xs, ys, lights=lights, positions=pos, normals=normals, impl="c", **kw)
+    np.testing.assert_allclose(lit[ys, xs], c, rtol=1e-6, atol=1e-6)
+    assert np.abs(lit - unlit).max() > 0.05  # the lights show
+    np.testing.assert_array_equal(lit[unlit == bg], bg[unlit == bg])  # nothing outside the drops
+
+
+@pytest.mark.spec("rr-CF")
+def test_lights_off_give_the_unlit_frame_and_ambient_scales_it(rng):
+    bg, cap, mask, sp, pos, normals, lights = _lit_inputs(rng, False)
+    kw = dict(fov_view=math.radians(60), opacity=1.0)
+    unlit = P.composite(bg, cap, mask, sp, **kw)
+    off = dict(lights, c_l1=(0, 0, 0), c_l2=(0, 0, 0), ambient=(1, 1, 1))
+    np.testing.assert_array_equal(P.composite(bg, cap, mask, sp, lights=off, **kw), unlit)  # no positions needed
+    cap[:] = 0.5
+    flat = P.composite(bg, cap, mask, sp, **kw)
+    dim = P.composite(bg, cap, mask, sp, lights=dict(off, ambient=(0.5, 1.0, 2.0)), positions=pos, normals=normals,
+                      **kw)
+    drop = flat[..., 0] == 0.5  # opaque drop pixels show the uniform capture ...
+    assert drop.sum() > 50
+    np.testing.assert_allclose(dim[drop], np.broadcast_to([0.25, 0.5, 1.0], dim[drop].shape), rtol=1e-6)  # x C_amb
+
+
+def test_lights_refuse_bad_input(rng):
+    bg, cap, mask, sp, pos, normals, lights = _lit_inputs(rng, False)
+    kw = dict(fov_view=math.radians(60))
+    with pytest.raises(ValueError, match="c_l1"):
+        P.composite(bg, cap, mask, sp, lights=dict(lights, c_l1=(-1, 0, 0)), positions=pos, normals=normals, **kw)
+    with pytest.raises(ValueError, match="r_half"):
+        P.composite(bg, cap, mask, sp, lights=dict(lights, r_half=0.0), positions=pos, normals=normals, **kw)
+    with pytest.raises(ValueError, match="positions"):
+        P.composite(bg, cap, mask, sp, lights=lights, positions=pos[:3], normals=normals, **kw)
+    with pytest.raises(ValueError, match="normals"):
+        P.composite(bg, cap, mask, sp, lights=lights, positions=pos, normals=normals[:4], **kw)
+    with pytest.raises(ValueError, match="forward"):
+        P.composite(bg, cap, mask, sp, lights=dict(lights, forward=(0, 0, 2)), positions=pos, normals=normals, **kw)
+    with pytest.raises(ValueError, match="unknown light"):
+        P.composite(bg, cap, mask, sp, lights=dict(lights, colour=1), positions=pos, normals=normals, **kw)

@@ -111,3 +111,26 @@ def test_cli_render_rain(tmp_path):
     assert main(["render", "rain", "--background", "panorama", "--width", "96", "--height", "64", "--drops", "300",
                  "--capture-size", "64", "--mask-size", "64", "--out", str(out), "--no-progress"]) == 0
     assert out.stat().st_size > 1000
+
+
+@pytest.mark.spec("rr-CF", "rr-A1", "rr-A2", "rr-A3")
+@pytest.mark.parametrize("mode", ["drops", "streaks"])
+def test_lights_in_the_scene_match_c_at_sampled_pixels(mode):
+    base = RainSettings(**SMALL, mode=mode, seed=2, time_s=2.0, camera_yaw_deg=20.0, camera_pitch_deg=-5.0)
+    assert base.light1_colour == (0.0, 0.0, 0.0) and base.light2_colour == (0.0, 0.0, 0.0)  # off: the text has none
+    assert "lights" not in RainTechnique(base).frame_inputs()
+    s = dataclasses.replace(base, light1_colour=(1.0, 0.8, 0.5), light2_colour=(0.3, 0.5, 1.0))
+    tech = RainTechnique(s)
+    img = tech.render(encode=False)
+    ins = tech.frame_inputs()
+    assert ins["lights"]["c_l1"] == (1.0, 0.8, 0.5) and ins["positions"].shape == (len(ins["sprites"]), 3)
+    unlit = RainTechnique(base).render(encode=False)
+    assert np.abs(img - unlit).max() > 0.1  # the lights brighten the drops
+    changed = np.nonzero(np.any(np.abs(img - ins["background"]) > 1e-6, axis=2))
+    rng = np.random.default_rng(1)
+    k = rng.choice(len(changed[0]), 150, replace=False)
+    ys, xs = changed[0][k], changed[1][k]
+    c = P.composite_pixels(**ins, xs=xs, ys=ys, impl="c")
+    np.testing.assert_allclose(img[ys, xs], c, rtol=1e-6, atol=1e-6)
+    with pytest.raises(ValueError, match="light1_colour"):
+        RainSettings(light1_colour=(-0.1, 0.0, 0.0))

@@ -146,6 +146,32 @@ CCL_API ccl_vec3 ccl_particles_shade_pixel(const ccl_particles_sprite *sprites, 
                                            ccl_vec2 p_o, float scale, int filter, int streaks, float opacity,
                                            ccl_vec3 bg);
 
+/* Point lights of the light-drop model (rr-A1, rr-A2, rr-A3, rr-CF; described by the text, never implemented in it)
+ * as the compositing pass applies it to every refraction tap. Positions are camera-relative scene units (world axes,
+ * y up, the eye at the origin -- the frame of the particles); a light of colour (0, 0, 0) is off. The mask normals
+ * (mask frame: x right, y up, z away from the viewer) are turned into this frame by the view basis right, up,
+ * forward. Defaults (the scene's): lights off, ambient (1, 1, 1), r_half 1 unit, variant corrected. */
+typedef struct {
+    ccl_vec3 l1, c_l1;       /* light 1: position, colour C_L (RGB >= 0) */
+    ccl_vec3 l2, c_l2;       /* light 2 */
+    ccl_vec3 ambient;        /* C_amb of rr-CF (RGB >= 0) */
+    float r_half;            /* DistFact = 1 / (1 + (d / r_half)^2): half-intensity distance (scene units, > 0) */
+    ccl_variant variant;     /* rr-A1: CORRECTED clamps V_PE . V_N at 0, THESIS as printed */
+    ccl_vec3 right, up, forward; /* view basis (unit, scene frame): mask normal (x, y, z) -> x right + y up + z forward */
+} ccl_particles_lights;
+/* ccl_particles_shade_pixel with the light-drop model: every tap that hits (rr-code-5.2.3/5.2.4) has its refracted
+ * colour C_O replaced by C_F = ccl_rain_light_colour(C_O, ambient, p, n, eye = (0, 0, 0), l1, c_l1, l2, c_l2, r_half,
+ * variant) before the averaging and compositing, with p = positions[j] (the drop's centre; at scene scale the drop is
+ * a point next to lights metres away -- also for a streak's earlier taps) and n = the entry normal of the tap's mask
+ * texel (`normals`: mask_size^2 x 3 floats, the mask frame, as ccl_rain_mask writes them) in the scene frame.
+ * Ref: rr-CF, rr-A1, rr-A2, rr-A3, rr-code-5.2.3, rr-code-5.2.4. lights = NULL (or positions or normals NULL):
+ * exactly ccl_particles_shade_pixel.
+ * Other parameters as ccl_particles_shade_pixel; positions: n entries parallel to sprites. */
+CCL_API ccl_vec3 ccl_particles_shade_pixel_lit(const ccl_particles_sprite *sprites, const ccl_vec3 *positions, int n,
+                                               const float *mask, const float *normals, int mask_size,
+                                               const float *capture, int capture_size, int x, int y, ccl_vec2 p_o,
+                                               float scale, int filter, int streaks, float opacity,
+                                               const ccl_particles_lights *lights, ccl_vec3 bg);
 /* The whole rain frame: every pixel of the width x height background (RGB floats, rows from the top) shaded by
  * ccl_particles_shade_pixel with P_o = ccl_particles_capture_uv of its centre's NDC (aspect width/height) and
  * scale = 0.5 / tan(fov_capture/2). Ref: rr-code-5.2.3, rr-code-5.2.4 (the C reference of the Warp kernel, which
