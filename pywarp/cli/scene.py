@@ -339,8 +339,9 @@ def add_scene_commands(sub) -> None:
     _scene_arg(v)
     _add_scene_options(v, "view")
     v.add_argument("--benchmark", type=float, default=None, metavar="SECONDS",
-                   help="benchmark mode: hold the scene's benchmark keys (the free-fly default: D + Left, circling at constant altitude) and "
-                        "count the frames shown for SECONDS after a warm-up; prints frames/s against the target")
+                   help="benchmark mode: hold the scene's benchmark keys (the free-fly default: D + Left, circling "
+                        "at constant altitude) and count the frames shown for SECONDS after a warm-up; prints "
+                        "frames/s against the target")
     v.add_argument("--json", action="store_true", help="with --benchmark: print one JSON object as the last line")
     v.add_argument("--script", default=None, metavar="FILE",
                    help="play a JSON list of timed events: {\"t\": 0, \"key\": \"W\", \"hold\": 1.5}, "

@@ -1,0 +1,156 @@
+"""The viewer's session without a window (pywarp.viewer.session): every registered scene opens and renders with its
+controls; the render thread gives previews at reduced resolution while the camera moves and a refined frame equal to
+the offline render when it stops; panel changes recompute only what they invalidate; scripts are deterministic; the
+benchmark mode counts frames."""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+
+from pywarp.core import scenes as S
+from pywarp.viewer.session import Script, Session, run_benchmark_headless, run_headless
+
+
+def wait_frame(session, full=None, timeout=300.0, version=None):
+    """The newest frame (possibly already shown) once it is ``full`` (None: either) and of ``version`` (None: any)."""
+    t0 = time.time()
+    while time.time() - t0 < timeout:
+        session.tick(S.Input(dt=0.0))
+        session.poll()
+        f = session.frame
+        assert not session.worker.error, session.worker.error
+        if f is not None and (full is None or f.full == full) and (version is None or f.version == version):
+            return f
+        time.sleep(0.01)
+    raise AssertionError("no frame")
+
+
+def ssim(a, b) -> float:
+    from skimage.metrics import structural_similarity
+
+    return structural_similarity(a, b, channel_axis=2, data_range=255)
+
+
+@pytest.mark.parametrize("name", list(S.scenes()))
+def test_every_registered_scene_opens_and_renders_with_its_controls(name, small_settings):
+    sc = S.scene(name)
+    session = Session(sc, small_settings(sc))
+    try:
+        f = wait_frame(session, full=True)
+        assert f.image.dtype == np.uint8 and f.image.ndim == 3 and f.image.shape[2] == 3
+        keys = set(session.controls.benchmark_keys) | {"W"}
+        for _ in range(3):  # the controls drive the scene; frames keep coming
+            session.tick(S.Input(dt=0.1, held=frozenset(keys), pressed=frozenset(keys)))
+        wait_frame(session, version=session.version)
+        assert not session.worker.error and not session.error
+    finally:
+        session.close()
+
+
+@pytest.fixture(scope="module")
+def clouds():
+    return S.scene("clouds")
+
+
+def test_previews_while_moving_then_the_refined_frame_equals_the_offline_render(clouds, small_settings):
+    s0 = small_settings(clouds)
+    session = Session(clouds, s0)
+    try:
+        wait_frame(session, full=True)
+        for _ in range(4):
+            session.tick(S.Input(dt=0.05, held=frozenset({"W"})))
+            f = wait_frame(session, version=session.version)
+        assert not f.full and f.image.shape[1] < s0.width  # reduced resolution while moving
+        assert f.settings.reprojection  # clouds: temporal reprojection on for the previews
+        assert session.settings.camera_z_km < 0.0  # W flew forward (yaw 0: along -z)
+        session.clock += 1.0  # still for a while: refined
+        session.tick(S.Input(dt=0.0))
+        f = wait_frame(session, full=True, version=session.version)
+        assert f.image.shape[:2] == (s0.height, s0.width) and not f.settings.reprojection
+        offline = clouds.technique(session.settings).render()
+        assert np.array_equal(f.image, offline)
+    finally:
+        session.close()
+
+
+def test_panel_changes_recompute_only_what_they_invalidate(clouds, small_settings):
+    session = Session(clouds, small_settings(clouds))
+    try:
+        first = wait_frame(session, full=True)
+        tech = session.worker.tech
+        textures = tech.textures
+        assert session.apply({"sun_elevation_deg": 60.0})  # sky only
+        session.clock += 1.0
+        session.tick(S.Input())
+        sun = wait_frame(session, full=True, version=session.version)
+        assert session.worker.tech is tech and tech.textures is textures
+        assert not np.array_equal(sun.image, first.image)
+        assert session.apply({"coverage": 0.9})  # the weather map: textures regenerated
+        session.clock += 1.0
+        session.tick(S.Input())
+        cov = wait_frame(session, full=True, version=session.version)
+        assert session.worker.tech is tech and tech.textures is not textures
+        assert np.mean(np.abs(cov.image.astype(float) - sun.image.astype(float))) > 1.0
+        assert not session.apply({"coverage": 2.0}) and "coverage must be in [0, 1]" in session.error
+        assert session.settings.coverage == 0.9
+    finally:
+        session.close()
+
+
+def test_a_script_plays_keys_changes_and_screenshots_deterministically(clouds, tmp_path, small_settings):
+    from PIL import Image
+
+    shots = []
+    for run in range(2):
+        events = [{"t": 0.0, "key": "W", "hold": 0.5}, {"t": 0.2, "key": "Right", "hold": 0.3},
+                  {"t": 0.6, "screenshot": str(tmp_path / f"a{run}.png")}, {"t": 0.7, "set": {"coverage": 0.8}},
+                  {"t": 0.8, "screenshot": str(tmp_path / f"b{run}.png")}]
+        session = Session(clouds, small_settings(clouds), script=Script.parse(events))
+        try:
+            run_headless(session, timeout=600)
+        finally:
+            session.close()
+        assert [p.name for p in session.shots_written] == [f"a{run}.png", f"b{run}.png"]
+        shots.append([np.asarray(Image.open(tmp_path / f"{k}{run}.png")) for k in "ab"])
+        st = session.settings
+        assert st.camera_yaw_deg == pytest.approx(0.3 * S.FREE_FLY_TURN_DEG_S, abs=1e-6)
+        assert st.coverage == 0.8
+    assert np.array_equal(shots[0][0], shots[1][0]) and np.array_equal(shots[0][1], shots[1][1])
+    assert not np.array_equal(shots[0][0], shots[0][1])
+    import json
+
+    state = json.loads((tmp_path / "a0.json").read_text())
+    offline = clouds.technique(clouds.settings(**{k: (tuple(v) if isinstance(v, list) else v)
+                                                  for k, v in state["settings"].items()})).render()
+    assert ssim(shots[0][0], offline) >= 0.9
+
+
+def test_script_errors_name_the_event():
+    with pytest.raises(ValueError, match="event 0 needs a time"):
+        Script.parse([{"key": "W"}])
+    with pytest.raises(ValueError, match="exactly one of"):
+        Script.parse([{"t": 0, "key": "W", "set": {}}])
+    with pytest.raises(ValueError, match="hold must be >= 0"):
+        Script.parse([{"t": 0, "key": "W", "hold": -1}])
+    with pytest.raises(ValueError, match="JSON list"):
+        Script.parse({"t": 0})
+    s = Script.parse([{"t": 1.0, "key": "W", "hold": 0.5}, {"t": 0.0, "quit": True}])
+    assert s.end == 1.5 and s.events[0]["t"] == 0.0
+    pressed, held, *_ = s.at(1.0, 1.1)
+    assert pressed == {"W"} and held == {"W"}
+    pressed, held, *_ = s.at(1.2, 1.3)
+    assert pressed == set() and held == {"W"}
+    assert s.at(1.5, 1.6)[1] == set()
+
+
+def test_benchmark_mode_counts_the_frames_shown(clouds, small_settings):
+    session = Session(clouds, small_settings(clouds))
+    try:
+        r = run_benchmark_headless(session, seconds=1.0, warmup_s=0.5)
+    finally:
+        session.close()
+    assert r["scene"] == "clouds" and r["frames"] > 0 and r["fps"] > 0 and r["target_fps"] == 20.0
+    assert r["keys"] == sorted(S.FreeFlyControls.benchmark_keys) and r["window"] is False
+    assert set(r["preview_sizes"]) and all("x" in k for k in r["preview_sizes"])
