@@ -206,10 +206,13 @@ def test_binning_lists_every_sprite_of_a_tile_in_order(rng):
 
 @pytest.mark.spec("rr-code-5.2.3", "rr-code-5.2.4")
 @pytest.mark.parametrize("streaks", [False, True])
-def test_frame_does_not_depend_on_the_tile_size(rng, streaks):
+def test_frame_does_not_depend_on_the_tile_size_or_kernel(rng, streaks):
     bg, cap, mask, sp = _scene(rng, h=37, w=53, n=30, streaks=streaks)
     kw = dict(fov_view=math.radians(60), streaks=streaks, filter="linear", opacity=0.7)
-    frames = [P.composite(bg, cap, mask, sp, tile=t, **kw) for t in (1, 4, 8, 16, 64)]
+    frames = [P.composite(bg, cap, mask, sp, tile=t, per_tile=pt, **kw) for t in (1, 4, 8, 16, 64)
+              for pt in (False, True)]
+    frames.append(P.composite_pixels(bg, cap, mask, sp, *np.meshgrid(np.arange(53), np.arange(37)), **kw)
+                  .reshape(37, 53, 3))  # every sprite tested per pixel, no tiles
     for f in frames[1:]:
         np.testing.assert_array_equal(f, frames[0])
     np.testing.assert_array_equal(P.composite(bg, cap, mask, sp[:0], **kw), bg)  # no sprite: the background
@@ -262,6 +265,8 @@ def test_lit_frame_matches_the_c_reference(rng, streaks, variant):
     assert len(ys) > 50
     c = P.composite_pixels(bg, cap, mask, sp, xs, ys, lights=lights, positions=pos, normals=normals, impl="c", **kw)
     np.testing.assert_allclose(lit[ys, xs], c, rtol=1e-6, atol=1e-6)
+    np.testing.assert_array_equal(P.composite(bg, cap, mask, sp, lights=lights, positions=pos, normals=normals,
+                                              per_tile=False, **kw), lit)  # thread per pixel = thread per tile
     assert np.abs(lit - unlit).max() > 0.05  # the lights show
     np.testing.assert_array_equal(lit[unlit == bg], bg[unlit == bg])  # nothing outside the drops
 
