@@ -76,8 +76,9 @@ A scene may subclass :class:`FreeFlyControls` to keep the free flight and add ke
 ``camera_altitude*``, ``camera_z*`` (position; unit from the spec: ``km``, ``m``), ``camera_yaw*`` (deg; 0 looks
 along -z, positive towards +x) and ``camera_pitch*`` (deg, up positive). W/S fly forward/back along the view, A/D
 strafe, E/Q (or Space/C) rise/sink, the arrows and a left-button drag look around, Shift flies 10x faster, +/- and
-the wheel halve/double the speed. Every value is clamped to its spec's domain (e.g. the pitch to [-89, 89] deg, the
-altitude to >= 0). A ``reprojection`` bool field (temporal reprojection) is switched on for the preview frames. A
+the wheel halve/double the speed. The yaw wraps to [-180, 180) deg; every value is clamped to its spec's domain (e.g.
+the pitch to [-89, 89] deg, the altitude to >= 0). A ``reprojection`` bool field (temporal reprojection) is switched
+on for the preview frames. A
 scene without such fields still opens: the default then moves nothing and the panel changes the image.
 
 **Techniques in the viewer**: the viewer renders on its own thread, one frame at a time, through the technique's
@@ -345,7 +346,7 @@ class FreeFlyControls(Controls):
         up = (("E" in held) or ("Space" in held)) - (("Q" in held) or ("C" in held))
         new = {}
         if "yaw" in self.fields and dyaw:
-            new["yaw"] = yaw + dyaw
+            new["yaw"] = self._clamp("yaw", (yaw + dyaw + 180.0) % 360.0 - 180.0)  # a heading: wrapped
         if "pitch" in self.fields and dpitch:
             new["pitch"] = self._clamp("pitch", pitch + dpitch)
         if fwd or side or up:

@@ -236,7 +236,15 @@ class Window:
         params.ini_disable = True
         params.callbacks.show_gui = self.gui
         params.callbacks.before_exit = self._release
-        immapp.run(params)
+        try:
+            immapp.run(params)
+        except RuntimeError as exc:
+            if "glfwInit" not in str(exc):
+                raise
+            import os
+
+            raise ValueError(f"cannot open a window on display {os.environ.get('DISPLAY', '')!r} (GLFW could not "
+                             f"start): run it under `xvfb-run -a`, or use --no-window") from None
         if self.window_screenshot is not None:
             from ..core.output import write_png
 

@@ -78,6 +78,14 @@ def test_free_fly_stays_in_the_domains_of_the_specs():
     assert s2.camera_altitude_km == 0.0  # the spec's lo: not below the ground
 
 
+def test_free_fly_yaw_wraps_around():
+    ctl = clouds().make_controls(flat())
+    _, s1 = step(ctl, flat(camera_yaw_deg=170.0), held={"Right"}, dt=0.5)  # +30 deg
+    assert s1.camera_yaw_deg == pytest.approx(-160.0)
+    _, s2 = step(ctl, flat(camera_yaw_deg=-175.0), mouse=(-50.0, 0.0), dt=0.0)  # -10 deg
+    assert s2.camera_yaw_deg == pytest.approx(175.0)
+
+
 def test_free_fly_speed_keys_and_nothing_held_is_still():
     s = flat()
     ctl = clouds().make_controls(s)
