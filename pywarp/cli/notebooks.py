@@ -103,8 +103,8 @@ def tutorial_notebook(path, quick: bool = False):
             drop.update(i for i in range(node.lineno, node.end_lineno) if lines[i].lstrip().startswith("# %%"))
     top = "".join(ln for i, ln in enumerate(lines) if i not in drop)
 
-    title, _, rest = doc.partition("\n")
-    cells = [v4.new_markdown_cell(f"# {title.strip()}\n\n{rest.strip()}".strip())]
+    title, _, rest = doc.strip().partition("\n\n")  # the first paragraph is the title
+    cells = [v4.new_markdown_cell(f"# {' '.join(title.split())}\n\n{rest.strip()}".strip())]
     cells += [c for c in jupytext.reads(top, fmt="py:percent").cells if c.source.strip()]
     cells.append(v4.new_code_cell("from pathlib import Path\n\n" + PARAM_CELL.format(seed=path.parent.name,
                                                                                       quick=bool(quick))))
