@@ -195,15 +195,34 @@ def cmd_animate(args) -> int:
         path = sc.path(args.path)
     except ValueError as exc:
         raise ValueError(f"--{exc}") from None
-    poses = path.poses(anim.frames, settings)
-    tech = sc.technique(settings)
-    if sink.linear:
-        linear.check_linear(tech, sc.name)
-    times = animation.frame_times(settings, sc.time_field, anim.frames, anim.fps, anim.time_scale)
-    with sink, _progress_bar(anim.frames, "animate", "frames", args.no_progress) as bar:
-        for i, img in animation.render_frames(tech, poses, times, sc.time_field, sink.linear):
-            sink.add(img, i)
-            bar.update(1)
+    kind, address = animation.parse_scheduler(args.scheduler)
+    if not 1 <= args.chunk <= 100000:
+        raise ValueError(f"--chunk must be in [1, 100000], got {args.chunk}")
+    if args.dask_workers is not None and not 1 <= args.dask_workers <= 4096:
+        raise ValueError(f"--dask-workers must be in [1, 4096], got {args.dask_workers}")
+    if kind == "dask":  # independent chunks of full frames (see pywarp.core.animation)
+        settings = animation.full_frames(settings, {k[4:] for k in vars(args) if k.startswith("opt_")})
+        if sink.linear:
+            linear.check_linear(sc.technique(settings), sc.name)
+        client, cluster = animation.dask_client(address, args.dask_workers)
+        try:
+            with sink, _progress_bar(anim.frames, "animate", "frames", args.no_progress) as bar:
+                animation.render_on_dask(client, sc.name, settings, path.name, anim.frames, anim.fps,
+                                         anim.time_scale, args.chunk, sink.linear, sink, progress=bar.update)
+        finally:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    else:
+        poses = path.poses(anim.frames, settings)
+        tech = sc.technique(settings)
+        if sink.linear:
+            linear.check_linear(tech, sc.name)
+        times = animation.frame_times(settings, sc.time_field, anim.frames, anim.fps, anim.time_scale)
+        with sink, _progress_bar(anim.frames, "animate", "frames", args.no_progress) as bar:
+            for i, img in animation.render_frames(tech, poses, times, sc.time_field, sink.linear):
+                sink.add(img, i)
+                bar.update(1)
     print(f"wrote {out} ({anim.frames} frames, {settings.width}x{settings.height}, scene {sc.name}, path {path.name}"
           + (f", reprojection {'on' if settings.reprojection else 'off'}" if hasattr(settings, "reprojection")
              else "") + ")")
@@ -325,6 +344,15 @@ def add_scene_commands(sub) -> None:
                         f"{default.outputs.get('animate', 'SCENE.mp4')})")
     a.add_argument("--exr-precision", choices=("half", "float"), default="half",
                    help="pixel type of .exr frames (default: half)")
+    a.add_argument("--scheduler", default="local", metavar="local|dask[=ADDRESS]",
+                   help="local: this process (default); dask: chunks of --chunk frames rendered by the workers of a "
+                        "Dask LocalCluster (--dask-workers processes), or of the cluster at ADDRESS "
+                        "(dask=tcp://host:8786), assembled in order. Under dask every frame is a full frame "
+                        "(reprojection off), identical to a local run with --no-reprojection")
+    a.add_argument("--chunk", type=int, default=8, metavar="FRAMES",
+                   help="frames per Dask task (default: 8)")
+    a.add_argument("--dask-workers", type=int, default=None, metavar="N",
+                   help="worker processes of the LocalCluster (default: one per core)")
     a.add_argument("--no-progress", action="store_true", help="no progress bar")
     a.set_defaults(run=cmd_animate)
 

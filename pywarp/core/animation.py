@@ -100,3 +100,139 @@ def render_frames(tech, poses, times, time_field: str | None, linear: bool, star
 def frames_equal(a: np.ndarray, b: np.ndarray) -> bool:
     """Bit-identical frames (same shape, dtype and bytes; NaN patterns included)."""
     return a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()
+
+
+# --- scale-out on Dask ------------------------------------------------------------------------------------------------
+#
+# ``pywarp animate ... --scheduler dask[=ADDRESS]`` splits the path into chunks of consecutive frames, renders each
+# chunk on a Dask worker (a LocalCluster of worker processes by default, or the existing cluster at ADDRESS, e.g.
+# tcp://10.0.0.5:8786) and writes the frames in order as the chunks come back. A frame must not depend on the frames
+# before it, so under Dask every frame is a full frame: temporal reprojection (whose history would need a warm-up
+# of the whole prefix to be bit-identical) is switched off, and each chunk's technique starts at the chunk's frame
+# number (``technique.frame``, which seeds the ray jitter) with the scene time of that frame. The frames are then
+# bit-identical to a single-process ``animate`` with ``--no-reprojection``.
+
+SCHEDULERS = ("local", "dask")
+
+
+def parse_scheduler(text: str | None) -> tuple[str, str | None]:
+    """``local`` (one process), ``dask`` (a LocalCluster) or ``dask=ADDRESS`` -> (kind, address)."""
+    text = (text or "local").strip()
+    kind, _, address = text.partition("=")
+    if kind not in SCHEDULERS or (kind == "local" and address):
+        raise ValueError(f"--scheduler must be local, dask or dask=ADDRESS (e.g. dask=tcp://host:8786), got {text!r}")
+    if kind == "dask" and _ and not address:
+        raise ValueError("--scheduler dask=ADDRESS needs an address, e.g. dask=tcp://host:8786")
+    return kind, (address or None)
+
+
+def chunks(frames: int, size: int) -> list[tuple[int, int]]:
+    """[start, stop) ranges of ``size`` frames covering ``frames``."""
+    return [(s, min(s + size, frames)) for s in range(0, frames, size)]
+
+
+def render_chunk(scene_name: str, settings, path_name: str | None, frames: int, fps: float, time_scale: float,
+                 start: int, stop: int, linear: bool) -> list:
+    """Frames [start, stop) of a path, rendered from scratch (what a Dask worker runs): a new technique whose frame
+    counter starts at ``start``, the time field advanced as in the single-process loop."""
+    from .scenes import scene
+
+    sc = scene(scene_name)
+    path = sc.path(path_name)
+    poses = path.poses(frames, settings)[start:stop]
+    times = frame_times(settings, sc.time_field, frames, fps, time_scale)[start:stop]
+    tech = sc.technique(settings)
+    if hasattr(tech, "frame"):
+        tech.frame = start
+    return [img for _, img in render_frames(tech, poses, times, sc.time_field, linear, start)]
+
+
+def full_frames(settings, explicit: set[str] = frozenset()):
+    """The settings for independent frames: reprojection off (ValueError when it was asked for explicitly)."""
+    from dataclasses import fields, replace
+
+    if "reprojection" in {f.name for f in fields(settings)} and settings.reprojection:
+        if "reprojection" in explicit:
+            raise ValueError("--reprojection cannot be used with --scheduler dask: chunks of frames render full frames "
+                             "(use --no-reprojection)")
+        settings = replace(settings, reprojection=False)
+    return settings
+
+
+def dask_client(address: str | None, workers: int | None = None):
+    """(client, cluster): a client of the cluster at ``address``, or of a new LocalCluster of ``workers`` processes
+    with one thread each (cluster None for an existing one)."""
+    try:
+        from dask.distributed import Client, LocalCluster
+    except ImportError:
+        raise ValueError("--scheduler dask needs Dask: pip install \"dask[distributed]\" (or the dask extra: "
+                         "pip install \"cclouds[dask]\")") from None
+    if address:
+        return Client(address), None
+    import os
+
+    n = workers or max(1, os.cpu_count() or 1)
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
+    return Client(cluster), cluster
+
+
+def render_on_dask(client, scene_name: str, settings, path_name: str | None, frames: int, fps: float,
+                   time_scale: float, chunk: int, linear: bool, sink, progress=None) -> int:
+    """Render every chunk on the cluster of ``client`` and add the frames to ``sink`` in order; the frame count."""
+    futures = [client.submit(render_chunk, scene_name, settings, path_name, frames, fps, time_scale, s, e, linear,
+                             pure=False, key=f"pywarp-frames-{s}-{e}-{id(sink)}")
+               for s, e in chunks(frames, chunk)]
+    try:
+        i = 0
+        for fut in futures:
+            imgs = fut.result()
+            for img in imgs:
+                sink.add(img, i)
+                i += 1
+            if progress is not None:
+                progress(len(imgs))
+        return i
+    finally:
+        client.cancel([f for f in futures if not f.done()])
+
+
+def bench_dask(scene_name: str = "clouds", frames: int = 16, width: int = 320, height: int = 180, chunk: int = 4,
+               workers: tuple = (1, 2)) -> dict:
+    """Frames/s of a path rendered on LocalClusters of ``workers`` processes (one thread each; cluster start-up not
+    timed, one warm-up chunk per worker first), the speed-up over the first, and frames/s per worker: what a user
+    needs to size a cluster. ``python -c "from pywarp.core.animation import bench_dask; print(bench_dask())"``."""
+    import time
+
+    from .scenes import scene
+
+    sc = scene(scene_name)
+    names = {p.name for p in __import__("dataclasses").fields(sc.settings)}
+    values = {**sc.command_defaults.get("animate", {}), "width": width, "height": height}
+    values = {k: v for k, v in values.items() if k in names}
+    if "threads" in names:
+        values["threads"] = 1  # one core per worker process
+    settings = full_frames(sc.settings(**values))
+
+    class _Count:
+        linear = False
+
+        def add(self, img, index=None):
+            pass
+
+    rows = []
+    for n in workers:
+        client, cluster = dask_client(None, n)
+        try:
+            client.gather([client.submit(render_chunk, scene_name, settings, sc.default_path, frames, 24.0, 20.0,
+                                         0, 1, False, pure=False) for _ in range(n)])  # warm-up (textures, compile)
+            t0 = time.perf_counter()
+            render_on_dask(client, scene_name, settings, sc.default_path, frames, 24.0, 20.0, chunk, False, _Count())
+            dt = time.perf_counter() - t0
+        finally:
+            client.close()
+            cluster.close()
+        rows.append({"workers": n, "seconds": dt, "fps": frames / dt, "fps_per_worker": frames / dt / n})
+    base = rows[0]["fps"]
+    for r in rows:
+        r["speedup"] = r["fps"] / base
+    return {"scene": scene_name, "frames": frames, "width": width, "height": height, "chunk": chunk, "rows": rows}
