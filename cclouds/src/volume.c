@@ -97,7 +97,7 @@ ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume_grid *g
         const ccl_volume_grid *gr = &grids[i];
         if (gr->density == NULL) bad = "density";
         else if (gr->light == NULL) bad = "light";
-        else if (gr->occupancy == NULL) bad = "occupancy";
+        else if (gr->skip == NULL) bad = "skip";
         else if (gr->nx < 1 || gr->ny < 1 || gr->nz < 1 || gr->nx > 4096 || gr->ny > 4096 || gr->nz > 4096)
             bad = "size";
         else if (!finite_v(gr->origin)) bad = "origin";
@@ -208,7 +208,7 @@ ccl_status ccl_volume_light(const ccl_volume_params *p, const ccl_volume_grid *g
     if (grid == NULL || out_light == NULL) return CCL_EINVAL;
     g = *grid;
     g.light = out_light; /* checked non-NULL only */
-    g.occupancy = (const unsigned char *)out_light;
+    g.skip = (const unsigned char *)out_light;
     if (ccl_volume_check(p, &g, 1, NULL) != CCL_OK) return CCL_EINVAL;
     if (out_len != (size_t)g.nx * (size_t)g.ny * (size_t)g.nz) return CCL_EINVAL;
     sc = voxel_scale(&g);
@@ -249,7 +249,7 @@ ccl_status ccl_volume_occupancy(const ccl_volume_grid *grid, unsigned char *out,
     ccl_volume_params_default(&p);
     g = *grid;
     g.light = (const float *)(const void *)out;
-    g.occupancy = out;
+    g.skip = out;
     if (ccl_volume_check(&p, &g, 1, NULL) != CCL_OK) return CCL_EINVAL;
     mx = bricks(g.nx); my = bricks(g.ny); mz = bricks(g.nz);
     if (out_len != (size_t)mx * (size_t)my * (size_t)mz) return CCL_EINVAL;
@@ -273,23 +273,64 @@ ccl_status ccl_volume_occupancy(const ccl_volume_grid *grid, unsigned char *out,
     return CCL_OK;
 }
 
-/* distance along the voxel-space ray o + t d to the exit of the brick (bx, by, bz) */
-static float brick_exit(ccl_vec3 o, ccl_vec3 d, int bx, int by, int bz)
+ccl_status ccl_volume_skip(const ccl_volume_grid *grid, unsigned char *out, size_t out_len)
+{
+    ccl_status st;
+    int mx, my, mz, m, changed;
+    size_t i;
+    if (grid == NULL || out == NULL) return CCL_EINVAL;
+    st = ccl_volume_occupancy(grid, out, out_len);
+    if (st != CCL_OK) return st;
+    mx = bricks(grid->nx); my = bricks(grid->ny); mz = bricks(grid->nz);
+    /* occupied -> 0, empty -> 255 (not reached yet); then distance m for the empty bricks next to distance m - 1 */
+    for (i = 0; i < out_len; ++i) out[i] = out[i] ? 0 : 255;
+    changed = 1;
+    for (m = 1; m < 255 && changed; ++m) {
+        int bx, by, bz;
+        changed = 0;
+        for (bz = 0; bz < mz; ++bz)
+            for (by = 0; by < my; ++by)
+                for (bx = 0; bx < mx; ++bx) {
+                    int x, y, z, hit = 0;
+                    unsigned char *c = &out[((size_t)bz * (size_t)my + (size_t)by) * (size_t)mx + (size_t)bx];
+                    if (*c != 255) continue;
+                    for (z = bz - 1; z <= bz + 1 && !hit; ++z)
+                        for (y = by - 1; y <= by + 1 && !hit; ++y)
+                            for (x = bx - 1; x <= bx + 1; ++x) {
+                                if (x < 0 || y < 0 || z < 0 || x >= mx || y >= my || z >= mz) continue;
+                                if (out[((size_t)z * (size_t)my + (size_t)y) * (size_t)mx + (size_t)x] == m - 1) {
+                                    hit = 1;
+                                    break;
+                                }
+                            }
+                    if (hit) {
+                        *c = (unsigned char)m;
+                        changed = 1;
+                    }
+                }
+    }
+    return CCL_OK;
+}
+
+/* distance along the voxel-space ray o + t d to the exit of the cube of bricks (b - (m - 1)) .. (b + m - 1) per
+ * axis around the brick (bx, by, bz) (m = 1: the brick itself) */
+static float brick_exit(ccl_vec3 o, ccl_vec3 d, int bx, int by, int bz, int m)
 {
     const float b = (float)CCL_VOLUME_BRICK;
+    const float r = (float)(m - 1);
     float te = BIG_T;
     if (d.x != 0.0f) {
-        float plane = d.x > 0.0f ? ((float)bx + 1.0f) * b : (float)bx * b;
+        float plane = d.x > 0.0f ? ((float)bx + r + 1.0f) * b : ((float)bx - r) * b;
         float t = (plane - o.x) / d.x;
         te = t < te ? t : te;
     }
     if (d.y != 0.0f) {
-        float plane = d.y > 0.0f ? ((float)by + 1.0f) * b : (float)by * b;
+        float plane = d.y > 0.0f ? ((float)by + r + 1.0f) * b : ((float)by - r) * b;
         float t = (plane - o.y) / d.y;
         te = t < te ? t : te;
     }
     if (d.z != 0.0f) {
-        float plane = d.z > 0.0f ? ((float)bz + 1.0f) * b : (float)bz * b;
+        float plane = d.z > 0.0f ? ((float)bz + r + 1.0f) * b : ((float)bz - r) * b;
         float t = (plane - o.z) / d.z;
         te = t < te ? t : te;
     }
@@ -476,16 +517,18 @@ void ccl_volume_pixel(const ccl_volume_params *p, const ccl_volume_grid *grids, 
                 ccl_vec3 v;
                 float rho, alpha, tl, hfrac;
                 ccl_vec3 amb, light;
-                int bx, by, bz;
+                int bx, by, bz, m;
                 tri_t tri;
                 if (t > t_end) break;
                 v = ccl_vec3_add(o_v, ccl_vec3_scale(d_v, t));
-                bx = clampi((int)floorf(v.x * 0.25f), 0, mx - 1);
-                by = clampi((int)floorf(v.y * 0.25f), 0, my - 1);
-                bz = clampi((int)floorf(v.z * 0.25f), 0, mz - 1);
-                if (g->occupancy[((size_t)bz * (size_t)my + (size_t)by) * (size_t)mx + (size_t)bx] == 0) {
-                    /* empty brick: every sample inside it is 0; go to the first sample at or after its exit */
-                    float te = brick_exit(o_v, d_v, bx, by, bz);
+                bx = clampi((int)floorf(v.x * (1.0f / (float)CCL_VOLUME_BRICK)), 0, mx - 1);
+                by = clampi((int)floorf(v.y * (1.0f / (float)CCL_VOLUME_BRICK)), 0, my - 1);
+                bz = clampi((int)floorf(v.z * (1.0f / (float)CCL_VOLUME_BRICK)), 0, mz - 1);
+                m = g->skip[((size_t)bz * (size_t)my + (size_t)by) * (size_t)mx + (size_t)bx];
+                if (m > 0) {
+                    /* empty cube of bricks around: every sample inside it is 0; go to the first sample at or after
+                       its exit */
+                    float te = brick_exit(o_v, d_v, bx, by, bz, m);
                     float next = ceilf((te - t_start) / dt - jitter);
                     s = next > (float)(s + 1) ? (next < (float)n ? (int)next : n) : s + 1;
                     continue;

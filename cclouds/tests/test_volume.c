@@ -15,17 +15,18 @@ static ccl_vec3 V(float x, float y, float z)
 }
 
 #define N 16
+#define M (N / CCL_VOLUME_BRICK) /* bricks per axis */
 static unsigned char ball[N * N * N];
 static float ball_light[N * N * N];
 static unsigned char empty[N * N * N];
 static float empty_light[N * N * N];
-static unsigned char all_bricks[(N / 4) * (N / 4) * (N / 4)]; /* every brick occupied: no skipping */
-static unsigned char ball_bricks[(N / 4) * (N / 4) * (N / 4)];
+static unsigned char all_bricks[(N / CCL_VOLUME_BRICK) * (N / CCL_VOLUME_BRICK) * (N / CCL_VOLUME_BRICK)]; /* skip distance 0 everywhere: no skipping */
+static unsigned char ball_bricks[(N / CCL_VOLUME_BRICK) * (N / CCL_VOLUME_BRICK) * (N / CCL_VOLUME_BRICK)];
 
 static void make_ball(void)
 {
     int x, y, z;
-    for (x = 0; x < (N / 4) * (N / 4) * (N / 4); ++x) all_bricks[x] = 1;
+    for (x = 0; x < (N / CCL_VOLUME_BRICK) * (N / CCL_VOLUME_BRICK) * (N / CCL_VOLUME_BRICK); ++x) all_bricks[x] = 0;
     for (z = 0; z < N; ++z)
         for (y = 0; y < N; ++y)
             for (x = 0; x < N; ++x) {
@@ -40,7 +41,7 @@ static ccl_volume_grid grid_of(const unsigned char *d, const float *l, ccl_vec3 
     ccl_volume_grid g;
     g.density = d;
     g.light = l;
-    g.occupancy = all_bricks;
+    g.skip = all_bricks;
     g.nx = g.ny = g.nz = N;
     g.origin = origin;
     g.extent = extent;
@@ -145,16 +146,21 @@ static void test_volume_pixel(void)
     {
         int x, y, empty_bricks = 0, i;
         for (i = 0; i < (int)sizeof ball_bricks; ++i) empty_bricks += ball_bricks[i] == 0;
-        CCL_CHECK(empty_bricks > 0 && ball_bricks[(2 * 4 + 2) * 4 + 2] == 1);
+        CCL_CHECK(empty_bricks > 0 && ball_bricks[(M / 2 * M + M / 2) * M + M / 2] == 1);
+        /* the skip distances: 0 where occupied, >= 1 for the empty corner bricks, 1 next to an occupied one */
+        CCL_CHECK(ccl_volume_skip(&g, ball_bricks, sizeof ball_bricks) == CCL_OK);
+        CCL_CHECK(ball_bricks[0] >= 1 && ball_bricks[(M / 2 * M + M / 2) * M + M / 2] == 0);
+        for (i = 0; i < (int)sizeof ball_bricks; ++i) CCL_CHECK(ball_bricks[i] < M);
         for (y = 0; y < 41; y += 3)
             for (x = 0; x < 41; x += 3) {
-                g.occupancy = all_bricks;
+                g.skip = all_bricks;
                 ccl_volume_pixel(&p, &g, 1, &cam, x, y, 41, 41, rgb);
-                g.occupancy = ball_bricks;
+                g.skip = ball_bricks;
                 ccl_volume_pixel(&p, &g, 1, &cam, x, y, 41, 41, rgb2);
                 CCL_CHECK(rgb[0] == rgb2[0] && rgb[1] == rgb2[1] && rgb[2] == rgb2[2]);
             }
         CCL_CHECK(ccl_volume_occupancy(&g, ball_bricks, 3) == CCL_EINVAL);
+        CCL_CHECK(ccl_volume_skip(&g, ball_bricks, 3) == CCL_EINVAL);
     }
 }
 

@@ -99,6 +99,19 @@ class FlightSettings(Settings):
     light_step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, invalidates="sky", group="quality",
                                      cli="--light-step", doc="light-ray step of the light volume in voxel lengths",
                                      reason="1: one sample per voxel (ccl_volume_params_default)")
+    preview_scale: float = param(0.5, lo=0.05, hi=1.0, group="quality", cli="--preview-scale",
+                                 doc="resolution factor of a preview frame (width and height times this) while the "
+                                     "view moves, e.g. in the viewer (FlightSettings.preview)",
+                                 reason="0.5: the full 640 x 360 frame does not reach the >= 15-20 frames/s aim on two "
+                                        "cores (pywarp bench flight frame: the march through the soft 64^3 clouds, "
+                                        "whose boxes are about 40 % occupied, costs per pixel); a quarter of the pixels "
+                                        "does, and the text itself runs smoothly 'only at lower resolutions' (§7)")
+    preview_step_voxels: float = param(2.0, unit="voxels", lo=0.05, hi=16.0, group="quality",
+                                       cli="--preview-step",
+                                       doc="view-ray step of a preview frame (FlightSettings.preview)",
+                                       reason="2: half the samples of the refined frame; the opacity per step follows "
+                                              "the step (alpha = 1 - exp(-tau rho step)), so the clouds keep their "
+                                              "density, and the jittered start hides the coarser slicing in motion")
     # --- the flight (oc-6.1.1) ---
     flight_duration_s: float = param(32.0, unit="s", lo=1.0, hi=3600.0, invalidates="textures", group="flight",
                                      cli="--duration", doc="length of the scripted flight (animate spreads its "
@@ -158,6 +171,15 @@ class FlightSettings(Settings):
         return CloudArraySettings(size=self.cloud_size, seed=(self.seed * 7919 + 104729 * k) % 2 ** 32,
                                   cover=self.cloud_cover, sharpness=self.cloud_sharpness,
                                   persistence=self.cloud_persistence, interpolation=self.cloud_interpolation)
+
+    def preview(self) -> "FlightSettings":
+        """The settings of a preview frame while the view moves: width and height times ``preview_scale`` (at least
+        16 px, the aspect kept), ``step_voxels`` = ``preview_step_voxels``; everything else unchanged."""
+        import dataclasses
+
+        w = max(16, int(round(self.width * self.preview_scale)))
+        h = max(16, int(round(self.height * self.preview_scale)))
+        return dataclasses.replace(self, width=w, height=h, step_voxels=self.preview_step_voxels)
 
     def volume_values(self) -> dict:
         """The ``ccl_volume_params`` values of this scene (aircraft fields excepted)."""

@@ -32,7 +32,10 @@ BIG_T = wp.constant(3.0e38)
 MAX_GRIDS = 16          # CCL_VOLUME_MAX_GRIDS
 AIRCRAFT_STEPS = wp.constant(64)  # CCL_VOLUME_AIRCRAFT_STEPS
 AIRCRAFT_BOUND = wp.constant(6.3)
-BRICK = 4  # CCL_VOLUME_BRICK
+BRICK = 2  # CCL_VOLUME_BRICK
+_BRICK_I = wp.constant(BRICK)
+_BRICK_F = wp.constant(float(BRICK))
+_INV_BRICK = wp.constant(1.0 / BRICK)
 _Vgrid = wp.types.vector(length=MAX_GRIDS, dtype=wp.float32)  # per-grid values of one ray
 FOUR_PI = wp.constant(float(np.float32(4.0) * np.float32(math.pi)))  # 4.0f * CCL_PI_F, folded as in C
 _INV_255 = wp.constant(float(np.float32(1.0) / np.float32(255.0)))
@@ -50,7 +53,7 @@ class VolumeGrid:
     ny: int
     nz: int
     offset: int
-    boffset: int  # start of the grid's bricks in the flat occupancy array
+    boffset: int  # start of the grid's bricks in the flat skip-distance array
 
 
 @wp.struct
@@ -441,25 +444,27 @@ def volume_background(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
 
 
 @wp.func
-def _brick_exit(o: wp.vec3, d: wp.vec3, bx: int, by: int, bz: int) -> float:
-    b = 4.0
+def _brick_exit(o: wp.vec3, d: wp.vec3, bx: int, by: int, bz: int, m: int) -> float:
+    """Exit of the voxel-space ray from the cube of bricks b - (m - 1) .. b + m - 1 around brick (bx, by, bz)."""
+    b = _BRICK_F
+    r = float(m - 1)
     te = float(BIG_T)
     if d[0] != 0.0:
-        plane = float(bx) * b
+        plane = (float(bx) - r) * b
         if d[0] > 0.0:
-            plane = (float(bx) + 1.0) * b
+            plane = (float(bx) + r + 1.0) * b
         t = (plane - o[0]) / d[0]
         te = wp.where(t < te, t, te)
     if d[1] != 0.0:
-        plane = float(by) * b
+        plane = (float(by) - r) * b
         if d[1] > 0.0:
-            plane = (float(by) + 1.0) * b
+            plane = (float(by) + r + 1.0) * b
         t = (plane - o[1]) / d[1]
         te = wp.where(t < te, t, te)
     if d[2] != 0.0:
-        plane = float(bz) * b
+        plane = (float(bz) - r) * b
         if d[2] > 0.0:
-            plane = (float(bz) + 1.0) * b
+            plane = (float(bz) + r + 1.0) * b
         t = (plane - o[2]) / d[2]
         te = wp.where(t < te, t, te)
     return te
@@ -469,8 +474,8 @@ def _brick_exit(o: wp.vec3, d: wp.vec3, bx: int, by: int, bz: int) -> float:
 
 @wp.func
 def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int, density: wp.array(dtype=wp.uint8),
-                 light: wp.array(dtype=float), occupancy: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44, eye: wp.vec3, x: int, y: int, width: int,
-                 height: int) -> wp.vec3:
+                 light: wp.array(dtype=float), skip: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44,
+                 eye: wp.vec3, x: int, y: int, width: int, height: int) -> wp.vec3:
     """Twin of ``ccl_volume_pixel``: the display-linear colour of pixel (x, y)."""
     d = camera_ray(inv_view_proj_rot, x, y, width, height)
     jitter = float(0.5)
@@ -527,20 +532,22 @@ def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
                 n = int(steps)
             else:
                 n = p.max_steps
-        mx = (g.nx + 3) // 4
-        my = (g.ny + 3) // 4
-        mz = (g.nz + 3) // 4
+        mx = (g.nx + _BRICK_I - 1) // _BRICK_I
+        my = (g.ny + _BRICK_I - 1) // _BRICK_I
+        mz = (g.nz + _BRICK_I - 1) // _BRICK_I
         s = int(0)
         while s < n:
             t = t_start + (float(s) + jitter) * dt
             if t > t_end:
                 break
             v = o_v + d_v * t
-            bx = wp.clamp(int(wp.floor(v[0] * 0.25)), 0, mx - 1)
-            by = wp.clamp(int(wp.floor(v[1] * 0.25)), 0, my - 1)
-            bz = wp.clamp(int(wp.floor(v[2] * 0.25)), 0, mz - 1)
-            if occupancy[g.boffset + (bz * my + by) * mx + bx] == wp.uint8(0):
-                te = _brick_exit(o_v, d_v, bx, by, bz)
+            bx = wp.clamp(int(wp.floor(v[0] * _INV_BRICK)), 0, mx - 1)
+            by = wp.clamp(int(wp.floor(v[1] * _INV_BRICK)), 0, my - 1)
+            bz = wp.clamp(int(wp.floor(v[2] * _INV_BRICK)), 0, mz - 1)
+            m = int(skip[g.boffset + (bz * my + by) * mx + bx])
+            if m > 0:
+                # an empty cube of bricks around: go to the first sample at or after its exit
+                te = _brick_exit(o_v, d_v, bx, by, bz, m)
                 nxt = wp.ceil((te - t_start) / dt - jitter)
                 if nxt > float(s + 1):
                     if nxt < float(n):
@@ -600,14 +607,14 @@ def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
 @wp.kernel
 def render_kernel(row0: int, p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
                   density: wp.array(dtype=wp.uint8), light: wp.array(dtype=float),
-                  occupancy: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44, eye: wp.vec3, width: int,
+                  skip: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44, eye: wp.vec3, width: int,
                   height: int,
                   # output: sRGB uint8
                   out: wp.array3d(dtype=wp.uint8)):
     """One row band: the pixel, clamped to [0, 1], sRGB-encoded, rounded to uint8."""
     i, j = wp.tid()
     y = row0 + i
-    c = volume_pixel(p, grids, count, density, light, occupancy, inv_view_proj_rot, eye, j, y, width, height)
+    c = volume_pixel(p, grids, count, density, light, skip, inv_view_proj_rot, eye, j, y, width, height)
     for ch in range(3):
         e = colour_srgb_encode(wp.clamp(c[ch], 0.0, 1.0))
         out[y, j, ch] = wp.uint8(int(e * 255.0 + 0.5))
@@ -615,12 +622,12 @@ def render_kernel(row0: int, p: VolumeParams, grids: wp.array(dtype=VolumeGrid),
 
 @wp.kernel
 def pixels_kernel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int, density: wp.array(dtype=wp.uint8),
-                  light: wp.array(dtype=float), occupancy: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44,
+                  light: wp.array(dtype=float), skip: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44,
                   eye: wp.vec3, xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32), width: int, height: int,
                   out: wp.array2d(dtype=float)):
     """:func:`volume_pixel` at chosen pixels (the Warp side of the comparison with ``ccl_volume_pixel``)."""
     k = wp.tid()
-    c = volume_pixel(p, grids, count, density, light, occupancy, inv_view_proj_rot, eye, xs[k], ys[k], width,
+    c = volume_pixel(p, grids, count, density, light, skip, inv_view_proj_rot, eye, xs[k], ys[k], width,
                      height)
     out[k, 0] = c[0]
     out[k, 1] = c[1]
@@ -701,8 +708,8 @@ class PlacedVolume:
 
 
 def occupancy(density: np.ndarray) -> np.ndarray:
-    """Brick occupancy of a uint8 volume (nz, ny, nx), as ``ccl_volume_occupancy``: brick b of 4^3 voxels is 1 when
-    any voxel of indices 4 b - 1 .. 4 b + 4 (clamped) is > 0 -- every voxel a trilinear sample inside it can touch."""
+    """Brick occupancy of a uint8 volume (nz, ny, nx), as ``ccl_volume_occupancy``: brick b of BRICK^3 voxels is 1
+    when any voxel of indices B b - 1 .. B b + B (B = BRICK, clamped) is > 0 -- every voxel a trilinear sample inside it can touch."""
     d = np.asarray(density) > 0
     shape = tuple(-(-n // BRICK) for n in d.shape)
     out = np.zeros(shape, np.uint8)
@@ -720,6 +727,30 @@ def occupancy(density: np.ndarray) -> np.ndarray:
     return out
 
 
+def skip_distance(density: np.ndarray) -> np.ndarray:
+    """Skip distances of a uint8 volume (nz, ny, nx), as ``ccl_volume_skip``: 0 for an occupied brick
+    (:func:`occupancy`), else min(255, the Chebyshev distance in bricks to the nearest occupied brick) (255 when none
+    is occupied) -- every brick within distance m - 1 of a brick of distance m is empty, so a ray may jump to the exit
+    of that cube. Repeated 26-neighbour dilation, as the C function."""
+    occ = occupancy(density) > 0
+    out = np.where(occ, 0, 255).astype(np.uint8)
+    reached = occ.copy()
+    for m in range(1, 255):
+        if reached.all() or not reached.any():
+            break
+        grown = reached.copy()
+        for ax in range(3):  # the cube dilation is separable: a 3-wide max along each axis in turn
+            g = grown.copy()
+            sl_a, sl_b = [slice(None)] * 3, [slice(None)] * 3
+            sl_a[ax], sl_b[ax] = slice(1, None), slice(None, -1)
+            g[tuple(sl_a)] |= grown[tuple(sl_b)]
+            g[tuple(sl_b)] |= grown[tuple(sl_a)]
+            grown = g
+        out[grown & ~reached] = m
+        reached = grown
+    return out
+
+
 @dataclass
 class VolumeSet:
     """Grids and their light volumes as the kernels read them (flat arrays + :class:`VolumeGrid` records)."""
@@ -727,11 +758,23 @@ class VolumeSet:
     volumes: list
     light: list = field(default_factory=list)  # float32 arrays of the volumes' shapes
     device: str = "cpu"
+    #: largest skip distance the kernels see (1..255): 1 jumps one empty brick at a time, the renderer before the
+    #: skip distances (kept so that a benchmark can measure the two in one run; the pixels are the same)
+    skip_cap: int = 255
     _wp: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self):
         if len(self.volumes) > MAX_GRIDS:
             raise ValueError(f"at most {MAX_GRIDS} volumes, got {len(self.volumes)}")
+        if isinstance(self.skip_cap, bool) or not isinstance(self.skip_cap, int) or not 1 <= self.skip_cap <= 255:
+            raise ValueError(f"skip_cap must be an integer in [1, 255], got {self.skip_cap!r}")
+
+    def set_skip_cap(self, cap: int) -> None:
+        """Change :attr:`skip_cap` (validated); the kernels' arrays are rebuilt on the next :meth:`warp`."""
+        if isinstance(cap, bool) or not isinstance(cap, int) or not 1 <= cap <= 255:
+            raise ValueError(f"skip_cap must be an integer in [1, 255], got {cap!r}")
+        self.skip_cap = cap
+        self._wp = {}
 
     def records(self) -> list:
         out, offset, boffset = [], 0, 0
@@ -743,7 +786,7 @@ class VolumeSet:
             g.nx, g.ny, g.nz, g.offset, g.boffset = nx, ny, nz, offset, boffset
             out.append(g)
             offset += v.density.size
-            boffset += occupancy(v.density).size
+            boffset += -(-nz // BRICK) * -(-ny // BRICK) * -(-nx // BRICK)
         return out
 
     def compute_light(self, values: dict, launcher=None) -> None:
@@ -759,21 +802,22 @@ class VolumeSet:
         self._wp = {}
 
     def warp(self):
-        """(grids, count, density, light, occupancy) for the kernels."""
+        """(grids, count, density, light, skip) for the kernels (skip: :func:`skip_distance` of every grid)."""
         if not self._wp:
             recs = self.records()
             n = len(recs)
             dens = np.concatenate([v.density.ravel() for v in self.volumes]) if n else np.zeros(1, np.uint8)
             light = (np.concatenate([np.asarray(l, np.float32).ravel() for l in self.light]) if n
                      else np.zeros(1, np.float32))
-            occ = np.concatenate([occupancy(v.density).ravel() for v in self.volumes]) if n else np.zeros(1, np.uint8)
+            occ = (np.concatenate([np.minimum(skip_distance(v.density), self.skip_cap).ravel()
+                                   for v in self.volumes]) if n else np.zeros(1, np.uint8))
             grids = wp.array(recs if n else [VolumeGrid()], dtype=VolumeGrid, device=self.device)
             self._wp = {"grids": grids, "count": n,
                         "density": wp.array(dens, dtype=wp.uint8, device=self.device),
                         "light": wp.array(light, dtype=float, device=self.device),
-                        "occupancy": wp.array(occ, dtype=wp.uint8, device=self.device)}
+                        "skip": wp.array(occ, dtype=wp.uint8, device=self.device)}
         w = self._wp
-        return w["grids"], w["count"], w["density"], w["light"], w["occupancy"]
+        return w["grids"], w["count"], w["density"], w["light"], w["skip"]
 
 
 def c_grids(vset: VolumeSet):
@@ -787,13 +831,13 @@ def c_grids(vset: VolumeSet):
     for k, v in enumerate(vset.volumes):
         d = np.ascontiguousarray(v.density)
         lt = np.ascontiguousarray(np.asarray(vset.light[k], dtype=np.float32))
-        oc = np.ascontiguousarray(occupancy(d))
+        oc = np.ascontiguousarray(skip_distance(d))
         bd, bl = f.from_buffer("unsigned char[]", d), f.from_buffer("float[]", lt)
         bo = f.from_buffer("unsigned char[]", oc)
         keep += [d, lt, oc, bd, bl, bo]
         arr[k].density = f.cast("const unsigned char *", bd)
         arr[k].light = f.cast("const float *", bl)
-        arr[k].occupancy = f.cast("const unsigned char *", bo)
+        arr[k].skip = f.cast("const unsigned char *", bo)
         arr[k].nz, arr[k].ny, arr[k].nx = d.shape
         arr[k].origin.x, arr[k].origin.y, arr[k].origin.z = v.origin
         arr[k].extent.x, arr[k].extent.y, arr[k].extent.z = v.extent

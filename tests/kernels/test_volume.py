@@ -95,6 +95,28 @@ def test_render_is_deterministic_for_any_thread_count():
     assert img[-2, :, 1].mean() > img[-2, :, 2].mean()
 
 
+def test_skipping_changes_no_pixel():
+    """The skip distances (jumps over cubes of empty bricks), one brick per jump, and no skipping at all (a skip map
+    of zeros) give the same image."""
+    vals, vs, cam = scene()
+    assert V.skip_distance(vs.volumes[0].density).max() > 1
+    imgs = []
+    for cap in (255, 1, 0):
+        vs.set_skip_cap(max(cap, 1))
+        g, n, d, l, o = vs.warp()
+        if cap == 0:
+            o = wp.zeros_like(o)
+        out = wp.zeros((90, 160, 3), dtype=wp.uint8)
+        wp.launch(V.render_kernel, dim=(90, 160), inputs=[0, V.warp_params(vals), g, n, d, l, o,
+                                                         cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), 160, 90],
+                  outputs=[out])
+        imgs.append(out.numpy())
+    vs.set_skip_cap(255)
+    assert np.array_equal(imgs[0], imgs[1]) and np.array_equal(imgs[0], imgs[2])
+    with pytest.raises(ValueError, match="skip_cap"):
+        vs.set_skip_cap(0)
+
+
 def test_occupancy_numpy_vs_c_and_conservative():
     from pywarp.core.binding import ffi, lib
 
@@ -108,12 +130,34 @@ def test_occupancy_numpy_vs_c_and_conservative():
         assert lib().ccl_volume_occupancy(arr, ffi().from_buffer("unsigned char[]", out), out.size) == 0
         np.testing.assert_array_equal(occ, out)
         # conservative: a voxel > 0 marks its own brick and the bricks whose trilinear reach includes it
+        B = V.BRICK
         for z, y, x in zip(*np.nonzero(d)):
-            assert occ[z // 4, y // 4, x // 4] == 1
-            if x % 4 == 3 and x // 4 + 1 < occ.shape[2]:
-                assert occ[z // 4, y // 4, x // 4 + 1] == 1
-            if x % 4 == 0 and x >= 4:
-                assert occ[z // 4, y // 4, x // 4 - 1] == 1
+            assert occ[z // B, y // B, x // B] == 1
+            if x % B == B - 1 and x // B + 1 < occ.shape[2]:
+                assert occ[z // B, y // B, x // B + 1] == 1
+            if x % B == 0 and x >= B:
+                assert occ[z // B, y // B, x // B - 1] == 1
+        # skip distances: NumPy = C, and each one the Chebyshev distance to the nearest occupied brick (brute force)
+        sk = V.skip_distance(d)
+        out = np.zeros(occ.shape, np.uint8)
+        assert lib().ccl_volume_skip(arr, ffi().from_buffer("unsigned char[]", out), out.size) == 0
+        np.testing.assert_array_equal(sk, out)
+        occupied = np.argwhere(occ > 0)
+        for b in np.ndindex(occ.shape):
+            want = 0 if occ[b] else (255 if len(occupied) == 0 else
+                                     min(255, int(np.abs(occupied - np.array(b)).max(axis=1).min())))
+            assert sk[b] == want, b
+    # one voxel in a 24^3 volume: the distance grows by one per brick away from it (Chebyshev)
+    d = np.zeros((24, 24, 24), np.uint8)
+    d[3, 3, 3] = 90
+    sk = V.skip_distance(d)
+    b = np.argwhere(V.occupancy(d) > 0)
+    idx = np.stack(np.meshgrid(*[np.arange(n) for n in sk.shape], indexing="ij"), -1)
+    want = np.abs(idx[..., None, :] - b).max(-1).min(-1)
+    np.testing.assert_array_equal(sk, want)
+    assert sk.max() > 5
+    # no brick occupied: 255 everywhere
+    assert np.all(V.skip_distance(np.zeros((6, 6, 6), np.uint8)) == 255)
 
 
 def test_empty_scene_and_opaque_cloud():

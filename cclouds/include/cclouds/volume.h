@@ -20,9 +20,11 @@
  *   B      = background: the shaded aircraft at t_hit, else the ground where d.y < 0 (fogged), else the sky
  *   grids  = visited in the order of their entry distance along d (ties: lower index first); each one marched alone
  *            from max(t_enter, 0) to min(t_exit, t_hit) with step dt = step_voxels / |d_v| (d_v = d in voxel space),
- *            at most max_steps samples, sample k at t_enter + (k + j) dt; a sample in an empty brick of the
- *            occupancy (ccl_volume_occupancy) jumps to the first sample k' > k at or after the brick's exit -- the
- *            skipped samples are exactly 0, so the image is the one without skipping:
+ *            at most max_steps samples, sample k at t_enter + (k + j) dt; a sample in an empty brick of skip
+ *            distance m >= 1 (ccl_volume_skip: every brick within m - 1 bricks of it is empty too) jumps to the first
+ *            sample k' > k at or after the exit of that empty cube of (2 m - 1)^3 bricks -- the skipped samples are
+ *            exactly 0, so the image is the one without skipping (a skip map of zeros), at a few jumps per empty
+ *            stretch instead of one per brick or per voxel:
  *              rho   = trilinear density / 255;  skip when 0
  *              alpha = 1 - exp(-tau_per_voxel * rho * step_voxels)
  *              L     = sun_colour * T_sun * 4 pi HG(dot(d, sun), g) + mix(ambient_bottom, ambient_top, v.y / ny)
@@ -48,14 +50,16 @@ extern "C" {
 
 #define CCL_VOLUME_MAX_GRIDS 16
 #define CCL_VOLUME_AIRCRAFT_STEPS 64
-#define CCL_VOLUME_BRICK 4 /* edge of the empty-space-skipping bricks, voxels */
+#define CCL_VOLUME_BRICK 2 /* edge of the empty-space-skipping bricks, voxels (2: measured faster than 4 on the
+                                flight scene's soft clouds, whose 4^3 bricks are 40 % occupied) */
 
 /* One cloud volume placed in the world (not owned). */
 typedef struct ccl_volume_grid {
     const unsigned char *density; /* nx * ny * nz voxels [z][y][x]: 0 invisible ... 255 opaque */
     const float *light;           /* the same layout: transmittance towards the sun in [0, 1] (ccl_volume_light) */
-    const unsigned char *occupancy; /* bricks of CCL_VOLUME_BRICK^3 voxels, ceil(n / 4) per axis, [bz][by][bx]:
-                                       ccl_volume_occupancy (0 = every trilinear sample inside the brick is 0) */
+    const unsigned char *skip;    /* bricks of CCL_VOLUME_BRICK^3 voxels, ceil(n / B) per axis (B = CCL_VOLUME_BRICK), [bz][by][bx]:
+                                     ccl_volume_skip (0 = occupied; m >= 1: empty, and so is every brick within
+                                     Chebyshev distance m - 1); all zeros = no skipping */
     int nx, ny, nz;               /* >= 1 */
     ccl_vec3 origin;              /* world position of the box's minimum corner [m] */
     ccl_vec3 extent;              /* world size of the box per axis [m], > 0 */
@@ -120,10 +124,19 @@ CCL_API ccl_status ccl_volume_light(const ccl_volume_params *p, const ccl_volume
                                     size_t out_len);
 
 /* Brick occupancy of a grid for empty-space skipping: brick (bx, by, bz) covers voxel-space positions
- * [4 b, 4 b + 4) per axis; it is 1 when any voxel of indices 4 b - 1 .. 4 b + 4 (clamped to the grid: every voxel a
- * trilinear sample inside the brick can touch) is > 0, else 0. out_len = ceil(nx/4) ceil(ny/4) ceil(nz/4).
- * grid->occupancy and grid->light are ignored. CCL_EINVAL for a bad grid or length. */
+ * [B b, B b + B) per axis (B = CCL_VOLUME_BRICK); it is 1 when any voxel of indices B b - 1 .. B b + B (clamped to
+ * the grid: every voxel a trilinear sample inside the brick can touch) is > 0, else 0.
+ * out_len = ceil(nx/B) ceil(ny/B) ceil(nz/B).
+ * grid->skip and grid->light are ignored. CCL_EINVAL for a bad grid or length. */
 CCL_API ccl_status ccl_volume_occupancy(const ccl_volume_grid *grid, unsigned char *out, size_t out_len);
+
+/* Skip distances of a grid for empty-space skipping (Ref: none; a rendering speed-up, the same pixels): from the
+ * brick occupancy of ccl_volume_occupancy, out[b] = 0 for an occupied brick, else min(255, the Chebyshev distance in
+ * bricks from b to the nearest occupied brick) (255 when no brick is occupied): every brick within distance
+ * out[b] - 1 of b is empty, so a ray in b may jump to the exit of that cube. Computed by repeated 26-neighbour
+ * dilation. out_len = ceil(nx/B) ceil(ny/B) ceil(nz/B); grid->skip and grid->light are ignored. CCL_EINVAL for a bad
+ * grid or length. */
+CCL_API ccl_status ccl_volume_skip(const ccl_volume_grid *grid, unsigned char *out, size_t out_len);
 
 /* The sky colour in direction d (unit): sky_horizon + (sky_zenith - sky_horizon) sqrt(max(d.y, 0)) + sun_colour
  * sun_glow max(dot(d, sun), 0)^sun_glow_power. Display-linear. */
