@@ -79,15 +79,16 @@ def report_frame(r: dict) -> str:
     lines = [f"flight view {r['width']}x{r['height']}, {r['device']}, {r['workers']} workers, {r['clouds']} clouds of "
              f"{r['cloud_size']}^3 (setup {r['setup_s']:.2f} s: cloud arrays, light volumes, flight)"]
     pv = r["preview"]
-    lines.append(f"  {'':12}{'frame':>20}{'previous (1 brick/jump)':>26}"
-                 f"{'preview ' + str(pv['width']) + 'x' + str(pv['height']) + ' step ' + format(pv['step_voxels'], 'g'):>30}")
+    head = f"preview {pv['width']}x{pv['height']} step {pv['step_voxels']:g}"
+    lines.append(f"  {'':12}{'frame':>20}{'previous (1 brick/jump)':>26}{head:>30}")
     for t, ms in r["frame_ms"].items():
         o, p = r["previous_frame_ms"][t], pv["frame_ms"][t]
         lines.append(f"  t = {t:>4} s  {ms:8.1f} ms ({1e3 / ms:5.1f}/s) {o:12.1f} ms ({1e3 / o:5.1f}/s)"
                      f" {p:14.1f} ms ({1e3 / p:5.1f}/s)")
-    lines.append(f"  mean       {r['mean_frame_ms']:8.1f} ms ({r['fps']:5.1f}/s) {r['previous_mean_frame_ms']:12.1f} ms "
-                 f"({r['previous_fps']:5.1f}/s) {pv['mean_frame_ms']:14.1f} ms ({pv['fps']:5.1f}/s)")
-    lines.append(f"  speed-up over the previous skipping: {r['speedup_over_previous']:.2f}x (same pixels: "
+    lines.append(f"  mean       {r['mean_frame_ms']:8.1f} ms ({r['fps']:5.1f}/s) "
+                 f"{r['previous_mean_frame_ms']:12.1f} ms ({r['previous_fps']:5.1f}/s) "
+                 f"{pv['mean_frame_ms']:14.1f} ms ({pv['fps']:5.1f}/s)")
+    lines.append(f"  speed-up over one brick per jump: {r['speedup_over_previous']:.2f}x (same pixels: "
                  f"{r['previous_same_pixels']}); aim >= 15 frames/s on two cores")
     if r.get("load_average"):
         lines.append(f"  load average {r['load_average']}")

@@ -104,7 +104,8 @@ class FlightSettings(Settings):
                                      "view moves, e.g. in the viewer (FlightSettings.preview)",
                                  reason="0.5: the full 640 x 360 frame does not reach the >= 15-20 frames/s aim on two "
                                         "cores (pywarp bench flight frame: the march through the soft 64^3 clouds, "
-                                        "whose boxes are about 40 % occupied, costs per pixel); a quarter of the pixels "
+                                        "whose boxes are about 40 % occupied, costs per pixel); a quarter of the "
+                                        "pixels "
                                         "does, and the text itself runs smoothly 'only at lower resolutions' (§7)")
     preview_step_voxels: float = param(2.0, unit="voxels", lo=0.05, hi=16.0, group="quality",
                                        cli="--preview-step",

@@ -709,7 +709,8 @@ class PlacedVolume:
 
 def occupancy(density: np.ndarray) -> np.ndarray:
     """Brick occupancy of a uint8 volume (nz, ny, nx), as ``ccl_volume_occupancy``: brick b of BRICK^3 voxels is 1
-    when any voxel of indices B b - 1 .. B b + B (B = BRICK, clamped) is > 0 -- every voxel a trilinear sample inside it can touch."""
+    when any voxel of indices B b - 1 .. B b + B (B = BRICK, clamped) is > 0 -- every voxel a trilinear sample
+    inside it can touch."""
     d = np.asarray(density) > 0
     shape = tuple(-(-n // BRICK) for n in d.shape)
     out = np.zeros(shape, np.uint8)

@@ -4,14 +4,17 @@ formulas or parameters.
 
 Fig. 4.1 (oc-4.2): twelve metaball sources (centres, radii and strengths drawn from seed 3 in a flattened heap) summed
 with the soft-object kernel of pywarp.equation("oc-4.2") on a 64^3 grid; the field thresholded at 0.35 with a ramp
-of 0.35 gives the base shape (left); "covered by a fractal method" (the text) as the base times the value-noise array of
-the cloud pipeline (pywarp.kernels.voxel.noise_volume, 64^3, seed 3, stretched to mean 0.5 and standard deviation
-0.2) cut at 0.4 with a ramp of 0.25 (right). Fig. 4.2
-(oc-4.3): one ellipsoid (semi-axes 0.42, 0.26, 0.34 of the box) with the noise array as its texturing function and
-Gardner's translucency (pywarp.equation("oc-4.3"), T1 = 0.2, D = 0.3). Fig. 4.3 (oc-4.3): five such ellipsoids
-joined (the largest opacity wins). Every volume is uint8 (0 .. 255) and rendered by the volume renderer of the
-flight scene (pywarp.kernels.volume.render: emission-absorption raymarch, light volume towards a sun 35 deg high at
-azimuth 110 deg, from the right; optical depth 0.15 per voxel).
+of 0.35 gives the base shape (left); "covered by a fractal method" (the text) as the field's threshold displaced by
+a fractal noise inside the sources' reach (right): density = clamp((field - 0.45 + 1.5 n) / 0.2, 0, 1) where field > 0,
+with n a Perlin fBm (pywarp.equation("vc-2.21"), 4 octaves from 4 cells per box width, seed 3, in metres-isotropic box
+coordinates, about [-0.7, 0.7]), so the noise piles turrets on the blob's edge, eats gullies into it and throws off
+small fragments (the core, up to 3.2, stays solid). Fig. 4.2 (oc-4.3): one ellipsoid (semi-axes 0.42, 0.26, 0.34
+of the box) with the texturing function 0.5 + n (clamped to [0, 1]; n the same fBm, 5 octaves from 4 cells per box
+width, seed 5: Perlin-type noise, as the text's OpenGL version of Gardner's sums of sines) and Gardner's translucency
+(pywarp.equation("oc-4.3"), T1 = 0.25, D = 0.25). Fig. 4.3 (oc-4.3): five such ellipsoids joined (the largest opacity
+wins). Every volume is uint8 (0 .. 255) and rendered by the volume renderer of the flight scene
+(pywarp.kernels.volume.render: emission-absorption raymarch, light volume towards a sun 35 deg high at azimuth 110 deg,
+from the right; optical depth 0.3 per voxel, so the texture's holes read as holes).
 Outputs: figures/oc/fig-4.1.png, figures/oc/fig-4.2.png, figures/oc/fig-4.3.png.
 """
 # %% [markdown]
@@ -42,9 +45,9 @@ import numpy as np  # noqa: E402
 import pywarp  # noqa: E402
 from pywarp.kernels import camera as CAM  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
-from pywarp.kernels.voxel import CloudArraySettings, noise_volume  # noqa: E402
 
-EXTENT = (100.0, 60.0, 100.0)  # box of every volume [m]; the camera looks at it from 150 m
+EXTENT = (100.0, 60.0, 100.0)  # box of every volume [m]; the camera looks at it from about 120 m
+SQUASH = 0.6  # the box's height / width: box-unit y times this is isotropic in metres
 
 
 def grid_points(n: int) -> np.ndarray:
@@ -52,6 +55,14 @@ def grid_points(n: int) -> np.ndarray:
     c = (np.arange(n, dtype=np.float32) + 0.5) / n
     z, y, x = np.meshgrid(c, c, c, indexing="ij")
     return np.stack([x, y, z], axis=-1)
+
+
+def fbm(p: np.ndarray, cells: float, seed: int, octaves: int = 5) -> np.ndarray:
+    """Perlin fBm (pywarp.equation("vc-2.21"), about [-0.7, 0.7]) at box-unit points p (..., 3), ``cells`` lattice
+    cells per box width, y squeezed by SQUASH so that the features are round in metres."""
+    q = (p * np.float32([1.0, SQUASH, 1.0])).reshape(-1, 3)
+    n = pywarp.equation("vc-2.21")(q[:, 0], q[:, 1], q[:, 2], octaves, float(cells), seed)
+    return np.asarray(n, np.float32).reshape(p.shape[:-1])
 
 
 def to_u8(density: np.ndarray) -> np.ndarray:
@@ -85,7 +96,7 @@ def metaball_field(n: int, seed: int = 3, count: int = 12) -> np.ndarray:
 # %%
 def ellipsoid_opacity(p: np.ndarray, centre, radii, texture: np.ndarray) -> np.ndarray:
     rel = (p - np.float32(centre)).reshape(-1, 3).astype(np.float32)
-    op = pywarp.equation("oc-4.3")(rel, np.float32(radii), texture.reshape(-1), 0.2, 0.3)
+    op = pywarp.equation("oc-4.3")(rel, np.float32(radii), texture.reshape(-1), 0.25, 0.25)
     return np.asarray(op).reshape(p.shape[:3])
 
 
@@ -96,10 +107,10 @@ def render_volume(density: np.ndarray, width: int, height: int) -> np.ndarray:
     # 30 m for a ground seen from 150 m
     values["sun"] = V.sun_direction(35.0, 110.0)
     values["field_size"] = 30.0
-    values["tau_per_voxel"] = 0.15  # thinner than the flight scene's 0.35: the inner structure shows
+    values["tau_per_voxel"] = 0.3  # a little thinner than the flight scene's 0.35: holes and turrets read
     vs = V.VolumeSet([V.PlacedVolume(density, (-EXTENT[0] / 2, 40.0, -EXTENT[2] / 2), EXTENT)])
     vs.compute_light(values)
-    eye = np.array([0.0, 85.0, 150.0])
+    eye = np.array([0.0, 80.0, 118.0])
     cam = CAM.camera_look_at(eye, np.array([0.0, 68.0, 0.0]), (0.0, 1.0, 0.0), math.radians(45.0), width / height,
                              0.1, 1e5)
     return V.render(vs, values, cam, width, height)
@@ -122,26 +133,24 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     n = 32 if quick else 64
     w, h = (160, 100) if quick else (480, 300)
-    raw = noise_volume(CloudArraySettings(size=n, seed=3))
-    # the noise array is smooth and narrow around its mean: stretched to mean 0.5, standard deviation 0.2, so that
-    # the texture shows (the array's interior; its zero border would dominate the statistics)
-    core = raw[2:-2, 2:-2, 2:-2]
-    noise = np.clip(0.5 + 0.2 * (raw - core.mean()) / core.std(), 0.0, 1.0).astype(np.float32)
     p = grid_points(n)
     written = []
 
-    # fig 4.1: the metaball base, and the base covered by noise
+    # fig 4.1: the metaball base, and the base covered by fractal noise (the threshold displaced by it)
     field = metaball_field(n)
     base = np.clip((field - 0.35) / 0.35, 0, 1)
-    covered = base * np.clip((noise - 0.4) / 0.25, 0, 1)
+    covered = np.where(field > 0, np.clip((field - 0.45 + 1.5 * fbm(p, 4.0, 3, 4)) / 0.2, 0, 1), 0.0)
     img = np.concatenate([render_volume(to_u8(base), w, h), render_volume(to_u8(covered), w, h)], axis=1)
-    written.append(save(img, "metaball cloud base (12 sources, threshold 0.35)  |  the base covered by value noise",
+    written.append(save(img, "metaball cloud base (12 sources, threshold 0.35)  |  the base covered by fractal noise",
                         out_dir / "fig-4.1.png"))
+
+    # the texturing function of the ellipsoids: a high-contrast fBm in [0, 1]
+    noise = np.clip(0.5 + 1.0 * fbm(p, 4.0, 5), 0.0, 1.0).astype(np.float32)
 
     # fig 4.2: one textured ellipsoid
     one = ellipsoid_opacity(p, (0.5, 0.5, 0.5), (0.42, 0.26 / 0.6, 0.34), noise)
     written.append(save(render_volume(to_u8(one), w, h), "one ellipsoid: noise texture, Gardner translucency "
-                                                         "(T1 0.2, D 0.3)", out_dir / "fig-4.2.png"))
+                                                         "(T1 0.25, D 0.25)", out_dir / "fig-4.2.png"))
 
     # fig 4.3: several ellipsoids joined
     parts = [((0.5, 0.45, 0.5), (0.30, 0.30, 0.26)), ((0.28, 0.38, 0.52), (0.20, 0.22, 0.18)),
