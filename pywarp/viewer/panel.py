@@ -5,7 +5,8 @@ text (doc, unit, domain, default, the reason for the default, what a change inva
 ImGui, so that the panel can be tested without a window. :func:`draw` draws the rows with ImGui and returns the
 changes the user made.
 
-Which widget: a bounded float is a slider (a drag field where the range is unbounded), a bounded int a slider (a
+Which widget: a bounded float is a slider (logarithmic from 0 to far beyond its default; a drag field where the range
+is unbounded or very wide), a bounded int a slider (a
 power-of-two field a combo of the powers of two; an odd one steps by 2), a bool a checkbox, a choice a combo, a free
 string a text field (applied on Enter), a fixed-length tuple of floats one field per item; an optional value has an
 "auto" checkbox. A ``mapping`` field (e.g. clouds' ``advanced``) is shown read-only. When a change applies:
@@ -23,6 +24,10 @@ from ..core.params import Param, specs
 APPLY_ON_RELEASE = ("textures", "size", "device")
 #: integer ranges up to this span get a slider; wider ones an input field
 SLIDER_INT_SPAN = 4096
+#: float ranges up to this span get a slider; wider ones (e.g. a camera position in +-1000 km) a drag field
+SLIDER_FLOAT_SPAN = 1000.0
+#: a slider from lo >= 0 to at least this many times its default is logarithmic (e.g. an altitude of 0.3 in [0, 1000])
+LOG_RATIO = 100.0
 #: widget kinds (Row.widget)
 WIDGETS = ("slider_float", "drag_float", "slider_int", "input_int", "pow2_combo", "checkbox", "combo", "text",
            "floats", "readonly")
@@ -42,6 +47,7 @@ class Row:
     choices: tuple
     help: str
     live: bool
+    log: bool = False
 
     @property
     def name(self) -> str:
@@ -84,13 +90,16 @@ def row(p: Param) -> Row:
         else:
             widget = "input_int"
     elif k == "float":
-        widget = "slider_float" if (lo is not None and hi is not None) else "drag_float"
+        bounded = lo is not None and hi is not None and hi - lo <= SLIDER_FLOAT_SPAN
+        widget = "slider_float" if bounded else "drag_float"
+        d = p.default if isinstance(p.default, (int, float)) else 0.0
+        log = bounded and lo >= 0.0 and d > 0.0 and hi >= LOG_RATIO * d
     elif k == "floats":
         widget = "floats"
     else:
         widget = "readonly"
     return Row(spec=p, widget=widget, label=label, lo=lo, hi=hi, choices=choices, help=_help(p),
-               live=p.invalidates not in APPLY_ON_RELEASE)
+               live=p.invalidates not in APPLY_ON_RELEASE, log=k == "float" and log)
 
 
 def rows(settings_class, exclude=()) -> list[Row]:
@@ -147,10 +156,14 @@ def draw_row(imgui, r: Row, value, state: dict):
     elif r.widget == "input_int":
         changed, new = imgui.input_int(r.label + key, int(pending))
     elif r.widget == "slider_float":
-        changed, new = imgui.slider_float(r.label + key, float(pending), float(r.lo), float(r.hi), "%.4g")
+        flags = imgui.SliderFlags_.logarithmic.value if r.log else 0
+        changed, new = imgui.slider_float(r.label + key, float(pending), float(r.lo), float(r.hi), "%.4g", flags)
     elif r.widget == "drag_float":
+        lo = -math.inf if r.lo is None else r.lo
+        hi = math.inf if r.hi is None else r.hi
         changed, new = imgui.drag_float(r.label + key, float(pending), _drag_speed(r, float(pending)), 0.0, 0.0,
                                         "%.4g")
+        new = min(max(new, lo), hi)
     elif r.widget == "text":
         buf = state.get("text_" + p.name, str(value))
         changed_t, buf = imgui.input_text(r.label + key, buf, imgui.InputTextFlags_.enter_returns_true.value)

@@ -528,11 +528,14 @@ def run_headless(session: Session, *, seconds: float | None = None, ui_hz: float
 
 class Benchmark:
     """The viewer's benchmark mode (``pywarp view SCENE --benchmark SECONDS``): the controls' ``benchmark_keys`` are
-    held (a steady camera motion) and the frame counter counts the frames shown during ``seconds`` after a warm-up
-    (the technique made, the kernels compiled, the preview scale settled). Driven by the window or headless."""
+    held (a steady camera motion), time plays where the scene has a time field (clouds: the wind), and the frame
+    counter counts the frames shown during ``seconds`` after a warm-up (the technique made, the kernels compiled, the
+    preview scale settled). Driven by the window or headless."""
 
     def __init__(self, session: Session, seconds: float, warmup_s: float = 3.0):
         self.session = session
+        if session.scene.time_field:
+            session.time_playing = True
         self.seconds = float(seconds)
         self.warmup_s = float(warmup_s)
         self.t_start = None
@@ -554,6 +557,7 @@ class Benchmark:
             self.t_measure = now
             self.n0 = len(s.stats.shown)
             self.ui0 = s.stats.ui_frames
+            self.v0 = s.version
         if self.t_measure is not None and now - self.t_measure >= self.seconds:
             self.done = True
             self.t_end = now
@@ -578,7 +582,8 @@ class Benchmark:
             "frame_ms_p95": round(float(np.percentile(render, 95)) * 1e3, 2),
             "ui_fps": round((s.stats.ui_frames - self.ui0) / elapsed, 1) if elapsed > 0 else 0.0,
             "preview_sizes": sizes, "preview_scale": s.worker.scale,
-            "keys": sorted(s.controls.benchmark_keys), "cores": os.cpu_count(),
+            "keys": sorted(s.controls.benchmark_keys), "time_playing": s.time_playing,
+            "moved": s.version != self.v0, "cores": os.cpu_count(),
             "target_fps": target, "meets_target": None if target is None else fps >= target,
         }
 
@@ -587,10 +592,12 @@ def report(result: dict) -> str:
     tgt = result["target_fps"]
     verdict = "" if tgt is None else f" (target >= {tgt:g}: {'met' if result['meets_target'] else 'NOT met'})"
     return (f"pywarp view {result['scene']} --benchmark: {result['fps']:.1f} frames/s{verdict} over "
-            f"{result['seconds']:.1f} s while moving ({'+'.join(result['keys']) or 'no keys'}), "
+            f"{result['seconds']:.1f} s while moving ({'+'.join(result['keys']) or 'no keys'}"
+            f"{', time playing' if result['time_playing'] else ''}), "
             f"{result['width']}x{result['height']} window, previews {result['preview_sizes']}, "
             f"render {result['frame_ms_mean']:.1f} ms mean / {result['frame_ms_p95']:.1f} ms p95, "
             f"UI {result['ui_fps']:.0f} frames/s, {result['cores']} cores"
+            f"{'' if result['moved'] else ' -- NOTHING MOVED: the controls ignored the benchmark keys'}"
             f"{'' if result['window'] else ', no window'}")
 
 

@@ -23,6 +23,9 @@ def test_every_setting_has_a_row_with_unit_range_and_help(name):
         assert r.live == (p.invalidates not in P.APPLY_ON_RELEASE)
         if r.widget in ("slider_float", "slider_int"):
             assert (r.lo, r.hi) == (float(p.lo), float(p.hi))
+        if p.kind == "float":
+            narrow = p.lo is not None and p.hi is not None and p.hi - p.lo <= P.SLIDER_FLOAT_SPAN
+            assert r.widget == ("slider_float" if narrow else "drag_float")
         if p.choices:
             assert r.widget == "combo" and r.choices == tuple(p.choices)
         kind_widgets = {"bool": {"checkbox"}, "str": {"combo", "text"}, "mapping": {"readonly"},
@@ -41,7 +44,10 @@ def test_clouds_rows():
     assert not cov.live  # regenerates the weather map: applied when the slider is released
     sun = rows["sun_elevation_deg"]
     assert sun.widget == "slider_float" and sun.live and sun.label == "sun_elevation_deg [deg]"
-    assert rows["camera_x_km"].widget == "drag_float"  # unbounded
+    assert rows["earth_radius_km"].widget == "drag_float"  # unbounded above
+    alt = rows["camera_altitude_km"]
+    assert alt.widget == "slider_float" and alt.log  # 0.3 km in [0, 1000]: logarithmic
+    assert not sun.log
     assert rows["base_size"].widget == "pow2_combo" and rows["base_size"].choices == (4, 8, 16, 32, 64, 128, 256,
                                                                                       512)
     assert rows["sky"].widget == "combo" and rows["sky"].choices == ("preetham", "gradient")

@@ -153,4 +153,5 @@ def test_benchmark_mode_counts_the_frames_shown(clouds, small_settings):
         session.close()
     assert r["scene"] == "clouds" and r["frames"] > 0 and r["fps"] > 0 and r["target_fps"] == 20.0
     assert r["keys"] == sorted(S.FreeFlyControls.benchmark_keys) and r["window"] is False
+    assert r["moved"] and r["time_playing"]  # clouds: the camera circles and the wind blows
     assert set(r["preview_sizes"]) and all("x" in k for k in r["preview_sizes"])
