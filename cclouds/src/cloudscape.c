@@ -90,6 +90,16 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
 }
 
 static int finite_pos(float v) { return v > 0.0f && v < INFINITY; }
+
+/* The texture-coordinate bound of the check: every coordinate the density computes ((position + offset) / scale, in
+ * texels) must stay below CCL_CLOUDSCAPE_MAX_TEXCOORD = 2^23, where float32 keeps no fraction to interpolate with
+ * (the samplers return NaN from there on). Evaluated in double, so that the bound itself cannot overflow. */
+static int texcoord_ok(double extent_km, double offset_km, float scale_km, int size)
+{
+    return (extent_km + offset_km) / (double)scale_km * (double)size < (double)CCL_CLOUDSCAPE_MAX_TEXCOORD;
+}
+
+static double dabs(float v) { return v < 0.0f ? -(double)v : (double)v; }
 static int finite_nonneg(float v) { return v >= 0.0f && v < INFINITY; }
 static int is_pow2(int n) { return n >= 1 && (n & (n - 1)) == 0; }
 
@@ -147,11 +157,46 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (t->detail == NULL || !is_pow2(t->detail_size)) return bad(out_field, "detail");
     if (t->curl == NULL || !is_pow2(t->curl_size)) return bad(out_field, "curl");
     if (t->weather == NULL || !is_pow2(t->weather_size)) return bad(out_field, "weather");
+    {
+        /* every position the density samples lies inside the outer sphere: |pos_i| <= |centre_i| + r_outer per
+         * axis; the detail lookup adds the curl displacement (|curl| <= CCL_CLOUDSCAPE_MAX_CURL) and the offset */
+        const double r = (double)p->layer.r_outer, ex = dabs(p->layer.centre.x) + r,
+                     ey = dabs(p->layer.centre.y) + r, ez = dabs(p->layer.centre.z) + r;
+        const double curl = (double)CCL_CLOUDSCAPE_MAX_CURL * (double)p->curl_strength_km;
+        if (!(ex < INFINITY && ey < INFINITY && ez < INFINITY)) return bad(out_field, "layer");
+        if (!(texcoord_ok(ex, 0.0, p->base_scale_km, t->base_size) &&
+              texcoord_ok(ey, 0.0, p->base_scale_km, t->base_size) &&
+              texcoord_ok(ez, 0.0, p->base_scale_km, t->base_size)))
+            return bad(out_field, "base_scale_km");
+        if (!(texcoord_ok(ex, 0.0, p->curl_scale_km, t->curl_size) &&
+              texcoord_ok(ez, 0.0, p->curl_scale_km, t->curl_size)))
+            return bad(out_field, "curl_scale_km");
+        if (!(texcoord_ok(ex, 0.0, p->weather_scale_km, t->weather_size) &&
+              texcoord_ok(ez, 0.0, p->weather_scale_km, t->weather_size)))
+            return bad(out_field, "weather_scale_km");
+        if (!(texcoord_ok(ex, dabs(p->weather_offset[0]), p->weather_scale_km, t->weather_size) &&
+              texcoord_ok(ez, dabs(p->weather_offset[1]), p->weather_scale_km, t->weather_size)))
+            return bad(out_field, "weather_offset");
+        if (!(texcoord_ok(ex, 0.0, p->detail_scale_km, t->detail_size) &&
+              texcoord_ok(ey, 0.0, p->detail_scale_km, t->detail_size) &&
+              texcoord_ok(ez, 0.0, p->detail_scale_km, t->detail_size)))
+            return bad(out_field, "detail_scale_km");
+        if (!(texcoord_ok(ex, curl, p->detail_scale_km, t->detail_size) &&
+              texcoord_ok(ez, curl, p->detail_scale_km, t->detail_size)))
+            return bad(out_field, "curl_strength_km");
+        if (!(texcoord_ok(ex, curl + dabs(p->detail_offset[0]), p->detail_scale_km, t->detail_size) &&
+              texcoord_ok(ey, dabs(p->detail_offset[1]), p->detail_scale_km, t->detail_size) &&
+              texcoord_ok(ez, curl + dabs(p->detail_offset[2]), p->detail_scale_km, t->detail_size)))
+            return bad(out_field, "detail_offset");
+    }
     if (sky == NULL) return bad(out_field, "sky");
     if (!(sky->kind == CCL_SKY_GRADIENT || sky->kind == CCL_SKY_PREETHAM)) return bad(out_field, "sky.kind");
     {
-        float n2 = sky->sun[0] * sky->sun[0] + sky->sun[1] * sky->sun[1] + sky->sun[2] * sky->sun[2];
-        if (!(fabsf(n2 - 1.0f) < 1e-3f)) return bad(out_field, "sky.sun");
+        /* | |sun| - 1 | <= 1e-3, the tolerance of the other unit-vector checks (registry UNIT_TOL); the march clamps
+         * dot(d, sun) to [-1, 1], the domain of the phase function it feeds */
+        const double n = sqrt((double)sky->sun[0] * sky->sun[0] + (double)sky->sun[1] * sky->sun[1] +
+                              (double)sky->sun[2] * sky->sun[2]);
+        if (!(fabs(n - 1.0) <= 1e-3)) return bad(out_field, "sky.sun");
     }
     return CCL_OK;
 }
@@ -177,6 +222,11 @@ void ccl_cloudscape_sample_bilinear_wrap(const float *tex, int size_mask, float 
     float fsize = (float)n, tx, ty;
     int c;
     CCL_REQUIRE(tex != NULL && out_rgba != NULL && size_mask >= 0);
+    if (!(fabsf(u * fsize) < 8388608.0f && fabsf(v * fsize) < 8388608.0f)) {
+        /* outside the domain |uv * size| < 2^23 (or NaN): NaN, never a float -> int conversion of such a value */
+        for (c = 0; c < 4; ++c) out_rgba[c] = NAN;
+        return;
+    }
     axis2(u * fsize, mask, &x0, &x1, &tx);
     axis2(v * fsize, mask, &y0, &y1, &ty);
     for (c = 0; c < 4; ++c) {
@@ -243,6 +293,9 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
         n = p->adaptive_samples ? ccl_raymarch_view_sample_count(dir.y, p->samples_min, p->samples_max)
                                 : p->samples_max;
         cos_theta = ccl_vec3_dot(dir, to_sun);
+        /* |d| and |to_sun| are 1 only to within rounding (and the check's tolerance): keep the phase function's
+         * argument in its domain [-1, 1] */
+        cos_theta = cos_theta > 1.0f ? 1.0f : (cos_theta < -1.0f ? -1.0f : cos_theta);
         if (ccl_raymarch_interval(t0, t1, n, &t_start, &dt)) {
             for (i = 0; i < n; ++i) {
                 float precip, rho, h, d_light = 0.0f, a, e;

@@ -398,10 +398,20 @@ float ccl_noise_fbm_worley3(float x, float y, float z, int32_t octaves, int32_t 
 
 /* ---- curl noise ------------------------------------------------------------------------------------------------ */
 
+/* The finite-difference step actually used at coordinate c: max(h, |c| 2^-22). |c| 2^-22 is at least two float32
+ * ulps of c, so c + h and c - h stay distinct (and the difference quotient finite) even where h is below half an ulp
+ * of c; for the default h = 2^-8 it only takes over beyond |c| = 2^14, outside the texture generator's range. */
+static float fd_step(float c, float h)
+{
+    const float hc = fabsf(c) * 2.384185791015625e-07f; /* 2^-22 */
+    return hc > h ? hc : h;
+}
+
 /* Central difference of perlin3 along `axis` (0, 1, 2) at (x, y, z). */
 static float dnoise(const uint8_t *perm, int32_t period, float x, float y, float z, int axis, float h)
 {
     float xp = x, yp = y, zp = z, xm = x, ym = y, zm = z, d;
+    h = fd_step(axis == 0 ? x : (axis == 1 ? y : z), h);
     if (axis == 0) {
         xp = x + h;
         xm = x - h;
@@ -484,17 +494,18 @@ float ccl_noise_curl_property(float x, float y, float z, uint32_t seed, int32_t 
     for (i = 0; i < 3; ++i) {
         float px = x, py = y, pz = z, mx = x, my = y, mz = z, d;
         ccl_vec3 vp, vm;
+        const float hi = fd_step(i == 0 ? x : (i == 1 ? y : z), h);
         if (i == 0) {
-            px = x + h;
-            mx = x - h;
+            px = x + hi;
+            mx = x - hi;
             d = px - mx;
         } else if (i == 1) {
-            py = y + h;
-            my = y - h;
+            py = y + hi;
+            my = y - hi;
             d = py - my;
         } else {
-            pz = z + h;
-            mz = z - h;
+            pz = z + hi;
+            mz = z - hi;
             d = pz - mz;
         }
         vp = ccl_noise_curl3_perm(px, py, pz, perm, period, h);

@@ -17,12 +17,15 @@ float ccl_phase_rayleigh(float cos_theta)
 
 float ccl_phase_hg(float cos_theta, float g)
 {
-    float denom;
+    float a, denom;
     CCL_REQUIRE(!(cos_theta < -1.0f || cos_theta > 1.0f));
     CCL_REQUIRE(!(g <= -1.0f || g >= 1.0f));
-    /* vc-2.13: the (1 + g^2 - 2 g cos theta)^(3/2) term */
-    denom = 1.0f + g * g - 2.0f * g * cos_theta;
-    return CCL_INV_4PI_F * (1.0f - g * g) / (denom * sqrtf(denom));
+    /* vc-2.13: 1 + g^2 - 2 g cos theta written as (1 - g cos theta)^2 + g^2 (1 - cos theta)(1 + cos theta): a sum of
+     * two non-negative terms without cancellation, so the denominator stays > 0 and accurate as |g| -> 1 (the plain
+     * form rounds to 0 for g = -0.999999, cos theta = -1 and overflows); 1 - g^2 likewise as (1 - g)(1 + g). */
+    a = 1.0f - g * cos_theta;
+    denom = a * a + g * g * ((1.0f - cos_theta) * (1.0f + cos_theta));
+    return CCL_INV_4PI_F * ((1.0f - g) * (1.0f + g)) / (denom * sqrtf(denom));
 }
 
 float ccl_phase_schlick(float cos_theta, float k, ccl_variant variant)

@@ -159,10 +159,14 @@ int ccl_raymarch_view_sample_count(float dir_y, int n_min, int n_max)
 {
     float ay = fabsf(dir_y);
     float n;
-    CCL_REQUIRE(n_min >= 1 && n_min <= n_max);
+    CCL_REQUIRE(n_min >= 1 && n_min <= n_max && n_max <= CCL_RAYMARCH_MAX_VIEW_SAMPLES);
     if (!(ay < 1.0f)) ay = (ay >= 1.0f) ? 1.0f : 0.0f; /* |y| > 1 from rounding -> 1; NaN -> 0 (n_max samples) */
-    n = (float)n_max + (float)(n_min - n_max) * ay;
-    return (int)floorf(n + 0.5f);
+    n = floorf((float)n_max + (float)(n_min - n_max) * ay + 0.5f);
+    /* in [n_min, n_max] on the domain; the clamps keep a count beyond it (n_max near INT_MAX rounds up to 2^31 in
+     * float32) from reaching an overflowing float -> int conversion */
+    if (!(n < (float)n_max)) return n_max;
+    if (n < (float)n_min) return n_min;
+    return (int)n;
 }
 
 /* --- vc-A19: light-cone samples ---------------------------------------------------------------------------------- */

@@ -16,9 +16,10 @@ static int mod16(int frame)
 void ccl_reproj_pixel(int id_x, int id_y, int frame, int *out_x, int *out_y)
 {
     int f = mod16(frame);
-    CCL_REQUIRE(id_x >= 0 && id_y >= 0);
-    *out_x = id_x * CCL_REPROJ_BLOCK + f / 4;
-    *out_y = id_y * CCL_REPROJ_BLOCK + f % 4;
+    CCL_REQUIRE(id_x >= 0 && id_y >= 0 && id_x <= CCL_REPROJ_MAX_ID && id_y <= CCL_REPROJ_MAX_ID);
+    /* in unsigned arithmetic: outside the domain the result wraps instead of overflowing int (undefined) */
+    *out_x = (int)(((unsigned)id_x * (unsigned)CCL_REPROJ_BLOCK + (unsigned)(f / 4)) & 0x7FFFFFFFu);
+    *out_y = (int)(((unsigned)id_y * (unsigned)CCL_REPROJ_BLOCK + (unsigned)(f % 4)) & 0x7FFFFFFFu);
 }
 
 ccl_status ccl_reproj_grid(int width, int height, int *out_grid_w, int *out_grid_h)
@@ -168,7 +169,8 @@ ccl_status ccl_reproj_frame(const float *current, const float *previous, const f
     int x, y;
     if (!current || !previous || !reduced || !inv_view_proj_rot || !prev_view_proj || !out || out == previous)
         return CCL_EINVAL;
-    if (width < 1 || height < 1 || channels < 1 || neighbourhood < 1 || neighbourhood % 2 == 0 || !(r_inner > 0.0f))
+    if (width < 1 || height < 1 || channels < 1 || neighbourhood < 1 || neighbourhood % 2 == 0 ||
+        neighbourhood > CCL_REPROJ_MAX_NEIGHBOURHOOD || !(r_inner > 0.0f))
         return CCL_EINVAL;
     for (y = 0; y < height; ++y)
         for (x = 0; x < width; ++x)

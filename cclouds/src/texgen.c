@@ -420,8 +420,11 @@ void ccl_texgen_sample_trilinear_wrap(const float *tex, int32_t size_mask, float
     int c;
     CCL_REQUIRE(tex != NULL && size_mask >= 0 && ((uint32_t)size_mask & ((uint32_t)size_mask + 1u)) == 0u);
     CCL_REQUIRE(out_r != NULL && out_g != NULL && out_b != NULL && out_a != NULL);
-    CCL_REQUIRE(!(fabsf(px * fsize) >= 8388608.0f || fabsf(py * fsize) >= 8388608.0f ||
-                  fabsf(pz * fsize) >= 8388608.0f));
+    if (!(fabsf(px * fsize) < 8388608.0f && fabsf(py * fsize) < 8388608.0f && fabsf(pz * fsize) < 8388608.0f)) {
+        /* outside the domain |p * size| < 2^23 (or NaN): NaN, and no float -> int conversion of such a value */
+        *out_r = *out_g = *out_b = *out_a = NAN;
+        return;
+    }
     axis(px, fsize, mask, &x0, &x1, &tx);
     axis(py, fsize, mask, &y0, &y1, &ty);
     axis(pz, fsize, mask, &z0, &z1, &tz);

@@ -34,7 +34,8 @@ from ..kernels import reproj as RP  # noqa: E402
 from ..kernels import sky as S  # noqa: E402
 from . import textures as T  # noqa: E402
 from .settings import SKIES, CloudscapeSettings  # noqa: E402,F401  (re-exported)
-from .cparams import COVERAGE_THRESHOLDS, JITTERS, c_params, check_params, param_values  # noqa: E402,F401
+from .cparams import (COVERAGE_THRESHOLDS, JITTERS, c_params, check_params, checked_values,  # noqa: E402,F401
+                      param_values)
 
 
 
@@ -214,7 +215,7 @@ class CloudscapeTechnique:
             self.textures = RenderTextures.generate(self.settings, self.generator)
         if self.sky is None:
             self.sky = make_sky(self.settings)
-        self.params = warp_params(param_values(self.settings))
+        self.params = warp_params(checked_values(self.settings))
         self.resize(self.settings.width, self.settings.height)
 
     def update(self, **changes) -> None:
@@ -235,7 +236,7 @@ class CloudscapeTechnique:
                 self.sky = make_sky(new)  # the sky kind may have changed
             else:
                 self.sky.update(new)  # a user's own sky model
-        self.params = warp_params(param_values(new))
+        self.params = warp_params(checked_values(new))
         if stale & {"size", "device"}:
             self.resize(new.width, new.height)
 
@@ -296,8 +297,15 @@ class CloudscapeTechnique:
         final = b["previous"]
         self._prev_camera = cam if reproj or s.reprojection else None
         self.frame += 1
+        linear = final.numpy().copy()
+        # before the encoding, which clamps (a NaN would become a black pixel): never a NaN image, not even a black one
+        bad = ~np.all(np.isfinite(linear), axis=2)
+        if bad.any():
+            ys, xs = np.nonzero(bad)
+            raise RuntimeError(f"the render produced {len(ys)} non-finite pixels (first at x={xs[0]}, y={ys[0]}); "
+                               "nothing is written")
         if not encode:
-            return final.numpy().copy()
+            return linear
         self.launcher.launch(K.encode_kernel, h, w, [final], [b["encoded"]])
         out = b["encoded"].numpy()
         if not np.all(np.isfinite(out)):

@@ -2,6 +2,8 @@
 struct, and the C check of those values (``ccl_cloudscape_check``)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..kernels import cloudscape as K
@@ -45,12 +47,41 @@ def param_values(settings) -> dict:
         if isinstance(v[name], tuple) != isinstance(value, (tuple, list)) or (
                 isinstance(value, (tuple, list)) and len(value) != len(v[name])):
             raise ValueError(f"advanced: {name} must be like {v[name]!r}, got {value!r}")
-        v[name] = tuple(value) if isinstance(value, (tuple, list)) else value
+        if isinstance(value, (tuple, list)):
+            v[name] = tuple(_c_float(f"advanced: {name}", x) for x in value)
+        elif isinstance(v[name], int):
+            v[name] = _c_int(f"advanced: {name}", value)
+        else:
+            v[name] = _c_float(f"advanced: {name}", value)
     return v
 
 
-def check_params(values: dict) -> None:
-    """Run ccl_cloudscape_check on the parameter values alone (dummy 1-texel textures, a valid sky)."""
+_F32_MAX = float(np.finfo(np.float32).max)
+
+
+def _c_int(name: str, value) -> int:
+    """A value for a C ``int`` field, validated before any conversion (no bool, no 3.5, no OverflowError)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {value!r}")
+    if not -(2 ** 31) <= int(value) <= 2 ** 31 - 1:
+        raise ValueError(f"{name} must be in [-2147483648, 2147483647] (int32), got {value!r}")
+    return int(value)
+
+
+def _c_float(name: str, value) -> float:
+    """A value for a C ``float`` field: a finite number within the float32 range."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a number, got {value!r}")
+    x = float(value)
+    if not math.isfinite(x) or abs(x) > _F32_MAX:
+        raise ValueError(f"{name} must be finite and within the float32 range, got {value!r}")
+    return x
+
+
+def check_params(values: dict, sizes: dict | None = None) -> None:
+    """Run ccl_cloudscape_check on the parameter values (a valid sky; textures of edge ``sizes[name]`` for name in
+    base, detail, curl, weather, default 1: the check bounds the texture coordinates, which grow with the edge, and
+    reads no texel, so a 4-float dummy stands for every texture). Raises ValueError naming the first bad field."""
     from ..core.binding import ffi, lib
 
     f, lb = ffi(), lib()
@@ -58,14 +89,30 @@ def check_params(values: dict) -> None:
     tex = f.new("ccl_cloud_textures *")
     for name in ("base", "detail", "curl", "weather"):
         setattr(tex, name, f.cast("const float *", f.from_buffer("float[]", dummy)))
-        setattr(tex, f"{name}_size", 1)
+        setattr(tex, f"{name}_size", int((sizes or {}).get(name, 1)))
     sky = f.new("ccl_cloudscape_sky *")
     sky.kind = lb.CCL_SKY_GRADIENT
     sky.sun[1] = 1.0
     out = f.new("const char **")
     if lb.ccl_cloudscape_check(c_params(values), tex, sky, out) != 0:
         name = f.string(out[0]).decode()
-        raise ValueError(f"{name} is out of range (ccl_cloudscape_check), got {values.get(name)!r}")
+        shown = values.get(name, values.get(name.split(".")[0]))
+        raise ValueError(f"{name} is out of range (ccl_cloudscape_check: with the texture sizes "
+                         f"{dict(sizes or {})}, texture coordinates must stay below 2^23 texels), got {shown!r}")
+
+
+def texture_sizes(settings) -> dict:
+    """The texture edges of ``settings`` by ``ccl_cloud_textures`` field name."""
+    return {"base": settings.base_size, "detail": settings.detail_size, "curl": settings.curl_size,
+            "weather": settings.weather_size}
+
+
+def checked_values(settings) -> dict:
+    """:func:`param_values` of ``settings``, checked by ccl_cloudscape_check at the settings' texture sizes (the
+    texture-coordinate bound depends on them); ValueError names the first bad field."""
+    values = param_values(settings)
+    check_params(values, texture_sizes(settings))
+    return values
 
 
 def c_params(values: dict):

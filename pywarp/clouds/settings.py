@@ -32,6 +32,20 @@ EARTH_RADIUS_KM = 6371.0
 LAYER_BASE_KM = 1.5
 LAYER_TOP_KM = 4.0
 
+#: Angles (azimuths, headings, wind direction) are taken in [-360, 360] degrees: every direction has a value there,
+#: and larger magnitudes only lose float32 precision (at 1e300 the sine is NaN and the image black).
+_ANGLE = dict(lo=-360.0, hi=360.0)
+_ANGLE_DOC = "; in [-360, 360] (every direction has a value there; larger angles only lose precision)"
+#: |time_s| <= 3 hours (see the time_s doc): at the highest wind speed (1000 km/h) the wind offsets then stay below
+#: 4,500 km, and every texture coordinate below ccl_cloudscape_check's 2^23 texels at any texture size and the
+#: default scales.
+MAX_TIME_S = 10800.0
+#: |camera x|, |camera z| <= 1000 km: the altitude is measured above the origin's ground, and 1000 km away the Earth
+#: sphere (vc-A14) lies 78 km below that plane, so the "altitude" would no longer describe where the camera is;
+#: float32 positions still resolve 6 cm there.
+MAX_CAMERA_KM = 1000.0
+_CAMERA_DOC = "; within 1000 km of the origin (the altitude is measured above the origin's ground)"
+
 SKIES = ("preetham", "gradient")
 JITTER_NAMES = ("tilt", "offset", "none")  # ccl_jitter_mode order
 COVERAGE_THRESHOLD_NAMES = ("coverage", "one_minus_coverage")  # ccl_coverage_threshold order
@@ -229,9 +243,9 @@ def _samples_max_check(obj, name, v):
 
 def _advanced_check(obj, name, v):
     if v:
-        from .cparams import check_params, param_values  # the C check of ccl_cloudscape_params
+        from .cparams import checked_values  # the C check of ccl_cloudscape_params, at the texture sizes
 
-        check_params(param_values(obj))
+        checked_values(obj)
 
 
 _NOTHING = "nothing"
@@ -257,9 +271,10 @@ class CloudscapeSettings(Settings):
                                          "the gradient sky's lighting is defined for a sun below it)",
                                      reason="35: a mid-morning sun, the sky in view blue and the clouds lit from the "
                                             "side (sunlit tops, grey bases)")
-    sun_azimuth_deg: float = param(150.0, unit="deg", invalidates="sky", group="sky", cli="--sun-azimuth",
+    sun_azimuth_deg: float = param(150.0, unit="deg", **_ANGLE, invalidates="sky", group="sky",
+                                   cli="--sun-azimuth",
                                    doc="sun azimuth, 0 = -z (straight ahead of the default camera), positive towards "
-                                       "+x",
+                                       "+x" + _ANGLE_DOC,
                                    reason="150: behind the viewer's right shoulder")
     turbidity: float = param(2.5, lo=2.0, hi=10.0, invalidates="sky", group="sky",
                              doc="Preetham turbidity (the range of Preetham's fit)", reason="2.5: a clear day")
@@ -291,12 +306,15 @@ class CloudscapeSettings(Settings):
     camera_altitude_km: float = param(0.3, unit="km", lo=0.0, hi=1000.0, group="camera", cli="--altitude",
                                       doc="camera altitude above the ground (the cloud layer: 1.5-4 km)",
                                       reason="0.3: below the layer, the cloud bases overhead")
-    camera_x_km: float = param(0.0, unit="km", group="camera", cli="--camera-x", doc="camera position x",
-                               reason="0: the origin")
-    camera_z_km: float = param(0.0, unit="km", group="camera", cli="--camera-z", doc="camera position z",
-                               reason="0: the origin")
-    camera_yaw_deg: float = param(0.0, unit="deg", group="camera", cli="--yaw",
-                                  doc="camera heading, 0 = -z, positive towards +x", reason="0: looking along -z")
+    camera_x_km: float = param(0.0, unit="km", lo=-MAX_CAMERA_KM, hi=MAX_CAMERA_KM, group="camera",
+                               cli="--camera-x",
+                               doc="camera position x" + _CAMERA_DOC, reason="0: the origin")
+    camera_z_km: float = param(0.0, unit="km", lo=-MAX_CAMERA_KM, hi=MAX_CAMERA_KM, group="camera",
+                               cli="--camera-z",
+                               doc="camera position z" + _CAMERA_DOC, reason="0: the origin")
+    camera_yaw_deg: float = param(0.0, unit="deg", **_ANGLE, group="camera", cli="--yaw",
+                                  doc="camera heading, 0 = -z, positive towards +x" + _ANGLE_DOC,
+                                  reason="0: looking along -z")
     camera_pitch_deg: float = param(20.0, unit="deg", lo=-89.0, hi=89.0, group="camera", cli="--pitch",
                                     doc="camera pitch above the horizon",
                                     reason="20: the horizon near the bottom edge, the cloud bases overhead")
@@ -316,10 +334,14 @@ class CloudscapeSettings(Settings):
                                   doc="wind speed; time moves the weather map and the detail noise (the detail at "
                                       "1.5x the speed, plus a slow rise: billowing)",
                                   reason="30: a fresh breeze, visible motion over seconds of a fly-through")
-    wind_direction_deg: float = param(60.0, unit="deg", group="wind", cli="--wind-direction",
-                                      doc="direction the wind blows towards, 0 = -z",
+    wind_direction_deg: float = param(60.0, unit="deg", **_ANGLE, group="wind", cli="--wind-direction",
+                                      doc="direction the wind blows towards, 0 = -z" + _ANGLE_DOC,
                                       reason="60: across the default view, so the motion is visible")
-    time_s: float = param(0.0, unit="s", group="wind", cli="--time", doc="time: the wind moves the clouds",
+    time_s: float = param(0.0, unit="s", lo=-MAX_TIME_S, hi=MAX_TIME_S, group="wind", cli="--time",
+                          doc="time: the wind moves the clouds. Within 3 hours either way: the model moves one "
+                              "frozen cloud field with the wind, which stops making sense over longer spans (cumulus "
+                              "form and dissolve within an hour), and 3 hours at the highest wind speed keep the "
+                              "texture coordinates inside ccl_cloudscape_check's bound (2^23 texels)",
                           reason="0: the weather map as generated")
     adaptive_samples: bool = param(True, group="quality",
                                    doc="adaptive view-sample count, 64 at the zenith to 128 at the horizon (vc-A18)",

@@ -42,7 +42,6 @@ from functools import lru_cache
 import io
 import json
 import os
-import tempfile
 import threading
 import warnings
 from collections import OrderedDict
@@ -64,6 +63,24 @@ _MAGIC = b"PWTEX01\n"  # 8 bytes, then the 32-byte SHA-256 of the payload, then 
 
 class TextureCacheWarning(UserWarning):
     """A cache entry was unreadable or corrupt (it is regenerated) or the cache directory is not writable."""
+
+
+#: Longest curl vector a curl texture may hold (CCL_CLOUDSCAPE_MAX_CURL: ccl_cloudscape_check bounds the detail
+#: lookup's displacement with it; generated curl noise stays below 2.5 lattice units).
+MAX_CURL = 16.0
+
+
+def texture_problem(kind: str, arr: np.ndarray) -> str | None:
+    """Why ``arr`` is not a valid ``kind`` texture (None when it is): every value finite; base, detail and weather
+    values in [0, 1]; curl components within +-MAX_CURL. Checked on every texture generated and every cache entry
+    read, so a texture with NaN or out-of-range values is never cached nor rendered."""
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        return f"{int(np.count_nonzero(bad))} non-finite values"
+    lo, hi = (-MAX_CURL, MAX_CURL) if kind == "curl_noise" else (0.0, 1.0)
+    if arr.size and (arr.min() < lo or arr.max() > hi):
+        return f"values in [{arr.min():g}, {arr.max():g}], outside [{lo:g}, {hi:g}]"
+    return None
 
 
 # --- settings (vc-A13): declared once, with their parameter specs, in pywarp.clouds.settings ----------------------
@@ -226,6 +243,9 @@ class TextureCache:
                 arr = np.ascontiguousarray(make(), dtype=np.float32)
                 if arr.shape != tuple(settings.shape):
                     raise RuntimeError(f"generated {kind} has shape {arr.shape}, expected {settings.shape}")
+                problem = texture_problem(kind, arr)
+                if problem:  # never cached, never rendered
+                    raise RuntimeError(f"the generated {kind} texture is invalid ({problem}) for {settings!r}")
                 if self.disk:
                     self._write(kind, key, arr)
             arr.setflags(write=False)
@@ -244,15 +264,43 @@ class TextureCache:
         with self._lock:
             self._mem.clear()
 
+    @staticmethod
+    def _read_regular(path: Path, limit: int) -> bytes:
+        """The bytes of ``path`` if it is a regular file of at most ``limit`` bytes. Opened non-blocking, so that a
+        FIFO (or a link to one) does not hang the reader, and checked with fstat before reading, so that a device
+        (/dev/zero, a terminal) is never read; both raise OSError."""
+        import stat
+
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+        try:
+            st = os.fstat(fd)
+            if not stat.S_ISREG(st.st_mode):
+                raise OSError(f"not a regular file (mode {stat.filemode(st.st_mode)})")
+            if st.st_size > limit:
+                raise OSError(f"{st.st_size} bytes, more than the {limit} an entry of this shape takes")
+            chunks, left = [], limit + 1
+            while left > 0:
+                chunk = os.read(fd, min(left, 1 << 24))
+                if not chunk:
+                    break
+                chunks.append(chunk)
+                left -= len(chunk)
+            return b"".join(chunks)
+        finally:
+            os.close(fd)
+
     def _read(self, kind: str, key: str, shape: tuple) -> np.ndarray | None:
         path = self.path(kind, key)
+        # header + digest + .npy header (< 4 KiB) + the float32 data
+        limit = len(_MAGIC) + 32 + 4096 + 4 * int(np.prod(shape))
         try:
-            data = path.read_bytes()
+            data = self._read_regular(path, limit)
         except FileNotFoundError:
             return None
         except OSError as exc:
-            warnings.warn(f"texture cache entry {path} is unreadable ({exc}); regenerating", TextureCacheWarning,
-                          stacklevel=4)
+            self.stats["corrupt"] += 1
+            warnings.warn(f"texture cache entry {path} is unreadable ({exc.strerror or exc}); regenerating",
+                          TextureCacheWarning, stacklevel=4)
             return None
         reason = None
         if len(data) < len(_MAGIC) + 32 or data[:len(_MAGIC)] != _MAGIC:
@@ -270,38 +318,36 @@ class TextureCache:
                     if arr.dtype != np.float32 or arr.shape != tuple(shape):
                         reason = f"shape {arr.shape} / dtype {arr.dtype}, expected {tuple(shape)} float32"
                     else:
-                        return np.ascontiguousarray(arr)
+                        # a valid hash says only that the file is what was written: check the values too
+                        reason = texture_problem(kind, arr)
+                        if reason is None:
+                            return np.ascontiguousarray(arr)
         self.stats["corrupt"] += 1
         warnings.warn(f"corrupt texture cache entry {path} ({reason}); regenerating", TextureCacheWarning,
                       stacklevel=4)
         return None
 
     def _write(self, kind: str, key: str, arr: np.ndarray) -> None:
+        from ..core.output import atomic_path
+
         path = self.path(kind, key)
         buf = io.BytesIO()
         np.save(buf, arr, allow_pickle=False)
         payload = buf.getvalue()
-        tmp = None
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
-            fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(_MAGIC)
-                fh.write(hashlib.sha256(payload).digest())
-                fh.write(payload)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, path)  # atomic: readers see the old entry or the complete new one
-            tmp = None
+            # a registered temporary of pywarp.core.output: removed on any exception, Ctrl-C and SIGTERM included
+            # (and by remove_temporaries()), renamed into place atomically only when complete
+            with atomic_path(path) as tmp:
+                with open(tmp, "wb") as fh:
+                    fh.write(_MAGIC)
+                    fh.write(hashlib.sha256(payload).digest())
+                    fh.write(payload)
+                    fh.flush()
+                    os.fsync(fh.fileno())
         except OSError as exc:
             warnings.warn(f"could not write the texture cache entry {path} ({exc}); continuing without it",
                           TextureCacheWarning, stacklevel=4)
-        finally:
-            if tmp is not None:
-                try:
-                    os.unlink(tmp)
-                except OSError:
-                    pass
 
 
 _default_cache: TextureCache | None = None
@@ -400,19 +446,12 @@ class WeatherMap:
         """Save as an 8-bit RGBA PNG (values rounded to multiples of 1/255); written atomically."""
         from PIL import Image
 
+        from ..core.output import atomic_path
+
         p = Path(path)
         px = np.clip(np.rint(self.data * 255.0), 0, 255).astype(np.uint8)
-        fd, tmp = tempfile.mkstemp(dir=p.parent if str(p.parent) else ".", prefix=f".{p.name}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                Image.fromarray(px, mode="RGBA").save(fh, format="PNG")
-            os.replace(tmp, p)
-        except BaseException:
-            try:
-                os.unlink(tmp)
-            except OSError:
-                pass
-            raise
+        with atomic_path(p) as tmp:  # a registered temporary: removed on any exception, SIGTERM included
+            Image.fromarray(px, mode="RGBA").save(tmp, format="PNG")
 
 
 # --- textures for the renderer ----------------------------------------------------------------------------------------

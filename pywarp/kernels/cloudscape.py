@@ -108,6 +108,9 @@ def _axis2(x: float, mask: int):
 def sample_bilinear_wrap(tex: wp.array2d(dtype=wp.vec4), size_mask: int, u: float, v: float) -> wp.vec4:
     """Twin of ``ccl_cloudscape_sample_bilinear_wrap``: periodic 2-D RGBA ``tex[y, x]`` at texture coords (u, v)."""
     fsize = float(size_mask + 1)
+    if not (wp.abs(u * fsize) < 8388608.0 and wp.abs(v * fsize) < 8388608.0):
+        # outside the domain |uv * size| < 2^23 (or NaN): NaN, never an int() of such a value (as the C sampler)
+        return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
     x0, x1, tx = _axis2(u * fsize, size_mask)
     y0, y1, ty = _axis2(v * fsize, size_mask)
     c00 = tex[y0, x0]
@@ -175,6 +178,11 @@ def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
         if p.adaptive_samples != 0:
             n = raymarch_view_sample_count(d[1], p.samples_min, p.samples_max)
         cos_theta = wp.dot(d, to_sun)
+        # |d| and |to_sun| are 1 only to within rounding: keep the phase function's argument in [-1, 1] (as the C)
+        if cos_theta > 1.0:
+            cos_theta = 1.0
+        elif cos_theta < -1.0:
+            cos_theta = -1.0
         t_start, dt = raymarch_interval(t0, t1, n)
         if dt == dt:  # not NaN
             for i in range(n):

@@ -648,8 +648,25 @@ def noise_fbm_worley3(x: float, y: float, z: float, octaves: int, cells: int, se
 # --- curl noise (vc-2.22 .. vc-2.26, vc-A7) ------------------------------------------------------------------------
 
 @wp.func
-def _dnoise(perm: wp.array(dtype=wp.int32), period: int, x: float, y: float, z: float, axis: int, h: float) -> float:
+def _fd_step(c: float, h: float) -> float:
+    """The step actually used at coordinate c: max(h, |c| 2^-22) (two float32 ulps of c at least, so c +- h stay
+    distinct where h is below half an ulp; the C function fd_step)."""
+    hc = wp.abs(c) * 2.384185791015625e-07
+    if hc > h:
+        return hc
+    return h
+
+
+@wp.func
+def _dnoise(perm: wp.array(dtype=wp.int32), period: int, x: float, y: float, z: float, axis_: int, h_: float) -> float:
     """Central difference of noise_perlin3 along ``axis`` with the float spacing actually used."""
+    axis = axis_
+    c = z
+    if axis == 0:
+        c = x
+    elif axis == 1:
+        c = y
+    h = _fd_step(c, h_)
     xp = x
     yp = y
     zp = z
@@ -750,8 +767,9 @@ def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.in
                         variant: int) -> float:
     """vc-2.26 residual: variant 0 = nabla . v (~0, the property meant), 1 = |nabla x v| (as printed, not 0)."""
     # axis x
-    px = x + h
-    mx = x - h
+    h0 = _fd_step(x, h)
+    px = x + h0
+    mx = x - h0
     d0 = px - mx
     vp = noise_curl3(px, y, z, perm, period, h)
     vm = noise_curl3(mx, y, z, perm, period, h)
@@ -759,8 +777,9 @@ def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.in
     j10 = (vp[1] - vm[1]) / d0
     j20 = (vp[2] - vm[2]) / d0
     # axis y
-    py = y + h
-    my = y - h
+    h1 = _fd_step(y, h)
+    py = y + h1
+    my = y - h1
     d1 = py - my
     vp = noise_curl3(x, py, z, perm, period, h)
     vm = noise_curl3(x, my, z, perm, period, h)
@@ -768,8 +787,9 @@ def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.in
     j11 = (vp[1] - vm[1]) / d1
     j21 = (vp[2] - vm[2]) / d1
     # axis z
-    pz = z + h
-    mz = z - h
+    h2 = _fd_step(z, h)
+    pz = z + h2
+    mz = z - h2
     d2 = pz - mz
     vp = noise_curl3(x, y, pz, perm, period, h)
     vm = noise_curl3(x, y, mz, perm, period, h)

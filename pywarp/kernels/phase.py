@@ -39,9 +39,13 @@ def phase_rayleigh(cos_theta: float) -> float:
          references=("Henyey & Greenstein, Diffuse radiation in the galaxy, ApJ 93:70-83, 1941",))
 @wp.func
 def phase_hg(cos_theta: float, g: float) -> float:
-    """vc-2.13: Henyey-Greenstein, p = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos theta)^(3/2))."""
-    denom = 1.0 + g * g - 2.0 * g * cos_theta
-    return INV_4PI * (1.0 - g * g) / (denom * wp.sqrt(denom))
+    """vc-2.13: Henyey-Greenstein, p = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos theta)^(3/2)).
+
+    The denominator is evaluated as (1 - g cos)^2 + g^2 (1 - cos)(1 + cos) and 1 - g^2 as (1 - g)(1 + g), without
+    cancellation: finite on the whole open domain |g| < 1 (the plain form overflows at g = -0.999999, cos = -1)."""
+    a = 1.0 - g * cos_theta
+    denom = a * a + g * g * ((1.0 - cos_theta) * (1.0 + cos_theta))
+    return INV_4PI * ((1.0 - g) * (1.0 + g)) / (denom * wp.sqrt(denom))
 
 
 @declare("vc-2.15", c="ccl_phase_schlick",

@@ -46,6 +46,9 @@ LAYER_BASE_KM = 1.5
 LAYER_TOP_KM = 4.0
 VIEW_SAMPLES_ZENITH = 64
 VIEW_SAMPLES_HORIZON = 128
+#: Largest n_max of raymarch_view_sample_count (CCL_RAYMARCH_MAX_VIEW_SAMPLES): far above the renderer's 4096, far
+#: below 2^22, where n + 0.5 stops being exact in float32.
+MAX_VIEW_SAMPLES = 65536
 LIGHT_STEP_KM = 0.1
 LIGHT_CONE_ANGLE = math.radians(15.0)
 LIGHT_FAR_FACTOR = 3.0
@@ -297,9 +300,11 @@ def _count_samples(rng, n):
 
 @declare("vc-A18", c="ccl_raymarch_view_sample_count",
          args=(Arg("dir_y", "y component of the unit view direction", lo=-1.0, hi=1.0),
-               Arg("n_min", "samples at zenith/nadir", lo=1, default=VIEW_SAMPLES_ZENITH),
+               Arg("n_min", "samples at zenith/nadir (<= n_max <= MAX_VIEW_SAMPLES)", lo=1,
+                   default=VIEW_SAMPLES_ZENITH),
                # bounded below by n_min >= 1 through the cross-argument check
-               Arg("n_max", "samples at the horizon (>= n_min)", default=VIEW_SAMPLES_HORIZON)),
+               Arg("n_max", "samples at the horizon (>= n_min)", hi=MAX_VIEW_SAMPLES,
+                   default=VIEW_SAMPLES_HORIZON)),
          outputs=("n",), check=_check_counts, samples=_count_samples,
          summary="View-ray sample count N = round(mix(n_max, n_min, |dir_y|)) (64 at zenith, 128 at the horizon; the "
                  "interpolation law is our choice), int32.",
@@ -312,8 +317,13 @@ def raymarch_view_sample_count(dir_y: float, n_min: int, n_max: int) -> int:
         ay = 1.0
     if wp.isnan(ay):
         ay = 0.0
-    n = float(n_max) + float(n_min - n_max) * ay
-    return int(wp.floor(n + 0.5))
+    n = wp.floor(float(n_max) + float(n_min - n_max) * ay + 0.5)
+    # the clamps of the C function (never an overflowing int() outside the domain)
+    if not (n < float(n_max)):
+        return n_max
+    if n < float(n_min):
+        return n_min
+    return int(n)
 
 
 # --- vc-A19: light-cone samples ---------------------------------------------------------------------------------------

@@ -45,8 +45,11 @@ def _mod16(frame: int) -> int:
     return ((frame % 16) + 16) % 16
 
 
-# the pixel index 4 id + 3 must fit in int32
+# the pixel index 4 id + 3 must fit in int32 (CCL_REPROJ_MAX_ID)
 _ID_MAX = (2**31 - 1 - 3) // 4
+#: Largest vc-A27 neighbourhood (CCL_REPROJ_MAX_NEIGHBOURHOOD): a 31 px box is a blur far wider than the 4 x 4 block
+#: the reprojection fills (the thesis uses 3) and bounds the work per pixel (961 bilinear samples).
+MAX_NEIGHBOURHOOD = 31
 
 
 @declare("vc-4.1", c="ccl_reproj_pixel",
@@ -285,8 +288,8 @@ def _frame_args(current, previous, reduced, frame, camera, prev_camera, layer, n
         raise TypeError(f"layer must be a CloudLayer, got {type(layer).__name__}")
     if isinstance(neighbourhood, bool) or not isinstance(neighbourhood, (int, np.integer)):
         raise TypeError(f"neighbourhood must be an odd integer >= 1, got {neighbourhood!r}")
-    if neighbourhood < 1 or neighbourhood % 2 == 0:
-        raise ValueError(f"neighbourhood must be an odd integer >= 1, got {neighbourhood}")
+    if neighbourhood < 1 or neighbourhood % 2 == 0 or neighbourhood > MAX_NEIGHBOURHOOD:
+        raise ValueError(f"neighbourhood must be an odd integer in [1, {MAX_NEIGHBOURHOOD}], got {neighbourhood}")
     if not isinstance(history, (bool, np.bool_)):
         raise TypeError(f"history must be True or False, got {history!r}")
     for cam, name in ((camera, "camera"), (prev_camera, "prev_camera")):

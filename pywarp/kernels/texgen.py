@@ -547,6 +547,9 @@ def texgen_sample_trilinear_wrap(tex: wp.array3d(dtype=wp.vec4), size_mask: int,
     x = p[0] * fsize
     y = p[1] * fsize
     z = p[2] * fsize
+    if not (wp.abs(x) < 8388608.0 and wp.abs(y) < 8388608.0 and wp.abs(z) < 8388608.0):
+        # outside the domain |p * size| < 2^23 (or NaN): NaN, never an int() of such a value (as the C sampler)
+        return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
     ix = _axis_lo(x)
     iy = _axis_lo(y)
     iz = _axis_lo(z)

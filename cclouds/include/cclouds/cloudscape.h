@@ -44,6 +44,14 @@
 extern "C" {
 #endif
 
+/* Limits of ccl_cloudscape_check. Every texture coordinate the density computes, in texels ((world position within
+ * the outer sphere + wind offset + curl displacement) / scale * size, per axis), must stay below
+ * CCL_CLOUDSCAPE_MAX_TEXCOORD = 2^23, where float32 keeps no fraction to interpolate with (the samplers return NaN
+ * from there on). The curl texture's vectors are assumed to be at most CCL_CLOUDSCAPE_MAX_CURL long (the generated
+ * texture's are below 2.5 lattice units, vc-A11). */
+#define CCL_CLOUDSCAPE_MAX_TEXCOORD 8388608
+#define CCL_CLOUDSCAPE_MAX_CURL 16
+
 /* The four textures of the cloudscape (not owned). */
 typedef struct ccl_cloud_textures {
     const float *base;     /* base_size^3 RGBA: R Perlin-Worley, G B A inverse-Worley fBm (vc-A9) */
@@ -117,12 +125,16 @@ typedef struct ccl_cloudscape_sky {
 CCL_API void ccl_cloudscape_params_default(ccl_cloudscape_params *out);
 
 /* Validate parameters, textures and sky. Returns CCL_OK, or CCL_EINVAL and *out_field = the name of the first bad
- * field (a static string; out_field may be NULL). */
+ * field (a static string; out_field may be NULL). Besides each field's own range: the layer centre finite; the
+ * texture-coordinate bound CCL_CLOUDSCAPE_MAX_TEXCOORD for every texture at its size (reported as base_scale_km,
+ * curl_scale_km, weather_scale_km, weather_offset, detail_scale_km, curl_strength_km or detail_offset);
+ * | |sky.sun| - 1 | <= 1e-3. */
 CCL_API ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
                                         const ccl_cloudscape_sky *sky, const char **out_field);
 
 /* Bilinear sample of a periodic 2-D RGBA texture tex[y][x][4] of edge size_mask + 1 (a power of two) at texture
- * coordinates (u, v) (1 = one period, texel centres at (i + 0.5) / size), indices wrapped with & size_mask. */
+ * coordinates (u, v) (1 = one period, texel centres at (i + 0.5) / size), indices wrapped with & size_mask.
+ * Domain |u * size|, |v * size| < 2^23; outside it (or for NaN) the four outputs are NaN. */
 CCL_API void ccl_cloudscape_sample_bilinear_wrap(const float *tex, int size_mask, float u, float v, float *out_rgba);
 
 /* Cloud density at a world position (vc-A17, see above); *out_precipitation = weather-map G at the position.

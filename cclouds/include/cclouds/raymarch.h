@@ -122,9 +122,14 @@ CCL_API void ccl_raymarch_cloud_layer_default(ccl_cloud_layer *out);
 CCL_API ccl_status ccl_raymarch_cloud_layer_init(float earth_radius, float base_altitude, float top_altitude,
                                                  ccl_cloud_layer *out);
 
+/* Largest n_max of ccl_raymarch_view_sample_count: 2^16, far above the renderer's 4096 and far below 2^22, up to
+ * which n + 0.5 is exact in float32 (so the rounding never leaves [n_min, n_max]). */
+#define CCL_RAYMARCH_MAX_VIEW_SAMPLES 65536
+
 /* Number of view samples N = round(mix(n_max, n_min, |dir_y|)) = floor(n_max + (n_min - n_max) |dir_y| + 0.5).
  * Ref: vc-A18 (64 at zenith ... 128 at the horizon; the law is our choice). dir_y -> y component of the unit view
- * direction in [-1, 1]; 1 <= n_min <= n_max (thesis: 64, 128). Output in [n_min, n_max]; n_max at the horizon. */
+ * direction in [-1, 1]; 1 <= n_min <= n_max <= CCL_RAYMARCH_MAX_VIEW_SAMPLES (thesis: 64, 128). Output in
+ * [n_min, n_max]; n_max at the horizon. */
 CCL_API int ccl_raymarch_view_sample_count(float dir_y, int n_min, int n_max);
 
 /* Default light-cone kernel vector i (0..5): six fixed pseudo-random unit vectors (uniform on the sphere, drawn with

@@ -42,9 +42,15 @@ extern "C" {
 #define CCL_REPROJ_BLOCK 4
 #define CCL_REPROJ_CYCLE 16
 
+/* Largest thread index of ccl_reproj_pixel: 4 id + 3 must fit in an int. */
+#define CCL_REPROJ_MAX_ID 536870911
+/* Largest neighbourhood n of ccl_reproj_frame (n x n bilinear samples per pixel): 31 px is already a blur far wider
+ * than the 4 x 4 block the reprojection fills (vc-A27 uses 3), and bounds the work per pixel (961 samples). */
+#define CCL_REPROJ_MAX_NEIGHBOURHOOD 31
+
 /* Pixel written by thread (id_x, id_y) in frame `frame` when reprojection is on.
  * Ref: vc-4.1: f = frame mod 16, a = floor(f / 4), b = f mod 4, (x, y) = (4 id_x + a, 4 id_y + b).
- * id_x, id_y >= 0. The caller skips pixels outside the image (see ccl_reproj_grid). */
+ * 0 <= id_x, id_y <= CCL_REPROJ_MAX_ID. The caller skips pixels outside the image (see ccl_reproj_grid). */
 CCL_API void ccl_reproj_pixel(int id_x, int id_y, int frame, int *out_x, int *out_y);
 
 /* Thread grid (= reduced buffer) size for a width x height image: ceil(width / 4) x ceil(height / 4).
@@ -79,11 +85,11 @@ CCL_API int ccl_reproj_uv(const float inv_view_proj_rot[16], ccl_vec3 eye, const
  * frame, inv_view_proj_rot, eye -> current frame number and camera (ccl_camera.inv_view_proj_rot, .eye);
  * prev_view_proj -> the previous frame's camera (ccl_camera.view_proj);
  * centre, r_inner -> the inner sphere of the cloud layer;
- * neighbourhood -> odd n >= 1: the reprojected value is the mean of n x n bilinear samples one pixel apart centred on
+ * neighbourhood -> odd n in [1, CCL_REPROJ_MAX_NEIGHBOURHOOD]: the reprojected value is the mean of n x n bilinear samples one pixel apart centred on
  *                  the reprojected position (1 = exact sampling, fig 4.14a; 3 = the vc-A27 default, fig 4.14b);
  * history -> 1 to use the previous frame, 0 to use only the reduced fallback (see the choices above);
  * out      -> (height, width, channels); may be the same array as current, never previous.
- * Returns CCL_EINVAL (out untouched) for NULL pointers, sizes < 1, an even or non-positive neighbourhood,
+ * Returns CCL_EINVAL (out untouched) for NULL pointers, sizes < 1, an even, non-positive or too large neighbourhood,
  * r_inner <= 0 or NaN, or out == previous. */
 CCL_API ccl_status ccl_reproj_frame(const float *current, const float *previous, const float *reduced, int width,
                                        int height, int channels, int frame, const float inv_view_proj_rot[16],

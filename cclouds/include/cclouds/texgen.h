@@ -186,7 +186,8 @@ CCL_API ccl_status ccl_texgen_weather_map(const ccl_weather_map_settings *s, flo
  * texture (used on the textures above). tex: (size_mask + 1)^3 RGBA floats in the layout above; size_mask = size - 1
  * with size a power of two (indices wrap with & size_mask); (px, py, pz): texture coordinates, 1 = one texture period,
  * texel centres at (i + 0.5) / size. Shift-invariant bit for bit: sampling p and p + 1 (both exact) gives the same
- * result. Weights depend only on frac(p * size), computed exactly; |p * size| < 2^23. Writes R, G, B, A. */
+ * result. Weights depend only on frac(p * size), computed exactly. Domain |p * size| < 2^23 on every axis; outside it (or
+ * for a NaN coordinate) R, G, B, A are NaN. Writes R, G, B, A. */
 CCL_API void ccl_texgen_sample_trilinear_wrap(const float *tex, int32_t size_mask, float px, float py, float pz,
                                               float *out_r, float *out_g, float *out_b, float *out_a);
 
