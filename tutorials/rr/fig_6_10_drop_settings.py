@@ -1,0 +1,130 @@
+"""Figures rr-fig-6.10, rr-fig-6.11 and rr-fig-6.12 (in kind): the user's settings of the application (rr-tab-A) on
+one scene -- the drop size (B/N keys, 6.10), the drop shape of Table 2.1 (T key, 6.11: a = 0.5, 1.0, 3.0, 4.5 mm,
+rr-eq1 outlines in the rr-alg-3.1.1 masks) and the number of drops (G/H keys, 6.12).
+
+Scene 1 of fig 6.3 (the pt terrain) behind the rain of the scene `rain`; drops (rr-code-5.2.3) for size and shape,
+where the drop itself must be seen, streaks (rr-code-5.2.4) for the count. Each panel has an enlarged inset (for
+size and shape around the nearest drop).
+Outputs: figures/rr/fig-6.10.png, figures/rr/fig-6.11.png, figures/rr/fig-6.12.png.
+"""
+# %% [markdown]
+# The keys of the application change three fields of `RainSettings`: `size_mm` (the mean radius of the particle
+# sizes, Gauss(1, 1.3, 8) in our reading), `shape` (which Table 2.1 drop the mask's outline comes from) and `drops`.
+# `RainTechnique.update(...)` applies them without re-rendering the background: the view and the capture stay cached,
+# a new shape rebuilds the mask, a new size respawns the particles (same seed: the same positions).
+#
+# As in the application, the shape changes the OUTLINE only ("outline" mask: the Beard-Chuang silhouette, a sphere's
+# refraction -- spec erratum 12); `mask="exact"` traces the rays through the true shape instead.
+
+# %%
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from pywarp.rain.settings import SHAPES, RainSettings  # noqa: E402
+from pywarp.rain.technique import RainTechnique  # noqa: E402
+
+SCENE = dict(background="terrain", background_options={}, camera_yaw_deg=0.0, camera_pitch_deg=-4.0)
+SIZES = ((0.5, 0.6), (1.3, 1.0), (2.5, 1.0))  # (size_mm, size_spread_mm): radii in size +- spread / 2
+COUNTS = (500, 3000, 12000)
+
+
+def panel(ax, img, title, zoom):
+    ax.imshow(img, interpolation="nearest")
+    ax.set_title(title, fontsize=9)
+    ax.axis("off")
+    y0, y1, x0, x1 = zoom
+    ins = ax.inset_axes([0.52, 0.02, 0.46, 0.5])
+    ins.imshow(img[y0:y1, x0:x1], interpolation="nearest")
+    ins.set_xticks([])
+    ins.set_yticks([])
+    for s in ins.spines.values():
+        s.set_color("yellow")
+    ax.indicate_inset([x0, y0, x1 - x0, y1 - y0], ins, edgecolor="yellow", alpha=0.9)
+
+
+def near_drop(tech):
+    """Screen centre (x, y) of the nearest drop in view (the sprites are sorted far first)."""
+    sp = tech.frame_inputs()["sprites"]
+    return float(sp[-1, 0]), float(sp[-1, 1])
+
+
+def row(images, titles, path, suptitle, quick, centre, cols=None):
+    h, w = images[0].shape[:2]
+    zh, zw = h // 6, w // 6  # the inset shows a sixth of the frame, enlarged
+    x0 = int(min(max(centre[0] - zw / 2, 0), w - zw))
+    y0 = int(min(max(centre[1] - zh / 2, 0), h - zh))
+    zoom = (y0, y0 + zh, x0, x0 + zw)
+    cols = cols or len(images)
+    rows = -(-len(images) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 3.2 * rows), dpi=70 if quick else 130, squeeze=False)
+    for ax, img, t in zip(axes.ravel(), images, titles):
+        panel(ax, img, t, zoom)
+    fig.suptitle(suptitle, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def main(out_dir, quick: bool = False) -> list[Path]:
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    size = dict(width=192, height=108, capture_size=128, mask_size=128) if quick else dict(width=640, height=360)
+    tech = RainTechnique(RainSettings(**size, **SCENE, drops=3000, time_s=2.0 / 0.05, seed=4, mode="drops"))
+
+    # %% [markdown]
+    # Fig 6.10: the mean drop radius 0.5, 1.3 (the text's mean) and 2.5 mm. Larger drops are larger billboards AND
+    # fall faster (Table 2.2 / 4), so they also spread further in 2 s.
+    # %%
+    imgs = []
+    for s_mm, spread in SIZES:
+        tech.update(size_mm=s_mm, size_spread_mm=spread)
+        imgs.append(tech.render())
+        if s_mm == 1.3:
+            centre = near_drop(tech)
+    p10 = out_dir / "fig-6.10.png"
+    row(imgs, [f"size {s:g} mm (radii {s - w / 2:g} - {s + w / 2:g} mm)" for s, w in SIZES], p10,
+        "Fig 6.10 (in kind) — changing the drop size (B/N): refracting drops, 3000 drops", quick, centre)
+
+    # %% [markdown]
+    # Fig 6.11: the four shapes of Table 2.1 (drop radius unchanged: Gauss(1, 1.3, 8); only the mask changes). The
+    # 0.5 and 1 mm drops are nearly round, the 3 and 4.5 mm drops flat-bottomed (rr-eq1: r(0) < r(pi)).
+    # %%
+    tech.update(size_mm=1.3, size_spread_mm=1.0)
+    imgs = []
+    for shape in SHAPES:
+        tech.update(shape=shape)
+        imgs.append(tech.render())
+    p11 = out_dir / "fig-6.11.png"
+    row(imgs, [f"shape a = {a} mm (Table 2.1)" for a in SHAPES], p11,
+        "Fig 6.11 (in kind) — the drop shapes (T key): Beard-Chuang outlines, sphere refraction as the application",
+        quick, near_drop(tech), cols=2)
+
+    # %% [markdown]
+    # Fig 6.12: 500, 3000 and 12 000 drops in the final (streak) mode.
+    # %%
+    tech.update(shape="1.0", mode="streaks")
+    imgs = []
+    for n in COUNTS:
+        tech.update(drops=n)
+        imgs.append(tech.render())
+    p12 = out_dir / "fig-6.12.png"
+    row(imgs, [f"{n} drops" for n in COUNTS], p12,
+        "Fig 6.12 (in kind) — changing the number of drops (G/H): retinal-persistence streaks", quick,
+        (0.3 * imgs[0].shape[1], 0.6 * imgs[0].shape[0]))
+    return [p10, p11, p12]
+
+
+if __name__ == "__main__":
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default="figures/rr")
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    print(*main(args.out, quick=args.quick), sep="\n")
