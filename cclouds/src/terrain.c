@@ -69,7 +69,11 @@ typedef struct {
     float horizontal_scale;
     const uint8_t *perm;
     int32_t heightmap;
+    float hmax; /* upper bound of the height (the slab's top), NO_SLAB: the printed loops (no clipping) */
 } heightfield;
+
+/* hmax of the element-wise functions (the printed listings): y - NO_SLAB > precision never holds */
+#define NO_SLAB 3.0e38f
 
 static float height(const heightfield *f, float x, float z)
 {
@@ -92,7 +96,17 @@ static heightfield field_of(int32_t octaves, float height_scale, float horizonta
     f.horizontal_scale = horizontal_scale;
     f.perm = perm;
     f.heightmap = heightmap;
+    f.hmax = NO_SLAB;
     return f;
+}
+
+/* Start of a view ray: 0, or where a ray from above the slab (y > hmax + precision) comes down to its top -- no
+ * point before it can be a hit (d >= y - hmax > precision there). */
+static float slab_entry(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float precision)
+{
+    float above = ro.y - f->hmax - precision;
+    if (rd.y < 0.0f && above > 0.0f) return above / -rd.y;
+    return 0.0f;
 }
 
 /* ---- the marches and shadows on a heightfield -------------------------------------------------------------------- */
@@ -104,6 +118,7 @@ static int32_t march_fixed(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float
     int32_t steps = 0;
     while (t < max_t && steps < CCL_TERRAIN_MAX_FIXED_STEPS) {
         ccl_vec3 q = along(ro, rd, t);
+        if (rd.y >= 0.0f && q.y - f->hmax > precision) break; /* above the slab, rising: no hit ahead */
         steps += 1;
         if (q.y - precision < height(f, q.x, q.z)) {
             *out_t = t;
@@ -120,10 +135,17 @@ static int32_t march_fixed(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float
 static int32_t march_dynamic(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float max_t, float precision,
                              int32_t max_steps, float step_scale, float *out_t, int *out_steps)
 {
-    float t = 0.0f;
+    float t = slab_entry(f, ro, rd, precision);
     int32_t i;
     for (i = 0; i < max_steps; ++i) {
-        float d = map(f, along(ro, rd, t));
+        ccl_vec3 q = along(ro, rd, t);
+        float d;
+        if (rd.y >= 0.0f && q.y - f->hmax > precision) { /* above the slab, rising: no hit ahead */
+            *out_t = t;
+            *out_steps = i;
+            return 0;
+        }
+        d = map(f, q);
         t += step_scale * d;
         if (d < precision) {
             *out_t = t;
@@ -145,11 +167,14 @@ static int32_t march_bisect(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, floa
                             int32_t max_steps, float step_scale, float threshold, int32_t bisect_steps, float *out_t,
                             int *out_steps)
 {
-    float t = 0.0f;
+    float t = slab_entry(f, ro, rd, precision);
     int32_t steps = 0;
     int32_t i, k;
     for (i = 0; i < max_steps; ++i) {
-        float d = map(f, along(ro, rd, t));
+        ccl_vec3 q = along(ro, rd, t);
+        float d;
+        if (rd.y >= 0.0f && q.y - f->hmax > precision) break; /* above the slab, rising: no hit ahead */
+        d = map(f, q);
         steps += 1;
         if (d < precision) {
             *out_t = t;
@@ -197,7 +222,10 @@ static float shadow_hard(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float t
     float t = t0;
     int32_t i;
     for (i = 0; i < max_steps; ++i) {
-        float d = map(f, along(ro, rd, t));
+        ccl_vec3 q = along(ro, rd, t);
+        float d;
+        if (rd.y >= 0.0f && q.y - f->hmax > precision) break; /* above the slab, rising: lit */
+        d = map(f, q);
         if (d < precision) return 0.0f;
         if (t > max_t) break;
         t += d;
@@ -212,8 +240,12 @@ static float shadow_soft(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float t
     float t = t0;
     int32_t i;
     for (i = 0; i < max_steps; ++i) {
-        float d = map(f, along(ro, rd, t));
-        float s;
+        ccl_vec3 q = along(ro, rd, t);
+        float d, s;
+        /* above the slab, rising: every later k d / t >= k (y - hmax) / t, which grows with t for an origin at or
+         * below hmax; once that bound reaches the running minimum nothing ahead can lower it */
+        if (rd.y >= 0.0f && ro.y <= f->hmax && q.y - f->hmax > precision && k * (q.y - f->hmax) / t >= shadow) break;
+        d = map(f, q);
         if (d < precision) return 0.0f;
         if (t > max_t) break;
         s = k * d / t;
@@ -425,6 +457,7 @@ void ccl_terrain_params_default(ccl_terrain_params *out)
     p.step_scale = 0.5f;
     p.bisect_threshold = 0.25f;
     p.bisect_steps = 6;
+    p.slab = 1;
     p.normal_h = 0.002f;
     p.normal_octaves_max = 9;
     p.normal_octaves_min = 4;
@@ -503,6 +536,7 @@ ccl_status ccl_terrain_params_check(ccl_terrain_params *p, const char **out_fiel
     CCL_TERRAIN_BAD(!(p->step_scale > 0.0f && p->step_scale <= 1.0f), "step_scale");
     CCL_TERRAIN_BAD(!(p->bisect_threshold > 0.0f && p->bisect_threshold <= 100.0f), "bisect_threshold");
     CCL_TERRAIN_BAD(p->bisect_steps < 0 || p->bisect_steps > 64, "bisect_steps");
+    CCL_TERRAIN_BAD(p->slab != 0 && p->slab != 1, "slab");
     CCL_TERRAIN_BAD(!(p->normal_h > 0.0f && p->normal_h <= 1.0f), "normal_h");
     CCL_TERRAIN_BAD(p->normal_octaves_max < 1 || p->normal_octaves_max > 16, "normal_octaves_max");
     CCL_TERRAIN_BAD(p->normal_octaves_min < 1 || p->normal_octaves_min > p->normal_octaves_max,
@@ -554,7 +588,18 @@ ccl_status ccl_terrain_params_check(ccl_terrain_params *p, const char **out_fiel
 
 static heightfield march_field(const ccl_terrain_params *p)
 {
-    return field_of(p->march_octaves, p->height_scale, p->horizontal_scale, p->perm, p->heightmap);
+    heightfield f = field_of(p->march_octaves, p->height_scale, p->horizontal_scale, p->perm, p->heightmap);
+    if (p->slab) {
+        /* |fbm| <= sum_i 0.5^i = 2 (1 - 0.5^octaves) for |noise| <= 1 (exact in float: a sum of powers of 2) */
+        float bound = 0.0f, a = 1.0f;
+        int32_t i;
+        for (i = 0; i < p->march_octaves; ++i) {
+            bound += a;
+            a *= 0.5f;
+        }
+        f.hmax = p->heightmap == CCL_TERRAIN_TEST ? 10.0f : p->height_scale * bound;
+    }
+    return f;
 }
 
 /* the lit terrain colour at the hit point pos, t along the view ray (stages a-c; pt-alg-7.3-material) */

@@ -32,6 +32,8 @@ STAGES = {"heightmap": 0, "materials": 1, "atmosphere": 2, "final": 3}
 MAX_FIXED_STEPS = 1000000  # CCL_TERRAIN_MAX_FIXED_STEPS
 
 _MAX_FIXED = wp.constant(MAX_FIXED_STEPS)
+#: hmax of the element-wise functions (the printed listings): y - NO_SLAB > precision never holds (C: NO_SLAB)
+_NO_SLAB = wp.constant(3.0e38)
 
 HEIGHTMAP = Option("heightmap", HEIGHTMAPS, "test",
                    "'test': 10 sin(0.1 x) sin(0.1 z), the text's test heightmap (default; octaves, height_scale, "
@@ -187,10 +189,31 @@ def terrain_fbm(x: float, z: float, octaves: int, perm: wp.array(dtype=wp.int32)
 def terrain_march_fixed(ro: wp.vec3, rd: wp.vec3, max_t: float, step_size: float, precision: float, octaves: int,
                         height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32),
                         heightmap: int) -> tuple[int, float, int]:
+    return _march_fixed(ro, rd, max_t, step_size, precision, octaves, height_scale, horizontal_scale, perm, heightmap,
+                        _NO_SLAB)
+
+
+@wp.func
+def _slab_entry(ro: wp.vec3, rd: wp.vec3, precision: float, hmax: float) -> float:
+    """Start of a view ray: 0, or where a ray from above the slab (y > hmax + precision) comes down to its top (no
+    point before it can be a hit: d >= y - hmax > precision there). C: slab_entry."""
+    above = ro[1] - hmax - precision
+    if rd[1] < 0.0 and above > 0.0:
+        return above / (-rd[1])
+    return 0.0
+
+
+@wp.func
+def _march_fixed(ro: wp.vec3, rd: wp.vec3, max_t: float, step_size: float, precision: float, octaves: int,
+                 height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32), heightmap: int,
+                 hmax: float) -> tuple[int, float, int]:
+    """Kod 7.4 clipped to the slab y <= hmax + precision (hmax = _NO_SLAB: as printed). C: march_fixed."""
     t = float(0.0)
     steps = int(0)
     while t < max_t and steps < _MAX_FIXED:
         q = _along(ro, rd, t)
+        if rd[1] >= 0.0 and q[1] - hmax > precision:
+            break
         steps += 1
         if q[1] - precision < terrain_height_perm(q[0], q[2], octaves, height_scale, horizontal_scale, perm,
                                                   heightmap):
@@ -211,9 +234,21 @@ def terrain_march_fixed(ro: wp.vec3, rd: wp.vec3, max_t: float, step_size: float
 def terrain_march_dynamic(ro: wp.vec3, rd: wp.vec3, max_t: float, precision: float, max_steps: int,
                           step_scale: float, octaves: int, height_scale: float, horizontal_scale: float,
                           perm: wp.array(dtype=wp.int32), heightmap: int) -> tuple[int, float, int]:
-    t = float(0.0)
+    return _march_dynamic(ro, rd, max_t, precision, max_steps, step_scale, octaves, height_scale, horizontal_scale,
+                          perm, heightmap, _NO_SLAB)
+
+
+@wp.func
+def _march_dynamic(ro: wp.vec3, rd: wp.vec3, max_t: float, precision: float, max_steps: int, step_scale: float,
+                   octaves: int, height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32),
+                   heightmap: int, hmax: float) -> tuple[int, float, int]:
+    """Kod 7.5 clipped to the slab y <= hmax + precision (hmax = _NO_SLAB: as printed). C: march_dynamic."""
+    t = _slab_entry(ro, rd, precision, hmax)
     for i in range(max_steps):
-        d = _map(_along(ro, rd, t), octaves, height_scale, horizontal_scale, perm, heightmap)
+        q = _along(ro, rd, t)
+        if rd[1] >= 0.0 and q[1] - hmax > precision:
+            return 0, t, i
+        d = _map(q, octaves, height_scale, horizontal_scale, perm, heightmap)
         t += step_scale * d
         if d < precision:
             return 1, t, i + 1
@@ -240,10 +275,22 @@ def terrain_march_bisect(ro: wp.vec3, rd: wp.vec3, max_t: float, precision: floa
                          threshold: float, bisect_steps: int, octaves: int, height_scale: float,
                          horizontal_scale: float, perm: wp.array(dtype=wp.int32),
                          heightmap: int) -> tuple[int, float, int]:
-    t = float(0.0)
+    return _march_bisect(ro, rd, max_t, precision, max_steps, step_scale, threshold, bisect_steps, octaves,
+                         height_scale, horizontal_scale, perm, heightmap, _NO_SLAB)
+
+
+@wp.func
+def _march_bisect(ro: wp.vec3, rd: wp.vec3, max_t: float, precision: float, max_steps: int, step_scale: float,
+                  threshold: float, bisect_steps: int, octaves: int, height_scale: float, horizontal_scale: float,
+                  perm: wp.array(dtype=wp.int32), heightmap: int, hmax: float) -> tuple[int, float, int]:
+    """pt-alg-9-bisect clipped to the slab y <= hmax + precision (hmax = _NO_SLAB: no clipping). C: march_bisect."""
+    t = _slab_entry(ro, rd, precision, hmax)
     steps = int(0)
     for _i in range(max_steps):
-        d = _map(_along(ro, rd, t), octaves, height_scale, horizontal_scale, perm, heightmap)
+        q = _along(ro, rd, t)
+        if rd[1] >= 0.0 and q[1] - hmax > precision:
+            break
+        d = _map(q, octaves, height_scale, horizontal_scale, perm, heightmap)
         steps += 1
         if d < precision:
             return 1, t, steps
@@ -290,9 +337,21 @@ _SH_MAX_T = Arg("max_t", "MAX_T of the shadow ray (units)", lo=0.0, hi=1.0e4, lo
 def terrain_shadow_hard(ro: wp.vec3, rd: wp.vec3, t0: float, max_t: float, precision: float, max_steps: int,
                         octaves: int, height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32),
                         heightmap: int) -> float:
+    return _shadow_hard(ro, rd, t0, max_t, precision, max_steps, octaves, height_scale, horizontal_scale, perm,
+                        heightmap, _NO_SLAB)
+
+
+@wp.func
+def _shadow_hard(ro: wp.vec3, rd: wp.vec3, t0: float, max_t: float, precision: float, max_steps: int, octaves: int,
+                 height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32), heightmap: int,
+                 hmax: float) -> float:
+    """Kod 7.6, lit as soon as the rising ray leaves the slab (hmax = _NO_SLAB: as printed). C: shadow_hard."""
     t = float(t0)
     for _i in range(max_steps):
-        d = _map(_along(ro, rd, t), octaves, height_scale, horizontal_scale, perm, heightmap)
+        q = _along(ro, rd, t)
+        if rd[1] >= 0.0 and q[1] - hmax > precision:
+            break
+        d = _map(q, octaves, height_scale, horizontal_scale, perm, heightmap)
         if d < precision:
             return 0.0
         if t > max_t:
@@ -317,10 +376,24 @@ def terrain_shadow_hard(ro: wp.vec3, rd: wp.vec3, t0: float, max_t: float, preci
 def terrain_shadow_soft(ro: wp.vec3, rd: wp.vec3, t0: float, k: float, max_t: float, precision: float,
                         max_steps: int, octaves: int, height_scale: float, horizontal_scale: float,
                         perm: wp.array(dtype=wp.int32), heightmap: int) -> float:
+    return _shadow_soft(ro, rd, t0, k, max_t, precision, max_steps, octaves, height_scale, horizontal_scale, perm,
+                        heightmap, _NO_SLAB)
+
+
+@wp.func
+def _shadow_soft(ro: wp.vec3, rd: wp.vec3, t0: float, k: float, max_t: float, precision: float, max_steps: int,
+                 octaves: int, height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32),
+                 heightmap: int, hmax: float) -> float:
+    """Kod 7.7 with the slab's exact early exit (hmax = _NO_SLAB: as printed). C: shadow_soft. Above the slab and
+    rising, every later k d / t >= k (y - hmax) / t, which grows with t for an origin at or below hmax; once that
+    bound reaches the running minimum nothing ahead can lower it."""
     shadow = float(1.0)
     t = float(t0)
     for _i in range(max_steps):
-        d = _map(_along(ro, rd, t), octaves, height_scale, horizontal_scale, perm, heightmap)
+        q = _along(ro, rd, t)
+        if rd[1] >= 0.0 and ro[1] <= hmax and q[1] - hmax > precision and k * (q[1] - hmax) / t >= shadow:
+            break
+        d = _map(q, octaves, height_scale, horizontal_scale, perm, heightmap)
         if d < precision:
             return 0.0
         if t > max_t:
@@ -530,6 +603,7 @@ class TerrainParams:
     step_scale: float
     bisect_threshold: float
     bisect_steps: int
+    slab: int
     normal_h: float
     normal_octaves_max: int
     normal_octaves_min: int
@@ -575,6 +649,22 @@ PARAM_FIELDS = tuple(TerrainParams.vars)
 
 
 @wp.func
+def _hmax(p: TerrainParams) -> float:
+    """The slab's hmax: the bound of the marched height (|fbm| <= 2 (1 - 0.5^octaves) for |noise| <= 1; 10 for the
+    test map), _NO_SLAB when p.slab is 0. C: march_field."""
+    if p.slab == 0:
+        return _NO_SLAB
+    bound = float(0.0)
+    a = float(1.0)
+    for _i in range(p.march_octaves):
+        bound += a
+        a *= 0.5
+    if p.heightmap == 0:
+        return 10.0
+    return p.height_scale * bound
+
+
+@wp.func
 def _terrain_colour(p: TerrainParams, perm: wp.array(dtype=wp.int32), pos: wp.vec3, t: float) -> wp.vec3:
     octn = terrain_normal_octaves(t, p.normal_octaves_max, p.normal_octaves_min, p.lod_distance)
     n, _g = _normal(pos, p.normal_h, octn, p.height_scale, p.horizontal_scale, perm, p.heightmap)
@@ -588,12 +678,12 @@ def _terrain_colour(p: TerrainParams, perm: wp.array(dtype=wp.int32), pos: wp.ve
         origin = wp.vec3(pos[0], terrain_height_perm(pos[0], pos[2], p.march_octaves, p.height_scale,
                                                      p.horizontal_scale, perm, p.heightmap) + p.shadow_bias, pos[2])
         if p.shadows == 1:
-            shadow = terrain_shadow_hard(origin, p.sun, p.shadow_t0_hard, p.shadow_max_t, p.precision, p.max_steps,
-                                         p.march_octaves, p.height_scale, p.horizontal_scale, perm, p.heightmap)
+            shadow = _shadow_hard(origin, p.sun, p.shadow_t0_hard, p.shadow_max_t, p.precision, p.max_steps,
+                                  p.march_octaves, p.height_scale, p.horizontal_scale, perm, p.heightmap, _hmax(p))
         else:
-            shadow = terrain_shadow_soft(origin, p.sun, p.shadow_t0_soft, p.shadow_k, p.shadow_max_t, p.precision,
-                                         p.max_steps, p.march_octaves, p.height_scale, p.horizontal_scale, perm,
-                                         p.heightmap)
+            shadow = _shadow_soft(origin, p.sun, p.shadow_t0_soft, p.shadow_k, p.shadow_max_t, p.precision,
+                                  p.max_steps, p.march_octaves, p.height_scale, p.horizontal_scale, perm,
+                                  p.heightmap, _hmax(p))
     return terrain_lighting(n, p.sun, p.light_ambient, c, p.light_diffuse, c, shadow)
 
 
@@ -603,16 +693,17 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
     hit = int(0)
     t = float(0.0)
     steps = int(0)
+    hmax = _hmax(p)
     if p.march_method == 0:
-        hit, t, steps = terrain_march_fixed(ro, rd, p.max_t, p.step_size, p.precision, p.march_octaves,
-                                            p.height_scale, p.horizontal_scale, perm, p.heightmap)
+        hit, t, steps = _march_fixed(ro, rd, p.max_t, p.step_size, p.precision, p.march_octaves, p.height_scale,
+                                     p.horizontal_scale, perm, p.heightmap, hmax)
     elif p.march_method == 2:
-        hit, t, steps = terrain_march_bisect(ro, rd, p.max_t, p.precision, p.max_steps, p.step_scale,
-                                             p.bisect_threshold, p.bisect_steps, p.march_octaves, p.height_scale,
-                                             p.horizontal_scale, perm, p.heightmap)
+        hit, t, steps = _march_bisect(ro, rd, p.max_t, p.precision, p.max_steps, p.step_scale, p.bisect_threshold,
+                                      p.bisect_steps, p.march_octaves, p.height_scale, p.horizontal_scale, perm,
+                                      p.heightmap, hmax)
     else:
-        hit, t, steps = terrain_march_dynamic(ro, rd, p.max_t, p.precision, p.max_steps, p.step_scale,
-                                              p.march_octaves, p.height_scale, p.horizontal_scale, perm, p.heightmap)
+        hit, t, steps = _march_dynamic(ro, rd, p.max_t, p.precision, p.max_steps, p.step_scale, p.march_octaves,
+                                       p.height_scale, p.horizontal_scale, perm, p.heightmap, hmax)
     sky = terrain_sky(rd, p.sun, p.sky_colour, p.sun_colour, p.sun_power)
     background = sky
     if p.stage >= 2:

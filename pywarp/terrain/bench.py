@@ -8,16 +8,13 @@ from dataclasses import replace
 import numpy as np
 
 from ..core.timing import best_ms, machine
-from .settings import TEST_HEIGHTMAP, TerrainSettings
+from .settings import PREVIEW, TEST_HEIGHTMAP, TerrainSettings
 
 SIZES = ((640, 480), (1366, 768), (1920, 1080))
 #: Tabulka 7.1 (ms; rig not named, presumably rig 1: GTX 860M)
 TEXT_7_1 = {"fixed": (8.4, 29.0, 57.7), "dynamic": (0.6, 1.4, 2.3)}
 #: Tabulka 8.1 (ms): rig 1 GTX 860M, rig 2 GTX 960M
 TEXT_8_1 = {"rig1": (6.6, 20.2, 40.2), "rig2": (5.1, 17.5, 35.4)}
-#: The viewer's preview setting: what it reduces against the final scene (same camera, same terrain)
-PREVIEW = dict(march_octaves=3, normal_octaves_max=6, normal_octaves_min=3, shadows="none", max_steps=120,
-               step_scale=0.6, precision=0.05, max_t=250.0, fog_density=0.0029)
 
 
 def _tech(settings: TerrainSettings):
@@ -141,20 +138,67 @@ def report_supersampling(r: dict) -> str:
 
 def bench_preview(width: int = 640, height: int = 360, repeat: int = 3, workers: int | None = None,
                   device: str | None = None) -> dict:
-    """Frames per second of the viewer's preview setting (:data:`PREVIEW`) and of the full setting."""
-    ms_full, _, img_full = _time_frame(_base(device, workers, width=width, height=height), repeat)
-    ms_prev, _, img_prev = _time_frame(_base(device, workers, width=width, height=height, **PREVIEW), repeat)
+    """Frames per second of the full setting, of the :data:`PREVIEW` reductions at full resolution and of the
+    viewer's preview frame (quality='preview': the reductions at 1/preview_scale resolution, enlarged)."""
+    s = _base(device, workers, width=width, height=height)
+    ms_full, _, img_full = _time_frame(s, repeat)
+    ms_red, _, img_red = _time_frame(replace(s, **PREVIEW), repeat)
+    ms_prev, _, img_prev = _time_frame(replace(s, quality="preview"), repeat)
     return {"benchmark": "preview", "size": [width, height], "ms_full": round(ms_full, 1),
-            "fps_full": round(1000.0 / ms_full, 2), "ms_preview": round(ms_prev, 1),
-            "fps_preview": round(1000.0 / ms_prev, 2), "preview_reduces": PREVIEW,
-            "mean_abs_difference": round(float(np.abs(img_full - img_prev).mean()), 4), "device": device or "cpu",
-            "machine": machine()}
+            "fps_full": round(1000.0 / ms_full, 2), "ms_reduced": round(ms_red, 1),
+            "fps_reduced": round(1000.0 / ms_red, 2), "ms_preview": round(ms_prev, 1),
+            "fps_preview": round(1000.0 / ms_prev, 2), "preview_scale": s.preview_scale, "preview_reduces": PREVIEW,
+            "mean_abs_difference_reduced": round(float(np.abs(img_full - img_red).mean()), 4),
+            "mean_abs_difference_preview": round(float(np.abs(img_full - img_prev).mean()), 4),
+            "device": device or "cpu", "machine": machine()}
 
 
 def report_preview(r: dict) -> str:
     return (f"viewer preview {r['size'][0]}x{r['size'][1]} ({r['device']}): full {r['ms_full']} ms "
-            f"({r['fps_full']} fps), preview {r['ms_preview']} ms ({r['fps_preview']} fps); the preview sets "
+            f"({r['fps_full']} fps); reductions at full size {r['ms_reduced']} ms ({r['fps_reduced']} fps); preview "
+            f"frame (1/{r['preview_scale']} size) {r['ms_preview']} ms ({r['fps_preview']} fps); the preview sets "
             + ", ".join(f"{k}={v}" for k, v in r["preview_reduces"].items()))
+
+
+#: the stage profile: each row switches one part off (or to the march's octaves); its cost is the difference
+PROFILE = (("full", {}), ("slab off (the printed loops)", {"slab": False}), ("no shadows", {"shadows": "none"}),
+           ("normals at the march's octaves", {"normal_octaves_max": 4, "normal_octaves_min": 4}),
+           ("no water (stage atmosphere)", {"stage": "atmosphere"}),
+           ("no clouds, fog, grass, water (stage materials)", {"stage": "materials"}),
+           ("march + 4-octave normal only", {"stage": "materials", "shadows": "none", "normal_octaves_max": 4,
+                                             "normal_octaves_min": 4}))
+
+
+def bench_profile(width: int = 640, height: int = 360, repeat: int = 2, workers: int | None = None,
+                  device: str | None = None) -> dict:
+    """Time per stage of the final scene: frames with one stage switched off, CPU time of the process (steadier
+    than the wall clock on a shared machine) and wall time."""
+    import time
+
+    rows = []
+    for name, changes in PROFILE:
+        tech = _tech(_base(device, workers, width=width, height=height, **changes))
+        tech.render(encode=False)
+        best = (float("inf"), float("inf"))
+        for _ in range(repeat):
+            w0, c0 = time.perf_counter(), time.process_time()
+            tech.render(encode=False)
+            best = min(best, (time.perf_counter() - w0, time.process_time() - c0))
+        rows.append({"case": name, "changes": changes, "wall_ms": round(best[0] * 1e3, 1),
+                     "cpu_ms": round(best[1] * 1e3, 1), "steps": round(float(tech.steps_taken().mean()), 2)})
+    full = rows[0]["cpu_ms"]
+    for row in rows:
+        row["cpu_share_of_full"] = round(row["cpu_ms"] / full, 3)
+    return {"benchmark": "profile", "size": [width, height], "rows": rows, "device": device or "cpu",
+            "machine": machine()}
+
+
+def report_profile(r: dict) -> str:
+    lines = [f"stage profile {r['size'][0]}x{r['size'][1]} ({r['device']}): CPU ms / wall ms / view steps per pixel"]
+    for row in r["rows"]:
+        lines.append(f"  {row['case']:<48} {row['cpu_ms']:>8.0f} {row['wall_ms']:>8.0f} {row['steps']:>7.2f}  "
+                     f"({row['cpu_share_of_full']:.2f} of full)")
+    return "\n".join(lines)
 
 
 def bench_tables(repeat: int = 1, workers: int | None = None, device: str | None = None) -> dict:
@@ -164,9 +208,11 @@ def bench_tables(repeat: int = 1, workers: int | None = None, device: str | None
             "final": bench_final(repeat, workers, device),
             "bisect": bench_bisect(repeat=repeat, workers=workers, device=device),
             "supersampling": bench_supersampling(repeat=repeat, workers=workers, device=device),
-            "preview": bench_preview(repeat=max(repeat, 2), workers=workers, device=device)}
+            "preview": bench_preview(repeat=max(repeat, 2), workers=workers, device=device),
+            "profile": bench_profile(repeat=max(repeat, 2), workers=workers, device=device)}
 
 
 def report_tables(r: dict) -> str:
     return "\n\n".join([report_marching(r["marching"]), report_final(r["final"]), report_bisect(r["bisect"]),
-                        report_supersampling(r["supersampling"]), report_preview(r["preview"])])
+                        report_supersampling(r["supersampling"]), report_preview(r["preview"]),
+                        report_profile(r["profile"])])

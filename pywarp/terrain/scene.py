@@ -19,6 +19,13 @@ def walk(frames: int, settings: TerrainSettings) -> list:
     return walk_path(frames, settings)
 
 
+def controls(settings: TerrainSettings):
+    """The viewer's controls: the demo's mouse look + W (pywarp.terrain.controls)."""
+    from .controls import TerrainControls
+
+    return TerrainControls(settings)
+
+
 def _lazy(module: str, name: str):
     def call(*args, **kwargs):
         import importlib
@@ -41,7 +48,7 @@ SCENE = register(Scene(
     default_path="walk",
     benchmarks={
         "tables": Benchmark("tables", "everything below in one run: Tabulka 7.1, Tabulka 8.1, bisection, "
-                                      "supersampling, viewer preview",
+                                      "supersampling, viewer preview, stage profile",
                             _lazy(".bench", "bench_tables"), _lazy(".bench", "report_tables"),
                             {"repeat": 1, "workers": None}),
         "marching": Benchmark("marching", "Tabulka 7.1: fixed vs dynamic step on the test heightmap at 640x480, "
@@ -57,11 +64,17 @@ SCENE = register(Scene(
         "supersampling": Benchmark("supersampling", "cost of 1, 4 and 16 rays per pixel (7.1.6)",
                                    _lazy(".bench", "bench_supersampling"), _lazy(".bench", "report_supersampling"),
                                    {"width": 320, "height": 180, "repeat": 1, "workers": None}),
-        "preview": Benchmark("preview", "frames per second of the viewer's preview setting vs the full setting",
+        "preview": Benchmark("preview", "frames per second of the viewer's preview frame (quality='preview') and of "
+                                        "its reductions at full size vs the full setting",
                              _lazy(".bench", "bench_preview"), _lazy(".bench", "report_preview"),
                              {"width": 640, "height": 360, "repeat": 3, "workers": None}),
+        "profile": Benchmark("profile", "time per stage of the final scene (slab, shadows, normals, water, "
+                                        "atmosphere switched off one at a time)",
+                             _lazy(".bench", "bench_profile"), _lazy(".bench", "report_profile"),
+                             {"width": 640, "height": 360, "repeat": 2, "workers": None}),
     },
     outputs={"render": "terrain.png", "animate": "walk.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360}},
     time_field="time_s",
+    controls=controls,
 ))

@@ -138,6 +138,14 @@ class TerrainSettings(Settings):
                                            "0.25 / 2^6 = 0.004 < PRECISION after the bisection")
     bisect_steps: int = param(6, kind="int", lo=0, hi=64, group="march", doc="bisect: halvings of the bracket",
                               reason="6: threshold / 2^6 = 0.004 units, below PRECISION (0.01)")
+    slab: bool = param(True, group="march",
+                       doc="clip the view and shadow rays to the slab y <= bound + PRECISION that holds the terrain "
+                           "(bound: height_scale 2 (1 - 0.5^march_octaves) for the fBm with |noise| <= 1, 10 for the "
+                           "test map): rising rays above it stop (sky, lit), rays from above start at its top; off: "
+                           "the printed loops, which march rising rays on to MAX_T",
+                       reason="on: exact -- the same hits and shadows (bit for bit for a camera inside the slab; from "
+                              "above, the march starts at the slab's top, the hit moves by less than PRECISION) for "
+                              "~40 % fewer steps (the sky's rays stop after a few)")
     # --- normals ------------------------------------------------------------------------------------------------------
     normal_h: float = param(0.002, unit="units", lo=0.0, hi=1.0, lo_open=True, group="normals",
                             doc="central-difference step h (Kod 7.8)", reason="0.002: Kod 7.8")
@@ -247,6 +255,20 @@ class TerrainSettings(Settings):
     water_tint: tuple = _colour((0.55, 0.75, 0.8), "factor on the underwater colour ((1, 1, 1): the text's plain "
                                                    "blend)", "a blue-green tint so shallow water reads as water",
                                 "water")
+    # --- viewer preview -------------------------------------------------------------------------------------------------
+    quality: str = param("full", choices=("full", "preview"), group="preview",
+                         doc="full: the settings as they are; preview: the viewer's frames while the camera moves -- "
+                             "the reductions of PREVIEW (pywarp.terrain.settings) rendered at 1/preview_scale of the "
+                             "width and height and enlarged (nearest pixel)",
+                         reason="'full': pywarp render; the viewer switches to 'preview' while moving and back to "
+                                "'full' (refined frame) when the camera stops")
+    preview_scale: int = param(2, kind="int", lo=1, hi=16, group="preview",
+                               doc="resolution divisor of the preview (quality='preview'), on top of the viewer's own "
+                                   "adaptive divisor",
+                               reason="2: 640 x 360 previews at 320 x 180; with the PREVIEW reductions that frame "
+                                      "takes ~1/10 of the full one, and the viewer's adaptive divisor does the rest "
+                                      "for its >= 10 frames/s target on two cores (measured in pywarp bench terrain "
+                                      "preview)")
     # --- runtime -------------------------------------------------------------------------------------------------------
     device: str = param("cpu", invalidates="device", group="runtime",
                         doc="Warp device: cpu, or cuda:N where present", reason="cpu: nothing requires a GPU")
@@ -270,7 +292,7 @@ class TerrainSettings(Settings):
             "march_method": {"fixed": 0, "dynamic": 1, "bisect": 2}[self.march], "max_t": self.max_t,
             "step_size": self.step_size, "precision": self.precision, "max_steps": self.max_steps,
             "step_scale": self.step_scale, "bisect_threshold": self.bisect_threshold,
-            "bisect_steps": self.bisect_steps, "normal_h": self.normal_h,
+            "bisect_steps": self.bisect_steps, "slab": int(self.slab), "normal_h": self.normal_h,
             "normal_octaves_max": self.normal_octaves_max, "normal_octaves_min": self.normal_octaves_min,
             "lod_distance": self.lod_distance, "shadows": {"none": 0, "hard": 1, "soft": 2}[self.shadows],
             "shadow_t0_hard": self.shadow_t0_hard, "shadow_t0_soft": self.shadow_t0_soft, "shadow_k": self.shadow_k,
@@ -290,8 +312,16 @@ class TerrainSettings(Settings):
         }
 
 
+#: The viewer's preview (quality='preview'): what it reduces against the final scene (same camera, same terrain):
+#: fewer octaves in the march (3 of 4: the smallest rocks go) and the normals (6 of 9, 3 far away), no shadows,
+#: a coarser and shorter march (<= 120 steps of 0.6 d, PRECISION 0.05, MAX_T 250 with the fog brought in to end
+#: there) -- a moving camera shows the shapes, the refined frame the detail.
+PREVIEW = dict(march_octaves=3, normal_octaves_max=6, normal_octaves_min=3, shadows="none", max_steps=120,
+               step_scale=0.6, precision=0.05, max_t=250.0, fog_density=0.0029)
+
 #: Settings of the test heightmap of Kod 7.4 / 7.5 (Obrazok 7.1-7.2, Tabulka 7.1): the egg-crate terrain lit as in
-#: 7.2, no shadows, no atmosphere; the camera 15 units above the mean level looking down along the diagonal.
-TEST_HEIGHTMAP = dict(heightmap="test", stage="heightmap", shadows="none", max_t=200.0, step_size=0.1,
+#: 7.2, no shadows, no atmosphere, the printed loops (no slab: Tabulka 7.1 and Obrazok 7.2 count their steps); the
+#: camera 15 units above the mean level looking down along the diagonal.
+TEST_HEIGHTMAP = dict(heightmap="test", stage="heightmap", shadows="none", slab=False, max_t=200.0, step_size=0.1,
                       max_steps=1000, step_scale=1.0, camera_x=0.0, camera_y=15.0, camera_z=0.0,
                       camera_yaw_deg=45.0, camera_pitch_deg=-20.0, sun_elevation_deg=40.0, sun_azimuth_deg=120.0)

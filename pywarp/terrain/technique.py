@@ -25,7 +25,17 @@ init()
 from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import terrain as K  # noqa: E402
 from ..kernels.noise import perm_array  # noqa: E402
-from .settings import TerrainSettings  # noqa: E402
+from .settings import PREVIEW, TerrainSettings  # noqa: E402
+
+
+def effective(settings: TerrainSettings) -> TerrainSettings:
+    """The settings a frame is rendered with: ``settings`` itself for quality 'full'; for 'preview' the reductions
+    of :data:`pywarp.terrain.settings.PREVIEW` at 1/preview_scale of the width and height (rounded up)."""
+    s = settings
+    if s.quality != "preview":
+        return s
+    k = s.preview_scale
+    return replace(s, **PREVIEW, width=-(-s.width // k), height=-(-s.height // k))
 
 
 @dataclass(frozen=True)
@@ -67,7 +77,7 @@ class TerrainTechnique:
         s = self.settings
         self.launcher = shared_launcher(s.device, s.threads)
         self.device = self.launcher.device
-        self.values = s.params()
+        self.values = effective(s).params()
         self.params = K.warp_params(self.values)  # checked by ccl_terrain_params_check
         self.perm = perm_array(s.seed, self.device)
         self.resize(s.width, s.height)
@@ -81,24 +91,26 @@ class TerrainTechnique:
         if "device" in stale:
             self.launcher = shared_launcher(new.device, new.threads)
             self.device = self.launcher.device
-        self.values = new.params()
+        self.values = effective(new).params()
         self.params = K.warp_params(self.values)
         self.perm = perm_array(new.seed, self.device)
-        if stale & {"size", "device"}:
+        if stale & {"size", "device"} or (new.quality, new.preview_scale) != (old.quality, old.preview_scale):
             self.resize(new.width, new.height)
 
     def resize(self, width: int, height: int) -> None:
         if (width, height) != (self.settings.width, self.settings.height):
             self.settings = replace(self.settings, width=width, height=height)
         dev = self.device
-        self._buffers = {"out": wp.zeros((height, width, 3), dtype=float, device=dev),
-                         "steps": wp.zeros((height, width), dtype=wp.int32, device=dev)}
+        e = effective(self.settings)
+        self._buffers = {"out": wp.zeros((e.height, e.width, 3), dtype=float, device=dev),
+                         "steps": wp.zeros((e.height, e.width), dtype=wp.int32, device=dev)}
 
     def render(self, pose: TerrainPose | None = None, progress=None, encode: bool = True) -> np.ndarray:
         """One frame: uint8 (height, width, 3), or the float colours in [0, 1] when ``encode=False``. ``progress``
         is called with fractions of the frame (summing to 1) as row bands finish."""
-        s = self.settings
-        pose = pose or TerrainPose.from_settings(s)
+        full = self.settings
+        s = effective(full)
+        pose = pose or TerrainPose.from_settings(full)
         cam = pose.camera(s.width, s.height)
         b = self._buffers
         band_done = None if progress is None else (lambda n, total=s.height: progress(n / total))
@@ -109,6 +121,9 @@ class TerrainTechnique:
         img = b["out"].numpy()
         if not np.all(np.isfinite(img)):
             raise RuntimeError("the render produced non-finite pixels")
+        if (s.width, s.height) != (full.width, full.height):  # the preview: enlarge (nearest pixel)
+            k = full.preview_scale
+            img = np.repeat(np.repeat(img, k, axis=0), k, axis=1)[:full.height, :full.width]
         if not encode:
             return img.copy()
         return (img * 255.0 + 0.5).astype(np.uint8)

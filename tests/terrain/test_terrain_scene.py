@@ -32,7 +32,11 @@ def final_image():
     {"rays_per_pixel": 4, "stage": "materials"},
     {"stage": "atmosphere", "seed": 5, "water_level": 0.0},
     dict(TEST_HEIGHTMAP, march="fixed", step_size=0.5),
-], ids=["final", "bisect", "hard-thesis", "ss4-materials", "atmosphere-seed5", "test-fixed"])
+    dict(TEST_HEIGHTMAP, march="fixed", step_size=0.5, slab=True, camera_y=30.0),
+    {"camera_y": 40.0, "camera_pitch_deg": -30.0, "shadows": "hard"},
+    {"slab": False, "march": "bisect"},
+], ids=["final", "bisect", "hard-thesis", "ss4-materials", "atmosphere-seed5", "test-fixed", "test-fixed-slab-above",
+        "above-slab-hard", "no-slab-bisect"])
 def test_warp_pixels_match_the_c_reference(changes):
     """The C reference pixel (ccl_terrain_pixel) and the Warp pixel perform the same float32 operations in the same
     order with the same libm calls: the results are expected bit-identical, and so are the step counts."""
@@ -169,3 +173,71 @@ def test_cli_bench_supersampling_json():
     res = json.loads(r.stdout.strip().splitlines()[-1])
     assert [row["rays_per_pixel"] for row in res["rows"]] == [1, 4, 16]
     assert res["rows"][2]["cost_ratio"] > 2.0
+
+
+@pytest.mark.spec("pt-code-7.5", "pt-code-7.7", "pt-alg-9-bisect")
+@pytest.mark.parametrize("changes", [{}, {"march": "bisect", "shadows": "hard"}, {"camera_pitch_deg": 10.0},
+                                     dict(TEST_HEIGHTMAP, slab=True, march="dynamic", camera_y=8.0)],
+                         ids=["final", "bisect-hard", "looking-up", "test-map"])
+def test_the_slab_changes_no_pixel_for_a_camera_inside_it(changes):
+    """The slab (rising rays above bound + PRECISION stop, the soft shadow stops once its bound k (y - hmax) / t
+    reaches the running minimum) is exact: the same image bit for bit, with fewer steps."""
+    on = TerrainTechnique(TerrainSettings(**SMALL, **changes))
+    img_on = on.render(encode=False)
+    off = TerrainTechnique(TerrainSettings(**SMALL, **dict(changes, slab=False)))
+    img_off = off.render(encode=False)
+    np.testing.assert_array_equal(img_on, img_off)
+    assert on.steps_taken().sum() < off.steps_taken().sum()
+
+
+def test_the_slab_from_above_moves_hits_by_less_than_precision():
+    """A camera above the slab starts its rays at the slab's top: the march's step sequence changes, the hits move
+    along the ray by less than PRECISION, so the image stays within a few display levels (and far fewer steps)."""
+    changes = {"camera_y": 60.0, "camera_pitch_deg": -35.0, "shadows": "none"}
+    on = TerrainTechnique(TerrainSettings(**SMALL, **changes))
+    off = TerrainTechnique(TerrainSettings(**SMALL, **dict(changes, slab=False)))
+    a, b = on.render(encode=False), off.render(encode=False)
+    assert np.abs(a - b).max() < 8.0 / 255.0
+    assert np.abs(a - b).mean() < 0.5 / 255.0
+    assert on.steps_taken().mean() < 0.8 * off.steps_taken().mean()
+
+
+def test_preview_quality_is_the_reduced_frame_enlarged():
+    from pywarp.terrain.settings import PREVIEW
+
+    s = TerrainSettings(width=64, height=35, quality="preview", preview_scale=2)
+    tech = TerrainTechnique(s)
+    img = tech.render(encode=False)
+    assert img.shape == (35, 64, 3)
+    small = TerrainTechnique(TerrainSettings(width=32, height=18, **PREVIEW)).render(encode=False)
+    np.testing.assert_array_equal(img, np.repeat(np.repeat(small, 2, 0), 2, 1)[:35])
+    tech.update(quality="full")  # back to the refined frame: full size, the settings as they are
+    np.testing.assert_array_equal(tech.render(encode=False),
+                                  TerrainTechnique(TerrainSettings(width=64, height=35)).render(encode=False))
+
+
+def test_controls_mouse_look_and_w_walk_forward_above_the_ground():
+    from pywarp.core.scenes import Input, scene
+    from pywarp.terrain.controls import CLEARANCE, WALK_SPEED, TerrainControls
+
+    s = TerrainSettings(**SMALL)
+    c = scene("terrain").make_controls(s)
+    assert isinstance(c, TerrainControls) and c.benchmark_keys == {"W"}
+    assert c.preview(s) == {"quality": "preview"}
+    step = c.step(s, Input(dt=0.5, held=frozenset({"W"})))
+    assert step.moving
+    # yaw 0 looks along -z, pitch -8 deg: half a second of W moves 4 units along the view (or stays above ground)
+    assert step.changes["camera_z"] == pytest.approx(s.camera_z - 0.5 * WALK_SPEED * np.cos(np.radians(-8.0)))
+    assert step.changes["camera_x"] == pytest.approx(s.camera_x)
+    step = c.step(s, Input(dt=0.1, mouse=(50.0, -20.0)))
+    assert step.changes["camera_yaw_deg"] == pytest.approx(10.0)  # 0.2 deg per pixel, right turns towards +x
+    assert step.changes["camera_pitch_deg"] == pytest.approx(-4.0)  # dragging up looks up
+    assert "camera_x" not in step.changes
+    assert not c.step(s, Input(dt=0.1, held=frozenset({"S", "A", "Up"}))).changes  # only the demo's keys
+    # walking down into a hill: the eye stays CLEARANCE above the ground
+    low = dataclasses.replace(s, camera_pitch_deg=-80.0, camera_y=float(ground_height(s, s.camera_x, s.camera_z)) + 1.6)
+    for _ in range(20):
+        ch = c.step(low, Input(dt=0.25, held=frozenset({"W"}))).changes
+        low = dataclasses.replace(low, **ch)
+        g = max(float(ground_height(low, low.camera_x, low.camera_z)), low.water_level)
+        assert low.camera_y >= g + CLEARANCE - 1e-4
