@@ -39,6 +39,19 @@ def test_settings_validate():
         assert p.doc and p.reason, p.name
 
 
+def test_preview_settings():
+    s = FlightSettings()
+    p = s.preview()
+    assert (p.width, p.height) == (320, 180) and p.step_voxels == s.preview_step_voxels == 2.0
+    assert replace(p, width=s.width, height=s.height, step_voxels=s.step_voxels) == s
+    tiny = FlightSettings(width=20, height=16, preview_scale=0.1).preview()
+    assert (tiny.width, tiny.height) == (16, 16)
+    with pytest.raises(ValueError, match="preview_scale"):
+        FlightSettings(preview_scale=1.5)
+    with pytest.raises(ValueError, match="preview_step_voxels"):
+        FlightSettings(preview_step_voxels=0.0)
+
+
 def test_cloud_fields_mirror_the_cloud_array_settings():
     from pywarp.kernels.voxel import CloudArraySettings
 
@@ -128,3 +141,6 @@ def test_cli_render_animate_bench(tmp_path, capsys):
     assert main(["bench", "flight", "frame", "--width", "32", "--height", "18", "--repeat", "1", "--json"]) == 0
     r = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert r["fps"] > 0 and set(r["frame_ms"]) == {"3", "6", "10", "18", "26"}
+    # the one-brick-per-jump path gives the same pixels; the preview is measured in the same run
+    assert r["previous_same_pixels"] is True and set(r["previous_frame_ms"]) == set(r["frame_ms"])
+    assert r["preview"]["fps"] > 0 and r["preview"]["step_voxels"] == 2.0
