@@ -48,18 +48,13 @@ static float smoothstep(float a, float b, float x)
     return s * s * (3.0f - 2.0f * s);
 }
 
+/* Kod 7.9 (pt-code-7.9) = pt-alg-3.2 with the printed A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2 */
 static float fbm_perm(float x, float z, int32_t octaves, const uint8_t *perm)
 {
-    float value = 0.0f;
-    float amplitude = 1.0f;
-    float frequency = 0.5f;
-    int32_t i;
-    for (i = 0; i < octaves; i++) {
-        value += amplitude * ccl_noise_perlin2_perm(frequency * x, frequency * z, perm, 0, CCL_INTERP_QUINTIC);
-        amplitude *= 0.5f;
-        frequency *= 2.0f;
-    }
-    return value;
+    ccl_vec2 p;
+    p.x = x;
+    p.y = z;
+    return ccl_noise_fbm_perlin2_perm(p, octaves, perm, 1.0f, 0.5f, 0.5f, 2.0f);
 }
 
 /* The heightmap of the element-wise functions and of the scene. */
@@ -274,13 +269,6 @@ ccl_vec2 ccl_terrain_pixel_position(float frag_x, float frag_y, float width, flo
     p.y = (frag_y / height_px) * 2.0f - 1.0f;
     p.x = p.x * (width / height_px);
     return p;
-}
-
-float ccl_terrain_fbm(float x, float z, int32_t octaves, uint32_t seed)
-{
-    uint8_t perm[CCL_NOISE_PERM_SIZE];
-    ccl_noise_perm_table(seed, perm);
-    return fbm_perm(x, z, octaves, perm);
 }
 
 float ccl_terrain_height_perm(float x, float z, int32_t octaves, float height_scale, float horizontal_scale,

@@ -587,7 +587,7 @@ def _fbm_perlin2_samples(rng, n):
             "gain": rng.uniform(0.0, 1.0, n).astype(np.float32), "lacunarity": lacunarity}
 
 
-@declare("pt-alg-3.2", c="ccl_noise_fbm_perlin2",
+@declare("pt-alg-3.2", "pt-code-7.9", c="ccl_noise_fbm_perlin2",
          args=(Arg("p", "2-D position (the terrain's (x, z) in Kod 7.9)", lo=-_COORD_LIM, hi=_COORD_LIM, lo_open=True,
                    hi_open=True, sample_range=(-50.0, 50.0)),
                Arg("octaves", "number of octaves N", lo=1, hi=24, dtype="int32"),
@@ -601,7 +601,9 @@ def _fbm_perlin2_samples(rng, n):
          summary="The terrain demo's fBm (pt §3.2, Kod 7.9): sum_i A0 g^i N(F0 lambda^i p), i = 0 .. N-1, NOT "
                  "normalised (unlike vc-2.21), in the operation order of Kod 7.9; N = 2-D Perlin noise "
                  "(noise_perlin2, the z = 0 slice of vc-A1 = pt-alg-3.1). Defaults are the printed A0 = 1, F0 = 0.5, "
-                 "g = 0.5, lambda = 2; for |N| <= 1, |fBm| <= A0 (1 - g^N) / (1 - g) = 2 (1 - 0.5^N) printed.",
+                 "g = 0.5, lambda = 2; for |N| <= 1, |fBm| <= A0 (1 - g^N) / (1 - g) = 2 (1 - 0.5^N) printed. "
+                 "pt-code-7.9 (Kod 7.9, the terrain's fBm) is this function with the defaults (p = (x, z)); the "
+                 "terrain scene calls it.",
          references=_PERLIN_REF[:1] + ("F. K. Musgrave, in Ebert et al., Texturing & Modeling, 3rd ed., 2003 "
                                        "(fBm: gain and lacunarity)",))
 @wp.func

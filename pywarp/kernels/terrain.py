@@ -5,7 +5,7 @@ order, comparisons written out), so that the Warp render and the C reference pix
 
 * Heightmaps: ``heightmap="test"`` is the text's 10 sin(0.1 x) sin(0.1 z) (Kod 7.4, 7.5, Tabulka 7.1);
   ``heightmap="fbm"`` is ``height_scale * fbm(x / horizontal_scale, z / horizontal_scale, octaves)`` with the fBm of
-  Kod 7.9 (A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2 as printed). The element-wise entries take the heightmap as
+  Kod 7.9 (pt-code-7.9, declared with pt-alg-3.2 by :func:`pywarp.kernels.noise.noise_fbm_perlin2`: one function) (A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2 as printed). The element-wise entries take the heightmap as
   ``(octaves, height_scale, horizontal_scale, seed, heightmap=...)``; the test heightmap ignores the first four.
 * The noise of the fBm (undefined in the text) is :func:`pywarp.kernels.noise.noise_perlin2` (period 0, quintic
   fade): the z = 0 slice of Perlin's 2002 improved noise, ``|noise| <= 1`` (each corner's gradient has a 2-D part of
@@ -23,7 +23,7 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, Option, declare
-from .noise import _check_seed, noise_perlin2, perm_array
+from .noise import _check_seed, noise_fbm_perlin2, noise_perlin2, perm_array
 
 HEIGHTMAPS = {"test": 0, "fbm": 1}
 MARCH_METHODS = {"fixed": 0, "dynamic": 1, "bisect": 2}
@@ -110,14 +110,9 @@ def _dot(a: wp.vec3, b: wp.vec3) -> float:
 
 @wp.func
 def fbm_perm(x: float, z: float, octaves: int, perm: wp.array(dtype=wp.int32)) -> float:
-    value = float(0.0)
-    amplitude = float(1.0)
-    frequency = float(0.5)
-    for _i in range(octaves):
-        value += amplitude * noise_perlin2(frequency * x, frequency * z, perm, 0, 0)
-        amplitude *= 0.5
-        frequency *= 2.0
-    return value
+    """Kod 7.9 (pt-code-7.9) = pt-alg-3.2 with the printed A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2: one function,
+    noise_fbm_perlin2 (C: ccl_noise_fbm_perlin2_perm), which declares both IDs."""
+    return noise_fbm_perlin2(wp.vec2(x, z), octaves, perm, 1.0, 0.5, 0.5, 2.0)
 
 
 @wp.func
@@ -152,25 +147,6 @@ def terrain_pixel_position(frag_x: float, frag_y: float, width: float, height: f
     py = (frag_y / height) * 2.0 - 1.0
     px = px * (width / height)
     return wp.vec2(px, py)
-
-
-# --- pt-code-7.9: fBm ----------------------------------------------------------------------------------------------------
-
-@declare("pt-code-7.9", c="ccl_terrain_fbm",
-         args=(Arg("x", "position x (fBm units)", sample_range=(-100.0, 100.0)),
-               Arg("z", "position z (fBm units)", sample_range=(-100.0, 100.0)),
-               Arg("octaves", "number of octaves", lo=1, hi=16, sample_range=(1, 10)),
-               Arg("seed", "Perlin seed (uint32; 0 = Perlin's table)", lo=0, hi=4294967295, dtype="uint32",
-                   default=0)),
-         outputs=("value",), derived=_PERM,
-         summary="Kod 7.9 as printed: value = sum_{i < octaves} A_i noise(F_i (x, z)), A_0 = 1, F_0 = 0.5, gain 0.5, "
-                 "lacunarity 2; noise = 2-D Perlin noise (noise_perlin2: period 0, quintic fade; |noise| <= 1, "
-                 "0 at lattice points), so |value| <= 2 (1 - 0.5^octaves). Float32 keeps a fractional lattice "
-                 "position only while 0.5 2^(octaves-1) |x| < 2^24.",
-         references=_REF + ("K. Perlin, Improving Noise, SIGGRAPH 2002",))
-@wp.func
-def terrain_fbm(x: float, z: float, octaves: int, perm: wp.array(dtype=wp.int32)) -> float:
-    return fbm_perm(x, z, octaves, perm)
 
 
 # --- pt-code-7.4, 7.5, pt-alg-9-bisect: marching --------------------------------------------------------------------
@@ -1072,7 +1048,7 @@ declare("pt-alg-7.1.6", c="ccl_terrain_pixel", make_warp=_warp_pixel, make_c=_c_
 
 
 __all__ = ["HEIGHTMAPS", "MARCH_METHODS", "SHADOW_KINDS", "STAGES", "PARAM_FIELDS", "TerrainParams", "c_params",
-           "fbm_perm", "height", "params_default", "render_kernel", "terrain_clouds", "terrain_fbm", "terrain_fog",
+           "fbm_perm", "height", "params_default", "render_kernel", "terrain_clouds", "terrain_fog",
            "terrain_height_perm", "terrain_lighting", "terrain_march_bisect", "terrain_march_dynamic",
            "terrain_march_fixed", "terrain_normal", "terrain_normal_octaves", "terrain_pixel",
            "terrain_pixel_position", "terrain_shade", "terrain_shadow_hard", "terrain_shadow_soft", "terrain_sky",

@@ -143,10 +143,6 @@ CCL_API ccl_status ccl_terrain_params_check(ccl_terrain_params *p, const char **
  * height: y in (-1, 1), x in (-aspect, aspect) for frag inside the window. */
 CCL_API ccl_vec2 ccl_terrain_pixel_position(float frag_x, float frag_y, float width, float height);
 
-/* fBm of the demo. Ref: pt-code-7.9. value = sum_{i < octaves} 0.5^i noise(0.5 2^i (x, z)) with noise =
- * ccl_noise_perlin2 (seed, period 0, quintic). x, z: position (fBm units); octaves in [1, 16]. |value| <= 2 (1 -
- * 0.5^octaves) since |noise| <= 1. Float32 keeps a fraction of 0.5 2^(octaves-1) |x| below 2^24 only. */
-CCL_API float ccl_terrain_fbm(float x, float z, int32_t octaves, uint32_t seed);
 
 /* Terrain height h(x, z) (units) of `heightmap` (ccl_terrain_heightmap); see the conventions. perm: 512-entry table
  * (ignored by CCL_TERRAIN_TEST). The map of Kod 7.4. */
