@@ -759,8 +759,8 @@ def composite_tile_kernel(row0: int, active: wp.array(dtype=int), background: wp
         xb = wp.min(x1, int(wp.floor(sprites[j, 0] + sprites[j, 2])) + 1)
         ya = wp.max(y0, int(wp.floor(sprites[j, 1] - sprites[j, 3])) - 1)
         yb = wp.min(y1, int(wp.floor(sprites[j, 1] + sprites[j, 3])) + 1)
-        for y in range(ya, yb + 1):
-            for x in range(xa, xb + 1):
+        for x in range(xa, xb + 1):  # down the columns: the mask is column-major
+            for y in range(ya, yb + 1):
                 ndc = wp.vec2(2.0 * ((float(x) + 0.5) / float(w)) - 1.0, 1.0 - 2.0 * ((float(y) + 0.5) / float(h)))
                 p_o = wp.vec2(0.5 + 0.5 * (ndc[0] * aspect * r), 0.5 - 0.5 * (ndc[1] * r))
                 c = wp.vec3(out[y, x, 0], out[y, x, 1], out[y, x, 2])
