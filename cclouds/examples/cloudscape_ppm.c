@@ -27,9 +27,18 @@ static float *to_rgba(const float *src, size_t texels, int channels)
     return dst;
 }
 
+/* A size argument: an integer in [1, 8192], else 0. */
+static int size_arg(const char *s)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    return (end != s && *end == '\0' && v >= 1 && v <= 8192) ? (int)v : 0;
+}
+
 int main(int argc, char **argv)
 {
-    int width = argc > 2 ? atoi(argv[1]) : 320, height = argc > 2 ? atoi(argv[2]) : 180, x, y, ok = 1;
+    int width = argc > 2 ? size_arg(argv[1]) : 320, height = argc > 2 ? size_arg(argv[2]) : 180, x, y, ok = 1;
+    int status = 1;
     const char *path = argc > 3 ? argv[3] : "cloudscape.ppm";
     ccl_base_shape_settings bs = ccl_texgen_base_shape_settings_default();
     ccl_detail_shape_settings ds = ccl_texgen_detail_shape_settings_default();
@@ -40,34 +49,36 @@ int main(int argc, char **argv)
     ccl_cloud_textures tex;
     ccl_camera cam;
     ccl_vec3 eye = {0.0f, 0.3f, 0.0f}, target = {0.0f, 0.664f, -1.0f}, up = {0.0f, 1.0f, 0.0f};
-    float *base, *detail3, *curl2, *weather, *detail, *curl, *img;
-    size_t nb, nd, nc, nw;
+    /* every buffer starts NULL, so the one exit below frees whatever was allocated on every path */
+    float *base = NULL, *detail3 = NULL, *curl2 = NULL, *weather = NULL, *detail = NULL, *curl = NULL, *img = NULL;
+    size_t nb, nd, nc, nw, npx;
     FILE *f;
 
     if (width < 1 || height < 1) {
-        fprintf(stderr, "usage: %s [width height [out.ppm]]\n", argv[0]);
+        fprintf(stderr, "usage: %s [width height [out.ppm]]   (width, height in [1, 8192])\n", argv[0]);
         return 2;
     }
     bs.size = 64;
     ws.size = 256;
-    nb = (size_t)bs.size * bs.size * bs.size;
-    nd = (size_t)ds.size * ds.size * ds.size;
-    nc = (size_t)cs.size * cs.size;
-    nw = (size_t)ws.size * ws.size;
+    nb = (size_t)bs.size * (size_t)bs.size * (size_t)bs.size;
+    nd = (size_t)ds.size * (size_t)ds.size * (size_t)ds.size;
+    nc = (size_t)cs.size * (size_t)cs.size;
+    nw = (size_t)ws.size * (size_t)ws.size;
+    npx = (size_t)width * (size_t)height * 3u;
     base = make(nb * 4u);
     detail3 = make(nd * 3u);
     curl2 = make(nc * 2u);
     weather = make(nw * 4u);
-    img = make((size_t)width * height * 3u);
-    if (!base || !detail3 || !curl2 || !weather || !img) return 1;
+    img = make(npx);
+    if (!base || !detail3 || !curl2 || !weather || !img) goto done;
     if (ccl_texgen_base_shape(&bs, base, nb * 4u) || ccl_texgen_detail_shape(&ds, detail3, nd * 3u) ||
         ccl_texgen_curl_noise(&cs, curl2, nc * 2u) || ccl_texgen_weather_map(&ws, weather, nw * 4u)) {
         fprintf(stderr, "texture generation failed\n");
-        return 1;
+        goto done;
     }
     detail = to_rgba(detail3, nd, 3);
     curl = to_rgba(curl2, nc, 2);
-    if (!detail || !curl) return 1;
+    if (!detail || !curl) goto done;
     tex.base = base;
     tex.base_size = bs.size;
     tex.detail = detail;
@@ -88,24 +99,33 @@ int main(int argc, char **argv)
     if (ccl_sky_preetham_init(2.5f, 0.9599311f /* 90 - 35 degrees */, 0.05f, CCL_VARIANT_CORRECTED, &sky.preetham) ||
         ccl_camera_look_at(eye, target, up, 1.0471976f /* 60 degrees */, (float)width / (float)height, 0.01f,
                            1000.0f, &cam) ||
-        ccl_cloudscape_render(&params, &tex, &sky, &cam, width, height, 0, img, (size_t)width * height * 3u)) {
+        ccl_cloudscape_render(&params, &tex, &sky, &cam, width, height, 0, img, npx)) {
         fprintf(stderr, "render failed: invalid parameters\n");
-        return 1;
+        goto done;
     }
     f = fopen(path, "wb");
     if (!f) {
         perror(path);
-        return 1;
+        goto done;
     }
-    fprintf(f, "P6\n%d %d\n255\n", width, height);
+    ok &= fprintf(f, "P6\n%d %d\n255\n", width, height) > 0;
     for (y = 0; y < height; ++y)
-        for (x = 0; x < width * 3; ++x) ok &= fputc((int)(img[(size_t)y * width * 3 + x] * 255.0f + 0.5f), f) != EOF;
+        for (x = 0; x < width * 3; ++x)
+            ok &= fputc((int)(img[(size_t)y * (size_t)width * 3u + (size_t)x] * 255.0f + 0.5f), f) != EOF;
     ok &= fclose(f) == 0;
-    free(base); free(detail3); free(curl2); free(weather); free(detail); free(curl); free(img);
     if (!ok) {
         fprintf(stderr, "%s: write failed\n", path);
-        return 1;
+        goto done;
     }
     printf("wrote %s (%dx%d)\n", path, width, height);
-    return 0;
+    status = 0;
+done:
+    free(base);
+    free(detail3);
+    free(curl2);
+    free(weather);
+    free(detail);
+    free(curl);
+    free(img);
+    return status;
 }

@@ -5,6 +5,6 @@
 int main(void)
 {
     float p = ccl_phase_hg(1.0f, 0.8f); /* forward peak: (1 + g) / (4 pi (1 - g)^2) = 3.58099 sr^-1 */
-    printf("cclouds %d: HG(cos=1, g=0.8) = %.5f\n", ccl_version(), p);
+    printf("cclouds %d: HG(cos=1, g=0.8) = %.5f\n", ccl_version(), (double)p);
     return (p > 3.5809f && p < 3.5811f) ? 0 : 1;
 }

@@ -38,15 +38,15 @@ ccl_status ccl_camera_look_at(ccl_vec3 eye, ccl_vec3 target, ccl_vec3 up, float 
     if (!(fov_y > 0.0f && fov_y < CCL_PI_F) || !(aspect > 0.0f) || !(z_near > 0.0f) || !(z_far > z_near))
         return CCL_EINVAL;
     /* forward f = normalize(target - eye) */
-    f[0] = (double)target.x - eye.x;
-    f[1] = (double)target.y - eye.y;
-    f[2] = (double)target.z - eye.z;
+    f[0] = (double)target.x - (double)eye.x;
+    f[1] = (double)target.y - (double)eye.y;
+    f[2] = (double)target.z - (double)eye.z;
     n = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
     if (!(n > 0.0)) return CCL_EINVAL;
     for (i = 0; i < 3; ++i) f[i] /= n;
-    upd[0] = up.x;
-    upd[1] = up.y;
-    upd[2] = up.z;
+    upd[0] = (double)up.x;
+    upd[1] = (double)up.y;
+    upd[2] = (double)up.z;
     n = sqrt(upd[0] * upd[0] + upd[1] * upd[1] + upd[2] * upd[2]);
     if (!(n > 0.0)) return CCL_EINVAL;
     /* side s = normalize(f x up); |f x up/|up|| = sin(angle): reject up within ~1e-6 rad of the view direction */
@@ -71,26 +71,26 @@ ccl_status ccl_camera_look_at(ccl_vec3 eye, ccl_vec3 target, ccl_vec3 up, float 
         inv_view[c][1] = u[c];
         inv_view[c][2] = -f[c];
     }
-    view[0][3] = -(s[0] * eye.x + s[1] * eye.y + s[2] * eye.z);
-    view[1][3] = -(u[0] * eye.x + u[1] * eye.y + u[2] * eye.z);
-    view[2][3] = f[0] * eye.x + f[1] * eye.y + f[2] * eye.z;
+    view[0][3] = -(s[0] * (double)eye.x + s[1] * (double)eye.y + s[2] * (double)eye.z);
+    view[1][3] = -(u[0] * (double)eye.x + u[1] * (double)eye.y + u[2] * (double)eye.z);
+    view[2][3] = f[0] * (double)eye.x + f[1] * (double)eye.y + f[2] * (double)eye.z;
     view[3][3] = 1.0;
-    inv_view[0][3] = eye.x;
-    inv_view[1][3] = eye.y;
-    inv_view[2][3] = eye.z;
+    inv_view[0][3] = (double)eye.x;
+    inv_view[1][3] = (double)eye.y;
+    inv_view[2][3] = (double)eye.z;
     inv_view[3][3] = 1.0;
 
     t = tan(0.5 * (double)fov_y);
     proj[0][0] = 1.0 / ((double)aspect * t);
     proj[1][1] = 1.0 / t;
-    proj[2][2] = -((double)z_far + z_near) / ((double)z_far - z_near);
-    proj[2][3] = -(2.0 * z_far * z_near) / ((double)z_far - z_near);
+    proj[2][2] = -((double)z_far + (double)z_near) / ((double)z_far - (double)z_near);
+    proj[2][3] = -(2.0 * (double)z_far * (double)z_near) / ((double)z_far - (double)z_near);
     proj[3][2] = -1.0;
     inv_proj[0][0] = (double)aspect * t;
     inv_proj[1][1] = t;
     inv_proj[2][3] = -1.0;
-    inv_proj[3][2] = ((double)z_near - z_far) / (2.0 * z_far * z_near);
-    inv_proj[3][3] = ((double)z_far + z_near) / (2.0 * z_far * z_near);
+    inv_proj[3][2] = ((double)z_near - (double)z_far) / (2.0 * (double)z_far * (double)z_near);
+    inv_proj[3][3] = ((double)z_far + (double)z_near) / (2.0 * (double)z_far * (double)z_near);
 
     matmul4(vp, proj, view);
     matmul4(ivp, inv_view, inv_proj);

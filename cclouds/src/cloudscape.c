@@ -163,7 +163,7 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         const double r = (double)p->layer.r_outer, ex = dabs(p->layer.centre.x) + r,
                      ey = dabs(p->layer.centre.y) + r, ez = dabs(p->layer.centre.z) + r;
         const double curl = (double)CCL_CLOUDSCAPE_MAX_CURL * (double)p->curl_strength_km;
-        if (!(ex < INFINITY && ey < INFINITY && ez < INFINITY)) return bad(out_field, "layer");
+        if (!(ex < (double)INFINITY && ey < (double)INFINITY && ez < (double)INFINITY)) return bad(out_field, "layer");
         if (!(texcoord_ok(ex, 0.0, p->base_scale_km, t->base_size) &&
               texcoord_ok(ey, 0.0, p->base_scale_km, t->base_size) &&
               texcoord_ok(ez, 0.0, p->base_scale_km, t->base_size)))
@@ -194,8 +194,8 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     {
         /* | |sun| - 1 | <= 1e-3, the tolerance of the other unit-vector checks (registry UNIT_TOL); the march clamps
          * dot(d, sun) to [-1, 1], the domain of the phase function it feeds */
-        const double n = sqrt((double)sky->sun[0] * sky->sun[0] + (double)sky->sun[1] * sky->sun[1] +
-                              (double)sky->sun[2] * sky->sun[2]);
+        const double s0 = (double)sky->sun[0], s1 = (double)sky->sun[1], s2 = (double)sky->sun[2];
+        const double n = sqrt(s0 * s0 + s1 * s1 + s2 * s2);
         if (!(fabs(n - 1.0) <= 1e-3)) return bad(out_field, "sky.sun");
     }
     return CCL_OK;

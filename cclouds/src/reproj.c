@@ -99,16 +99,22 @@ static int clampi(int v, int lo, int hi)
 
 /* bilinear lookup of channel ch of an image with row length w (pixels) at continuous position (xs, ys) (pixel (i, j)
  * centred at (i, j)), clamp-to-edge at column xmax and row ymax (the last texels that may be read) */
+/* element (x, y, ch) of an image with row length w: every index is >= 0 here (clamped or looped from 0) */
+static size_t at(int x, int y, int w, int channels, int ch)
+{
+    return ((size_t)y * (size_t)w + (size_t)x) * (size_t)channels + (size_t)ch;
+}
+
 static float bilinear(const float *img, int w, int xmax, int ymax, int channels, int ch, float xs, float ys)
 {
     float x0f = floorf(xs), y0f = floorf(ys);
     float fx = xs - x0f, fy = ys - y0f;
     int x0 = clampi((int)x0f, 0, xmax), x1 = clampi((int)x0f + 1, 0, xmax);
     int y0 = clampi((int)y0f, 0, ymax), y1 = clampi((int)y0f + 1, 0, ymax);
-    float p00 = img[((size_t)y0 * w + x0) * channels + ch];
-    float p10 = img[((size_t)y0 * w + x1) * channels + ch];
-    float p01 = img[((size_t)y1 * w + x0) * channels + ch];
-    float p11 = img[((size_t)y1 * w + x1) * channels + ch];
+    float p00 = img[at(x0, y0, w, channels, ch)];
+    float p10 = img[at(x1, y0, w, channels, ch)];
+    float p01 = img[at(x0, y1, w, channels, ch)];
+    float p11 = img[at(x1, y1, w, channels, ch)];
     return (p00 * (1.0f - fx) + p10 * fx) * (1.0f - fy) + (p01 * (1.0f - fx) + p11 * fx) * fy;
 }
 
@@ -123,11 +129,11 @@ static void reproject_pixel(const float *current, const float *previous, const f
                             const float prev_view_proj[16], ccl_vec3 centre, float r_inner, int neighbourhood,
                             int history, int x, int y, float *out)
 {
-    size_t base = ((size_t)y * width + x) * channels;
+    size_t base = at(x, y, width, channels, 0);
     int ch, i, j, valid = 0, half = neighbourhood / 2;
     float u = 0.0f, v = 0.0f;
     if (ccl_reproj_updated(x, y, frame)) {
-        for (ch = 0; ch < channels; ++ch) out[base + ch] = current[base + ch];
+        for (ch = 0; ch < channels; ++ch) out[base + (size_t)ch] = current[base + (size_t)ch];
         return;
     }
     if (history)
@@ -142,21 +148,21 @@ static void reproject_pixel(const float *current, const float *previous, const f
                 for (i = -half; i <= half; ++i)
                     sum = sum + bilinear(previous, width, width - 1, height - 1, channels, ch, xs + (float)i,
                                          ys + (float)j);
-            out[base + ch] = sum * inv_n;
+            out[base + (size_t)ch] = sum * inv_n;
         }
     } else {
         float rx, ry;
         ccl_reproj_reduced_coord(x, y, frame, width, height, &rx, &ry);
         if (isnan(rx) || isnan(ry)) {
             const float *keep = history ? previous : current;
-            for (ch = 0; ch < channels; ++ch) out[base + ch] = keep[base + ch];
+            for (ch = 0; ch < channels; ++ch) out[base + (size_t)ch] = keep[base + (size_t)ch];
         } else {
             /* row length of the reduced buffer ceil(width / 4); read only texels written this frame */
             int rw = (width - 1) / CCL_REPROJ_BLOCK + 1;
             int f = mod16(frame);
             int xmax = (width - 1 - f / 4) / CCL_REPROJ_BLOCK, ymax = (height - 1 - f % 4) / CCL_REPROJ_BLOCK;
             for (ch = 0; ch < channels; ++ch)
-                out[base + ch] = bilinear(reduced, rw, xmax, ymax, channels, ch, rx, ry);
+                out[base + (size_t)ch] = bilinear(reduced, rw, xmax, ymax, channels, ch, rx, ry);
         }
     }
 }
