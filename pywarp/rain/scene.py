@@ -32,7 +32,7 @@ def _lazy(module: str, name: str):
 SCENE = register(Scene(
     name="rain",
     description="realistic rain of the rr text: refracting drops or persistence streaks over a background scene "
-                "(clouds, or any registered scene)",
+                "(clouds, or any registered scene); optional point lights (rr-A1..rr-CF, off by default)",
     settings=RainSettings,
     technique=make_technique,
     paths={"still": CameraPath("still", "the camera of the settings, still; the rain falls (the background is "
