@@ -4,7 +4,7 @@
     pywarp animate [options] [--out flythrough.mp4]  a camera path from below the cloud layer, into it and above it
     pywarp equations [--seed KEY] [--missing | --figures] [--format table|csv|markdown|json]
                                                   traceability matrix: ID, title, C, Warp, tests, figures
-    pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...]
+    pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...] [--scheduler local|dask[=ADDRESS]]
     pywarp notebooks [--out DIR] [--seed KEY] [--quick]   every figure tutorial as a Jupyter notebook
     pywarp bench tiles|cloudscape|textures|reprojection [--width W] [--height H] [--repeat N] [--workers N]
                  [--device D] [--json]
@@ -85,15 +85,30 @@ class Parser(argparse.ArgumentParser):
 
 def cmd_figures(args) -> int:
     from ..core import figures
+    from ..core import animation
     from ..core.output import check_output_dir
 
+    kind, address = animation.parse_scheduler(args.scheduler)
+    if args.dask_workers is not None and not 1 <= args.dask_workers <= 4096:
+        raise ValueError(f"--dask-workers must be in [1, 4096], got {args.dask_workers}")
     check_output_dir(args.out, "--out")
     paths = figures.select(args.seed, args.only)
     if not paths:
         print("no tutorials found", file=sys.stderr)
         return 1
     failures = []
-    written = figures.run(paths, Path(args.out), quick=args.quick, progress=not args.no_progress, failures=failures)
+    if kind == "dask":  # one task per tutorial on the workers (see pywarp.core.figures.run_on_dask)
+        client, cluster = animation.dask_client(address, args.dask_workers or min(len(paths), os.cpu_count() or 1))
+        try:
+            written = figures.run_on_dask(client, paths, Path(args.out), quick=args.quick,
+                                          progress=not args.no_progress, failures=failures)
+        finally:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    else:
+        written = figures.run(paths, Path(args.out), quick=args.quick, progress=not args.no_progress,
+                              failures=failures)
     print(f"{len(written)} figure files from {len(paths) - len(failures)} tutorials written under {args.out}")
     for path, exc in failures:
         print(f"pywarp figures: error: {path.name}: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
@@ -120,6 +135,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="output folder, checked writable first; figures go to DIR/<seed>/ (default: figures)")
     f.add_argument("--only", nargs="+", metavar="FIG", help="only these figures, e.g. fig-4.9 or vc-fig-4.9")
     f.add_argument("--no-progress", action="store_true", help="no progress bar")
+    f.add_argument("--scheduler", default="local", metavar="local|dask[=ADDRESS]",
+                   help="local: one tutorial after the other in this process (default); dask: each tutorial a task "
+                        "on the workers of a Dask LocalCluster (--dask-workers processes), or of the cluster at "
+                        "ADDRESS (dask=tcp://host:8786; the tutorials and --out at the same paths on the workers). "
+                        "Same files as a local run")
+    f.add_argument("--dask-workers", type=int, default=None, metavar="N",
+                   help="worker processes of the LocalCluster (default: one per core, at most one per tutorial)")
     f.set_defaults(run=cmd_figures)
     add_notebooks_command(sub)
 

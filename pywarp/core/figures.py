@@ -94,6 +94,62 @@ def run(paths: list[Path], out_root: Path, quick: bool = False, progress: bool =
     return written
 
 
+# --- tutorials in parallel on Dask ------------------------------------------------------------------------------------
+#
+# ``pywarp figures --scheduler dask[=ADDRESS]`` runs each tutorial as one task on a Dask worker (a LocalCluster of
+# worker processes by default, see :func:`pywarp.core.animation.dask_client`), exactly as :func:`run` runs it in this
+# process: ``main(out_dir, quick)`` writing into ``out_root/<seed>/``. A tutorial depends on nothing but its
+# arguments, so the files are the same as those of a serial run. The workers write the files themselves: with an
+# existing cluster (ADDRESS) the tutorials and the output folder must be at the same paths on the workers (a shared
+# file system).
+
+
+def run_tutorial(path: str, out_dir: str, quick: bool) -> tuple[list[str], BaseException | None]:
+    """Run one tutorial (what a Dask worker runs): (files written, None), or ([], the exception) when it raised --
+    the exception itself when it pickles, else a RuntimeError naming its type and message."""
+    import pickle
+
+    Path(out_dir).mkdir(parents=True, exist_ok=True)
+    try:
+        files = load(Path(path)).main(Path(out_dir), quick=quick) or []
+    except Exception as exc:  # noqa: BLE001 - handed back to run_on_dask, reported per tutorial
+        try:
+            pickle.loads(pickle.dumps(exc))
+        except Exception:  # noqa: BLE001 - an exception that does not survive the trip back
+            exc = RuntimeError(f"{type(exc).__name__}: {exc}")
+        return [], exc
+    return [str(f) for f in files], None
+
+
+def run_on_dask(client, paths: list[Path], out_root: Path, quick: bool = False, progress: bool = True,
+                failures: list | None = None) -> list[Path]:
+    """:func:`run` with every tutorial a task on the Dask cluster of ``client``; the files in the order of
+    ``paths`` (as :func:`run` returns them), failures as in :func:`run`."""
+    from dask.distributed import as_completed
+    from tqdm import tqdm
+
+    futures = [client.submit(run_tutorial, str(p), str(out_root / p.parent.name), bool(quick), pure=False,
+                             key=f"pywarp-tutorial-{p.parent.name}-{p.stem}-{id(paths)}") for p in paths]
+    results = {}
+    try:
+        with tqdm(total=len(futures), desc="figures", unit="tutorial", disable=not progress) as bar:
+            for fut in as_completed(futures):
+                results[fut.key] = fut.result()
+                bar.update(1)
+    finally:
+        client.cancel([f for f in futures if not f.done()])
+    written = []
+    for p, fut in zip(paths, futures):
+        files, exc = results[fut.key]
+        if exc is not None:
+            if failures is None:
+                raise exc
+            failures.append((p, exc))
+            continue
+        written += [Path(f) for f in files]
+    return written
+
+
 # --- status of every figure and measurement -------------------------------------------------------------------------
 
 _FIG_RE = re.compile(r"\b(?:vc|pt|rr|oc)-(?:fig|extra)-[A-Za-z0-9.\-]*[A-Za-z0-9]")
