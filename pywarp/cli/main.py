@@ -6,7 +6,7 @@
                                                   traceability matrix: ID, title, C, Warp, tests, figures
     pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...] [--scheduler local|dask[=ADDRESS]]
     pywarp notebooks [--out DIR] [--seed KEY] [--quick]   every figure tutorial as a Jupyter notebook
-    pywarp bench tiles|cloudscape|textures|reprojection [--width W] [--height H] [--repeat N] [--workers N]
+    pywarp bench tiles|cloudscape|textures|reprojection|dask [--width W] [--height H] [--repeat N] [--workers N]
                  [--device D] [--json]
 
 Exit status: 0 success (bare ``pywarp`` prints this help and exits 0, like ``--help``); 1 a command failed;

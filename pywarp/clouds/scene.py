@@ -56,6 +56,10 @@ SCENE = register(Scene(
                                                   "camera path (needs scikit-image, a test extra)",
                                   _lazy(".bench", "run_reprojection"), _lazy(".bench", "report_reprojection"),
                                   {"width": 640, "height": 360}),
+        "dask": Benchmark("dask", "the fly-through's frames on a Dask LocalCluster of 1 and 2 worker processes: "
+                                  "speed-up of 2 over 1 and frames/s per worker, to size a cluster (needs dask)",
+                          _lazy("..core.animation", "run_dask_bench"), _lazy("..core.animation", "report_dask"),
+                          {"width": 320, "height": 180, "repeat": 1}),
     },
     outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360, "reprojection": True}},

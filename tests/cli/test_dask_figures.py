@@ -64,3 +64,17 @@ def test_a_failing_tutorial_is_reported_and_the_others_written(tmp_path, monkeyp
 def test_bad_scheduler_options_name_the_option(tmp_path, capsys, argv, message):
     assert _run("figures", "--quick", "--only", TUTORIALS[0], *argv, "--out", str(tmp_path)) == 2
     assert message in capsys.readouterr().err
+
+
+def test_dask_benchmark_report_and_device(capsys):
+    """`pywarp bench clouds dask`: the table (the real run takes minutes; its numbers are in the issue's note)."""
+    from pywarp.core import animation
+
+    res = {"scene": "clouds", "frames": 16, "width": 320, "height": 180, "chunk": 4, "repeat": 1, "cores": 2,
+           "rows": [{"workers": 1, "seconds": 30.0, "fps": 16 / 30, "fps_per_worker": 16 / 30, "speedup": 1.0},
+                    {"workers": 2, "seconds": 16.0, "fps": 1.0, "fps_per_worker": 0.5, "speedup": 1.875}],
+           "load_average_before": [7.5, 7.5, 8.0], "load_average_after": [6.6, 7.2, 7.8]}
+    text = animation.report_dask(res)
+    assert "16 frames 320x180" in text and "1.88x" in text and "load average before 7.50" in text
+    with pytest.raises(ValueError, match="--device must be cpu"):
+        animation.run_dask_bench(device="cuda:0")
