@@ -65,6 +65,7 @@ typedef struct {
     const uint8_t *perm;
     int32_t heightmap;
     float hmax; /* upper bound of the height (the slab's top), NO_SLAB: the printed loops (no clipping) */
+    float precision_t; /* dynamic march: PRECISION grows by this per unit of t (0: as printed) */
 } heightfield;
 
 /* hmax of the element-wise functions (the printed listings): y - NO_SLAB > precision never holds */
@@ -92,6 +93,7 @@ static heightfield field_of(int32_t octaves, float height_scale, float horizonta
     f.perm = perm;
     f.heightmap = heightmap;
     f.hmax = NO_SLAB;
+    f.precision_t = 0.0f;
     return f;
 }
 
@@ -134,15 +136,16 @@ static int32_t march_dynamic(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, flo
     int32_t i;
     for (i = 0; i < max_steps; ++i) {
         ccl_vec3 q = along(ro, rd, t);
+        float eps = precision + f->precision_t * t; /* precision as printed for precision_t = 0 */
         float d;
-        if (rd.y >= 0.0f && q.y - f->hmax > precision) { /* above the slab, rising: no hit ahead */
+        if (rd.y >= 0.0f && q.y - f->hmax > eps) { /* above the slab, rising: no hit ahead */
             *out_t = t;
             *out_steps = i;
             return 0;
         }
         d = map(f, q);
         t += step_scale * d;
-        if (d < precision) {
+        if (d < eps) {
             *out_t = t;
             *out_steps = i + 1;
             return 1;
@@ -446,6 +449,7 @@ void ccl_terrain_params_default(ccl_terrain_params *out)
     p.bisect_threshold = 0.25f;
     p.bisect_steps = 6;
     p.slab = 1;
+    p.precision_per_unit = 0.0f;
     p.normal_h = 0.002f;
     p.normal_octaves_max = 9;
     p.normal_octaves_min = 4;
@@ -525,6 +529,7 @@ ccl_status ccl_terrain_params_check(ccl_terrain_params *p, const char **out_fiel
     CCL_TERRAIN_BAD(!(p->bisect_threshold > 0.0f && p->bisect_threshold <= 100.0f), "bisect_threshold");
     CCL_TERRAIN_BAD(p->bisect_steps < 0 || p->bisect_steps > 64, "bisect_steps");
     CCL_TERRAIN_BAD(p->slab != 0 && p->slab != 1, "slab");
+    CCL_TERRAIN_BAD(!(p->precision_per_unit >= 0.0f && p->precision_per_unit <= 1.0f), "precision_per_unit");
     CCL_TERRAIN_BAD(!(p->normal_h > 0.0f && p->normal_h <= 1.0f), "normal_h");
     CCL_TERRAIN_BAD(p->normal_octaves_max < 1 || p->normal_octaves_max > 16, "normal_octaves_max");
     CCL_TERRAIN_BAD(p->normal_octaves_min < 1 || p->normal_octaves_min > p->normal_octaves_max,
@@ -587,6 +592,7 @@ static heightfield march_field(const ccl_terrain_params *p)
         }
         f.hmax = p->heightmap == CCL_TERRAIN_TEST ? 10.0f : p->height_scale * bound;
     }
+    f.precision_t = p->precision_per_unit;
     return f;
 }
 

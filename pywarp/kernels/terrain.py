@@ -211,22 +211,24 @@ def terrain_march_dynamic(ro: wp.vec3, rd: wp.vec3, max_t: float, precision: flo
                           step_scale: float, octaves: int, height_scale: float, horizontal_scale: float,
                           perm: wp.array(dtype=wp.int32), heightmap: int) -> tuple[int, float, int]:
     return _march_dynamic(ro, rd, max_t, precision, max_steps, step_scale, octaves, height_scale, horizontal_scale,
-                          perm, heightmap, _NO_SLAB)
+                          perm, heightmap, _NO_SLAB, 0.0)
 
 
 @wp.func
 def _march_dynamic(ro: wp.vec3, rd: wp.vec3, max_t: float, precision: float, max_steps: int, step_scale: float,
                    octaves: int, height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32),
-                   heightmap: int, hmax: float) -> tuple[int, float, int]:
-    """Kod 7.5 clipped to the slab y <= hmax + precision (hmax = _NO_SLAB: as printed). C: march_dynamic."""
+                   heightmap: int, hmax: float, precision_t: float) -> tuple[int, float, int]:
+    """Kod 7.5 clipped to the slab y <= hmax + precision (hmax = _NO_SLAB: as printed), the hit test d < precision +
+    precision_t t (precision_t = 0: as printed). C: march_dynamic."""
     t = _slab_entry(ro, rd, precision, hmax)
     for i in range(max_steps):
         q = _along(ro, rd, t)
-        if rd[1] >= 0.0 and q[1] - hmax > precision:
+        eps = precision + precision_t * t
+        if rd[1] >= 0.0 and q[1] - hmax > eps:
             return 0, t, i
         d = _map(q, octaves, height_scale, horizontal_scale, perm, heightmap)
         t += step_scale * d
-        if d < precision:
+        if d < eps:
             return 1, t, i + 1
         if t > max_t:
             return 0, t, i + 1
@@ -580,6 +582,7 @@ class TerrainParams:
     bisect_threshold: float
     bisect_steps: int
     slab: int
+    precision_per_unit: float
     normal_h: float
     normal_octaves_max: int
     normal_octaves_min: int
@@ -679,7 +682,8 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
                                       p.heightmap, hmax)
     else:
         hit, t, steps = _march_dynamic(ro, rd, p.max_t, p.precision, p.max_steps, p.step_scale, p.march_octaves,
-                                       p.height_scale, p.horizontal_scale, perm, p.heightmap, hmax)
+                                       p.height_scale, p.horizontal_scale, perm, p.heightmap, hmax,
+                                       p.precision_per_unit)
     sky = terrain_sky(rd, p.sun, p.sky_colour, p.sun_colour, p.sun_power)
     background = sky
     if p.stage >= 2:

@@ -146,6 +146,12 @@ class TerrainSettings(Settings):
                        reason="on: exact -- the same hits and shadows (bit for bit for a camera inside the slab; from "
                               "above, the march starts at the slab's top, the hit moves by less than PRECISION) for "
                               "~40 % fewer steps (the sky's rays stop after a few)")
+    precision_per_unit: float = param(0.0, lo=0.0, hi=1.0, group="march",
+                                      doc="dynamic march: hit when the vertical gap is below PRECISION + this x t "
+                                          "(the pixel's footprint grows with t; not in the text)",
+                                      reason="0: Kod 7.5's constant PRECISION; the viewer's preview uses 0.004, "
+                                             "about half a pixel's footprint per unit of distance at 320 x 180, "
+                                             "which ends the crawl of grazing rays near the horizon")
     # --- normals ------------------------------------------------------------------------------------------------------
     normal_h: float = param(0.002, unit="units", lo=0.0, hi=1.0, lo_open=True, group="normals",
                             doc="central-difference step h (Kod 7.8)", reason="0.002: Kod 7.8")
@@ -292,7 +298,8 @@ class TerrainSettings(Settings):
             "march_method": {"fixed": 0, "dynamic": 1, "bisect": 2}[self.march], "max_t": self.max_t,
             "step_size": self.step_size, "precision": self.precision, "max_steps": self.max_steps,
             "step_scale": self.step_scale, "bisect_threshold": self.bisect_threshold,
-            "bisect_steps": self.bisect_steps, "slab": int(self.slab), "normal_h": self.normal_h,
+            "bisect_steps": self.bisect_steps, "slab": int(self.slab),
+            "precision_per_unit": self.precision_per_unit, "normal_h": self.normal_h,
             "normal_octaves_max": self.normal_octaves_max, "normal_octaves_min": self.normal_octaves_min,
             "lod_distance": self.lod_distance, "shadows": {"none": 0, "hard": 1, "soft": 2}[self.shadows],
             "shadow_t0_hard": self.shadow_t0_hard, "shadow_t0_soft": self.shadow_t0_soft, "shadow_k": self.shadow_k,
@@ -314,10 +321,10 @@ class TerrainSettings(Settings):
 
 #: The viewer's preview (quality='preview'): what it reduces against the final scene (same camera, same terrain):
 #: fewer octaves in the march (3 of 4: the smallest rocks go) and the normals (6 of 9, 3 far away), no shadows,
-#: a coarser and shorter march (<= 120 steps of 0.6 d, PRECISION 0.05, MAX_T 250 with the fog brought in to end
-#: there) -- a moving camera shows the shapes, the refined frame the detail.
+#: a coarser and shorter march (<= 120 steps of 0.6 d, PRECISION 0.05 growing by 0.004 per unit of distance, MAX_T
+#: 250 with the fog brought in to end there) -- a moving camera shows the shapes, the refined frame the detail.
 PREVIEW = dict(march_octaves=3, normal_octaves_max=6, normal_octaves_min=3, shadows="none", max_steps=120,
-               step_scale=0.6, precision=0.05, max_t=250.0, fog_density=0.0029)
+               step_scale=0.6, precision=0.05, precision_per_unit=0.004, max_t=250.0, fog_density=0.0029)
 
 #: Settings of the test heightmap of Kod 7.4 / 7.5 (Obrazok 7.1-7.2, Tabulka 7.1): the egg-crate terrain lit as in
 #: 7.2, no shadows, no atmosphere, the printed loops (no slab: Tabulka 7.1 and Obrazok 7.2 count their steps); the

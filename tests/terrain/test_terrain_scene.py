@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from pywarp.kernels import terrain as K
-from pywarp.terrain.settings import TEST_HEIGHTMAP, TerrainSettings
+from pywarp.terrain.settings import PREVIEW, TEST_HEIGHTMAP, TerrainSettings
 from pywarp.terrain.technique import (TerrainPose, TerrainTechnique, render_pixels_c, render_pixels_warp,
                                       ground_height, walk_path)
 
@@ -35,8 +35,10 @@ def final_image():
     dict(TEST_HEIGHTMAP, march="fixed", step_size=0.5, slab=True, camera_y=30.0),
     {"camera_y": 40.0, "camera_pitch_deg": -30.0, "shadows": "hard"},
     {"slab": False, "march": "bisect"},
+    dict(PREVIEW),
+    {"precision_per_unit": 0.01, "camera_y": 30.0},
 ], ids=["final", "bisect", "hard-thesis", "ss4-materials", "atmosphere-seed5", "test-fixed", "test-fixed-slab-above",
-        "above-slab-hard", "no-slab-bisect"])
+        "above-slab-hard", "no-slab-bisect", "preview", "precision-growth"])
 def test_warp_pixels_match_the_c_reference(changes):
     """The C reference pixel (ccl_terrain_pixel) and the Warp pixel perform the same float32 operations in the same
     order with the same libm calls: the results are expected bit-identical, and so are the step counts."""
@@ -203,8 +205,6 @@ def test_the_slab_from_above_moves_hits_by_less_than_precision():
 
 
 def test_preview_quality_is_the_reduced_frame_enlarged():
-    from pywarp.terrain.settings import PREVIEW
-
     s = TerrainSettings(width=64, height=35, quality="preview", preview_scale=2)
     tech = TerrainTechnique(s)
     img = tech.render(encode=False)
@@ -241,3 +241,15 @@ def test_controls_mouse_look_and_w_walk_forward_above_the_ground():
         low = dataclasses.replace(low, **ch)
         g = max(float(ground_height(low, low.camera_x, low.camera_z)), low.water_level)
         assert low.camera_y >= g + CLEARANCE - 1e-4
+
+
+def test_precision_growing_with_distance_ends_the_march_earlier_and_zero_is_the_printed_test():
+    """precision_per_unit c: the dynamic march hits when d < PRECISION + c t -- fewer steps for grazing rays, the
+    hits at most c t higher; c = 0 is Kod 7.5 (the default image)."""
+    base = TerrainTechnique(TerrainSettings(**SMALL))
+    grow = TerrainTechnique(TerrainSettings(**SMALL, precision_per_unit=0.004))
+    a, b = base.render(encode=False), grow.render(encode=False)
+    assert grow.steps_taken().sum() < base.steps_taken().sum()
+    assert np.abs(a - b).mean() < 0.05 and not np.array_equal(a, b)
+    zero = TerrainTechnique(TerrainSettings(**SMALL, precision_per_unit=0.0)).render(encode=False)
+    np.testing.assert_array_equal(zero, a)

@@ -84,6 +84,7 @@ typedef struct ccl_terrain_params {
     int32_t slab;              /* 1: the view and shadow rays are clipped to the slab y <= bound + precision that holds
                                 * the terrain (bound: 10 for the test map, height_scale 2 (1 - 0.5^march_octaves) for
                                 * the fBm, |noise| <= 1); exact (the same hits and shadows), 0: the printed loops */
+    float precision_per_unit;  /* dynamic march: hit when d < precision + precision_per_unit t, [0, 1] (0: Kod 7.5) */
     /* normals */
     float normal_h;            /* central-difference step h, (0, 1] (Kod 7.8: 0.002) */
     int32_t normal_octaves_max;/* octaves of the normal near the camera, [1, 16] */
