@@ -5,12 +5,18 @@ order, comparisons written out), so that the Warp render and the C reference pix
 
 * Heightmaps: ``heightmap="test"`` is the text's 10 sin(0.1 x) sin(0.1 z) (Kod 7.4, 7.5, Tabulka 7.1);
   ``heightmap="fbm"`` is ``height_scale * fbm(x / horizontal_scale, z / horizontal_scale, octaves)`` with the fBm of
-  Kod 7.9 (pt-code-7.9, declared with pt-alg-3.2 by :func:`pywarp.kernels.noise.noise_fbm_perlin2`: one function) (A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2 as printed). The element-wise entries take the heightmap as
+  Kod 7.9 (pt-code-7.9, declared with pt-alg-3.2 by :func:`pywarp.kernels.noise.noise_fbm_perlin2`: one
+  function; A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2 as printed). The element-wise entries take the heightmap as
   ``(octaves, height_scale, horizontal_scale, seed, heightmap=...)``; the test heightmap ignores the first four.
 * The noise of the fBm (undefined in the text) is :func:`pywarp.kernels.noise.noise_perlin2` (period 0, quintic
   fade): the z = 0 slice of Perlin's 2002 improved noise, ``|noise| <= 1`` (each corner's gradient has a 2-D part of
   at most (1, 1); measured about [-0.99, 0.99]), 0 at integer lattice points, repeating every 256 lattice units.
   Hence ``|fbm| <= 2 (1 - 0.5^octaves)``.
+* The height slab (scene field ``slab``, on by default): the fBm's heights lie within +-hmax, hmax = height_scale
+  2 (1 - 0.5^octaves) (10 for the test map), so the scene's view and shadow rays stop once they rise above
+  hmax + PRECISION (the sky's rays after a few steps; the soft shadow once its bound k (y - hmax) / t reaches the
+  running minimum) and start at that level when the camera is above it. Exact for a camera inside the slab (the
+  same pixels bit for bit, tested); the element-wise entries are the printed listings (``_NO_SLAB``).
 * Scene level: :class:`TerrainParams` (the twin of ``ccl_terrain_params``) and :func:`terrain_shade` (one ray,
   pt-code-7.3 with materials, water and atmosphere), :func:`terrain_pixel` (supersampled pixel, pt-alg-7.1.6) and
   the image kernel :data:`render_kernel` (row bands through :class:`pywarp.core.runtime.TileLauncher`).
