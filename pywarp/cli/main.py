@@ -6,6 +6,7 @@
                                                   traceability matrix: ID, title, C, Warp, tests, figures
     pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...] [--scheduler local|dask[=ADDRESS]]
     pywarp notebooks [--out DIR] [--seed KEY] [--quick]   every figure tutorial as a Jupyter notebook
+    pywarp cache info|clear [--json]              the on-disk texture cache: entries, size, cap; remove them
     pywarp bench tiles|cloudscape|textures|reprojection|dask [--width W] [--height H] [--repeat N] [--workers N]
                  [--device D] [--json]
 
@@ -25,6 +26,7 @@ import sys
 from pathlib import Path
 
 from ..core.catalogue import SEEDS as _SEED_TEXTS
+from .cache import add_cache_command
 from .equations import add_equations_command
 from .notebooks import add_notebooks_command
 
@@ -144,6 +146,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="worker processes of the LocalCluster (default: one per core, at most one per tutorial)")
     f.set_defaults(run=cmd_figures)
     add_notebooks_command(sub)
+    add_cache_command(sub)
 
     from .scene import add_scene_commands  # scenes, render, animate, bench: built from the scene registry
 

@@ -27,6 +27,12 @@ version. Files are written to a temporary file and moved into place with ``os.re
 leaves a partial entry); each file carries the SHA-256 of its payload, and an entry that fails the check (truncated,
 overwritten, wrong shape) is regenerated with a :class:`TextureCacheWarning`.
 
+Size cap: the disk level holds at most ``$PYWARP_CACHE_MAX_SIZE`` (bytes, or with a K/M/G/T suffix: ``500M``, ``4G``;
+``0`` keeps nothing on disk; ``unlimited`` no cap), default :data:`DEFAULT_MAX_DISK_BYTES` (2 GiB, reason there).
+After each write the least recently used entries go first (a read marks an entry used by touching its modification
+time), so entries made stale by a new package version or generator change, never read again, are evicted first.
+``pywarp cache info`` shows the folder, the entries and the cap; ``pywarp cache clear`` removes them.
+
 Example::
 
     from pywarp.clouds.textures import BasicTextureGenerator, BaseShapeSettings
@@ -166,6 +172,35 @@ def cache_dir() -> Path:
     return (Path(xdg) if xdg else Path.home() / ".cache") / "pywarp"
 
 
+#: Default cap of the disk cache: 2 GiB. Reason: the default texture set takes 33 MiB (the 128^3 base shape 32 MiB),
+#: so 2 GiB holds ~60 sets, or 7 with a 256^3 base shape; this project's development cache after every figure and
+#: scene had been generated many times over held 679 MiB in 346 entries, so a normal user never sees an eviction,
+#: while the cache no longer grows without bound with the entries that version and generator changes leave behind.
+DEFAULT_MAX_DISK_BYTES = 2 * 2 ** 30
+MAX_SIZE_ENV = "PYWARP_CACHE_MAX_SIZE"
+_SIZE_UNITS = {"": 1, "B": 1, "K": 2 ** 10, "M": 2 ** 20, "G": 2 ** 30, "T": 2 ** 40}
+
+
+def parse_size(text: str, name: str = MAX_SIZE_ENV) -> int | None:
+    """``"2G"`` -> 2147483648 (binary units K, M, G, T, optional trailing ``B`` / ``iB``); ``unlimited``/``none`` ->
+    None (no cap). ValueError naming ``name`` otherwise."""
+    import re
+
+    t = str(text).strip()
+    if t.lower() in ("unlimited", "none"):
+        return None
+    m = re.fullmatch(r"(\d+(?:\.\d+)?)\s*([KMGT]?)(?:I?B)?", t.upper())
+    if not m:
+        raise ValueError(f"{name} must be a size in bytes (e.g. 2147483648, 500M, 4G) or 'unlimited', got {text!r}")
+    return int(float(m[1]) * _SIZE_UNITS[m[2]])
+
+
+def max_disk_bytes() -> int | None:
+    """The disk cap: $PYWARP_CACHE_MAX_SIZE parsed (None: unlimited), else :data:`DEFAULT_MAX_DISK_BYTES`."""
+    env = os.environ.get(MAX_SIZE_ENV)
+    return DEFAULT_MAX_DISK_BYTES if env is None or not env.strip() else parse_size(env)
+
+
 def _package_version() -> str:
     from .. import __version__
 
@@ -200,17 +235,24 @@ class TextureCache:
     max_memory_bytes : int
         Memory budget of the in-memory level (least recently used entries are dropped first). Default 512 MiB:
         the default base texture is 32 MiB.
+    max_disk_bytes : int, optional
+        Cap of the disk level (least recently used entries are removed after each write); default
+        :func:`max_disk_bytes` at each use ($PYWARP_CACHE_MAX_SIZE, else :data:`DEFAULT_MAX_DISK_BYTES`).
     """
 
     def __init__(self, directory: str | os.PathLike | None = None, memory: bool = True, disk: bool = True,
-                 max_memory_bytes: int = 512 * 2 ** 20):
+                 max_memory_bytes: int = 512 * 2 ** 20, max_disk_bytes: int | None = None):
         self._directory = None if directory is None else Path(directory)
         self.memory = bool(memory)
         self.disk = bool(disk)
         self.max_memory_bytes = int(max_memory_bytes)
+        if max_disk_bytes is not None and int(max_disk_bytes) < 0:
+            raise ValueError(f"max_disk_bytes must be >= 0, got {max_disk_bytes}")
+        self._max_disk_bytes = None if max_disk_bytes is None else int(max_disk_bytes)
         self._mem: OrderedDict[str, np.ndarray] = OrderedDict()
         self._lock = threading.RLock()
         self.stats = {"memory_hits": 0, "disk_hits": 0, "misses": 0, "corrupt": 0}
+        self.evicted = 0  # disk entries this cache removed to stay under the cap
 
     @property
     def directory(self) -> Path:
@@ -230,6 +272,8 @@ class TextureCache:
     def get(self, kind: str, settings, impl: str, device: str, make: Callable[[], np.ndarray]) -> np.ndarray:
         """The cached texture, or ``make()`` stored in both levels. Returned arrays are read-only."""
         key = self.key(kind, settings, impl, device)
+        if self.disk:
+            self.max_disk_bytes  # noqa: B018 - a malformed $PYWARP_CACHE_MAX_SIZE raises before any work
         with self._lock:
             if self.memory and key in self._mem:
                 self._mem.move_to_end(key)
@@ -321,6 +365,7 @@ class TextureCache:
                         # a valid hash says only that the file is what was written: check the values too
                         reason = texture_problem(kind, arr)
                         if reason is None:
+                            self._touch(path)
                             return np.ascontiguousarray(arr)
         self.stats["corrupt"] += 1
         warnings.warn(f"corrupt texture cache entry {path} ({reason}); regenerating", TextureCacheWarning,
@@ -330,6 +375,8 @@ class TextureCache:
     def _write(self, kind: str, key: str, arr: np.ndarray) -> None:
         from ..core.output import atomic_path
 
+        if self.max_disk_bytes == 0:  # $PYWARP_CACHE_MAX_SIZE=0: nothing kept on disk
+            return
         path = self.path(kind, key)
         buf = io.BytesIO()
         np.save(buf, arr, allow_pickle=False)
@@ -348,6 +395,85 @@ class TextureCache:
         except OSError as exc:
             warnings.warn(f"could not write the texture cache entry {path} ({exc}); continuing without it",
                           TextureCacheWarning, stacklevel=4)
+            return
+        self.evict()
+
+    # --- size cap (least recently used first) -------------------------------------------------------------------
+
+    @property
+    def max_disk_bytes(self) -> int | None:
+        """The disk cap in bytes (None: unlimited): the constructor's, else :func:`max_disk_bytes` now."""
+        return self._max_disk_bytes if self._max_disk_bytes is not None else max_disk_bytes()
+
+    @staticmethod
+    def _touch(path: Path) -> None:
+        try:  # the modification time is the "last used" mark of the LRU eviction (access times are often off)
+            os.utime(path)
+        except OSError:
+            pass
+
+    def entries(self) -> list[dict]:
+        """The disk entries, least recently used first: ``path``, ``kind``, ``bytes``, ``used`` (mtime, s)."""
+        rows = []
+        try:
+            it = list(os.scandir(self.directory))
+        except (FileNotFoundError, NotADirectoryError):
+            return rows
+        for e in it:
+            if e.name.startswith(".") or not e.name.endswith(".pwtex"):
+                continue
+            try:
+                st = e.stat(follow_symlinks=False)
+            except FileNotFoundError:  # removed meanwhile by another process
+                continue
+            rows.append({"path": Path(e.path), "kind": e.name.rsplit("-", 1)[0], "bytes": st.st_size,
+                         "used": st.st_mtime})
+        rows.sort(key=lambda r: (r["used"], r["path"].name))
+        return rows
+
+    def evict(self, limit: int | None = -1) -> tuple[int, int]:
+        """Remove the least recently used disk entries until they take at most ``limit`` bytes (default: the cap;
+        None: nothing removed). Returns (entries removed, bytes freed)."""
+        limit = self.max_disk_bytes if limit == -1 else limit
+        if limit is None:
+            return 0, 0
+        rows = self.entries()
+        total = sum(r["bytes"] for r in rows)
+        removed = freed = 0
+        for r in rows:
+            if total <= limit:
+                break
+            try:
+                r["path"].unlink()
+            except FileNotFoundError:
+                pass
+            except OSError:
+                continue
+            total -= r["bytes"]
+            removed += 1
+            freed += r["bytes"]
+        self.evicted += removed
+        return removed, freed
+
+    def clear_disk(self) -> tuple[int, int]:
+        """Remove every disk entry, and temporaries an interrupted writer left more than an hour ago. Returns
+        (entries removed, bytes freed)."""
+        import time
+
+        removed, freed = self.evict(0)
+        try:
+            stale = [e for e in os.scandir(self.directory) if e.name.startswith(".") and ".pwtex" in e.name]
+        except (FileNotFoundError, NotADirectoryError):
+            stale = []
+        for e in stale:
+            try:
+                st = e.stat(follow_symlinks=False)
+                if time.time() - st.st_mtime > 3600:
+                    os.unlink(e.path)
+                    freed += st.st_size
+            except OSError:
+                pass
+        return removed, freed
 
 
 _default_cache: TextureCache | None = None
