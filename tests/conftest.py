@@ -10,6 +10,10 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
+# `python -m pywarp` in a subprocess must run the installed package, not the source folder it would find first when
+# the working directory is the checkout (Python >= 3.11: no current directory on sys.path).
+os.environ.setdefault("PYTHONSAFEPATH", "1")
+
 
 @pytest.fixture(scope="session")
 def root() -> Path:
