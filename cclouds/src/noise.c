@@ -398,12 +398,16 @@ float ccl_noise_fbm_worley3(float x, float y, float z, int32_t octaves, int32_t 
 
 /* ---- curl noise ------------------------------------------------------------------------------------------------ */
 
-/* The finite-difference step actually used at coordinate c: max(h, |c| 2^-22). |c| 2^-22 is at least two float32
- * ulps of c, so c + h and c - h stay distinct (and the difference quotient finite) even where h is below half an ulp
- * of c; for the default h = 2^-8 it only takes over beyond |c| = 2^14, outside the texture generator's range. */
+/* The finite-difference step actually used at coordinate c: max(h, 2^-20, |c| 2^-22). |c| 2^-22 is at least two
+ * float32 ulps of c, so c + h and c - h stay distinct (and the difference quotient finite) even where h is below half
+ * an ulp of c; 2^-20 keeps the round-off of the noise values (~6e-8) divided by the step (and, in the nested
+ * differences of ccl_noise_curl_property, divided twice) finite. For the default h = 2^-8 neither takes over below
+ * |c| = 2^14, beyond the texture generator's range. */
 static float fd_step(float c, float h)
 {
     const float hc = fabsf(c) * 2.384185791015625e-07f; /* 2^-22 */
+    const float h_min = 9.5367431640625e-07f;            /* 2^-20 */
+    if (h < h_min) h = h_min;
     return hc > h ? hc : h;
 }
 

@@ -214,6 +214,9 @@ class Equation:
     #: samples(rng, n) -> {arg name: array of n valid values}, for arguments tied by a cross-argument check; the
     #: contract tests otherwise draw each argument from its own domain
     samples: Callable | None = None
+    #: why outputs may be NaN or infinite for accepted inputs ("" = never): a ray that misses gives NaN distances, a
+    #: printed erratum overflows. The property tests (tests/hardening) require finite outputs of every other entry.
+    nonfinite: str = ""
 
     @property
     def ids(self) -> tuple[str, ...]:
@@ -408,14 +411,15 @@ def declare(cid: str, *also: str, c: str | None, args: tuple[Arg, ...] = (), opt
             outputs: tuple[str, ...] = ("value",), summary: str = "", references: tuple[str, ...] = (),
             check: Callable | None = None, derived: dict | None = None, name: str | None = None,
             make_warp: Callable | None = None, make_c: Callable | None = None, extra: dict | None = None,
-            ulp: int = 2, samples: Callable | None = None):
+            ulp: int = 2, samples: Callable | None = None, nonfinite: str = ""):
     """Decorator of a ``@wp.func``: register it as the twin of C function ``c`` for catalogue ID(s) ``cid, *also``.
 
     For an element-wise entry (no ``make_warp``), the Warp parameters must be ``args`` then ``options`` in order
     (with each ``derived`` parameter standing in the place of its argument), and the evaluation kernel is generated
     from the annotations. ``ulp`` bounds the C vs Warp difference in the contract tests (state the reason where it
-    is above 2); ``samples(rng, n)`` draws valid inputs where arguments are tied by ``check``. Returns the Warp
-    function unchanged.
+    is above 2); ``samples(rng, n)`` draws valid inputs where arguments are tied by ``check``; ``nonfinite`` says why
+    outputs may be NaN or infinite for accepted inputs (a ray miss; empty: never). Returns the Warp function
+    unchanged.
     """
 
     def wrap(func):
@@ -425,7 +429,7 @@ def declare(cid: str, *also: str, c: str | None, args: tuple[Arg, ...] = (), opt
         eq = Equation(cid, name or func.key, c, func, None, args=tuple(args), options=tuple(options),
                       outputs=tuple(outputs), references=tuple(references), summary=summary, check=check,
                       make_warp=make_warp, make_c=make_c, also=tuple(also), derived=dict(derived or {}),
-                      extra=dict(extra or {}), ulp=ulp, samples=samples)
+                      extra=dict(extra or {}), ulp=ulp, samples=samples, nonfinite=nonfinite)
         if make_warp is None:
             params = warp_parameters(func)
             expected = [a.name for a in args] + [o.name for o in options]

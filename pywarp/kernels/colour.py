@@ -106,6 +106,7 @@ def colour_XYZ_to_linear_srgb(XYZ: wp.vec3, variant: int) -> wp.vec3:
 
 
 @declare("vc-4.5", c="ccl_colour_tonemap_exp",
+         nonfinite="variant='thesis' (the printed sign, 1 - exp(+k C)) overflows to -inf for k C > 88.7",
          args=(Arg("c_hdr", "linear HDR channel value (RGB from vc-4.4)", sample_range=(-10.0, 100.0)),
                Arg("exposure", "exposure k > 0; 0.03 = the thesis' constant, for RGB in kcd/m^2", lo=0.0,
                    lo_open=True, default=TONEMAP_EXPOSURE, sample_range=(0.001, 1.0))),

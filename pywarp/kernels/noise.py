@@ -651,12 +651,15 @@ def noise_fbm_worley3(x: float, y: float, z: float, octaves: int, cells: int, se
 
 @wp.func
 def _fd_step(c: float, h: float) -> float:
-    """The step actually used at coordinate c: max(h, |c| 2^-22) (two float32 ulps of c at least, so c +- h stay
-    distinct where h is below half an ulp; the C function fd_step)."""
+    """The step actually used at coordinate c: max(h, 2^-20, |c| 2^-22) (two float32 ulps of c at least, so c +- h
+    stay distinct where h is below half an ulp; 2^-20 keeps round-off / step finite, also nested; the C fd_step)."""
     hc = wp.abs(c) * 2.384185791015625e-07
-    if hc > h:
+    hh = h
+    if hh < 9.5367431640625e-07:
+        hh = 9.5367431640625e-07
+    if hc > hh:
         return hc
-    return h
+    return hh
 
 
 @wp.func

@@ -134,6 +134,7 @@ _DIRECTION = Arg("direction", "unit ray direction", unit=True)
 # --- vc-A14: ray-sphere -----------------------------------------------------------------------------------------------
 
 @declare("vc-A14", c="ccl_raymarch_ray_sphere",
+         nonfinite="a ray that misses the sphere gives NaN distances (the documented miss)",
          args=(_ORIGIN, _DIRECTION, Arg("centre", "sphere centre (km)", unit_name="km"),
                Arg("radius", "sphere radius", lo=0.0, lo_open=True, unit_name="km")),
          outputs=("t_near", "t_far"),
@@ -233,6 +234,7 @@ def _layer_samples(rng, n):
 
 
 @declare("vc-A24", c="ccl_raymarch_layer_segment",
+         nonfinite="a ray without a segment in the layer gives NaN (the documented no-segment)",
          args=(_ORIGIN, _DIRECTION,
                Arg("centre", "planet centre (km)", default=(0.0, -EARTH_RADIUS_KM, 0.0), unit_name="km"),
                Arg("r_earth", "Earth radius", lo=0.0, lo_open=True, default=_DEFAULT_LAYER.r_earth, unit_name="km"),

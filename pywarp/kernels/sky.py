@@ -425,6 +425,7 @@ GRADIENT_DEFAULTS = {
 
 
 @declare("vc-A29", c="ccl_sky_preetham_colour",
+         nonfinite="variant='thesis' (the printed tone-map sign of vc-4.5) overflows to -inf for bright skies",
          args=(_DIRECTION, _TURBIDITY, _SUN_ELEV_PREETHAM, _SUN_AZ, _EXPOSURE),
          options=(VARIANT, _OUTPUT_PREETHAM), outputs=("colour",),
          summary="Preetham sky per view direction: theta = acos(d_y), gamma = angle to the sun -> Perez 2.36 for Y, "

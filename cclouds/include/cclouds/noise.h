@@ -164,6 +164,9 @@ CCL_API float ccl_noise_fbm_worley3(float x, float y, float z, int32_t octaves, 
 /* ---- curl noise and its operators (vc-2.22 .. vc-2.26, vc-A7) ------------------------------------------------------
  * All derivatives are central differences with step h (default 1/CCL_NOISE_FD_STEP_INV = 1/256 lattice units):
  * d f / d x ~= (f(x + h) - f(x - h)) / ((x + h) - (x - h)) -- the denominator is the float32 spacing actually used.
+ * The step actually used is max(h, 2^-20, |x| 2^-22): x + h and x - h stay distinct where h is below half an ulp of
+ * x, and the quotients finite for every h in (0, 0.25] and every finite coordinate of the documented range (the
+ * default step is unchanged below |x| = 2^14).
  * Base noise: 3-D Perlin noise N = perlin3(., seed, period). Vector potential of the 3-D reading:
  * psi(p) = (N(p), N(p + o1), N(p + o2)) with the large offsets o1 = (100.25, -57.75, 33.5),
  * o2 = (-41.5, 88.25, -119.75) (lattice units; non-integer so the three components are not lattice-aligned). */
