@@ -66,4 +66,5 @@ SCENE = register(Scene(
     command_defaults={"animate": {"width": 640, "height": 360}},
     command_exclude={"animate": ("time_s", "view")},
     time_field=None,
+    controls=_lazy(".controls", "FlightControls"),
 ))

@@ -126,7 +126,7 @@ class FlightTechnique:
     def view(self, pose: FlightPose) -> tuple[CAM.Camera, dict]:
         """(camera, volume parameter values) of ``pose``."""
         s = self.settings
-        a = self.aircraft(pose.time_s)
+        a = getattr(pose, "aircraft", None) or self.aircraft(pose.time_s)  # the viewer's live flight carries it
         f, r, u = F.axes(a.heading, a.pitch, a.roll)
         pos = np.asarray(a.position, dtype=np.float64)
         values = s.volume_values()

@@ -48,4 +48,5 @@ SCENE = register(Scene(
     outputs={"render": "rain.png", "animate": "rain.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360}},
     time_field="time_s",
+    controls=_lazy(".controls", "RainControls"),
 ))
