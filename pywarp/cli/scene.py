@@ -26,8 +26,9 @@ class AnimateOptions(Settings):
 
     frames: int = param(96, unit="frames", kind="int", lo=1, hi=100000, doc="number of frames",
                         reason="96: 4 s at 24 fps, enough to climb through the cloud layer")
-    fps: float = param(24.0, unit="1/s", lo=0.0, hi=240.0, lo_open=True, doc="frames per second of the video",
-                       reason="24: film rate")
+    fps: float = param(24.0, unit="1/s", lo=0.01, hi=240.0, doc="frames per second of the video",
+                       reason="24: film rate; at least 0.01 (100 s a frame): GIF frame delays end at 655.35 s and "
+                              "H.264 encoders refuse time bases far below that")
     time_scale: float = param(20.0, unit="s per s", lo=0.0, hi=1e6,
                               doc="simulated seconds per video second (the wind); 0 freezes the weather",
                               reason="20: at 30 km/h the clouds drift visibly within a few seconds of video")

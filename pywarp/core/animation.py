@@ -83,8 +83,16 @@ def frame_times(settings, time_field: str | None, frames: int, fps: float, time_
     """The scene time of every frame (None for a static scene): the settings' time plus i / fps * time_scale."""
     if not time_field:
         return [None] * frames
+    import dataclasses
+
     t0 = getattr(settings, time_field)
-    return [t0 + i / fps * time_scale for i in range(frames)]
+    times = [t0 + i / fps * time_scale for i in range(frames)]
+    try:  # the settings' own spec bounds the time: check the path's end before any frame is rendered
+        dataclasses.replace(settings, **{time_field: times[-1]})
+    except ValueError as exc:
+        raise ValueError(f"--frames/--time-scale: the path ends at {time_field} = {times[-1]:g}, outside the scene's "
+                         f"range ({exc})") from None
+    return times
 
 
 def render_frames(tech, poses, times, time_field: str | None, linear: bool, start: int = 0):

@@ -271,8 +271,8 @@ class VideoWriter:
         self.path = Path(path)
         if self.path.suffix.lower() not in VIDEO_SUFFIXES:
             raise ValueError(f"video path must end in .mp4 or .gif, got {str(path)!r}")
-        if not (0 < fps <= 240):
-            raise ValueError(f"fps must be in (0, 240], got {fps}")
+        if not (0.01 <= fps <= 240):  # GIF frame delays end at 655.35 s; see the --fps spec of pywarp animate
+            raise ValueError(f"fps must be in [0.01, 240], got {fps}")
         self.fps = float(fps)
         self._tmp: Path | None = None
         self._frames: list[np.ndarray] = []

@@ -139,8 +139,9 @@ class Arg:
             out = (a < lo_i) | (a > hi_i)
             if np.any(out):
                 raise ValueError(f"{name} must be in [{lo_i}, {hi_i}] ({dtype}), got {a[out].flat[0].item()!r}")
-        lo_bad = np.zeros(a.shape, bool) if self.lo is None else ((a <= self.lo) if self.lo_open else (a < self.lo))
-        hi_bad = np.zeros(a.shape, bool) if self.hi is None else ((a >= self.hi) if self.hi_open else (a > self.hi))
+        w = a.astype(np.float64) if a.dtype.kind == "f" else a  # compare float16/32 in float64: no cast warnings
+        lo_bad = np.zeros(a.shape, bool) if self.lo is None else ((w <= self.lo) if self.lo_open else (w < self.lo))
+        hi_bad = np.zeros(a.shape, bool) if self.hi is None else ((w >= self.hi) if self.hi_open else (w > self.hi))
         bad = lo_bad | hi_bad
         if np.any(bad):
             raise ValueError(f"{name} must be in {self.domain()}, got {np.asarray(a)[bad].flat[0].item()!r}")

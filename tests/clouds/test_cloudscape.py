@@ -192,7 +192,8 @@ def test_cli_animate_gif_and_bad_frames(tmp_path):
         assert im.n_frames == 3
     for args, message in ((["--frames", "0"], "--frames must be in [1, 100000], got 0"),
                           (["--time-scale", "-1"], "--time-scale must be in [0, 1e+06], got -1"),
-                          (["--fps", "0"], "--fps must be in (0, 240], got 0"),
+                          (["--fps", "0"], "--fps must be in [0.01, 240], got 0"),
+                          (["--fps", "1e-6"], "--fps must be in [0.01, 240], got 1e-6"),
                           (["--path", "orbit"], "--path must be one of 'flythrough', got 'orbit'")):
         res = _cli("animate", *args, "--out", str(tmp_path / "g.gif"), cwd=tmp_path)
         assert res.returncode == 2 and res.stderr.strip() == "pywarp animate: error: " + message, res.stderr

@@ -61,7 +61,7 @@ def test_video_writer_atomic(tmp_path, suffix):
 def test_video_writer_validation(tmp_path):
     with pytest.raises(ValueError, match="must end in .mp4 or .gif"):
         VideoWriter(tmp_path / "a.avi")
-    with pytest.raises(ValueError, match=r"fps must be in \(0, 240\]"):
+    with pytest.raises(ValueError, match=r"fps must be in \[0.01, 240\]"):
         VideoWriter(tmp_path / "a.gif", fps=0)
     with pytest.raises(ValueError, match="even width and height"):
         with VideoWriter(tmp_path / "a.mp4") as vw:
