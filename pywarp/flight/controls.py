@@ -9,8 +9,9 @@ scripted flight's state at the settings' ``time_s`` (the frame ``pywarp render f
 when ``time_s`` or the start fields change in the panel. The camera is the settings' ``view``: the chase camera
 (behind and above the aircraft, ``chase_distance_m``, ``chase_height_m``) or the cockpit.
 
-The aircraft state lives here, not in the settings: every step returns a :class:`FlownPose` (a
-:class:`pywarp.flight.technique.FlightPose` that carries the aircraft). Preview frames (while the aircraft moves) take
+The aircraft state lives here, not in the settings: once it has flown, every step returns a :class:`FlownPose` (a
+:class:`pywarp.flight.technique.FlightPose` that carries the aircraft; before, None: the settings' own camera, the
+same aircraft). Preview frames (while the aircraft moves) take
 ``FlightSettings.preview()``'s ray step ``preview_step_voxels``; their resolution is the viewer's adaptive preview
 scale (which replaces ``preview_scale``: it follows the measured frame time).
 """
@@ -56,6 +57,7 @@ class FlightControls(Controls):
         self.pitch = self.roll = 0.0
         self._acc = 0.0
         self.flown_s = 0.0
+        self.flying = False  # flown since the session began (before that the settings' camera is the pose)
 
     @staticmethod
     def _key(settings):
@@ -88,6 +90,7 @@ class FlightControls(Controls):
                                    float(tr.speed[-1]), float(tr.nose_offset[-1]), float(tr.wing_offset[-1]))
         self.pitch, self.roll = float(tr.pitch[-1]), float(tr.roll[-1])
         self.flown_s += duration
+        self.flying = True
 
     def aircraft(self) -> AircraftState:
         s = self.state
@@ -109,7 +112,10 @@ class FlightControls(Controls):
         msg = (f"speed {s.speed:.1f} m/s, altitude {s.position[1]:.0f} m, heading "
                f"{math.degrees(s.heading) % 360.0:.0f} deg, pitch {math.degrees(self.pitch):+.1f} deg, roll "
                f"{math.degrees(self.roll):+.1f} deg")
-        return Step(pose=FlownPose(settings.time_s, settings.view, self.aircraft()), moving=moving, message=msg)
+        # until the first flight step the aircraft is the scripted one at time_s: the settings' own camera (pose None,
+        # so that the session's first frame is the one it asked for); then the flown aircraft, every step
+        pose = FlownPose(settings.time_s, settings.view, self.aircraft()) if self.flying else None
+        return Step(pose=pose, moving=moving, message=msg)
 
     def preview(self, settings) -> dict:
         p = settings.preview()

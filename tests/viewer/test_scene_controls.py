@@ -207,8 +207,9 @@ def test_flight_keys_fly_the_aircraft_as_the_table_says(flight):
     assert isinstance(ctl, FlightControls)
     assert {"Up", "Down", "Left", "Right", "W", "S"} <= set(" ".join(b.keys for b in ctl.bindings).split())
     st = ctl.step(s, S.Input(dt=0.0))
-    a0 = st.pose.aircraft
-    assert isinstance(st.pose, FlownPose) and a0.position == (0.0, s.start_altitude_m, 0.0) and a0.speed == 40.0
+    a0 = ctl.aircraft()
+    assert st.pose is None and a0.position == (0.0, s.start_altitude_m, 0.0) and a0.speed == 40.0  # not flown yet
+    assert isinstance(ctl.step(s, S.Input(dt=0.1)).pose, FlownPose)  # flying: the flown aircraft's pose
 
     def after(keys, seconds=1.0):
         c = flight.make_controls(s)
@@ -246,12 +247,15 @@ def test_flight_controls_fly_the_path_of_the_flight_model(flight):
 
 
 def test_flight_starts_from_the_scripted_moment_and_restarts_on_a_panel_change(flight):
+    from pywarp.flight.controls import FlownPose
+
     s = flight_settings(flight, time_s=4.0)
     tech = flight.technique(s)
     ctl = flight.make_controls(s)
     st = ctl.step(s, S.Input(dt=0.0))
-    assert st.pose.aircraft == tech.aircraft(4.0) and not st.moving
-    assert np.array_equal(tech.render(st.pose), tech.render())  # the first frame is pywarp render's
+    assert st.pose is None and ctl.aircraft() == tech.aircraft(4.0) and not st.moving  # the settings' camera
+    pose = FlownPose(4.0, "chase", ctl.aircraft())
+    assert np.array_equal(tech.render(pose), tech.render())  # the same aircraft as pywarp render's
     st = fly(ctl, s, {"Left"}, 0.5)
     assert st.moving and st.pose.aircraft != tech.aircraft(4.0)
     s2 = dataclasses.replace(s, time_s=8.0)
