@@ -15,6 +15,7 @@ from __future__ import annotations
 import errno
 import os
 import secrets
+import shutil
 import subprocess
 import tempfile
 from contextlib import contextmanager
@@ -167,9 +168,20 @@ def _publish(tmp: Path, path: Path) -> None:
     _LIVE.discard(tmp)
 
 
+def _disk_full(path: Path) -> bool:
+    """Whether the file system of ``path`` has (almost) no space left: a short write reported without an errno
+    (NumPy's "N requested and M written", ffmpeg's own messages) is then a full disk."""
+    try:
+        return shutil.disk_usage(path.parent if str(path.parent) else ".").free < 64 * 1024
+    except OSError:
+        return False
+
+
 def _write_error(path: Path, exc: OSError) -> OSError:
     """An OSError about ``path`` (and its option), never about the temporary file."""
     reason = exc.strerror or str(exc).replace(TEMP_SUFFIX, "")
+    if exc.errno == errno.ENOSPC or "No space left on device" in reason or _disk_full(path):
+        return _oserror(errno.ENOSPC, f"{_prefix(path)}cannot write {str(path)!r}: disk full ({reason})")
     return _oserror(exc.errno, f"{_prefix(path)}cannot write {str(path)!r}: {reason}")
 
 
