@@ -9,9 +9,12 @@ static float clamp01(float v)
     return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v); /* NaN passes through */
 }
 
-/* Texture coordinate of the centre of texel i: (i + 0.5) / size, exact for power-of-two sizes and |i| < 2^22. */
+/* Texture coordinate of the centre of texel i: (i + 0.5) / size, exact for power-of-two sizes and |i| < 2^22.
+ * Outside that range i is first reduced modulo size (size is a power of two; the texture is periodic, so the texel is
+ * the same one), which keeps "any int32" of the single-texel functions exact. */
 static float texcoord(int32_t i, int32_t size)
 {
+    if (i <= -(1 << 22) || i >= (1 << 22)) i = (int32_t)((uint32_t)i & ((uint32_t)size - 1u));
     return ((float)i + 0.5f) / (float)size;
 }
 

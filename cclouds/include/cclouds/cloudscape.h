@@ -155,7 +155,7 @@ CCL_API void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_clou
                                   int height, int frame, float *out_rgb);
 
 /* Render a whole frame on one thread: out_rgb (height x width x 3, row 0 at the top) gets sRGB-encoded values in
- * [0, 1]. Returns CCL_EINVAL for bad parameters (see ccl_cloudscape_check), sizes < 1, NULL pointers or
+ * [0, 1]. Returns CCL_EINVAL for bad parameters (see ccl_cloudscape_check), sizes < 1, frame < 0, NULL pointers or
  * out_len != width * height * 3. */
 CCL_API ccl_status ccl_cloudscape_render(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
                                          const ccl_cloudscape_sky *sky, const ccl_camera *cam, int width, int height,
