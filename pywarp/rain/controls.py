@@ -31,8 +31,9 @@ from .settings import CONTROLS, MODES, PANORAMA, SHAPES
 #: keyboard auto-repeat of a held key: first repeat after this long (s), then this many steps per second
 REPEAT_DELAY_S = 0.25
 REPEAT_HZ = 10.0
-#: edge of the wide-angle capture in preview frames (px): a sixteenth of the 512 x 512 capture's pixels
-PREVIEW_CAPTURE = 128
+#: edge of the wide-angle capture in preview frames (px): the capture is seen only through the drops, a few pixels
+#: each in a preview frame; the background (a rendered scene) costs per pixel, and 512 x 512 is 2.3x a 640 x 360 view
+PREVIEW_CAPTURE = 32
 #: one W / S / Q / E step in seconds of the free-fly camera's speed (FREE_FLY_SPEED): 50 m over the clouds (km),
 #: 2 m in a scene in metres
 MOVE_STEP_S = 0.1

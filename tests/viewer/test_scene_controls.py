@@ -174,7 +174,7 @@ def test_rain_keys_in_a_headless_session_change_the_image(rain):
                 images["start"] = img
         session.tick(S.Input(dt=1 / 30, held=frozenset({"D"}), pressed=frozenset({"D"})))
         f = _wait(session, version=session.version)
-        assert not f.full and f.settings.capture_size == 128  # the preview's capture
+        assert not f.full and f.settings.capture_size == 32  # the preview's capture
     finally:
         session.close()
 
