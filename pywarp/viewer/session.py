@@ -409,8 +409,10 @@ class Session:
         sets, shots = {}, []
         if self.script is not None:
             if self.waiting:  # the script's clock stops until the screenshot is written
-                self._submit(full=True)
-                return
+                self._write_ready_shots()
+                if self.waiting:
+                    self._submit(full=True)
+                    return
             dt = SCRIPT_DT
             pressed, held, mouse, sets, shots, quit_ = self.script.at(self.clock, self.clock + dt)
             inp = Input(dt=dt, held=held | inp.held, pressed=pressed | inp.pressed,
@@ -439,6 +441,15 @@ class Session:
         self.clock += inp.dt
         moving = step.moving or (self.clock - self.last_change) < self.still_s
         self._submit(full=not moving or self.waiting)
+
+    def _write_ready_shots(self) -> None:
+        """Write the screenshots whose refined frame is already there (it may have arrived, and been shown, before
+        the screenshot was asked for: then no new frame comes and :meth:`poll` would wait for ever)."""
+        f = self.worker.latest()
+        if f is not None and f.full:
+            for s in self.shots:
+                if not s.done and s.version == f.version:
+                    self._write(s, f)
 
     def _submit(self, full: bool) -> None:
         latest = self.worker.latest()
