@@ -16,8 +16,8 @@ WATER_INDEX = 1.33
 DEG_PER_RAD = wp.constant(57.2957795130823208768)
 RAD_PER_DEG = wp.constant(0.0174532925199432957692)
 
-_N1 = Arg("n1", "refractive index of the medium the light comes from (air 1)", lo=0.0, hi=10.0, lo_open=True)
-_N2 = Arg("n2", "refractive index of the medium the light enters (water 1.33)", lo=0.0, hi=10.0, lo_open=True)
+_N1 = Arg("n1", "refractive index of the medium the light comes from (air 1)", lo=1e-3, hi=10.0)  # from 1e-3: no denormal index (n1 / n2 overflows)
+_N2 = Arg("n2", "refractive index of the medium the light enters (water 1.33)", lo=1e-3, hi=10.0)
 
 
 @declare("rr-snell", c="ccl_optics_snell",
