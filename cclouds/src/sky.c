@@ -348,7 +348,9 @@ ccl_vec3 ccl_sky_gradient_rgb(ccl_vec3 dir, ccl_vec3 sun, const ccl_sky_gradient
     if (t < 0.0f) t = 0.0f;
     if (t > 1.0f) t = 1.0f;
     c = dir.x * sun.x + dir.y * sun.y + dir.z * sun.z;
+    /* The dot of two unit vectors can round to 1 + 2^-23; c^n then overflows for n above ~7e8: clamp to [0, 1]. */
     if (c < 0.0f) c = 0.0f;
+    if (c > 1.0f) c = 1.0f;
     s = powf(c, g->sun_exponent);
     r.x = g->horizon[0] + t * (g->zenith[0] - g->horizon[0]) + g->sun[0] * s;
     r.y = g->horizon[1] + t * (g->zenith[1] - g->horizon[1]) + g->sun[1] * s;

@@ -374,8 +374,11 @@ def sky_gradient_rgb(d: wp.vec3, sun: wp.vec3, g: SkyGradient) -> wp.vec3:
     if t > 1.0:
         t = 1.0
     c = d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2]
+    # The dot of two unit vectors can round to 1 + 2^-23; c^n then overflows for n above ~7e8: clamp to [0, 1].
     if c < 0.0:
         c = 0.0
+    if c > 1.0:
+        c = 1.0
     s = wp.pow(c, g.sun_exponent)
     return wp.vec3(g.horizon[0] + t * (g.zenith[0] - g.horizon[0]) + g.sun[0] * s,
                    g.horizon[1] + t * (g.zenith[1] - g.horizon[1]) + g.sun[1] * s,

@@ -196,7 +196,8 @@ CCL_API ccl_status ccl_sky_gradient_init(ccl_vec3 horizon, ccl_vec3 zenith, ccl_
                                          ccl_sky_gradient *out);
 
 /* Gradient sky colour of a unit view direction d with unit sun direction s:
- * t = clamp(d_y, 0, 1); rgb = horizon + t (zenith - horizon) + sun * max(d . s, 0)^sun_exponent.
+ * t = clamp(d_y, 0, 1); rgb = horizon + t (zenith - horizon) + sun * clamp(d . s, 0, 1)^sun_exponent (the
+ * clamp at 1 keeps the result finite for any finite exponent when d . s rounds above 1).
  * Ref: vc-A28 (linear interpolation between a light and a dark blue by the ray's Y component plus a sun colour by
  * the angle to the sun). Output linear RGB >= 0 for non-negative colours. Allocation-free. */
 CCL_API ccl_vec3 ccl_sky_gradient_rgb(ccl_vec3 dir, ccl_vec3 sun, const ccl_sky_gradient *g);

@@ -1,0 +1,48 @@
+"""Issue 14 (hardening), the fuzz findings of cclouds/fuzz/README.md: one test per finding, each failing on the code
+before its fix. C functions are called through the cffi binding; Python entries through the registry, both
+implementations."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import pywarp
+from pywarp.core.binding import ffi, lib
+from pywarp.kernels import sky as sky_mod
+
+IMPLS = ("warp", "c")
+
+
+# --- finding 4: gradient sky, d . s rounding above 1 ------------------------------------------------------------------
+
+# Sun directions whose float32 dot product with themselves (after the entry's normalisation) rounds to 1 + 2^-23:
+# before the clamp, c^n overflowed to Inf for n = 1e9 (found by a scan over elevation/azimuth).
+SKY_ABOVE_ONE = ((0.0, 14.6), (0.0, 65.7), (0.37, 102.2), (0.37, 262.8))
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+@pytest.mark.parametrize("elevation, azimuth", SKY_ABOVE_ONE)
+def test_sky_gradient_finite_for_huge_exponent_at_the_sun(impl, elevation, azimuth):
+    sky = pywarp.equation("vc-A28", impl=impl)
+    s = sky_mod.sun_direction(elevation, azimuth)
+    sun_colour = (1.0, 0.9, 0.6)
+    for n in (1e9, 3.0e38):
+        rgb = np.asarray(sky(s, elevation, azimuth, sun_colour=sun_colour, sun_exponent=n), np.float64)
+        assert np.all(np.isfinite(rgb)), (n, rgb)
+        # at most one sun colour above the lerp (c clamped to 1); the lerp itself is within [0, 1] here
+        assert np.all(rgb <= np.array(sun_colour) + 1.0)
+    # a zero sun colour gives the lerp, not NaN (0 * Inf before the clamp)
+    rgb = np.asarray(sky(s, elevation, azimuth, sun_colour=(0.0, 0.0, 0.0), sun_exponent=1e9))
+    assert np.all(np.isfinite(rgb))
+
+
+def test_sky_gradient_rgb_clamps_the_cosine_in_c():
+    g = ffi().new("ccl_sky_gradient *")
+    lib().ccl_sky_gradient_defaults(g)
+    g.sun_exponent = 1e9
+    d = ffi().new("ccl_vec3 *")
+    # a direction of length 1 + 2^-23 stands for the rounding: d . d = 1 + 2^-22 in float32
+    d.x, d.y, d.z = float(np.float32(1.0 + 2.0 ** -23)), 0.0, 0.0
+    r = lib().ccl_sky_gradient_rgb(d[0], d[0], g)
+    assert np.all(np.isfinite([r.x, r.y, r.z]))
+    assert r.x == pytest.approx(g.horizon[0] + g.sun[0], rel=1e-6)
