@@ -55,15 +55,9 @@ static ccl_status gen_detail(const void *s, float *o, size_t n) { return ccl_tex
 static ccl_status gen_curl(const void *s, float *o, size_t n) { return ccl_texgen_curl_noise(s, o, n); }
 static ccl_status gen_weather(const void *s, float *o, size_t n) { return ccl_texgen_weather_map(s, o, n); }
 
-/* The single-texel forms equal the texture's texel (ix & (size - 1), ...) bit for bit for every int32 coordinate when
- * the lattice frequencies are powers of two; for other frequencies only inside [0, size) (see README.md, finding 2:
- * u * frequency rounds for large coordinates). */
-static int32_t texel_coord(fz_reader *r, int32_t size, int exact) {
-    int32_t i = fz_i32(r);
-    return exact ? i : (int32_t)((uint32_t)i & ((uint32_t)size - 1u));
-}
-
-static int is_pow2(int32_t v) { return v > 0 && (v & (v - 1)) == 0; }
+/* The single-texel forms equal the texture's texel (ix & (size - 1), ...) bit for bit for every int32 coordinate and
+ * every lattice frequency or cell count (README.md, finding 2: the coordinate is reduced modulo size first). */
+static int32_t texel_coord(fz_reader *r) { return fz_i32(r); }
 
 static float maybe_float(fz_reader *r, float def) { return fz_u8(r) < 160 ? def : fz_float(r); }
 static int32_t maybe_i32(fz_reader *r, int32_t def) { return fz_u8(r) < 160 ? def : fz_i32(r); }
@@ -89,9 +83,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         FZ_CHECK((check == CCL_OK) == (field == NULL), "status %d but field %s", (int)check, field ? field : "NULL");
         run(r, check, s.size, 3, 4, 8, 0.0f, 1.0f, gen_base, &s, &buf, &n);
         if (buf) {
-            int exact = is_pow2(s.perlin_frequency) && is_pow2(s.worley_cells);
-            int32_t ix = texel_coord(r, s.size, exact), iy = texel_coord(r, s.size, exact);
-            int32_t iz = texel_coord(r, s.size, exact);
+            int32_t ix = texel_coord(r), iy = texel_coord(r), iz = texel_coord(r);
             float t[4];
             ccl_texgen_base_shape_texel(ix, iy, iz, s.size, s.seed, s.perlin_octaves, s.perlin_frequency,
                                         s.worley_cells, s.worley_weights[0], s.worley_weights[1], s.worley_weights[2],
@@ -120,9 +112,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         FZ_CHECK((check == CCL_OK) == (field == NULL), "status %d but field %s", (int)check, field ? field : "NULL");
         run(r, check, s.size, 3, 3, 8, 0.0f, 1.0f, gen_detail, &s, &buf, &n);
         if (buf) {
-            int exact = is_pow2(s.worley_cells);
-            int32_t ix = texel_coord(r, s.size, exact), iy = texel_coord(r, s.size, exact);
-            int32_t iz = texel_coord(r, s.size, exact);
+            int32_t ix = texel_coord(r), iy = texel_coord(r), iz = texel_coord(r);
             float t[3];
             ccl_texgen_detail_shape_texel(ix, iy, iz, s.size, s.seed, s.worley_cells, s.worley_weights[0],
                                           s.worley_weights[1], s.worley_weights[2], s.gamma, &t[0], &t[1], &t[2]);

@@ -9,12 +9,13 @@ static float clamp01(float v)
     return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v); /* NaN passes through */
 }
 
-/* Texture coordinate of the centre of texel i: (i + 0.5) / size, exact for power-of-two sizes and |i| < 2^22.
- * Outside that range i is first reduced modulo size (size is a power of two; the texture is periodic, so the texel is
- * the same one), which keeps "any int32" of the single-texel functions exact. */
+/* Texture coordinate of the centre of texel i: (i mod size + 0.5) / size, exact for power-of-two sizes. i is always
+ * reduced modulo size first (size is a power of two; the texture is periodic, so the texel is the same one): u then
+ * lies in (0, 1) and u * frequency is the same float for i and i + k size, so the single-texel functions equal the
+ * texture's texel bit for bit for any int32 coordinate and any frequency or cell count (not only powers of two). */
 static float texcoord(int32_t i, int32_t size)
 {
-    if (i <= -(1 << 22) || i >= (1 << 22)) i = (int32_t)((uint32_t)i & ((uint32_t)size - 1u));
+    i = (int32_t)((uint32_t)i & ((uint32_t)size - 1u));
     return ((float)i + 0.5f) / (float)size;
 }
 

@@ -64,8 +64,9 @@ def _clamp01(v: float) -> float:
 
 @wp.func
 def _texcoord(i: int, size: int) -> float:
-    """Centre of texel i: (i + 0.5) / size."""
-    return (float(i) + 0.5) / float(size)
+    """Centre of texel i: (i mod size + 0.5) / size (size a power of two). Reducing i first keeps u * frequency the
+    same float for i and i + k size, so a single texel is exactly periodic for any frequency (as in C)."""
+    return (float(i & (size - 1)) + 0.5) / float(size)
 
 
 @wp.func
@@ -109,12 +110,10 @@ _REF_GPU7 = "A. Schneider, Real-Time Volumetric Cloudscapes, GPU Pro 7, 2016"
 _REF_HILLAIRE = "S. Hillaire, TileableVolumeNoise, https://github.com/sebh/TileableVolumeNoise, 2016"
 _REF_BRIDSON = "R. Bridson, J. Hourihan & M. Nordenstam, Curl-Noise for Procedural Fluid Flow, SIGGRAPH 2007"
 
-_COORD = 2 ** 22  # (float)i + 0.5 is exact for |i| < 2^22
-
-
 def _icoord(name):
-    return Arg(name, f"integer texel coordinate {name[-1]} (any: the texture is periodic)", lo=-_COORD, hi=_COORD,
-               dtype="int32")
+    # any int32: the coordinate is reduced modulo size before the float conversion (exact for every frequency)
+    return Arg(name, f"integer texel coordinate {name[-1]} (any int32: the texture is periodic)", lo=-2 ** 31,
+               hi=2 ** 31 - 1, dtype="int32")
 
 
 def _check_size_3d(size, **_):

@@ -46,3 +46,31 @@ def test_sky_gradient_rgb_clamps_the_cosine_in_c():
     r = lib().ccl_sky_gradient_rgb(d[0], d[0], g)
     assert np.all(np.isfinite([r.x, r.y, r.z]))
     assert r.x == pytest.approx(g.horizon[0] + g.sun[0], rel=1e-6)
+
+
+# --- finding 2: single texels periodic for any lattice frequency and any int32 coordinate -------------------------------
+
+TEXEL_INSIDE = ([114, 4194301, -4194303, 1001, 3000000], [-3963638, 7, 3000001, -4000001, 5],
+                [-1, -4194303, 4000000, 3999999, -3999999])  # |i| < 2^22: accepted before, values differed
+TEXEL_INT32 = ([2 ** 31 - 1, -2 ** 31, 2 ** 30 + 1], [-2 ** 31 + 5, 2 ** 31 - 2, -2 ** 30 - 1],
+               [2 ** 30 + 3, -4194305, 2 ** 31 - 1])  # any int32 (refused beyond 2^22 before)
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+@pytest.mark.parametrize("coords", [TEXEL_INSIDE, TEXEL_INT32], ids=["inside-2^22", "int32"])
+def test_texel_entries_periodic_for_non_power_of_two_frequencies(impl, coords):
+    """Texel i + k size equals texel i bit for bit also when u * frequency rounds (frequency 3, cells 3, 5): the
+    coordinate is reduced modulo size before the conversion to float. Before, base texel (114, -3963638, -1) of size 4,
+    frequency 3, cells 3 differed from texel (2, 2, 3) (R 0.542 vs 0.678)."""
+    size = 4
+    ix, iy, iz = (np.array(c, np.int64) for c in coords)
+    red = [a & (size - 1) for a in (ix, iy, iz)]
+    bt = pywarp.equation("vc-A9", impl=impl)
+    for freq, cells in ((3, 3), (5, 3), (7, 5)):
+        b = dict(size=size, seed=0, perlin_octaves=3, perlin_frequency=freq, worley_cells=cells, worley_w0=0.625,
+                 worley_w1=0.25, worley_w2=0.125, gamma=1.0)
+        np.testing.assert_array_equal(np.stack(bt(ix, iy, iz, **b), -1), np.stack(bt(*red, **b), -1))
+    dt = pywarp.equation("vc-A10", impl=impl)
+    for cells in (3, 5, 7):
+        d = dict(size=size, seed=4, worley_cells=cells, worley_w0=0.625, worley_w1=0.25, worley_w2=0.125, gamma=1.0)
+        np.testing.assert_array_equal(np.stack(dt(ix, iy, iz, **d), -1), np.stack(dt(*red, **d), -1))

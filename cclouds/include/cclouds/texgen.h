@@ -151,7 +151,7 @@ CCL_API ccl_status ccl_texgen_weather_map_settings_check(const ccl_weather_map_s
 
 /* One texel (ix, iy, iz) of the base-shape texture (vc-A9, vc-A8, vc-4.6); the arguments are the fields of
  * ccl_base_shape_settings (see there and the header comment). Integer coordinates may be any int32 (the texture is
- * periodic). Rebuilds the permutation table of `seed` on each call (~1 us): the whole-texture function builds it once.
+ * periodic: i is reduced modulo size first, so texel i + k size equals texel i bit for bit for every frequency). Rebuilds the permutation table of `seed` on each call (~1 us): the whole-texture function builds it once.
  * Writes R, G, B, A in [0, 1]. Domain: as ccl_texgen_base_shape_settings_check (asserted in debug builds). */
 CCL_API void ccl_texgen_base_shape_texel(int32_t ix, int32_t iy, int32_t iz, int32_t size, uint32_t seed,
                                          int32_t perlin_octaves, int32_t perlin_frequency, int32_t worley_cells,
