@@ -47,13 +47,40 @@
  *   beer 1, powder 1          both terms of vc-2.31 on (the formula as printed).
  *   gradient_clamp 1          the height gradients are clamped to [0, 1] in the renderer: unclamped, D_v peaks at
  *                             2.18 and the coverage remap then amplifies density instead of thinning it
- *                             (pywarp.kernels.clouds documents the effect); clamped, coverage is monotonic. */
+ *                             (pywarp.kernels.clouds documents the effect); clamped, coverage is monotonic.
+ * Lighting (see "Lighting" in cloudscape.h):
+ *   lighting CCL_LIGHTING_SKY  sun and ambient follow the sky model (a sunset lights the clouds orange), the ground
+ *                             is lit and shadowed by the clouds, distance fades into haze; CCL_LIGHTING_THESIS keeps
+ *                             the constants above (the thesis's images).
+ *   sun_intensity 16          at the default sun (35 deg up) and turbidity 2.5, ccl_sky_sun_attenuation is
+ *                             (0.76, 0.65, 0.46), so the sun's red channel is 12.2 ~ the thesis constant's 12: the
+ *                             default view keeps the exposure of the thesis lighting.
+ *   turbidity 2.5             the Python settings' default (a clear day); they pass their turbidity here.
+ *   ambient_bottom_ratio 0.4  the ratio of the thesis's constants above: ambient_bottom / ambient_top =
+ *                             (0.40, 0.41, 0.43).
+ *   ambient_ground            = ambient_top (unused in thesis mode; ccl_cloudscape_light overwrites it in sky mode).
+ *   ground_albedo (0.06, 0.08, 0.05)  darker than the albedo of vegetation and soil (0.1-0.2): the energy of
+ *                             vc-2.31 makes the clouds dim reflectors (a lit cloud top reaches ~0.15 of a white
+ *                             Lambertian surface under the same sun), so a physical albedo would light the ground
+ *                             almost as brightly as the clouds; at 0.06-0.08 the ground keeps the contrast of a
+ *                             photograph (clouds several times brighter than the land).
+ *   aerial_km 30              an extinction of 1/30 per km near the ground: Koschmieder's visual range 3.912 x 30 =
+ *                             117 km, a clear day (turbidity 2-3); the horizon band of clouds (40-100 km away)
+ *                             fades into the horizon sky, clouds a few km away keep their colour.
+ *   ms_octaves 3, ms_a = ms_b = ms_c = 0.5   each octave halves the optical depth, the contribution and the phase
+ *                             eccentricity (the octave form of Wrenninge et al. 2013 as Hillaire 2016 uses it, which
+ *                             needs a <= b to conserve energy); 0.5 for all three is our choice; three octaves bring
+ *                             the sum of the contributions to 1.75 (of 2 for infinitely many). PROVISIONAL: to be chosen by the
+ *                             path-traced measurement (pywarp/clouds/reference.py).
+ *   silver_g 0.8, silver_weight 0.3   a strong, narrow forward lobe for the silver lining next to the mild g = 0.2.
+ *                             PROVISIONAL: to be chosen by the same measurement. */
 void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
 {
     static const float sun[3] = {12.0f, 11.52f, 10.56f};
     static const float amb_bottom[3] = {0.12f, 0.14f, 0.18f};
     static const float amb_top[3] = {0.30f, 0.34f, 0.42f};
     static const float ground[3] = {0.09f, 0.10f, 0.08f};
+    static const float albedo[3] = {0.06f, 0.08f, 0.05f};
     CCL_REQUIRE(out != NULL);
     memset(out, 0, sizeof *out);
     ccl_raymarch_cloud_layer_default(&out->layer);
@@ -87,6 +114,19 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->coverage_threshold = CCL_COVERAGE_ONE_MINUS;
     out->beer = 1;
     out->powder = 1;
+    out->lighting = CCL_LIGHTING_SKY;
+    out->sun_intensity = 16.0f;
+    out->turbidity = 2.5f;
+    out->ambient_bottom_ratio = 0.4f;
+    memcpy(out->ambient_ground, amb_top, sizeof amb_top);
+    memcpy(out->ground_albedo, albedo, sizeof albedo);
+    out->aerial_km = 30.0f;
+    out->ms_octaves = 3;
+    out->ms_a = 0.5f;
+    out->ms_b = 0.5f;
+    out->ms_c = 0.5f;
+    out->silver_g = 0.8f;
+    out->silver_weight = 0.3f;
 }
 
 static int finite_pos(float v) { return v > 0.0f && v < INFINITY; }
@@ -152,6 +192,23 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         return bad(out_field, "coverage_threshold");
     if (!(p->beer == 0 || p->beer == 1)) return bad(out_field, "beer");
     if (!(p->powder == 0 || p->powder == 1)) return bad(out_field, "powder");
+    if (!(p->lighting == CCL_LIGHTING_THESIS || p->lighting == CCL_LIGHTING_SKY)) return bad(out_field, "lighting");
+    if (!finite_nonneg(p->sun_intensity)) return bad(out_field, "sun_intensity");
+    if (!(p->turbidity >= (float)CCL_PREETHAM_TURBIDITY_MIN && p->turbidity <= (float)CCL_PREETHAM_TURBIDITY_MAX))
+        return bad(out_field, "turbidity");
+    if (!(p->ambient_bottom_ratio >= 0.0f && p->ambient_bottom_ratio <= 1.0f))
+        return bad(out_field, "ambient_bottom_ratio");
+    for (c = 0; c < 3; ++c) {
+        if (!finite_nonneg(p->ambient_ground[c])) return bad(out_field, "ambient_ground");
+        if (!(p->ground_albedo[c] >= 0.0f && p->ground_albedo[c] <= 1.0f)) return bad(out_field, "ground_albedo");
+    }
+    if (!finite_nonneg(p->aerial_km)) return bad(out_field, "aerial_km");
+    if (!(p->ms_octaves >= 1 && p->ms_octaves <= CCL_CLOUDSCAPE_MAX_MS_OCTAVES)) return bad(out_field, "ms_octaves");
+    if (!(p->ms_a >= 0.0f && p->ms_a <= 1.0f)) return bad(out_field, "ms_a");
+    if (!(p->ms_b >= 0.0f && p->ms_b <= 1.0f)) return bad(out_field, "ms_b");
+    if (!(p->ms_c >= 0.0f && p->ms_c <= 1.0f)) return bad(out_field, "ms_c");
+    if (!(p->silver_g > -1.0f && p->silver_g < 1.0f)) return bad(out_field, "silver_g");
+    if (!(p->silver_weight >= 0.0f && p->silver_weight <= 1.0f)) return bad(out_field, "silver_weight");
     if (t == NULL) return bad(out_field, "textures");
     if (t->base == NULL || !is_pow2(t->base_size)) return bad(out_field, "base");
     if (t->detail == NULL || !is_pow2(t->detail_size)) return bad(out_field, "detail");

@@ -10,6 +10,7 @@ from ..kernels import cloudscape as K
 
 JITTERS = {"tilt": K.JITTER_TILT, "offset": K.JITTER_OFFSET, "none": K.JITTER_NONE}
 COVERAGE_THRESHOLDS = {"coverage": 0, "one_minus_coverage": 1}
+LIGHTINGS = {"thesis": K.LIGHTING_THESIS, "sky": K.LIGHTING_SKY}
 
 
 def param_values(settings) -> dict:
@@ -41,6 +42,17 @@ def param_values(settings) -> dict:
         "coverage_threshold": COVERAGE_THRESHOLDS[settings.coverage_threshold], "beer": int(settings.beer),
         "powder": int(settings.powder),
     }
+    # lighting: 'thesis' is the thesis's model entirely (its constants, one octave, one HG lobe); 'sky' takes the
+    # multiple-scattering and silver-lining settings
+    thesis = settings.lighting == "thesis"
+    v.update({
+        "lighting": LIGHTINGS[settings.lighting], "sun_intensity": settings.sun_intensity,
+        "turbidity": settings.turbidity, "ambient_bottom_ratio": p.ambient_bottom_ratio,
+        "ambient_ground": tuple(p.ambient_ground), "ground_albedo": tuple(settings.ground_albedo),
+        "aerial_km": settings.aerial_km, "ms_octaves": 1 if thesis else settings.ms_octaves, "ms_a": p.ms_a,
+        "ms_b": p.ms_b, "ms_c": p.ms_c, "silver_g": settings.silver_g,
+        "silver_weight": 0.0 if thesis else settings.silver_weight,
+    })
     for name, value in settings.advanced.items():
         if name not in v or name in ("centre", "r_earth", "r_inner", "r_outer"):
             raise ValueError(f"advanced: unknown parameter {name!r}; known: {', '.join(sorted(v)[4:])}")

@@ -49,6 +49,8 @@ _CAMERA_DOC = "; within 1000 km of the origin (the altitude is measured above th
 SKIES = ("preetham", "gradient")
 JITTER_NAMES = ("tilt", "offset", "none")  # ccl_jitter_mode order
 COVERAGE_THRESHOLD_NAMES = ("coverage", "one_minus_coverage")  # ccl_coverage_threshold order
+LIGHTING_NAMES = ("thesis", "sky")  # ccl_lighting order
+MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
 
 
 # --- checks shared by the texture settings ---------------------------------------------------------------------------
@@ -241,6 +243,11 @@ def _samples_max_check(obj, name, v):
         raise ValueError(f"{name} must be in [samples_min ({obj.samples_min}), 4096], got {v!r}")
 
 
+def _albedo_check(obj, name, v):
+    if not all(0.0 <= x <= 1.0 for x in v):
+        raise ValueError(f"{name} must hold 3 numbers in [0, 1], got {v!r}")
+
+
 def _advanced_check(obj, name, v):
     if v:
         from .cparams import checked_values  # the C check of ccl_cloudscape_params, at the texture sizes
@@ -371,6 +378,41 @@ class CloudscapeSettings(Settings):
     sigma_per_km: float = param(30.0, unit="1/km", lo=0.0, hi=1000.0, lo_open=True, group="clouds", cli="--sigma",
                                 doc="extinction per unit density",
                                 reason="30: ccl_cloudscape_params_default (see cclouds/cloudscape.c)")
+    lighting: str = param("sky", choices=LIGHTING_NAMES[::-1], group="lighting",
+                          doc="sky: sun colour and ambient from the sky model (the sun's elevation through the "
+                              "atmosphere, the sky's mean radiance), a lit ground with cloud shadows, aerial "
+                              "perspective, multiple scattering and the silver-lining lobe; thesis: the thesis's "
+                              "constant sun and ambient, flat ground, one octave, one HG lobe (its images exactly)",
+                          reason="'sky': clouds take the colour of the light around them (a sunset lights them "
+                                 "orange); ccl_cloudscape_params_default")
+    sun_intensity: float = param(16.0, lo=0.0, hi=1000.0, group="lighting",
+                                 doc="sky lighting: sun irradiance above the atmosphere (display-linear units; the "
+                                     "sun colour is this times the atmosphere's transmittance towards the sun)",
+                                 reason="16: at the default sun (35 deg) the sun's red channel is ~12, the thesis "
+                                        "constant's (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
+    ground_albedo: tuple = param((0.06, 0.08, 0.05), lo=0.0, hi=1.0, check=_albedo_check, group="lighting",
+                                 doc="sky lighting: Lambertian albedo of the ground (RGB)",
+                                 reason="(0.06, 0.08, 0.05): dark vegetation; the clouds of vc-2.31 reflect little, "
+                                        "so a physical albedo (0.1-0.2) would light the ground almost as brightly "
+                                        "(ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
+    aerial_km: float = param(30.0, unit="km", lo=0.0, hi=1e6, group="lighting", cli="--aerial",
+                             doc="sky lighting: aerial-perspective e-folding distance (0 = off): colour = C e^(-t/L) "
+                                 "+ horizon sky (1 - e^(-t/L))",
+                             reason="30: a visual range of ~117 km (Koschmieder 3.912 x 30), a clear day; the "
+                                    "horizon band of clouds fades into the sky (ccl_cloudscape_params_default)")
+    ms_octaves: int = param(3, kind="int", lo=1, hi=MAX_MS_OCTAVES, group="lighting",
+                            doc="sky lighting: multiple-scattering octaves (Wrenninge et al. 2013; 1 = single "
+                                "scattering); octave i scales the optical depth, contribution and phase eccentricity "
+                                "by 0.5^i (ms_a, ms_b, ms_c through `advanced`)",
+                            reason="3 (with 0.5 per octave, ccl_cloudscape_params_default): provisional, to be set by "
+                                   "the path-traced measurement (pywarp/clouds/reference.py)")
+    silver_g: float = param(0.8, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, group="lighting",
+                            doc="sky lighting: asymmetry of the second Henyey-Greenstein lobe (silver lining)",
+                            reason="0.8: a narrow forward lobe; provisional (ccl_cloudscape_params_default)")
+    silver_weight: float = param(0.3, lo=0.0, hi=1.0, group="lighting",
+                                 doc="sky lighting: weight w of the second lobe, phase = (1 - w) HG(g) + w "
+                                     "HG(silver_g); 0 = one lobe",
+                                 reason="0.3: provisional, to be set by the path-traced measurement")
     samples_min: int = param(64, kind="int", lo=1, hi=4096, group="quality",
                              doc="view samples at the zenith (vc-A18)", reason="64: the thesis (vc-A18)")
     samples_max: int = param(128, kind="int", lo=1, hi=4096, check=_samples_max_check, group="quality",

@@ -47,6 +47,9 @@ SKY_PREETHAM = 1
 JITTER_TILT = 0
 JITTER_OFFSET = 1
 JITTER_NONE = 2
+LIGHTING_THESIS = 0  # ccl_lighting
+LIGHTING_SKY = 1
+MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
 
 
 @wp.struct
@@ -89,6 +92,19 @@ class CloudscapeParams:
     coverage_threshold: int
     beer: int
     powder: int
+    lighting: int
+    sun_intensity: float
+    turbidity: float
+    ambient_bottom_ratio: float
+    ambient_ground: wp.vec3
+    ground_albedo: wp.vec3
+    aerial_km: float
+    ms_octaves: int
+    ms_a: float
+    ms_b: float
+    ms_c: float
+    silver_g: float
+    silver_weight: float
 
 
 @wp.func

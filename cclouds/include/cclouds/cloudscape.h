@@ -100,7 +100,32 @@ typedef struct ccl_cloudscape_params {
                                    CCL_COVERAGE_SAME (C := D_h, the spec's literal reading) -- see the .c */
     int beer;                   /* 1: Beer's term exp(-d a) of vc-2.31 on (default); 0: replaced by 1 */
     int powder;                 /* 1: the powder term 1 - exp(-2 d) of vc-2.31 on (default); 0: replaced by 1 */
+    /* Lighting (see "Lighting" above; defaults and their reasons in cloudscape.c). */
+    int lighting;               /* ccl_lighting: CCL_LIGHTING_SKY (default) or CCL_LIGHTING_THESIS */
+    float sun_intensity;        /* sky mode: sun_colour = sun_intensity * ccl_sky_sun_attenuation (default 16) */
+    float turbidity;            /* sky mode: turbidity T of the sun's attenuation, in [2, 10] (default 2.5) */
+    float ambient_bottom_ratio; /* sky mode: ambient_bottom = ratio * ambient_top, in [0, 1] (default 0.4) */
+    float ambient_ground[3];    /* sky mode: the sky light on the ground, the cosine-weighted mean sky radiance over
+                                   the upper hemisphere (E_sky / pi); written by ccl_cloudscape_light */
+    float ground_albedo[3];     /* sky mode: Lambertian albedo of the ground, in [0, 1] (default (0.06, 0.08, 0.05)) */
+    float aerial_km;            /* sky mode: aerial-perspective e-folding distance, km; 0 = off (default 30) */
+    int ms_octaves;             /* multiple-scattering octaves, 1 = single scattering, <= 8 (default 3, provisional) */
+    float ms_a;                 /* octave i: optical depth towards the sun x ms_a^i, in [0, 1] (default 0.5) */
+    float ms_b;                 /* octave i: contribution x ms_b^i, in [0, 1] (default 0.5) */
+    float ms_c;                 /* octave i: phase eccentricities x ms_c^i, in [0, 1] (default 0.5) */
+    float silver_g;             /* second HG lobe: phase = (1 - w) HG(g) + w HG(silver_g), in (-1, 1) (default 0.8) */
+    float silver_weight;        /* w of the second lobe, in [0, 1]; 0 = the thesis's single HG (default 0.3,
+                                   provisional) */
 } ccl_cloudscape_params;
+
+/* Where the light of the cloud pass comes from. */
+typedef enum ccl_lighting {
+    CCL_LIGHTING_THESIS = 0,  /* the constants sun_colour, ambient_bottom / _top and a flat ground_colour */
+    CCL_LIGHTING_SKY = 1      /* sun, ambient, lit ground and aerial perspective from the sky model (default) */
+} ccl_lighting;
+
+/* Most multiple-scattering octaves ccl_cloudscape_check accepts (the octave loop runs per light evaluation). */
+#define CCL_CLOUDSCAPE_MAX_MS_OCTAVES 8
 
 /* Readings of the threshold C of vc-2.29 in the renderer. */
 typedef enum ccl_coverage_threshold {
