@@ -173,11 +173,19 @@ def cmd_render(args) -> int:
             linear.check_linear(tech, sc.name)
         bar.set_postfix_str(f"{settings.width}x{settings.height}")
         progress = lambda fraction: bar.update(fraction * height)  # noqa: E731
-        img = linear.render_linear(tech, progress=progress) if linear.is_linear(out) else tech.render(progress=progress)
+        if getattr(settings, "accumulate", 1) > 1:  # a still averaged over jittered frames (clouds: --accumulate)
+            bar.set_postfix_str(f"{settings.width}x{settings.height}, {settings.accumulate} frames")
+            img = tech.render_accumulated(None, settings.accumulate, progress=progress,
+                                          encode=not linear.is_linear(out))
+        elif linear.is_linear(out):
+            img = linear.render_linear(tech, progress=progress)
+        else:
+            img = tech.render(progress=progress)
         bar.n = height
         bar.refresh()
     linear.write_image(out, img, args.exr_precision)
     print(f"wrote {out} ({img.shape[1]}x{img.shape[0]}, scene {sc.name}"
+          + (f", {settings.accumulate} frames accumulated" if getattr(settings, "accumulate", 1) > 1 else "")
           + (", display-linear" if linear.is_linear(out) else "") + ")")
     return 0
 

@@ -68,6 +68,20 @@ class CameraPose:
                                 width / height, 0.01, 1000.0)
 
 
+class _JitteredPose:
+    """A camera pose seen through its camera moved by (dx_px, dy_px) pixels (:meth:`pywarp.kernels.camera.Camera.
+    jittered`); every other attribute is the pose's (CloudscapeTechnique.render_accumulated)."""
+
+    def __init__(self, pose: CameraPose, dx_px: float, dy_px: float):
+        self._pose, self.dx_px, self.dy_px = pose, dx_px, dy_px
+
+    def __getattr__(self, name):
+        return getattr(self._pose, name)
+
+    def camera(self, width: int, height: int) -> CAM.Camera:
+        return self._pose.camera(width, height).jittered(self.dx_px, self.dy_px, width, height)
+
+
 # --- sky models (vc-A31) --------------------------------------------------------------------------------------------------
 
 class SkyModel(ABC):
@@ -317,6 +331,41 @@ class CloudscapeTechnique:
         counter and reprojection history), returned as display-linear float32 RGB (height, width, 3) before the
         clamp and the sRGB encoding of ``render``'s uint8 image."""
         return np.asarray(self.render(pose, encode=False, progress=progress), dtype=np.float32)
+
+    def render_accumulated(self, pose: CameraPose | None = None, n: int | None = None, progress=None,
+                           encode: bool = True) -> np.ndarray:
+        """A still without noise: the average of ``n`` full frames (default: the ``accumulate`` setting) in
+        display-linear space, encoded once (uint8 sRGB like :meth:`render`; ``encode=False``: display-linear
+        float32). Frame k looks through the camera moved by the sub-pixel offset k of the R2 sequence
+        (:func:`pywarp.kernels.camera.subpixel_jitter`, offset 0 = the pixel centre; a box filter over the pixel:
+        anti-aliased edges) and uses its own frame counter (``self.frame`` + k: a new ray jitter, vc-A23), so both
+        the aliasing and the jitter noise average out (the noise falls as 1/sqrt(n)). No reprojection. n = 1 is
+        :meth:`render` without reprojection, bit for bit. ``progress``: fractions of the whole accumulation (they add
+        up to 1). ``n`` is checked (1..1024) before any kernel runs."""
+        from ..core.params import specs
+
+        spec = next(p for p in specs(CloudscapeSettings) if p.name == "accumulate")
+        n = spec.validate(self.settings.accumulate if n is None else n, "accumulate")
+        s = self.settings
+        pose = pose or CameraPose.from_settings(s)
+        offsets = CAM.subpixel_jitter(n)
+        total = None
+        for k, (dx, dy) in enumerate(offsets):
+            step = None if progress is None else (lambda f: progress(f / n))
+            view = pose if k == 0 else _JitteredPose(pose, float(dx), float(dy))
+            frame = self.render(view, reprojection=False, encode=False, progress=step)
+            total = frame.astype(np.float64) if total is None else total + frame
+        self._prev_camera = None  # a jittered camera is no history for a later reprojected frame
+        linear = (total / n).astype(np.float32)
+        if not encode:
+            return linear
+        b = self._buffers
+        b["previous"].assign(linear)
+        self.launcher.launch(K.encode_kernel, s.height, s.width, [b["previous"]], [b["encoded"]])
+        out = b["encoded"].numpy()
+        if not np.all(np.isfinite(out)):
+            raise RuntimeError("the render produced non-finite pixels")
+        return (out * 255.0 + 0.5).astype(np.uint8)
 
     def samples_taken(self) -> np.ndarray:
         """View samples marched per pixel in the last frame (pixels not rendered keep older counts)."""

@@ -63,6 +63,8 @@ SCENE = register(Scene(
     },
     outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360, "reprojection": True}},
-    command_exclude={"render": ("reprojection", "reprojection_neighbourhood")},
+    # --accumulate averages the frames of one still (render only)
+    command_exclude={"render": ("reprojection", "reprojection_neighbourhood"), "animate": ("accumulate",),
+                     "view": ("accumulate",)},
     time_field="time_s",
 ))

@@ -368,6 +368,15 @@ class CloudscapeSettings(Settings):
     light_detail: bool = param(True, group="quality",
                                doc="light samples with the detail erosion (off: the base shape only, cheaper)",
                                reason="on: the thesis' density (ccl_cloudscape_params_default)")
+    accumulate: int = param(1, unit="frames", kind="int", lo=1, hi=1024, group="quality",
+                            doc="frames averaged into one still (pywarp render): each seen through the camera moved by "
+                                "a sub-pixel offset of the R2 low-discrepancy sequence (pywarp.kernels.camera."
+                                "subpixel_jitter; the first is the pixel centre) and with its own ray jitter (frame "
+                                "counter), averaged in display-linear space and encoded once; no reprojection",
+                            reason="1: one frame, the real-time image of the thesis; 16-64 remove the ray-jitter "
+                                   "noise and the stair steps of a still (the noise falls as 1/sqrt(N)); at most 1024: "
+                                   "the noise is then 1/32 of one frame's, below a grey level, and a 960x540 still "
+                                   "already takes about 20 min on a 2-core CPU")
     base_size: int = inherit(BaseShapeSettings, "size", group="textures")
     detail_size: int = inherit(DetailShapeSettings, "size", group="textures")
     curl_size: int = inherit(CurlNoiseSettings, "size", group="textures")

@@ -87,6 +87,26 @@ class Camera:
     def eye_vec3(self) -> wp.vec3:
         return wp.vec3(*self.eye.tolist())
 
+    def jittered(self, dx_px: float, dy_px: float, width: int, height: int) -> "Camera":
+        """The same camera moved by a fraction of a pixel (TAA-style sub-pixel jitter): pixel (x, y) of a width x
+        height image then looks through the point (x + 0.5 + dx_px, y + 0.5 + dy_px) of this camera's image plane
+        (y down). The projection is translated in clip space by (tx, ty) = (-2 dx_px / width, +2 dy_px / height)
+        (x_clip += tx w_clip: proj' = J proj, J = I + tx e_x e_w^T + ty e_y e_w^T), the inverses by J^-1; float64,
+        rounded once. dx = dy = 0 returns the matrices unchanged, bit for bit."""
+        width = _check_size(width, "width")
+        height = _check_size(height, "height")
+        tx = -2.0 * _finite_float(dx_px, "dx_px") / width
+        ty = 2.0 * _finite_float(dy_px, "dy_px") / height
+        j = np.eye(4)
+        j[0, 3], j[1, 3] = tx, ty
+        j_inv = np.eye(4)
+        j_inv[0, 3], j_inv[1, 3] = -tx, -ty
+        f32 = lambda m: np.ascontiguousarray(m, dtype=np.float32)  # noqa: E731
+        d = lambda name: getattr(self, name).astype(np.float64)  # noqa: E731
+        return Camera(eye=self.eye, view=self.view, proj=f32(j @ d("proj")), view_proj=f32(j @ d("view_proj")),
+                      inv_view_proj=f32(d("inv_view_proj") @ j_inv),
+                      inv_view_proj_rot=f32(d("inv_view_proj_rot") @ j_inv))
+
 
 def _check_camera(camera, name: str = "camera") -> Camera:
     if not isinstance(camera, Camera):
@@ -183,6 +203,22 @@ def c_camera_look_at(eye, target, up=(0.0, 1.0, 0.0), fov_y: float = math.radian
                   inv_view_proj_rot=m("inv_view_proj_rot"))
 
 
+#: R2 sequence (Roberts 2018): the Kronecker lattice of the plastic number phi_2 (x^3 = x + 1), alpha = (1/phi_2,
+#: 1/phi_2^2); the 2-D low-discrepancy sequence with the best-known packing for every prefix length
+R2_PLASTIC = 1.32471795724474602596
+R2_ALPHA = (1.0 / R2_PLASTIC, 1.0 / R2_PLASTIC ** 2)
+
+
+def subpixel_jitter(n: int) -> np.ndarray:
+    """The first ``n`` sub-pixel offsets (dx, dy) in [-0.5, 0.5)^2 (float64, (n, 2)) of the R2 low-discrepancy
+    sequence with seed 0.5: (frac(0.5 + k alpha_1), frac(0.5 + k alpha_2)) - 0.5, k = 0 .. n-1. Offset 0 is the
+    pixel centre (0, 0), so one sample is the unjittered image; every prefix covers the pixel evenly (a box filter
+    over the pixel when averaged). For :meth:`Camera.jittered`."""
+    n = _check_size(n, "n")
+    k = np.arange(n, dtype=np.float64)[:, None]
+    return np.mod(0.5 + k * np.array(R2_ALPHA), 1.0) - 0.5
+
+
 # --- vc-A25 / pt-code-7.2: primary rays -------------------------------------------------------------------------------
 
 def _camera_ray_args(x, y, width, height, camera):
@@ -272,4 +308,4 @@ def _camera_ray_kernel(xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32
     out[i] = camera_ray(inv_view_proj_rot, xs[i], ys[i], width, height)
 
 
-__all__ = ["Camera", "camera_look_at", "c_camera_look_at", "camera_ray"]
+__all__ = ["Camera", "camera_look_at", "c_camera_look_at", "camera_ray", "subpixel_jitter"]
