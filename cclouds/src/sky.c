@@ -377,3 +377,31 @@ ccl_vec3 ccl_sky_gradient_colour(ccl_vec3 direction, float sun_elevation_deg, fl
     c = ccl_sky_gradient_rgb(normalize3(direction), ccl_sky_sun_direction(sun_elevation_deg, sun_azimuth_deg), &g);
     return output == CCL_SKY_GRADIENT_SRGB ? srgb_encode3(c) : c;
 }
+
+/* --- the sun through the atmosphere (Preetham et al. 1999, appendix A.1) ------------------------------------------- */
+
+float ccl_sky_relative_air_mass(float theta_s)
+{
+    CCL_REQUIRE(!(theta_s < 0.0f || theta_s > 1.5707964f));
+    /* Kasten's formula with theta_s in degrees, as Preetham's appendix A.1 */
+    return 1.0f / (cosf(theta_s) + 0.15f * powf(93.885f - theta_s * 57.2957795f, -1.253f));
+}
+
+/* exp(-0.008735 lambda^-4.08 m) exp(-beta lambda^-alpha m): Rayleigh and Angstrom terms of one wavelength */
+static float sun_transmittance(float lambda_um, float m, float beta)
+{
+    const float rayleigh = expf(-(0.008735f * powf(lambda_um, -4.08f)) * m);
+    const float aerosol = expf(-(beta * powf(lambda_um, -1.3f)) * m);
+    return rayleigh * aerosol;
+}
+
+ccl_vec3 ccl_sky_sun_attenuation(float theta_s, float turbidity)
+{
+    const float m = ccl_sky_relative_air_mass(theta_s);
+    const float beta = 0.04608365822050f * turbidity - 0.04586025928522f; /* Angstrom turbidity, alpha = 1.3 */
+    ccl_vec3 t;
+    t.x = sun_transmittance(CCL_SKY_SUN_LAMBDA_R_UM, m, beta);
+    t.y = sun_transmittance(CCL_SKY_SUN_LAMBDA_G_UM, m, beta);
+    t.z = sun_transmittance(CCL_SKY_SUN_LAMBDA_B_UM, m, beta);
+    return t;
+}

@@ -580,3 +580,80 @@ def sun_direction(elevation_deg, azimuth_deg=0.0, impl: str = "warp", device: st
     out = wp.empty(1, dtype=wp.vec3, device=dev)
     wp.launch(_k_sun_direction, dim=1, inputs=[e, a], outputs=[out], device=dev)
     return out.numpy()[0].astype(np.float32)
+
+
+# --- the sun through the atmosphere (Preetham et al. 1999, appendix A.1; twins of ccl_sky_relative_air_mass and
+# ccl_sky_sun_attenuation, see cclouds/sky.h: Rayleigh and Angstrom aerosol terms at three wavelengths, the ozone,
+# water-vapour and mixed-gas bands omitted) ------------------------------------------------------------------------
+
+#: Wavelengths [micrometres] of the R, G, B channels of sky_sun_attenuation (CCL_SKY_SUN_LAMBDA_*_UM).
+SUN_LAMBDA_UM = (0.680, 0.550, 0.440)
+_SUN_LAMBDA_R = wp.constant(0.680)
+_SUN_LAMBDA_G = wp.constant(0.550)
+_SUN_LAMBDA_B = wp.constant(0.440)
+
+
+@wp.func
+def sky_relative_air_mass(theta_s: float) -> float:
+    """Kasten's relative air mass as Preetham's appendix A.1: 1 / (cos theta_s + 0.15 (93.885 - theta_s_deg)^-1.253).
+    theta_s [rad] in [0, pi/2]; 0.9995 at the zenith, ~36.5 at the horizon."""
+    return 1.0 / (wp.cos(theta_s) + 0.15 * wp.pow(93.885 - theta_s * 57.2957795, -1.253))
+
+
+@wp.func
+def _sun_transmittance(lambda_um: float, m: float, beta: float) -> float:
+    rayleigh = wp.exp(-(0.008735 * wp.pow(lambda_um, -4.08)) * m)
+    aerosol = wp.exp(-(beta * wp.pow(lambda_um, -1.3)) * m)
+    return rayleigh * aerosol
+
+
+@wp.func
+def sky_sun_attenuation(theta_s: float, turbidity: float) -> wp.vec3:
+    """Transmittance towards the sun at 0.680 / 0.550 / 0.440 um: exp(-0.008735 lambda^-4.08 m) exp(-beta lambda^-1.3
+    m), beta = 0.04608365822050 T - 0.04586025928522 (Preetham et al. 1999 appendix A.1). theta_s in [0, pi/2],
+    turbidity in [2, 10]."""
+    m = sky_relative_air_mass(theta_s)
+    beta = 0.04608365822050 * turbidity - 0.04586025928522  # Angstrom turbidity, alpha = 1.3
+    return wp.vec3(_sun_transmittance(_SUN_LAMBDA_R, m, beta), _sun_transmittance(_SUN_LAMBDA_G, m, beta),
+                   _sun_transmittance(_SUN_LAMBDA_B, m, beta))
+
+
+@wp.kernel
+def _k_sun_attenuation(theta_s: wp.array(dtype=float), turbidity: wp.array(dtype=float),
+                       out_m: wp.array(dtype=float), out_t: wp.array(dtype=wp.vec3)):
+    # element-wise host helper of sun_attenuation (no catalogue ID: Preetham's appendix, not the thesis)
+    i = wp.tid()
+    out_m[i] = sky_relative_air_mass(theta_s[i])
+    out_t[i] = sky_sun_attenuation(theta_s[i], turbidity[i])
+
+
+def sun_attenuation(theta_s, turbidity, impl: str = "warp", device: str | None = None):
+    """(relative air mass m, transmittance RGB) towards a sun at zenith angle ``theta_s`` [rad, 0 .. pi/2] through an
+    atmosphere of ``turbidity`` [2, 10]: NumPy arrays of the broadcast shape, float32, and shape + (3,) for the
+    transmittance. ``impl``: 'warp' (:func:`sky_sun_attenuation`) or 'c' (``ccl_sky_sun_attenuation``)."""
+    ts = _THETA_S.check(theta_s)
+    T = _TURBIDITY.check(turbidity)
+    ts, T = np.broadcast_arrays(np.asarray(ts, dtype=np.float32), np.asarray(T, dtype=np.float32))
+    shape = ts.shape
+    ts, T = ts.ravel(), T.ravel()
+    if impl == "c":
+        from ..core.binding import lib
+
+        L = lib()
+        m = np.array([L.ccl_sky_relative_air_mass(float(a)) for a in ts], dtype=np.float32)
+        t = np.array([[v.x, v.y, v.z] for v in (L.ccl_sky_sun_attenuation(float(a), float(b)) for a, b in zip(ts, T))],
+                     dtype=np.float32).reshape(-1, 3)
+        return m.reshape(shape), t.reshape(shape + (3,))
+    if impl != "warp":
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    from ..core.runtime import resolve_device
+
+    dev = resolve_device(device)
+    n = max(ts.size, 1)
+    om = wp.empty(n, dtype=float, device=dev)
+    ot = wp.empty(n, dtype=wp.vec3, device=dev)
+    if ts.size:
+        wp.launch(_k_sun_attenuation, dim=ts.size, inputs=[wp.array(ts, dtype=float, device=dev),
+                                                           wp.array(T, dtype=float, device=dev)],
+                  outputs=[om, ot], device=dev)
+    return om.numpy()[:ts.size].reshape(shape), ot.numpy()[:ts.size].reshape(shape + (3,))

@@ -218,6 +218,32 @@ CCL_API ccl_vec3 ccl_sky_gradient_colour(ccl_vec3 direction, float sun_elevation
                                          ccl_vec3 horizon_colour, ccl_vec3 zenith_colour, ccl_vec3 sun_colour,
                                          float sun_exponent, ccl_sky_gradient_output output);
 
+/* --- the sun through the atmosphere (the light of the cloudscape's sky lighting) ------------------------------------
+ * Not in the thesis: Preetham, Shirley & Smits 1999, appendix A.1 ("sun attenuation"), reduced to its Rayleigh and
+ * Angstrom aerosol terms at three wavelengths for R, G, B. The ozone, water-vapour and mixed-gas absorption bands of
+ * the appendix are omitted: they carve narrow bands out of the spectrum and, sampled at three wavelengths, would
+ * only add a near-constant factor per channel (ozone's Chappuis band dims G and R by a few per cent). */
+
+/* Wavelengths [micrometres] at which ccl_sky_sun_attenuation evaluates R, G, B: near the peaks of the sRGB / CIE
+ * colour-matching functions (red 0.60-0.70, green 0.55, blue 0.44-0.45). */
+#define CCL_SKY_SUN_LAMBDA_R_UM 0.680f
+#define CCL_SKY_SUN_LAMBDA_G_UM 0.550f
+#define CCL_SKY_SUN_LAMBDA_B_UM 0.440f
+
+/* Relative optical air mass of the path towards the sun, Kasten's formula as Preetham et al. 1999 (appendix A.1) use
+ * it: m = 1 / (cos theta_s + 0.15 (93.885 - theta_s_deg)^-1.253), theta_s_deg = theta_s in degrees.
+ * theta_s -> sun zenith angle [rad] in [0, pi/2]. Output m: 0.9995 at the zenith, ~1.74 at 55 deg, ~12.3 at 86 deg,
+ * ~36.5 at the horizon (finite there, unlike the flat-Earth 1 / cos theta_s). */
+CCL_API float ccl_sky_relative_air_mass(float theta_s);
+
+/* Transmittance of the atmosphere towards the sun per channel (R, G, B at CCL_SKY_SUN_LAMBDA_*_UM):
+ *   t(lambda) = exp(-0.008735 lambda^-4.08 m) exp(-beta lambda^-alpha m)
+ * (Rayleigh, Angstrom aerosol), m = ccl_sky_relative_air_mass(theta_s), alpha = 1.3,
+ * beta = 0.04608365822050 T - 0.04586025928522 (Preetham et al. 1999 appendix A.1; lambda in micrometres).
+ * theta_s -> sun zenith angle [rad] in [0, pi/2]; turbidity -> T in [2, 10]. Output in (0, 1]^3, R >= G >= B (the
+ * sun reddens as it sets): T = 2.5 at the zenith (0.855, 0.778, 0.637), at 86 deg (0.145, 0.045, 0.0039). */
+CCL_API ccl_vec3 ccl_sky_sun_attenuation(float theta_s, float turbidity);
+
 #ifdef __cplusplus
 }
 #endif
