@@ -338,7 +338,7 @@ float ccl_noise_fbm_perlin3_perm(float x, float y, float z, int32_t octaves, flo
     float sum = 0.0f, wsum = 0.0f, amp = 1.0f, f = frequency;
     int32_t per = period, i;
     CCL_REQUIRE(octaves >= 1 && octaves <= 24);
-    CCL_REQUIRE(frequency > 0.0f);
+    CCL_REQUIRE(frequency > 0.0f && ldexpf(frequency, octaves - 1) <= (float)CCL_NOISE_FBM_MAX_FREQUENCY);
     CCL_REQUIRE(period >= 0);
     for (i = 0; i < octaves; ++i) {
         sum += amp * ccl_noise_perlin3_perm(x * f, y * f, z * f, perm, per);
@@ -411,22 +411,31 @@ static float fd_step(float c, float h)
     return hc > h ? hc : h;
 }
 
+/* The two abscissae c + s and c - s of the central difference at c, s = fd_step(c, h). Within s of FLT_MAX the
+ * point away from zero overflows to Inf: it is then c itself (a one-sided difference over the spacing actually used),
+ * so every finite coordinate gives a finite quotient. Unchanged wherever c + s is finite. */
+static void fd_points(float c, float h, float *out_plus, float *out_minus)
+{
+    const float s = fd_step(c, h);
+    float cp = c + s, cm = c - s;
+    if (isinf(cp)) cp = c;
+    if (isinf(cm)) cm = c;
+    *out_plus = cp;
+    *out_minus = cm;
+}
+
 /* Central difference of perlin3 along `axis` (0, 1, 2) at (x, y, z). */
 static float dnoise(const uint8_t *perm, int32_t period, float x, float y, float z, int axis, float h)
 {
     float xp = x, yp = y, zp = z, xm = x, ym = y, zm = z, d;
-    h = fd_step(axis == 0 ? x : (axis == 1 ? y : z), h);
     if (axis == 0) {
-        xp = x + h;
-        xm = x - h;
+        fd_points(x, h, &xp, &xm);
         d = xp - xm;
     } else if (axis == 1) {
-        yp = y + h;
-        ym = y - h;
+        fd_points(y, h, &yp, &ym);
         d = yp - ym;
     } else {
-        zp = z + h;
-        zm = z - h;
+        fd_points(z, h, &zp, &zm);
         d = zp - zm;
     }
     return (ccl_noise_perlin3_perm(xp, yp, zp, perm, period) - ccl_noise_perlin3_perm(xm, ym, zm, perm, period)) / d;
@@ -498,18 +507,14 @@ float ccl_noise_curl_property(float x, float y, float z, uint32_t seed, int32_t 
     for (i = 0; i < 3; ++i) {
         float px = x, py = y, pz = z, mx = x, my = y, mz = z, d;
         ccl_vec3 vp, vm;
-        const float hi = fd_step(i == 0 ? x : (i == 1 ? y : z), h);
         if (i == 0) {
-            px = x + hi;
-            mx = x - hi;
+            fd_points(x, h, &px, &mx);
             d = px - mx;
         } else if (i == 1) {
-            py = y + hi;
-            my = y - hi;
+            fd_points(y, h, &py, &my);
             d = py - my;
         } else {
-            pz = z + hi;
-            mz = z - hi;
+            fd_points(z, h, &pz, &mz);
             d = pz - mz;
         }
         vp = ccl_noise_curl3_perm(px, py, pz, perm, period, h);

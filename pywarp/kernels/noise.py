@@ -152,6 +152,9 @@ def _wrap_lattice(i: int, period: int) -> int:
 # --- argument domains and cross-argument checks --------------------------------------------------------------------
 
 _COORD_LIM = float(2 ** 24)  # float32 keeps a fractional part below 2^24
+#: Upper bound of frequency * 2^(octaves - 1) of noise_fbm_perlin3 (the C CCL_NOISE_FBM_MAX_FREQUENCY): 2^24 lattice
+#: cells per unit, the position limit of the noise itself; keeps every octave's frequency finite (0 * Inf was NaN).
+FBM_MAX_FREQUENCY = float(2 ** 24)
 _CURL_LIM = float(2 ** 23)  # the curl potential adds offsets of up to ~120 lattice units
 
 
@@ -201,6 +204,9 @@ def _check_fbm_perlin(x, y, z, octaves, frequency, seed, period, **_):
     top = 2.0 ** (octaves.astype(np.float64) - 1)
     if np.any(period * top > 2.0 ** 30):
         raise ValueError("period must satisfy period * 2^(octaves - 1) <= 2^30")
+    if np.any(frequency.astype(np.float64) * top > FBM_MAX_FREQUENCY):
+        raise ValueError(f"frequency * 2^(octaves - 1) must be <= 2^24 (CCL_NOISE_FBM_MAX_FREQUENCY), got "
+                         f"{float(np.max(frequency.astype(np.float64) * top)):g}")
     if np.any(_max_abs(x, y, z) * frequency * top >= _COORD_LIM):
         raise ValueError("frequency * 2^(octaves - 1) * |x|, |y|, |z| must be < 2^24 (float32 position precision)")
 
@@ -534,7 +540,8 @@ def noise_worley3_bruteforce(x: float, y: float, z: float, cells: int, seed: wp.
 
 @declare("vc-2.21", c="ccl_noise_fbm_perlin3",
          args=(_X, _Y, _Z, Arg("octaves", "number of octaves", lo=1, hi=24, dtype="int32"),
-               Arg("frequency", "f_0, lattice cells per unit of x", lo=0.0, lo_open=True),
+               Arg("frequency", "f_0, lattice cells per unit of x; frequency * 2^(octaves - 1) <= 2^24", lo=0.0,
+                   hi=FBM_MAX_FREQUENCY, lo_open=True),
                _SEED, Arg("period", "0, or the integer period of octave 0 in its lattice units (octave i: period 2^i); "
                                     "the fBm repeats every period/frequency", lo=0, hi=2 ** 30, dtype="int32",
                           default=0)),
@@ -663,6 +670,20 @@ def _fd_step(c: float, h: float) -> float:
 
 
 @wp.func
+def _fd_points(c: float, h: float) -> wp.vec2:
+    """The abscissae (c + s, c - s), s = _fd_step(c, h); the one overflowing to Inf (within s of FLT_MAX) is c itself:
+    a one-sided difference, finite for every finite c (the C fd_points)."""
+    s = _fd_step(c, h)
+    cp = c + s
+    cm = c - s
+    if wp.isinf(cp):
+        cp = c
+    if wp.isinf(cm):
+        cm = c
+    return wp.vec2(cp, cm)
+
+
+@wp.func
 def _dnoise(perm: wp.array(dtype=wp.int32), period: int, x: float, y: float, z: float, axis_: int, h_: float) -> float:
     """Central difference of noise_perlin3 along ``axis`` with the float spacing actually used."""
     axis = axis_
@@ -671,7 +692,7 @@ def _dnoise(perm: wp.array(dtype=wp.int32), period: int, x: float, y: float, z: 
         c = x
     elif axis == 1:
         c = y
-    h = _fd_step(c, h_)
+    pm = _fd_points(c, h_)
     xp = x
     yp = y
     zp = z
@@ -680,16 +701,16 @@ def _dnoise(perm: wp.array(dtype=wp.int32), period: int, x: float, y: float, z: 
     zm = z
     d = float(0.0)
     if axis == 0:
-        xp = x + h
-        xm = x - h
+        xp = pm[0]
+        xm = pm[1]
         d = xp - xm
     elif axis == 1:
-        yp = y + h
-        ym = y - h
+        yp = pm[0]
+        ym = pm[1]
         d = yp - ym
     else:
-        zp = z + h
-        zm = z - h
+        zp = pm[0]
+        zm = pm[1]
         d = zp - zm
     return (noise_perlin3(xp, yp, zp, perm, period) - noise_perlin3(xm, ym, zm, perm, period)) / d
 
@@ -772,9 +793,9 @@ def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.in
                         variant: int) -> float:
     """vc-2.26 residual: variant 0 = nabla . v (~0, the property meant), 1 = |nabla x v| (as printed, not 0)."""
     # axis x
-    h0 = _fd_step(x, h)
-    px = x + h0
-    mx = x - h0
+    pm0 = _fd_points(x, h)
+    px = pm0[0]
+    mx = pm0[1]
     d0 = px - mx
     vp = noise_curl3(px, y, z, perm, period, h)
     vm = noise_curl3(mx, y, z, perm, period, h)
@@ -782,9 +803,9 @@ def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.in
     j10 = (vp[1] - vm[1]) / d0
     j20 = (vp[2] - vm[2]) / d0
     # axis y
-    h1 = _fd_step(y, h)
-    py = y + h1
-    my = y - h1
+    pm1 = _fd_points(y, h)
+    py = pm1[0]
+    my = pm1[1]
     d1 = py - my
     vp = noise_curl3(x, py, z, perm, period, h)
     vm = noise_curl3(x, my, z, perm, period, h)
@@ -792,9 +813,9 @@ def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.in
     j11 = (vp[1] - vm[1]) / d1
     j21 = (vp[2] - vm[2]) / d1
     # axis z
-    h2 = _fd_step(z, h)
-    pz = z + h2
-    mz = z - h2
+    pm2 = _fd_points(z, h)
+    pz = pm2[0]
+    mz = pm2[1]
     d2 = pz - mz
     vp = noise_curl3(x, y, pz, perm, period, h)
     vm = noise_curl3(x, y, mz, perm, period, h)

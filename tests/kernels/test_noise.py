@@ -707,7 +707,7 @@ def test_noise_bad_input_raises_value_error_naming_parameter(impl):
         eq("vc-A5")(0.5, 0.5, 0.5, 65)
     with pytest.raises(ValueError, match=r"^octaves must be in \[1, 24\]"):
         eq("vc-2.21")(0.5, 0.5, 0.5, 0, 1.0)
-    with pytest.raises(ValueError, match=r"^frequency must be in \(0, inf\)"):
+    with pytest.raises(ValueError, match=r"^frequency must be in \(0, 1\.67772e\+07\]"):
         eq("vc-2.21")(0.5, 0.5, 0.5, 3, 0.0)
     with pytest.raises(ValueError, match=r"^period must satisfy"):
         eq("vc-2.21")(0.5, 0.5, 0.5, 20, 1.0, period=2 ** 20)

@@ -62,6 +62,11 @@ typedef enum ccl_perlin_worley_mode {
  * gradient) against the O(eps / h) float32 cancellation error (~1e-4). */
 #define CCL_NOISE_FD_STEP_INV 256
 
+/* Upper bound of frequency * 2^(octaves - 1), the finest octave's lattice frequency, of ccl_noise_fbm_perlin3: 2^24
+ * lattice cells per unit of p, the float32 position limit of the noise itself. Keeps every octave's frequency finite
+ * (beyond FLT_MAX, f p at p = 0 was 0 * Inf = NaN) and is far above any use (the texture generator stays <= 4096). */
+#define CCL_NOISE_FBM_MAX_FREQUENCY 16777216
+
 /* ---- permutation tables ------------------------------------------------------------------------------------------ */
 
 /* Fill out_perm[0..511] with the permutation table of `seed`: entries 0..255 are a permutation of 0..255 and
@@ -130,7 +135,9 @@ CCL_API float ccl_noise_worley3_bruteforce(float x, float y, float z, int32_t ce
 /* fBm of Perlin noise N_s(p) = sum_i w_i N(f_i p) / sum_i w_i, i = 0 .. octaves-1, with f_0 = frequency,
  * f_i = 2 f_{i-1}, w_0 = 1, w_i = w_{i-1} / 2 (vc-2.21 with the octave rules of vc-A6). Normalised by the sum of the
  * weights (2 - 2^(1 - octaves)), so the range equals that of one octave (about [-1, 1]).
- * octaves in [1, 24]; frequency > 0 (lattice cells per unit of p); period: 0 or >= 1 = the period of octave 0 in its
+ * octaves in [1, 24]; frequency > 0 (lattice cells per unit of p) with frequency * 2^(octaves - 1) <=
+ * CCL_NOISE_FBM_MAX_FREQUENCY (asserted in debug builds); |p| * frequency * 2^(octaves - 1) < 2^24 for a meaningful
+ * fractional part (finite, not NaN, below FLT_MAX); period: 0 or >= 1 = the period of octave 0 in its
  * lattice units, octave i uses period * 2^i (period * 2^(octaves-1) <= 2^30): the fBm then repeats every
  * period / frequency units of p (exactly when frequency is a power of two and p + period/frequency is exact). */
 CCL_API float ccl_noise_fbm_perlin3_perm(float x, float y, float z, int32_t octaves, float frequency,
@@ -165,8 +172,9 @@ CCL_API float ccl_noise_fbm_worley3(float x, float y, float z, int32_t octaves, 
  * All derivatives are central differences with step h (default 1/CCL_NOISE_FD_STEP_INV = 1/256 lattice units):
  * d f / d x ~= (f(x + h) - f(x - h)) / ((x + h) - (x - h)) -- the denominator is the float32 spacing actually used.
  * The step actually used is max(h, 2^-20, |x| 2^-22): x + h and x - h stay distinct where h is below half an ulp of
- * x, and the quotients finite for every h in (0, 0.25] and every finite coordinate of the documented range (the
- * default step is unchanged below |x| = 2^14).
+ * x, and the quotients finite for every h in (0, 0.25] (the default step is unchanged below |x| = 2^14). Within one
+ * step of FLT_MAX the point away from zero would overflow: it is x itself there (a one-sided difference), so every
+ * finite coordinate gives a finite result (meaningful below |x| = 2^23, the Python registry's domain).
  * Base noise: 3-D Perlin noise N = perlin3(., seed, period). Vector potential of the 3-D reading:
  * psi(p) = (N(p), N(p + o1), N(p + o2)) with the large offsets o1 = (100.25, -57.75, 33.5),
  * o2 = (-41.5, 88.25, -119.75) (lattice units; non-integer so the three components are not lattice-aligned). */
