@@ -1,0 +1,805 @@
+"""A path-traced ground truth of the cloudscape: Monte Carlo light transport through the SAME density field, sun and
+sky as the real-time renderer (:mod:`pywarp.kernels.cloudscape`), to measure the real-time lighting models against.
+
+    from pywarp.clouds.reference import ReferenceRenderer
+    r = ReferenceRenderer(CloudscapeSettings(width=160, height=90), spp=256, seed=0)
+    linear = r.render(encode=False)       # display-linear float32 (h, w, 3), like CloudscapeTechnique.render
+    r.stats["std_error"]                  # its Monte Carlo standard error (mean over pixels, linear units)
+
+The medium
+----------
+Extinction ``sigma_t(x) = sigma rho(x)`` [1/km] with ``rho`` = :func:`pywarp.kernels.cloudscape.cloudscape_density`
+**with detail** (the density of the view ray), ``sigma`` the scene's ``sigma_per_km``. Scattering ``omega sigma_t``,
+absorption ``(1 - omega) sigma_t``, with ``omega`` the single-scattering albedo (:data:`DEFAULT_ALBEDO`).
+
+*Phase function.* One physical phase function for every comparison: Henyey-Greenstein with the scene's ``g`` (the
+settings' ``--phase-g``, 0.2 by default), whatever the real-time model under test does (the octave multiple
+scattering and the dual-lobe "silver lining" are approximations *of* transport in this medium, so they are measured
+against it, not built into it). A cloud-like forward lobe is a different medium: raise ``g`` for it (the reference
+follows), or pass ``phase_g`` to :class:`ReferenceRenderer`. Reason: the error table must not mix the error of the
+transport approximations with a change of the medium; with the scene's HG, "thesis" and "+sky light" (single lobe)
+are compared against exactly the medium they claim to light.
+
+*The density bound* (the delta-tracking majorant is ``sigma * DENSITY_BOUND``): with textures in [0, 1] (checked
+on the host) and clamped height gradients (``gradient_clamp = 1``, the default; required here), ``rho <= 1``:
+the base shape ``B = remap(C_R, L - 1, 1, 0, 1) = (C_R - L + 1) / (2 - L) <= 1`` for ``C_R <= 1``; ``D_v <= 1``;
+the coverage ``remap(B D_v, C, 1, 0, 1) D_h <= D_h <= 1`` for any threshold ``C < 1``; the detail erosion
+``(B_D - a) / (1 - a)`` with ``a = 0.2 M in [0, 0.2]`` is ``<= B_D`` for ``B_D <= 1``. The kernel checks the bound
+at every density it evaluates (:func:`reference_density`) and counts violations; a render with any is refused.
+
+Light
+-----
+* **Sun**: a directional (delta) light of irradiance ``p.sun_colour`` (display-linear units: the factor the real-time
+  model multiplies by Beer x phase x powder) from the sky model's sun direction. Next-event estimation at every
+  scattering vertex: ``beta * E_sun * p_HG(d . s) * T(x -> sun)``, ``T`` by ratio tracking through the layer (0 where
+  the Earth blocks the sun).
+* **Sky**: a path that leaves the layer without hitting the ground picks up the sky model's radiance
+  :func:`pywarp.kernels.cloudscape.sky_colour` in its direction (the background the real-time model composites
+  over). The air itself does not scatter: there is no aerial perspective in the reference (the sky model is a
+  radiance at infinity, as for the real-time thesis model).
+* **Ground**: the Earth sphere (radius ``r_earth``) is Lambertian with albedo ``ground_albedo`` (the settings'
+  value where the settings have one, else :data:`GROUND_ALBEDO`): next-event estimation to the sun
+  ``beta * albedo / pi * E_sun * max(n . s, 0) * T`` and the path continues (cosine-weighted), so the sky and the
+  clouds light the ground through the path.
+
+The path
+--------
+Free-flight sampling by delta tracking (Woodcock) with the constant majorant ``sigma * DENSITY_BOUND`` over the (up to
+two) intervals of the ray inside the spherical shell of the layer, ending at the ground. At most ``bounces``
+scattering vertices (medium or ground) per path: every light contribution (sun by NEE at a vertex, sky by escape
+after it) has been scattered at most ``bounces`` times; the path ends at vertex ``bounces + 1`` (the truncation bias is
+measured in ``tests/clouds/test_reference.py`` and the benchmark). Transmittance estimates end with Russian roulette
+below :data:`RR_TRANSMITTANCE` (unbiased).
+
+Every loop is bounded by a validated parameter (a native launch cannot be interrupted): ``spp`` in [1, 65536],
+``bounces`` in [1, 256], ``max_steps`` tracking steps per ray segment (default: twice the expected number of
+majorant events along the longest chord of the shell, so the bound is never reached in practice; a render that
+reaches it is refused).
+
+Determinism: the random numbers of sample ``s`` of pixel ``(x, y)`` come from a PCG stream seeded with
+``hash(seed, x, y, s)`` alone, and each pixel sums its samples in order, so the image does not depend on the number of
+threads, on the bands, or on how the samples are split into passes (which only exist for the progress bar and
+Ctrl-C). Samples are accumulated in float64.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+
+import numpy as np
+import warp as wp
+
+from ..core.runtime import init, launcher as shared_launcher
+
+init()
+
+from ..kernels import cloudscape as K  # noqa: E402
+from ..kernels.hash import hash_pcg  # noqa: E402
+from ..kernels.phase import phase_hg  # noqa: E402
+from ..kernels.raymarch import raymarch_ray_sphere  # noqa: E402
+from ..kernels.sky import Preetham, SkyGradient  # noqa: E402
+from .cloudscape import CameraPose, CloudscapeTechnique, RenderTextures  # noqa: E402
+from .cparams import checked_values  # noqa: E402
+from .settings import CloudscapeSettings  # noqa: E402
+
+#: Samples per pixel: at least 1; at most 2^16 (the noise then is 1/256 of one sample's; more is never needed for an
+#: 8-bit image, and a bound keeps every launch finite).
+SPP_RANGE = (1, 65536)
+#: Scattering vertices per path (medium or ground).
+BOUNCES_RANGE = (1, 256)
+#: Default bounces: 64. The clouds are optically thick (sigma 30/km, tau of tens through a cloud), so light scatters
+#: many times; at 64 the energy still missing is below the noise of the benchmark's references (measured with the
+#: benchmark's scenes: see the module test of the truncation), at a quarter of the cost of 256.
+DEFAULT_BOUNCES = 64
+#: Single-scattering albedo: 1.0. Cloud droplets at visible wavelengths absorb next to nothing (co-albedo ~1e-6 to
+#: 1e-4 for 10 um droplets at 550 nm); the darkening of thick clouds is the light scattered away, which the path
+#: tracer follows. (The real-time model's precipitation absorption is a model term, not a property of this medium.)
+DEFAULT_ALBEDO = 1.0
+#: The density bound of the majorant (derivation in the module docstring).
+DENSITY_BOUND = 1.0
+#: Ground albedo until the settings carry one: the real-time renderer's ground colour (0.09, 0.10, 0.08) read as a
+#: reflectance -- vegetation and soil reflect ~0.1 of visible light (the reason of that colour in cloudscape.c).
+GROUND_ALBEDO = (0.09, 0.10, 0.08)
+#: Transmittance below which ratio tracking plays Russian roulette (survive with probability T / 0.1 at T = 0.1):
+#: unbiased; the light left below 10 % costs most of the steps of long grazing shadow rays.
+RR_TRANSMITTANCE = 0.1
+#: Tracking steps per ray segment: the largest ``max_steps`` accepted (2^22: a segment then costs at most ~1 s).
+MAX_STEPS_LIMIT = 1 << 22
+#: Length of the fine chunks of the local majorant along a ray: 0.25 km, ~5 texels of the base texture (47 m) and
+#: 4 of the weather map (62.5 m) at the default scales, so that a chunk's bound comes from a small neighbourhood (a
+#: pyramid level of 8 texels per cell). Measured at 96x54 on the default scene: 0.0625-0.5 km all within the noise of
+#: a shared machine (0.24-0.45 s per spp), 1.5-2x faster than the constant majorant.
+FINE_CHUNK_KM = 0.25
+#: Fine chunks per coarse chunk (2 km): a coarse chunk with a zero bound (clear air) is skipped with one lookup.
+COARSE_CHUNKS = 8
+#: Samples per pixel per launch: the unit of progress (and of Ctrl-C latency); the image does not depend on it.
+PASS_SPP = 4
+
+DENSITY_CLOUDSCAPE = 0
+DENSITY_SLAB = 1
+DENSITY_MODES = {"cloudscape": DENSITY_CLOUDSCAPE, "slab": DENSITY_SLAB}
+PIXEL_FILTERS = ("box", "centre")
+
+_INF = wp.constant(1.0e30)
+_PI = wp.constant(3.14159265358979323846)
+
+# status of a traced segment
+_ESCAPED = wp.constant(0)
+_MEDIUM = wp.constant(1)
+_GROUND = wp.constant(2)
+_TRUNCATED = wp.constant(3)
+
+
+@wp.struct
+class ReferenceParams:
+    """The path tracer's own parameters (validated by :func:`reference_params`)."""
+
+    seed: wp.uint32
+    sample0: int          # first sample index of this pass
+    samples: int          # samples of this pass
+    albedo: float         # single-scattering albedo omega
+    g: float              # HG asymmetry of the medium
+    bounces: int          # max scattering vertices per path
+    max_steps: int        # tracking steps per ray segment
+    rho_max: float        # density bound (majorant = sigma * rho_max)
+    density_mode: int     # DENSITY_CLOUDSCAPE or DENSITY_SLAB (a test medium: constant density in the shell)
+    slab_density: float
+    ground_albedo: wp.vec3
+    sky_on: int           # 0: a black sky (tests)
+    box_filter: int       # 1: uniform over the pixel, 0: pixel centres
+    rr_threshold: float
+
+
+# --- medium -------------------------------------------------------------------------------------------------------------
+
+@wp.struct
+class MajorantGrids:
+    """Max/min mip pyramids of the textures behind the density, for local majorants (:func:`chunk_bound`), built by
+    :func:`majorant_grids`. Flat arrays, level 0 first, each level half the edge of the one before (periodic)."""
+
+    weather_max: wp.array(dtype=float)    # max of the weather map's coverage (R) over each cell
+    weather_size: int
+    weather_levels: int
+    base_maxmin: wp.array(dtype=wp.vec2)  # (max of R, min of L_FBM = 0.625 G + 0.25 B + 0.125 A) of the base texture
+    base_size: int
+    base_levels: int
+    fine_km: float                        # chunk lengths along the ray
+    coarse_km: float
+    enabled: int                          # 0: the constant majorant rho_max everywhere
+
+
+@wp.func
+def _level_fitting(lo0: int, hi0: int, lo1: int, hi1: int, lo2: int, hi2: int, levels: int) -> int:
+    """The finest pyramid level whose cells cover the texel ranges [lo, hi] of every axis with at most 2 cells (the
+    last level, a single cell, always does)."""
+    k = int(0)
+    for it in range(levels - 1):
+        if (hi0 >> k) - (lo0 >> k) <= 1 and (hi1 >> k) - (lo1 >> k) <= 1 and (hi2 >> k) - (lo2 >> k) <= 1:
+            break
+        k = k + 1
+    return k
+
+
+@wp.func
+def _texel_range(lo: float, hi: float, scale_km: float, size: int):
+    """Texels whose (bi/tri)linear footprint meets [lo, hi] (km) of a texture of ``size`` texels per ``scale_km``
+    (texel centres at i + 0.5): [floor(lo' - 0.5), floor(hi' - 0.5) + 1]."""
+    n = float(size)
+    return int(wp.floor(lo / scale_km * n - 0.5)), int(wp.floor(hi / scale_km * n - 0.5)) + 1
+
+
+@wp.func
+def weather_max_over(mj: MajorantGrids, x0: int, x1: int, z0: int, z1: int) -> float:
+    """Max of the weather coverage over texels [x0, x1] x [z0, z1] (wrapped)."""
+    k = _level_fitting(x0, x1, z0, z1, 0, 0, mj.weather_levels)
+    off = int(0)
+    n = mj.weather_size
+    for i in range(k):
+        off = off + n * n
+        n = n / 2
+    m = n - 1
+    ax = (x0 >> k) & m
+    bx = (x1 >> k) & m
+    az = (z0 >> k) & m
+    bz = (z1 >> k) & m
+    return wp.max(wp.max(mj.weather_max[off + az * n + ax], mj.weather_max[off + az * n + bx]),
+                  wp.max(mj.weather_max[off + bz * n + ax], mj.weather_max[off + bz * n + bx]))
+
+
+@wp.func
+def base_maxmin_over(mj: MajorantGrids, x0: int, x1: int, y0: int, y1: int, z0: int, z1: int) -> wp.vec2:
+    """(max R, min L_FBM) of the base texture over texels [x0, x1] x [y0, y1] x [z0, z1] (wrapped)."""
+    k = _level_fitting(x0, x1, y0, y1, z0, z1, mj.base_levels)
+    off = int(0)
+    n = mj.base_size
+    for i in range(k):
+        off = off + n * n * n
+        n = n / 2
+    m = n - 1
+    rmax = float(0.0)
+    lmin = float(1.0)
+    for c in range(8):
+        ix = (x0 >> k) & m
+        if (c & 1) != 0:
+            ix = (x1 >> k) & m
+        iy = (y0 >> k) & m
+        if (c & 2) != 0:
+            iy = (y1 >> k) & m
+        iz = (z0 >> k) & m
+        if (c & 4) != 0:
+            iz = (z1 >> k) & m
+        v = mj.base_maxmin[off + (iz * n + iy) * n + ix]
+        rmax = wp.max(rmax, v[0])
+        lmin = wp.min(lmin, v[1])
+    return wp.vec2(rmax, lmin)
+
+
+@wp.func
+def chunk_bound(p: K.CloudscapeParams, r: ReferenceParams, mj: MajorantGrids, a: wp.vec3, b: wp.vec3) -> float:
+    """An upper bound of the cloudscape density on the segment [a, b] (module docstring): with D_v <= 1 and the
+    monotonic steps of vc-A17, rho <= B_D <= B_max + D_h,max - 1 (threshold C = 1 - D_h) or min(B_max, D_h,max)
+    (C = D_h), where B_max = (R_max - L_min + 1) / (2 - L_min) bounds the base shape over the texels the trilinear
+    lookups of the segment's bounding box can read, and D_h,max the weather coverage over its bilinear texels."""
+    lo = wp.vec3(wp.min(a[0], b[0]), wp.min(a[1], b[1]), wp.min(a[2], b[2]))
+    hi = wp.vec3(wp.max(a[0], b[0]), wp.max(a[1], b[1]), wp.max(a[2], b[2]))
+    wx0, wx1 = _texel_range(lo[0] + p.weather_offset[0], hi[0] + p.weather_offset[0], p.weather_scale_km,
+                            mj.weather_size)
+    wz0, wz1 = _texel_range(lo[2] + p.weather_offset[1], hi[2] + p.weather_offset[1], p.weather_scale_km,
+                            mj.weather_size)
+    dh = weather_max_over(mj, wx0, wx1, wz0, wz1)
+    bound = float(0.0)
+    if dh > 0.0:
+        bx0, bx1 = _texel_range(lo[0], hi[0], p.base_scale_km, mj.base_size)
+        by0, by1 = _texel_range(lo[1], hi[1], p.base_scale_km, mj.base_size)
+        bz0, bz1 = _texel_range(lo[2], hi[2], p.base_scale_km, mj.base_size)
+        rl = base_maxmin_over(mj, bx0, bx1, by0, by1, bz0, bz1)
+        b_max = wp.min((rl[0] - rl[1] + 1.0) / (2.0 - rl[1]), 1.0)
+        if p.coverage_threshold == 0:
+            bound = wp.min(b_max, dh)
+        else:
+            bound = b_max + dh - 1.0
+    return wp.clamp(bound, 0.0, r.rho_max)
+
+
+@wp.func
+def reference_density(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, pos: wp.vec3, bound: float,
+                      flags: wp.array(dtype=wp.int32)) -> float:
+    """The density the path tracer sees: the cloudscape's with detail (or the test slab's), with the majorant's bound
+    ``rho <= bound`` asserted: a violation is counted in ``flags[0]`` (the render is refused)."""
+    rho = float(0.0)
+    if r.density_mode == DENSITY_SLAB:
+        h = wp.length(pos - p.centre)
+        if h >= p.r_inner and h <= p.r_outer:
+            rho = r.slab_density
+    else:
+        rho, precip = K.cloudscape_density(p, tex, pos, 1)
+    if not (rho <= bound):  # NaN too
+        wp.atomic_add(flags, 0, 1)
+    return rho
+
+
+@wp.func
+def shell_intervals(o: wp.vec3, d: wp.vec3, p: K.CloudscapeParams, check_ground: int):
+    """The ray o + t d (t > 0, unit d) inside the layer's shell r_inner <= |x - c| <= r_outer, before the ground:
+    (a0, b0, a1, b1, t_ground), two intervals (empty when a > b) and the distance to the Earth sphere (1e30: none).
+    ``check_ground`` 0 for a ray leaving the ground (the Earth is convex: it cannot hit it again)."""
+    c = p.centre
+    a0 = float(1.0)
+    b0 = float(0.0)
+    a1 = float(1.0)
+    b1 = float(0.0)
+    tg = float(_INF)
+    if check_ground != 0:
+        e0, e1 = raymarch_ray_sphere(o, d, c, p.r_earth)
+        if e0 > 0.0:  # NaN on a miss: no hit
+            tg = e0
+    u0, u1 = raymarch_ray_sphere(o, d, c, p.r_outer)
+    if u1 > 0.0:
+        a0 = wp.max(u0, 0.0)
+        b0 = u1
+        i0, i1 = raymarch_ray_sphere(o, d, c, p.r_inner)
+        if i1 > 0.0 and i0 < u1:  # the inner sphere cuts the chord
+            b0 = wp.min(u1, i0)
+            a1 = wp.max(i1, 0.0)
+            b1 = u1
+        b0 = wp.min(b0, tg)
+        b1 = wp.min(b1, tg)
+    return a0, b0, a1, b1, tg
+
+
+@wp.func
+def track(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, mj: MajorantGrids, o: wp.vec3,
+          d: wp.vec3, check_ground: int, ratio: int, state: wp.uint32, flags: wp.array(dtype=wp.int32)):
+    """Tracking along o + t d through the layer with a piecewise-constant majorant: coarse chunks (``coarse_km``)
+    whose bound is 0 are skipped whole, the others are cut into fine chunks (``fine_km``) tracked with
+    ``sigma * chunk_bound`` (or ``sigma * rho_max`` everywhere when the grids are off).
+
+    ``ratio`` 0 -- delta tracking (free-flight sampling): status _MEDIUM (a real collision at t), _GROUND (the Earth
+    at t), _ESCAPED (left the layer for the sky) or _TRUNCATED (``max_steps`` reached: counted in flags[1]);
+    ``ratio`` 1 -- ratio tracking: the transmittance T to infinity (0 where the Earth blocks the ray), with Russian
+    roulette below ``rr_threshold``.
+
+    ``max_steps`` bounds the iterations: every chunk bound and every tentative collision is one.
+    Returns (status, t, T, state)."""
+    a0, b0, a1, b1, tg = shell_intervals(o, d, p, check_ground)
+    status = int(_ESCAPED)
+    t_out = float(0.0)
+    T = float(1.0)
+    if ratio != 0 and tg < _INF:
+        T = 0.0
+    seg = int(0)
+    lo = a0
+    hi = b0
+    if not (lo <= hi):
+        seg = 1
+        lo = a1
+        hi = b1
+    if T > 0.0 and lo <= hi:
+        t = lo
+        coarse_end = t
+        fine_end = t
+        bound = float(0.0)
+        sigma_maj = float(0.0)
+        inside = int(0)
+        done = int(0)
+        for k in range(r.max_steps):
+            if inside == 0:
+                # the next chunk with a positive bound
+                if t >= hi:
+                    if seg == 0 and a1 <= b1:
+                        seg = 1
+                        t = a1
+                        hi = b1
+                        coarse_end = t
+                        continue
+                    done = 1
+                    break
+                if mj.enabled == 0:
+                    bound = r.rho_max
+                    fine_end = hi
+                else:
+                    if t >= coarse_end:
+                        coarse_end = wp.min(t + mj.coarse_km, hi)
+                        if chunk_bound(p, r, mj, o + d * t, o + d * coarse_end) <= 0.0:
+                            t = coarse_end
+                            continue
+                    fine_end = wp.min(t + mj.fine_km, coarse_end)
+                    bound = chunk_bound(p, r, mj, o + d * t, o + d * fine_end)
+                    if bound <= 0.0:
+                        t = fine_end
+                        continue
+                sigma_maj = p.sigma * bound
+                inside = 1
+            else:
+                tn = t - wp.log(1.0 - wp.randf(state)) / sigma_maj
+                if tn >= fine_end:
+                    t = fine_end  # memoryless: the exponential restarts in the next chunk
+                    inside = 0
+                    continue
+                t = tn
+                rho = reference_density(p, r, tex, o + d * t, bound, flags)
+                if ratio == 0:
+                    if wp.randf(state) * bound < rho:
+                        status = _MEDIUM
+                        t_out = t
+                        done = 1
+                        break
+                else:
+                    T = T * (1.0 - rho / bound)
+                    if T < r.rr_threshold:
+                        if wp.randf(state) * r.rr_threshold < T:
+                            T = r.rr_threshold
+                        else:
+                            T = 0.0
+                            done = 1
+                            break
+        if done == 0:
+            wp.atomic_add(flags, 1, 1)
+            status = _TRUNCATED
+            T = 0.0
+    if ratio == 0 and status == _ESCAPED and tg < _INF:
+        status = _GROUND
+        t_out = tg
+    return status, t_out, T, state
+
+
+# --- sampling -----------------------------------------------------------------------------------------------------------
+
+@wp.func
+def _basis(n: wp.vec3):
+    """Orthonormal tangents of unit n (Duff et al. 2017, 'Building an orthonormal basis, revisited')."""
+    sign = float(1.0)
+    if n[2] < 0.0:
+        sign = -1.0
+    a = -1.0 / (sign + n[2])
+    b = n[0] * n[1] * a
+    t1 = wp.vec3(1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0])
+    t2 = wp.vec3(b, sign + n[1] * n[1] * a, -n[1])
+    return t1, t2
+
+
+@wp.func
+def sample_hg_cos(g: float, u: float) -> float:
+    """cos(theta) of a Henyey-Greenstein direction relative to the propagation direction (inverse CDF):
+    cos = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g); u = 0 -> -1, u = 1 -> +1; uniform for |g| < 1e-3."""
+    if wp.abs(g) < 1.0e-3:
+        return 1.0 - 2.0 * u
+    s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u)
+    return wp.clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0)
+
+
+@wp.func
+def around(axis: wp.vec3, cos_theta: float, phi: float) -> wp.vec3:
+    """The unit direction at angle theta from unit ``axis``, azimuth phi."""
+    t1, t2 = _basis(axis)
+    sin_theta = wp.sqrt(wp.max(0.0, 1.0 - cos_theta * cos_theta))
+    return wp.normalize(axis * cos_theta + t1 * (sin_theta * wp.cos(phi)) + t2 * (sin_theta * wp.sin(phi)))
+
+
+@wp.func
+def sample_hg(d: wp.vec3, g: float, state: wp.uint32):
+    """A new propagation direction after scattering from propagation direction d: (direction, state)."""
+    u1 = wp.randf(state)
+    u2 = wp.randf(state)
+    return around(d, sample_hg_cos(g, u1), 2.0 * _PI * u2), state
+
+
+@wp.func
+def sample_cosine(n: wp.vec3, state: wp.uint32):
+    """A cosine-weighted direction about unit n (pdf cos / pi): (direction, state)."""
+    u1 = wp.randf(state)
+    u2 = wp.randf(state)
+    return around(n, wp.sqrt(1.0 - u1), 2.0 * _PI * u2), state
+
+
+@wp.func
+def sample_seed(seed: wp.uint32, x: int, y: int, sample: int) -> wp.uint32:
+    """The RNG state of sample ``sample`` of pixel (x, y): a function of these four numbers only."""
+    return hash_pcg(seed ^ hash_pcg(wp.uint32(x) + hash_pcg(wp.uint32(y) + hash_pcg(wp.uint32(sample)))))
+
+
+@wp.func
+def pixel_direction(m: wp.mat44, fx: float, fy: float, width: int, height: int) -> wp.vec3:
+    """The view direction through image point (fx, fy) in pixels (row 0 at the top): vc-A25's mapping
+    (:func:`pywarp.kernels.camera.camera_ray` at ``fx = x + 0.5``), at any point of the pixel."""
+    nx = 2.0 * fx / float(width) - 1.0
+    ny = 1.0 - 2.0 * fy / float(height)
+    hx = m[0][0] * nx + m[0][1] * ny + m[0][2] + m[0][3]
+    hy = m[1][0] * nx + m[1][1] * ny + m[1][2] + m[1][3]
+    hz = m[2][0] * nx + m[2][1] * ny + m[2][2] + m[2][3]
+    return wp.normalize(wp.vec3(hx, hy, hz))
+
+
+# --- one path -------------------------------------------------------------------------------------------------------------
+
+@wp.func
+def trace_path(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, mj: MajorantGrids, sky_kind: int, sun: wp.vec3, preetham: Preetham,
+               gradient: SkyGradient, eye: wp.vec3, d0: wp.vec3, state: wp.uint32,
+               flags: wp.array(dtype=wp.int32)):
+    """Radiance along the camera ray (eye, d0): (L, state). See the module docstring."""
+    L = wp.vec3(0.0, 0.0, 0.0)
+    beta = wp.vec3(1.0, 1.0, 1.0)
+    o = eye
+    d = d0
+    check_ground = int(1)
+    for k in range(r.bounces + 1):
+        status, t, T0, state = track(p, r, tex, mj, o, d, check_ground, 0, state, flags)
+        if status == _ESCAPED:
+            if r.sky_on != 0:
+                L = L + wp.cw_mul(beta, K.sky_colour(sky_kind, d, sun, preetham, gradient))
+            break
+        if status == _TRUNCATED or k == r.bounces:
+            break  # vertex bounces + 1: not allowed
+        x = o + d * t
+        if status == _MEDIUM:
+            beta = beta * r.albedo
+            cos_s = wp.clamp(wp.dot(d, sun), -1.0, 1.0)
+            st, t_s, T, state = track(p, r, tex, mj, x, sun, 1, 1, state, flags)
+            L = L + wp.cw_mul(beta, p.sun_colour) * (phase_hg(cos_s, r.g) * T)
+            d, state = sample_hg(d, r.g, state)
+            check_ground = 1
+        else:  # the ground: Lambertian
+            n = wp.normalize(x - p.centre)
+            cos_n = wp.dot(n, sun)
+            if cos_n > 0.0:
+                st, t_s, T, state = track(p, r, tex, mj, x, sun, 0, 1, state, flags)
+                L = L + wp.cw_mul(wp.cw_mul(beta, r.ground_albedo), p.sun_colour) * (cos_n * T / _PI)
+            beta = wp.cw_mul(beta, r.ground_albedo)
+            d, state = sample_cosine(n, state)
+            check_ground = 0
+        o = x
+    return L, state
+
+
+@wp.kernel
+def reference_kernel(row0: int, p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures,
+                     mj: MajorantGrids, sky_kind: int, sun: wp.vec3, preetham: Preetham,
+                     gradient: SkyGradient, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
+                     # outputs
+                     accum: wp.array3d(dtype=wp.float64), accum_sq: wp.array3d(dtype=wp.float64),
+                     flags: wp.array(dtype=wp.int32)):
+    """``r.samples`` paths per pixel (samples ``r.sample0 ...``), each added to ``accum`` and its square to
+    ``accum_sq`` in sample order, in float64 (so the sums do not depend on how the samples are split into launches;
+    TileLauncher convention: row bands)."""
+    i, j = wp.tid()
+    height = accum.shape[0]
+    width = accum.shape[1]
+    y = row0 + i
+    x = j
+    for s in range(r.samples):
+        state = sample_seed(r.seed, x, y, r.sample0 + s)
+        jx = float(0.5)
+        jy = float(0.5)
+        if r.box_filter != 0:
+            jx = wp.randf(state)
+            jy = wp.randf(state)
+        d = pixel_direction(inv_view_proj_rot, float(x) + jx, float(y) + jy, width, height)
+        L, state = trace_path(p, r, tex, mj, sky_kind, sun, preetham, gradient, eye, d, state,
+                              flags)
+        for ch in range(3):
+            v = wp.float64(L[ch])
+            accum[y, x, ch] = accum[y, x, ch] + v
+            accum_sq[y, x, ch] = accum_sq[y, x, ch] + v * v
+
+
+@wp.kernel
+def hg_samples_kernel(g: float, seed: wp.uint32, out: wp.array(dtype=float)):
+    """cos(theta) of HG samples about +z (for the sampler's tests)."""
+    i = wp.tid()
+    state = sample_seed(seed, i, 0, 0)
+    d, state = sample_hg(wp.vec3(0.0, 0.0, 1.0), g, state)
+    out[i] = d[2]
+
+
+# --- host side ------------------------------------------------------------------------------------------------------------
+
+def _int_in(name: str, value, lo: int, hi: int) -> int:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer in [{lo}, {hi}], got {value!r}")
+    if not lo <= int(value) <= hi:
+        raise ValueError(f"{name} must be in [{lo}, {hi}], got {value!r}")
+    return int(value)
+
+
+def _float_in(name: str, value, lo: float, hi: float) -> float:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a number in [{lo:g}, {hi:g}], got {value!r}")
+    v = float(value)
+    if not (math.isfinite(v) and lo <= v <= hi):
+        raise ValueError(f"{name} must be in [{lo:g}, {hi:g}], got {value!r}")
+    return v
+
+
+def longest_chord_km(settings: CloudscapeSettings) -> float:
+    """The longest path of one ray inside the layer's shell: the chord tangent to the inner sphere,
+    2 sqrt(r_outer^2 - r_inner^2)."""
+    layer = settings.layer()
+    return 2.0 * math.sqrt(float(layer.r_outer) ** 2 - float(layer.r_inner) ** 2)
+
+
+def default_max_steps(settings: CloudscapeSettings, rho_max: float = DENSITY_BOUND, fine_km: float = None) -> int:
+    """Twice the expected number of tracking iterations along the longest chord (majorant events at the bound
+    ``rho_max`` everywhere, plus one per fine and coarse chunk), plus 1024: a segment never reaches it in practice
+    (Poisson: the mean plus > 100 standard deviations at the default layer)."""
+    fine = FINE_CHUNK_KM if fine_km is None else fine_km
+    length = longest_chord_km(settings)
+    mu = settings.sigma_per_km * rho_max * length + length / fine * (1.0 + 1.0 / COARSE_CHUNKS) + 2.0
+    return int(math.ceil(2.0 * mu)) + 1024
+
+
+def _pyramid(level0: np.ndarray, reduce) -> np.ndarray:
+    """The periodic max (or min) mip pyramid of a square or cubic power-of-two array, flattened, level 0 first:
+    each cell of level k + 1 reduces its 2^d children of level k."""
+    levels = [np.ascontiguousarray(level0, dtype=np.float32)]
+    a = levels[0]
+    while a.shape[0] > 1:
+        parts = [a[tuple(slice(o, None, 2) for o in offs)] for offs in np.ndindex(*(2,) * a.ndim)]
+        a = reduce.reduce(np.stack(parts), axis=0)
+        levels.append(np.ascontiguousarray(a, dtype=np.float32))
+    return levels
+
+
+def majorant_grids(textures: RenderTextures, enabled: bool = True, fine_km: float = None,
+                   coarse_km: float = None, device: str = "cpu") -> MajorantGrids:
+    """The :class:`MajorantGrids` of ``textures`` (max of the weather coverage, max of the base R and min of its
+    L_FBM, as periodic max/min pyramids)."""
+    w = np.asarray(textures.weather[..., 0], dtype=np.float32)
+    base = np.asarray(textures.base, dtype=np.float32)
+    lfbm = (np.float32(0.625) * base[..., 1] + np.float32(0.25) * base[..., 2] + np.float32(0.125) * base[..., 3])
+    wl = _pyramid(w, np.maximum)
+    rl = _pyramid(base[..., 0], np.maximum)
+    ll = _pyramid(lfbm, np.minimum)
+    mj = MajorantGrids()
+    mj.weather_max = wp.array(np.concatenate([a.ravel() for a in wl]), dtype=float, device=device)
+    mj.weather_size = int(w.shape[0])
+    mj.weather_levels = len(wl)
+    mj.base_maxmin = wp.array(np.concatenate([np.stack([r.ravel(), l.ravel()], axis=1) for r, l in zip(rl, ll)]),
+                              dtype=wp.vec2, device=device)
+    mj.base_size = int(base.shape[0])
+    mj.base_levels = len(rl)
+    fine = FINE_CHUNK_KM if fine_km is None else float(fine_km)
+    mj.fine_km = fine
+    mj.coarse_km = fine * COARSE_CHUNKS if coarse_km is None else float(coarse_km)
+    mj.enabled = int(bool(enabled))
+    return mj
+
+
+def ground_albedo_of(values: dict) -> tuple:
+    """The ground albedo of the parameter values: the settings' ``ground_albedo`` where ``CloudscapeParams`` has one,
+    else :data:`GROUND_ALBEDO`."""
+    if "ground_albedo" in values:
+        return tuple(float(v) for v in values["ground_albedo"])
+    return GROUND_ALBEDO
+
+
+class ReferenceRenderer:
+    """The path tracer for a cloudscape's settings (module docstring). Parameters are validated here, before any
+    kernel runs; ValueError/TypeError name the parameter and its range.
+
+    ``spp``, ``seed``, ``bounces``: default from the settings (``spp``, ``reference_seed``, ``reference_bounces``)
+    where they have them, else 64, 0, :data:`DEFAULT_BOUNCES`. ``albedo``: single-scattering albedo in [0, 1].
+    ``phase_g``: HG g of the medium (default the settings' ``g``). ``max_steps``: tracking steps per ray segment
+    (default :func:`default_max_steps`). ``pixel_filter``: 'box' (the pixel's area, the image's ground truth) or
+    'centre' (pixel centres, as the real-time renderer samples). ``density``: 'cloudscape' or 'slab' (a test medium:
+    ``slab_density`` everywhere in the shell). ``sky``: False for a black sky (tests). ``ground_albedo``: RGB in
+    [0, 1] (default :func:`ground_albedo_of`). ``majorant``: local majorants from the texture pyramids (False: the
+    constant ``sigma * DENSITY_BOUND``; the same image in expectation, slower)."""
+
+    technique_kind = "reference"
+
+    def __init__(self, settings: CloudscapeSettings | None = None, textures: RenderTextures | None = None, *,
+                 spp: int | None = None, seed: int | None = None, bounces: int | None = None,
+                 albedo: float = DEFAULT_ALBEDO, phase_g: float | None = None, max_steps: int | None = None,
+                 pixel_filter: str = "box", density: str = "cloudscape", slab_density: float = 0.5,
+                 sky: bool = True, ground_albedo=None, majorant: bool = True, threads: int | None = None):
+        self.settings = (settings or CloudscapeSettings()).validate()
+        s = self.settings
+        if getattr(s, "accumulate", 1) != 1:
+            raise ValueError(f"accumulate must be 1 with the reference (it averages its spp paths per pixel "
+                             f"instead), got {s.accumulate}")
+        self.spp = _int_in("spp", spp if spp is not None else getattr(s, "spp", 64), *SPP_RANGE)
+        self.seed = _int_in("seed", seed if seed is not None else getattr(s, "reference_seed", 0), 0, 2 ** 32 - 1)
+        self.bounces = _int_in("bounces", bounces if bounces is not None
+                               else getattr(s, "reference_bounces", DEFAULT_BOUNCES), *BOUNCES_RANGE)
+        self.albedo = _float_in("albedo", albedo, 0.0, 1.0)
+        self.g = _float_in("phase_g", s.g if phase_g is None else phase_g, -0.999, 0.999)
+        if pixel_filter not in PIXEL_FILTERS:
+            raise ValueError(f"pixel_filter must be one of {', '.join(map(repr, PIXEL_FILTERS))}, got "
+                             f"{pixel_filter!r}")
+        self.pixel_filter = pixel_filter
+        if density not in DENSITY_MODES:
+            raise ValueError(f"density must be one of {', '.join(map(repr, DENSITY_MODES))}, got {density!r}")
+        self.density = density
+        self.slab_density = _float_in("slab_density", slab_density, 0.0, DENSITY_BOUND)
+        self.sky_on = bool(sky)
+        self.values = checked_values(s)
+        if int(self.values["gradient_clamp"]) != 1:
+            raise ValueError("gradient_clamp must be 1 for the reference (the density bound of the majorant needs "
+                             f"clamped height gradients), got {self.values['gradient_clamp']!r}")
+        ga = ground_albedo_of(self.values) if ground_albedo is None else ground_albedo
+        try:
+            ga = tuple(ga)
+        except TypeError:
+            raise TypeError(f"ground_albedo must be 3 numbers in [0, 1], got {ga!r}") from None
+        if len(ga) != 3:
+            raise ValueError(f"ground_albedo must be 3 numbers in [0, 1], got {ga!r}")
+        self.ground_albedo = tuple(_float_in("ground_albedo", v, 0.0, 1.0) for v in ga)
+        needed = default_max_steps(s)
+        self.max_steps = _int_in("max_steps", needed if max_steps is None else max_steps, 1, MAX_STEPS_LIMIT)
+        if self.max_steps < needed - 1024:
+            raise ValueError(f"max_steps must be >= {needed - 1024} (twice the expected tracking steps along the "
+                             f"longest chord of the layer, {longest_chord_km(s):.1f} km at sigma "
+                             f"{s.sigma_per_km:g}/km), got {self.max_steps}")
+        self.launcher = shared_launcher(s.device, s.threads if threads is None else threads)
+        self.device = self.launcher.device
+        self.textures = textures if textures is not None else RenderTextures.generate(s)
+        for name in ("base", "detail", "weather"):  # the curl texture only displaces the detail lookup
+            a = getattr(self.textures, name)
+            if not (np.all(np.isfinite(a)) and a.min() >= 0.0 and a.max() <= 1.0):
+                raise ValueError(f"textures: {name} must hold values in [0, 1] (the density bound of the majorant "
+                                 f"needs them), got [{a.min()!r}, {a.max()!r}]")
+        self.majorant = bool(majorant)
+        self.grids = majorant_grids(self.textures, enabled=self.majorant and density == "cloudscape",
+                                    device=self.device)
+        # the sun, sky and medium exactly as the real-time technique sets them up for these settings (its
+        # parameters, including any per-frame light set-up from the sky model, and its sky model)
+        rt = CloudscapeTechnique(s, textures=self.textures)
+        self.params = rt.params
+        self.sky = rt.sky
+        self.stats: dict = {}
+
+    # the scene technique protocol (pywarp.core.scenes): update / render / resize
+    def update(self, **changes) -> None:
+        new = replace(self.settings, **changes)
+        keep = {k: getattr(self, k) for k in ("albedo", "pixel_filter", "density", "slab_density", "majorant")}
+        textures = self.textures if "textures" not in new.invalidated(self.settings) else None
+        self.__init__(new, textures, phase_g=None, ground_albedo=None, sky=self.sky_on, **keep)
+
+    def resize(self, width: int, height: int) -> None:
+        self.update(width=width, height=height)
+
+    def _reference_params(self, sample0: int, samples: int) -> ReferenceParams:
+        r = ReferenceParams()
+        r.seed = wp.uint32(self.seed)
+        r.sample0 = int(sample0)
+        r.samples = int(samples)
+        r.albedo = self.albedo
+        r.g = self.g
+        r.bounces = self.bounces
+        r.max_steps = self.max_steps
+        r.rho_max = DENSITY_BOUND
+        r.density_mode = DENSITY_MODES[self.density]
+        r.slab_density = self.slab_density
+        r.ground_albedo = wp.vec3(*self.ground_albedo)
+        r.sky_on = int(self.sky_on)
+        r.box_filter = int(self.pixel_filter == "box")
+        r.rr_threshold = RR_TRANSMITTANCE
+        return r
+
+    def render(self, pose: CameraPose | None = None, encode: bool = True, progress=None):
+        """The path-traced frame: uint8 sRGB (height, width, 3), or display-linear float32 with ``encode=False``
+        (the mean of ``spp`` paths per pixel). ``progress(fraction)`` as passes of PASS_SPP samples finish. Sets
+        :attr:`stats`: spp, seconds, std_error (per-pixel Monte Carlo standard error of the linear image, mean over
+        pixels and channels), std_error_max, flags."""
+        s = self.settings
+        pose = pose or CameraPose.from_settings(s)
+        cam = pose.camera(s.width, s.height)
+        h, w = s.height, s.width
+        dev = self.device
+        accum = wp.zeros((h, w, 3), dtype=wp.float64, device=dev)
+        accum_sq = wp.zeros((h, w, 3), dtype=wp.float64, device=dev)
+        flags = wp.zeros(2, dtype=wp.int32, device=dev)
+        tex = self.textures.warp()
+        sun = wp.vec3(*self.sky.sun.tolist())
+        t0 = time.perf_counter()
+        done = 0
+        while done < self.spp:
+            n = min(PASS_SPP, self.spp - done)
+            band_done = None if progress is None else (
+                lambda rows, n=n: progress(rows / h * n / self.spp))
+            self.launcher.launch(reference_kernel, h, w,
+                                 [self.params, self._reference_params(done, n), tex, self.grids,
+                                  self.sky.kind, sun, self.sky.preetham, self.sky.gradient,
+                                  cam.mat44("inv_view_proj_rot"), cam.eye_vec3()],
+                                 [accum, accum_sq, flags], progress=band_done)
+            done += n
+        seconds = time.perf_counter() - t0
+        f = flags.numpy()
+        if f[0] > 0:
+            raise RuntimeError(f"the density exceeded its bound {DENSITY_BOUND} at {int(f[0])} samples (the majorant "
+                               "would be wrong); nothing is written")
+        if f[1] > 0:
+            raise RuntimeError(f"{int(f[1])} ray segments reached max_steps = {self.max_steps}; raise max_steps")
+        n = float(self.spp)
+        mean = accum.numpy() / n
+        var = np.maximum(accum_sq.numpy() / n - mean * mean, 0.0) * (n / max(n - 1.0, 1.0))
+        se = np.sqrt(var / n)
+        self.stats = {"spp": self.spp, "seed": self.seed, "bounces": self.bounces, "seconds": seconds,
+                      "seconds_per_spp": seconds / n, "std_error": float(se.mean()),
+                      "std_error_max": float(se.max()), "std_error_image": se.astype(np.float32)}
+        linear = mean.astype(np.float32)
+        if not np.all(np.isfinite(linear)):
+            raise RuntimeError("the reference produced non-finite pixels; nothing is written")
+        if not encode:
+            return linear
+        return encode_srgb(linear, self.launcher)
+
+    def render_linear(self, pose: CameraPose | None = None, progress=None) -> np.ndarray:
+        """The linear-image hook (:mod:`pywarp.core.linear`)."""
+        return self.render(pose, encode=False, progress=progress)
+
+
+def encode_srgb(linear: np.ndarray, launcher=None) -> np.ndarray:
+    """The real-time renderer's display step (``encode_kernel``: clamp to [0, 1], sRGB) on a linear frame: uint8."""
+    lau = launcher or shared_launcher()
+    a = wp.array(np.ascontiguousarray(linear, dtype=np.float32), dtype=float, device=lau.device)
+    out = wp.zeros(a.shape, dtype=float, device=lau.device)
+    lau.launch(K.encode_kernel, a.shape[0], a.shape[1], [a], [out])
+    return (out.numpy() * 255.0 + 0.5).astype(np.uint8)
+
+
+def render_reference(settings: CloudscapeSettings | None = None, pose: CameraPose | None = None, encode: bool = True,
+                     **kwargs):
+    """One path-traced frame (see :class:`ReferenceRenderer` for ``kwargs``)."""
+    return ReferenceRenderer(settings, **kwargs).render(pose, encode=encode)

@@ -1,0 +1,254 @@
+"""The path-traced ground truth (pywarp.clouds.reference): the Henyey-Greenstein sampler, the analytic transmittance
+and single scattering of a homogeneous slab, convergence as 1/sqrt(N), the local majorant agreeing with the constant
+one, determinism (seed, threads), bad input refused before any kernel, and the CLI."""
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import warp as wp
+
+from pywarp.clouds.cloudscape import CameraPose, RenderTextures
+from pywarp.clouds.reference import (
+    ReferenceRenderer,
+    hg_samples_kernel,
+)
+from pywarp.clouds.settings import CloudscapeSettings
+
+SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
+
+
+def small(**kw) -> CloudscapeSettings:
+    return CloudscapeSettings(**{"width": 24, "height": 16, **SMALL, **kw})
+
+
+@pytest.fixture(scope="module")
+def textures():
+    return RenderTextures.generate(small())
+
+
+# --- sampling ----------------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("g", [-0.6, 0.0, 0.2, 0.85])
+def test_hg_sampler_moments(g):
+    """The sampled cos(theta) has the HG moments: E[cos] = g and E[P2(cos)] = g^2, i.e. E[cos^2] = (1 + 2 g^2) / 3.
+    Tolerance: 5 standard errors of the sample mean (n = 2^18; the variance of cos is <= 1)."""
+    n = 1 << 18
+    out = wp.zeros(n, dtype=float)
+    wp.launch(hg_samples_kernel, dim=n, inputs=[g, wp.uint32(11)], outputs=[out])
+    c = out.numpy().astype(np.float64)
+    assert np.all(np.abs(c) <= 1.0)
+    se1 = c.std() / math.sqrt(n)
+    se2 = (c * c).std() / math.sqrt(n)
+    assert abs(c.mean() - g) < 5 * se1
+    assert abs((c * c).mean() - (1.0 + 2.0 * g * g) / 3.0) < 5 * se2
+
+
+# --- the homogeneous slab: closed forms ---------------------------------------------------------------------------------
+
+SLAB = dict(layer_base_km=1.5, layer_top_km=1.6, sigma_per_km=30.0, sun_elevation_deg=90.0, width=8, height=8,
+            fov_y_deg=2.0)
+RHO = 0.5  # tau = 30 * 0.5 * 0.1 = 1.5
+
+
+def _mean_and_se(r: ReferenceRenderer, img: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Mean over the pixels per channel and its standard error from the per-pixel standard errors."""
+    se = r.stats["std_error_image"].astype(np.float64)
+    n = img.shape[0] * img.shape[1]
+    return img.reshape(-1, 3).mean(axis=0), np.sqrt((se.reshape(-1, 3) ** 2).sum(axis=0)) / n
+
+
+def test_slab_transmittance_of_the_unscattered_sun(textures):
+    """A purely absorbing slab (albedo 0) of optical depth tau = sigma rho L = 1.5 between an overhead sun and a
+    Lambertian ground of albedo A, seen from below the slab looking down, black sky: the ground's radiance is
+    A / pi * E_sun * exp(-tau) exactly (the only light is the sun's, unscattered through the slab; ratio tracking
+    with null collisions at rho = 0.5 < the bound 1). The camera looks 1 deg from the nadir, so cos(sun, normal)
+    = 1 - O(1e-10). Tolerance: 4 standard errors of the Monte Carlo mean."""
+    s = small(**SLAB, camera_altitude_km=0.5, camera_pitch_deg=-89.0)
+    a = (0.5, 0.3, 0.8)
+    r = ReferenceRenderer(s, textures, spp=128, seed=3, bounces=2, albedo=0.0, density="slab", slab_density=RHO,
+                          sky=False, ground_albedo=a, pixel_filter="centre")
+    img = r.render(encode=False)
+    mean, se = _mean_and_se(r, img)
+    e_sun = np.array([r.params.sun_colour[i] for i in range(3)], dtype=np.float64)
+    expected = np.array(a) / math.pi * e_sun * math.exp(-30.0 * RHO * 0.1)
+    assert np.all(se > 0) and np.all(se < 0.02 * expected)  # the estimate is noisy, and the noise is small
+    assert np.all(np.abs(mean - expected) < 4 * se), (mean, expected, se)
+    # and not the transmittance of another depth: 10 % off is many standard errors away
+    assert np.all(np.abs(mean - expected * math.exp(-0.1 * 1.5)) > 4 * se)
+
+
+def test_slab_single_scattering_closed_form(textures):
+    """Looking up through a scattering slab (albedo 1) at an overhead sun, single scattering only (bounces = 1),
+    black sky and ground: L = E p_HG(mu) e^-tau (1 - e^(-tau (1 - mu) / mu)) / (1 - mu) with mu the cosine between
+    the view ray and the vertical (the view path t and the sun path L - t mu add up to tau + sigma rho t (1 - mu));
+    -> E p(1) tau e^-tau at mu = 1. Evaluated per pixel-centre ray. Tolerance: 4 standard errors."""
+    s = small(**SLAB, camera_altitude_km=0.5, camera_pitch_deg=89.0)
+    r = ReferenceRenderer(s, textures, spp=128, seed=5, bounces=1, albedo=1.0, density="slab", slab_density=RHO,
+                          sky=False, ground_albedo=(0.0, 0.0, 0.0), pixel_filter="centre")
+    img = r.render(encode=False)
+    mean, se = _mean_and_se(r, img)
+    from pywarp import camera_ray
+
+    cam = CameraPose.from_settings(s).camera(s.width, s.height)
+    ys, xs = np.mgrid[0:s.height, 0:s.width]
+    d = np.asarray(camera_ray(xs.ravel(), ys.ravel(), s.width, s.height, cam), dtype=np.float64)
+    sun = np.asarray(s.sun(), dtype=np.float64)
+    mu = d @ sun  # the sun is overhead: the cosine to the vertical is the phase angle's
+    g = s.g
+    tau = 30.0 * RHO * 0.1
+    phase = (1 - g * g) / (4 * math.pi * (1 + g * g - 2 * g * mu) ** 1.5)
+    x = tau * (1 - mu) / mu
+    shape = np.where(x > 1e-6, -np.expm1(-x) / np.maximum(1 - mu, 1e-300), tau / mu)
+    e_sun = np.array([r.params.sun_colour[i] for i in range(3)], dtype=np.float64)
+    expected = e_sun * np.mean(phase * math.exp(-tau) * shape)
+    assert np.all(np.abs(mean - expected) < 4 * se), (mean, expected, se)
+    assert np.all(se < 0.02 * expected)
+
+
+# --- convergence and determinism ----------------------------------------------------------------------------------------
+
+def test_error_falls_as_one_over_sqrt_n(textures):
+    """RMS error of 24x16 images of N = 4, 16, 64, 256 paths per pixel (independent seeds) against a 1024-path image
+    of another seed: the fitted slope of log RMS over log N is -0.5 +- 0.15. The reference's own variance (its
+    per-pixel squared standard errors, an unbiased estimate) is subtracted from each mean squared error, so the
+    slope measures the renders' noise alone."""
+    s = small()
+    ref = ReferenceRenderer(s, textures, spp=1024, seed=1000)
+    truth = ref.render(encode=False).astype(np.float64)
+    ref_var = float(np.mean(ref.stats["std_error_image"].astype(np.float64) ** 2))
+    ns = np.array([4, 16, 64, 256])
+    rms = []
+    for k, n in enumerate(ns):
+        img = ReferenceRenderer(s, textures, spp=int(n), seed=1 + k).render(encode=False)
+        mse = float(np.mean((img - truth) ** 2)) - ref_var
+        assert mse > 0
+        rms.append(math.sqrt(mse))
+    slope = np.polyfit(np.log(ns), np.log(rms), 1)[0]
+    assert -0.65 <= slope <= -0.35, (slope, rms)
+    assert np.std(truth) > 0.05  # the frame has structure (clouds, sky, ground), not a flat colour
+
+
+def test_local_majorant_gives_the_same_image_in_expectation(textures):
+    """The pyramid majorants (local bounds per 0.25 km chunk) and the constant bound sigma * 1 sample the same
+    transport: the mean over the frame agrees within 4 standard errors of the difference, per channel."""
+    s = small()
+    a = ReferenceRenderer(s, textures, spp=64, seed=21)
+    ia = a.render(encode=False)
+    b = ReferenceRenderer(s, textures, spp=64, seed=22, majorant=False)
+    ib = b.render(encode=False)
+    ma, sa = _mean_and_se(a, ia)
+    mb, sb = _mean_and_se(b, ib)
+    assert np.all(np.abs(ma - mb) < 4 * np.sqrt(sa ** 2 + sb ** 2)), (ma, mb, sa, sb)
+
+
+def test_same_seed_same_image_on_one_and_two_threads(textures):
+    s = small(width=20, height=12)
+    one = ReferenceRenderer(s, textures, spp=3, seed=7, threads=1).render(encode=False)
+    two = ReferenceRenderer(s, textures, spp=3, seed=7, threads=2).render(encode=False)
+    again = ReferenceRenderer(s, textures, spp=3, seed=7, threads=2).render(encode=False)
+    other = ReferenceRenderer(s, textures, spp=3, seed=8, threads=2).render(encode=False)
+    assert np.array_equal(one, two) and np.array_equal(two, again)
+    assert not np.array_equal(two, other)
+    assert np.all(np.isfinite(one))
+
+
+def test_passes_do_not_change_the_image(monkeypatch, textures):
+    """The samples are split into launches of PASS_SPP (for the progress bar and Ctrl-C); each sample is added to
+    the pixel's float64 sum in sample order, so the split changes no bit."""
+    from pywarp.clouds import reference
+
+    s = small(width=12, height=8)
+    a = ReferenceRenderer(s, textures, spp=6, seed=2).render(encode=False)
+    monkeypatch.setattr(reference, "PASS_SPP", 1)
+    b = ReferenceRenderer(s, textures, spp=6, seed=2).render(encode=False)
+    assert np.array_equal(a, b)
+
+
+def test_encoded_image_is_the_real_time_encoding(textures):
+    from pywarp.clouds.reference import encode_srgb
+
+    s = small(width=16, height=10)
+    r = ReferenceRenderer(s, textures, spp=2, seed=1)
+    lin = r.render(encode=False)
+    img = ReferenceRenderer(s, textures, spp=2, seed=1).render()
+    assert img.dtype == np.uint8 and img.shape == (10, 16, 3)
+    assert np.array_equal(img, encode_srgb(lin))
+    c = np.clip(lin.astype(np.float64), 0, 1)
+    srgb = np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1 / 2.4) - 0.055)
+    assert np.max(np.abs(img.astype(int) - np.floor(srgb * 255 + 0.5).astype(int))) <= 1
+
+
+# --- bad input ----------------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("kwargs,message", [
+    (dict(spp=0), "spp must be in [1, 65536], got 0"),
+    (dict(spp=65537), "spp must be in [1, 65536], got 65537"),
+    (dict(bounces=0), "bounces must be in [1, 256], got 0"),
+    (dict(bounces=257), "bounces must be in [1, 256], got 257"),
+    (dict(seed=-1), "seed must be in [0, 4294967295], got -1"),
+    (dict(albedo=1.5), "albedo must be in [0, 1], got 1.5"),
+    (dict(phase_g=1.0), "phase_g must be in [-0.999, 0.999], got 1.0"),
+    (dict(max_steps=10), "max_steps must be >= "),
+    (dict(pixel_filter="gauss"), "pixel_filter must be one of 'box', 'centre', got 'gauss'"),
+    (dict(density="fog"), "density must be one of 'cloudscape', 'slab', got 'fog'"),
+    (dict(ground_albedo=(0.1, 2.0, 0.1)), "ground_albedo must be in [0, 1], got 2.0"),
+])
+def test_bad_parameters_are_refused_before_any_kernel(monkeypatch, kwargs, message):
+    def no_launch(*a, **k):
+        raise AssertionError("a kernel ran before the validation")
+
+    monkeypatch.setattr(wp, "launch", no_launch)
+    with pytest.raises(ValueError) as exc:
+        ReferenceRenderer(small(), **kwargs)
+    assert str(exc.value).startswith(message), str(exc.value)
+
+
+def test_bad_types_are_refused():
+    with pytest.raises(TypeError, match="spp must be an integer"):
+        ReferenceRenderer(small(), spp=2.5)
+    with pytest.raises(TypeError, match="bounces must be an integer"):
+        ReferenceRenderer(small(), bounces=True)
+
+
+def test_settings_fields_are_validated():
+    with pytest.raises(ValueError, match="spp"):
+        small(spp=0)
+    with pytest.raises(ValueError, match="reference_bounces"):
+        small(reference_bounces=300)
+
+
+# --- the command line ---------------------------------------------------------------------------------------------------
+
+def _cli(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "pywarp", *args], capture_output=True, text=True, cwd=cwd)
+
+
+_CLI_SMALL = ["--base-size", "32", "--detail-size", "16", "--curl-size", "32", "--weather-size", "64"]
+
+
+def test_cli_reference_writes_the_path_traced_image(tmp_path, textures):
+    out = tmp_path / "ref.png"
+    res = _cli("render", "clouds", "--reference", "--spp", "2", "--reference-seed", "4", "--width", "24",
+               "--height", "16", *_CLI_SMALL, "--out", str(out), "--no-progress", cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    from PIL import Image
+
+    img = np.asarray(Image.open(out))
+    expected = ReferenceRenderer(small(), textures, spp=2, seed=4).render()
+    assert np.array_equal(img, expected)
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--spp", "0"], "pywarp render: error: --spp must be in [1, 65536], got 0"),
+    (["--bounces", "257"], "pywarp render: error: --bounces must be in [1, 256], got 257"),
+    (["--reference-seed", "-2"], "pywarp render: error: --reference-seed must be in [0, 4294967295], got -2"),
+])
+def test_cli_reference_bad_values_one_line_no_file(tmp_path, args, message):
+    res = _cli("render", "clouds", "--reference", "--width", "16", "--height", "9", *args, cwd=tmp_path)
+    assert res.returncode == 2
+    assert res.stderr.strip().splitlines()[-1].startswith(message), res.stderr
+    assert list(tmp_path.iterdir()) == []
