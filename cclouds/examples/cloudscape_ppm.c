@@ -50,7 +50,8 @@ int main(int argc, char **argv)
     ccl_camera cam;
     ccl_vec3 eye = {0.0f, 0.3f, 0.0f}, target = {0.0f, 0.664f, -1.0f}, up = {0.0f, 1.0f, 0.0f};
     /* every buffer starts NULL, so the one exit below frees whatever was allocated on every path */
-    float *base = NULL, *detail3 = NULL, *curl2 = NULL, *weather = NULL, *detail = NULL, *curl = NULL, *img = NULL;
+    float *base = NULL, *detail3 = NULL, *curl2 = NULL, *weather = NULL, *detail = NULL, *curl = NULL, *img = NULL,
+          *base_mips = NULL, *detail_mips = NULL;
     size_t nb, nd, nc, nw, npx;
     FILE *f;
 
@@ -87,6 +88,17 @@ int main(int argc, char **argv)
     tex.curl_size = cs.size;
     tex.weather = weather;
     tex.weather_size = ws.size;
+    /* the mip chains of the level of detail (params.lod) */
+    base_mips = make(ccl_cloudscape_mip3_len(bs.size));
+    detail_mips = make(ccl_cloudscape_mip3_len(ds.size));
+    if (!base_mips || !detail_mips ||
+        ccl_cloudscape_mip3(base, bs.size, base_mips, ccl_cloudscape_mip3_len(bs.size)) ||
+        ccl_cloudscape_mip3(detail, ds.size, detail_mips, ccl_cloudscape_mip3_len(ds.size))) {
+        fprintf(stderr, "mip generation failed\n");
+        goto done;
+    }
+    tex.base_mips = base_mips;
+    tex.detail_mips = detail_mips;
 
     ccl_cloudscape_params_default(&params);
     sky.kind = CCL_SKY_PREETHAM;
@@ -127,5 +139,7 @@ done:
     free(detail);
     free(curl);
     free(img);
+    free(base_mips);
+    free(detail_mips);
     return status;
 }

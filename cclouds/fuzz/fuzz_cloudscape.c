@@ -49,6 +49,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     fz_mutate(r, &p, fields, sizeof fields / sizeof fields[0], 4);
 
     ccl_cloud_textures t;
+    memset(&t, 0, sizeof t);
     float *base = texture(r, &t.base_size, 3), *detail = texture(r, &t.detail_size, 3);
     float *curl = texture(r, &t.curl_size, 2), *weather = texture(r, &t.weather_size, 2);
     t.base = base;
@@ -56,6 +57,20 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     t.curl = curl;
     t.weather = weather;
     if (fz_u8(r) == 255) t.weather = NULL;
+    /* mip chains for the level of detail, when the edges allow them */
+    float *base_mips = NULL, *detail_mips = NULL;
+    if (fz_u8(r) & 1u) {
+        size_t nb = ccl_cloudscape_mip3_len(t.base_size), nd = ccl_cloudscape_mip3_len(t.detail_size);
+        if (nb > 0 && nd > 0) {
+            base_mips = malloc(nb * sizeof(float));
+            detail_mips = malloc(nd * sizeof(float));
+            assert(base_mips && detail_mips);
+            assert(ccl_cloudscape_mip3(base, t.base_size, base_mips, nb) == CCL_OK);
+            assert(ccl_cloudscape_mip3(detail, t.detail_size, detail_mips, nd) == CCL_OK);
+            t.base_mips = base_mips;
+            t.detail_mips = detail_mips;
+        }
+    }
 
     ccl_cloudscape_sky sky;
     memset(&sky, 0, sizeof sky);
@@ -116,5 +131,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     free(detail);
     free(curl);
     free(weather);
+    free(base_mips);
+    free(detail_mips);
     return 0;
 }

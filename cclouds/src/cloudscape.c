@@ -70,8 +70,8 @@
  *   ms_octaves 3, ms_a = ms_b = ms_c = 0.5   each octave halves the optical depth, the contribution and the phase
  *                             eccentricity (the octave form of Wrenninge et al. 2013 as Hillaire 2016 uses it, which
  *                             needs a <= b to conserve energy); 0.5 for all three is our choice; three octaves bring
- *                             the sum of the contributions to 1.75 (of 2 for infinitely many). PROVISIONAL: to be chosen by the
- *                             path-traced measurement (pywarp/clouds/reference.py).
+ *                             the sum of the contributions to 1.75 (of 2 for infinitely many). PROVISIONAL: to be
+ *                             chosen by the path-traced measurement (pywarp/clouds/reference.py).
  *   silver_g 0.8, silver_weight 0.3   a strong, narrow forward lobe for the silver lining next to the mild g = 0.2.
  *                             PROVISIONAL: to be chosen by the same measurement. */
 void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
@@ -127,6 +127,8 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->ms_c = 0.5f;
     out->silver_g = 0.8f;
     out->silver_weight = 0.3f;
+    out->lod = 1;
+    out->lod_bias = 0.0f;
 }
 
 static int finite_pos(float v) { return v > 0.0f && v < INFINITY; }
@@ -209,6 +211,8 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!(p->ms_c >= 0.0f && p->ms_c <= 1.0f)) return bad(out_field, "ms_c");
     if (!(p->silver_g > -1.0f && p->silver_g < 1.0f)) return bad(out_field, "silver_g");
     if (!(p->silver_weight >= 0.0f && p->silver_weight <= 1.0f)) return bad(out_field, "silver_weight");
+    if (!(p->lod == 0 || p->lod == 1)) return bad(out_field, "lod");
+    if (!(p->lod_bias >= -4.0f && p->lod_bias <= 4.0f)) return bad(out_field, "lod_bias");
     if (t == NULL) return bad(out_field, "textures");
     if (t->base == NULL || !is_pow2(t->base_size)) return bad(out_field, "base");
     if (t->detail == NULL || !is_pow2(t->detail_size)) return bad(out_field, "detail");
@@ -297,8 +301,108 @@ void ccl_cloudscape_sample_bilinear_wrap(const float *tex, int size_mask, float 
     }
 }
 
+static int mip_levels(int size)
+{
+    int n = 0;
+    while (size > 0) {
+        ++n;
+        size >>= 1;
+    }
+    return n;
+}
+
+/* Level k of a mip chain: level 0 is tex itself, level k >= 1 lies in mips after the levels 1 .. k - 1. */
+static const float *mip_level(const float *tex, const float *mips, int size, int k)
+{
+    size_t off = 0;
+    int j;
+    if (k == 0) return tex;
+    for (j = 1; j < k; ++j) {
+        const size_t n = (size_t)(size >> j);
+        off += n * n * n;
+    }
+    return mips + off * 4u;
+}
+
+/* Trilinear wrap sample at a fractional mip level (twin of sample_mip in pywarp/kernels/cloudscape.py): level 0 for
+ * lod <= 0 or without mips, the last level for lod >= levels - 1, else the blend of floor(lod) and floor(lod) + 1. */
+static void sample_mip(const float *tex, const float *mips, int size, float lod, ccl_vec3 p, float out[4])
+{
+    const int levels = mips != NULL ? mip_levels(size) : 1;
+    float a[4], b[4], f;
+    int k, c;
+    if (lod <= 0.0f || levels <= 1) {
+        ccl_texgen_sample_trilinear_wrap(tex, size - 1, p.x, p.y, p.z, &out[0], &out[1], &out[2], &out[3]);
+        return;
+    }
+    if (lod >= (float)(levels - 1)) {
+        ccl_texgen_sample_trilinear_wrap(mip_level(tex, mips, size, levels - 1), (size >> (levels - 1)) - 1, p.x, p.y,
+                                         p.z, &out[0], &out[1], &out[2], &out[3]);
+        return;
+    }
+    f = lod - floorf(lod);
+    k = (int)floorf(lod);
+    ccl_texgen_sample_trilinear_wrap(mip_level(tex, mips, size, k), (size >> k) - 1, p.x, p.y, p.z, &a[0], &a[1],
+                                     &a[2], &a[3]);
+    ccl_texgen_sample_trilinear_wrap(mip_level(tex, mips, size, k + 1), (size >> (k + 1)) - 1, p.x, p.y, p.z, &b[0],
+                                     &b[1], &b[2], &b[3]);
+    for (c = 0; c < 4; ++c) out[c] = a[c] + (b[c] - a[c]) * f;
+}
+
+float ccl_cloudscape_lod(float footprint_km, float texel_km, float bias)
+{
+    if (!(footprint_km > 0.0f)) return 0.0f;
+    return log2f(footprint_km / texel_km) + bias;
+}
+
+size_t ccl_cloudscape_mip3_len(int size)
+{
+    size_t need = 0;
+    int k;
+    if (!is_pow2(size) || size > 4096) return 0;
+    for (k = 1; (size >> k) > 0; ++k) need += (size_t)(size >> k) * (size_t)(size >> k) * (size_t)(size >> k) * 4u;
+    return need;
+}
+
+ccl_status ccl_cloudscape_mip3(const float *tex, int size, float *out, size_t out_len)
+{
+    size_t n, x, y, z;
+    const float *src = tex;
+    float *dst = out;
+    int c;
+    if (tex == NULL || out == NULL || !is_pow2(size) || size > 4096) return CCL_EINVAL;
+    if (out_len != ccl_cloudscape_mip3_len(size)) return CCL_EINVAL;
+    for (n = (size_t)size; n > 1; n /= 2) {
+        const size_t m = n / 2;
+        for (z = 0; z < m; ++z)
+            for (y = 0; y < m; ++y)
+                for (x = 0; x < m; ++x)
+                    for (c = 0; c < 4; ++c) {
+#define T_(dz, dy, dx) src[(((2 * z + (dz)) * n + 2 * y + (dy)) * n + 2 * x + (dx)) * 4u + (size_t)c]
+                        float s = T_(0, 0, 0) + T_(0, 0, 1);
+                        s = s + T_(0, 1, 0);
+                        s = s + T_(0, 1, 1);
+                        s = s + T_(1, 0, 0);
+                        s = s + T_(1, 0, 1);
+                        s = s + T_(1, 1, 0);
+                        s = s + T_(1, 1, 1);
+#undef T_
+                        dst[((z * m + y) * m + x) * 4u + (size_t)c] = s * 0.125f;
+                    }
+        src = dst;
+        dst += m * m * m * 4u;
+    }
+    return CCL_OK;
+}
+
 float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos, int detail,
                              float *out_precipitation)
+{
+    return ccl_cloudscape_density_lod(p, t, pos, detail, 0.0f, 0.0f, out_precipitation);
+}
+
+float ccl_cloudscape_density_lod(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos,
+                                 int detail, float lod_base, float lod_detail, float *out_precipitation)
 {
     const ccl_vec3 c = p->layer.centre;
     float r, h, w[4], base[4], curl[4], det[4], l_fbm, b, d_v, b_d, h_d;
@@ -318,32 +422,160 @@ float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_tex
     d_v = ccl_clouds_height_gradient(h, w[2], p->gradient_clamp);
     if (!(d_v > 0.0f)) return 0.0f;
     /* vc-2.28: base shape */
-    ccl_texgen_sample_trilinear_wrap(t->base, t->base_size - 1, pos.x / p->base_scale_km, pos.y / p->base_scale_km,
-                                     pos.z / p->base_scale_km, &base[0], &base[1], &base[2], &base[3]);
+    {
+        ccl_vec3 u;
+        u.x = pos.x / p->base_scale_km;
+        u.y = pos.y / p->base_scale_km;
+        u.z = pos.z / p->base_scale_km;
+        sample_mip(t->base, t->base_mips, t->base_size, lod_base, u, base);
+    }
     ccl_clouds_base_shape(base[0], base[1], base[2], base[3], &l_fbm, &b);
     /* vc-2.29: coverage with the threshold C read as 1 - D_h or D_h */
     b_d = ccl_clouds_coverage(b, d_v, w[0], p->coverage_threshold == CCL_COVERAGE_SAME ? w[0] : 1.0f - w[0], 1);
     if (!(b_d > 0.0f) || !detail) return b_d > 0.0f ? b_d : 0.0f;
     /* vc-2.30: detail erosion at curl-displaced coordinates */
-    ccl_cloudscape_sample_bilinear_wrap(t->curl, t->curl_size - 1, pos.x / p->curl_scale_km,
-                                        pos.z / p->curl_scale_km, curl);
-    q.x = pos.x + curl[0] * p->curl_strength_km + p->detail_offset[0];
+    q.x = pos.x + p->detail_offset[0];
     q.y = pos.y + p->detail_offset[1];
-    q.z = pos.z + curl[1] * p->curl_strength_km + p->detail_offset[2];
+    q.z = pos.z + p->detail_offset[2];
+    if (lod_detail < (float)((t->detail_mips != NULL ? mip_levels(t->detail_size) : 1) - 1)) {
+        /* the curl displacement (skipped at the detail's last level, the mean, which no position changes) */
+        ccl_cloudscape_sample_bilinear_wrap(t->curl, t->curl_size - 1, pos.x / p->curl_scale_km,
+                                            pos.z / p->curl_scale_km, curl);
+        q.x = pos.x + curl[0] * p->curl_strength_km + p->detail_offset[0];
+        q.z = pos.z + curl[1] * p->curl_strength_km + p->detail_offset[2];
+    }
     h_d = ccl_clouds_relative_height(ccl_vec3_length(ccl_vec3_sub(q, c)), p->layer.r_inner, p->layer.r_outer,
                                      CCL_VARIANT_CORRECTED);
     h_d = h_d < 0.0f ? 0.0f : (h_d > 1.0f ? 1.0f : h_d);
-    ccl_texgen_sample_trilinear_wrap(t->detail, t->detail_size - 1, q.x / p->detail_scale_km,
-                                     q.y / p->detail_scale_km, q.z / p->detail_scale_km, &det[0], &det[1], &det[2],
-                                     &det[3]);
+    {
+        ccl_vec3 u;
+        u.x = q.x / p->detail_scale_km;
+        u.y = q.y / p->detail_scale_km;
+        u.z = q.z / p->detail_scale_km;
+        sample_mip(t->detail, t->detail_mips, t->detail_size, lod_detail, u, det);
+    }
     return ccl_clouds_detail_erosion(b_d, det[0], det[1], det[2], h_d, (ccl_detail_direction)p->detail_direction, 1);
 }
 
+/* --- lighting (see "Lighting" in cloudscape.h) ----------------------------------------------------------------- */
+
+float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, float cos_theta)
+{
+    /* octave i: contribution b^i, optical depth a^i d, eccentricities c^i g (Wrenninge et al. 2013, Hillaire 2016);
+     * the i = 0 term is vc-2.31 in the operation order of ccl_clouds_energy: (beer * phase) * powder */
+    float e = 0.0f, ai = 1.0f, bi = 1.0f, ci = 1.0f;
+    int i;
+    for (i = 0; i < p->ms_octaves; ++i) {
+        const float di = d * ai;
+        const float beer = p->beer ? expf(-di * a) : 1.0f;
+        const float powder = p->powder ? 1.0f - expf(-2.0f * di) : 1.0f;
+        float phase = ccl_phase_hg(cos_theta, p->g * ci);
+        if (p->silver_weight > 0.0f) /* dual lobe: (1 - w) HG(g) + w HG(silver_g) */
+            phase = (1.0f - p->silver_weight) * phase + p->silver_weight * ccl_phase_hg(cos_theta, p->silver_g * ci);
+        e += bi * beer * phase * powder;
+        ai *= p->ms_a;
+        bi *= p->ms_b;
+        ci *= p->ms_c;
+    }
+    return e;
+}
+
+void ccl_cloudscape_ground(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 point,
+                           ccl_vec3 to_sun, float *out_rgb, float *out_shadow)
+{
+    const ccl_cloud_layer *L = &p->layer;
+    ccl_vec3 n = ccl_vec3_sub(point, L->centre);
+    float a0, a1, b0, b1, cos_sun, shadow = 1.0f, k;
+    int c;
+    n = ccl_vec3_scale(n, 1.0f / ccl_vec3_length(n));
+    cos_sun = ccl_vec3_dot(n, to_sun);
+    cos_sun = cos_sun > 0.0f ? cos_sun : 0.0f;
+    /* T_shadow: the ray towards the sun crosses the layer between the far roots of the inner and outer spheres */
+    if (cos_sun > 0.0f && ccl_raymarch_ray_sphere(point, to_sun, L->centre, L->r_inner, &a0, &a1) &&
+        ccl_raymarch_ray_sphere(point, to_sun, L->centre, L->r_outer, &b0, &b1)) {
+        const float ts = a1 > 0.0f ? a1 : 0.0f;
+        const float dt = (b1 - ts) / (float)CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES;
+        const float lod = p->lod ? ccl_cloudscape_lod(dt, p->base_scale_km / (float)t->base_size, p->lod_bias)
+                                 : 0.0f;
+        float od = 0.0f, pr;
+        int i;
+        if (dt > 0.0f) {
+            for (i = 0; i < CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES; ++i) {
+                const ccl_vec3 q = ccl_raymarch_point(point, to_sun, ts, dt, i, 0.5f);
+                od += ccl_cloudscape_density_lod(p, t, q, 0, lod, 0.0f, &pr);
+            }
+            shadow = expf(-p->sigma_light * (od * dt));
+        }
+    }
+    /* Lambertian: albedo / pi x sun irradiance x cos, plus albedo x the cosine-weighted sky radiance */
+    k = cos_sun * shadow * 0.318309886f; /* 1 / pi */
+    for (c = 0; c < 3; ++c) out_rgb[c] = p->ground_albedo[c] * (p->sun_colour[c] * k + p->ambient_ground[c]);
+    if (out_shadow) *out_shadow = shadow;
+}
+
+/* The sky model's display-linear colour of a unit direction. */
+static ccl_vec3 sky_rgb(const ccl_cloudscape_sky *sky, ccl_vec3 d, ccl_vec3 sun)
+{
+    return (sky->kind == CCL_SKY_PREETHAM) ? ccl_sky_preetham_rgb(d, sun, &sky->preetham)
+                                           : ccl_sky_gradient_rgb(d, sun, &sky->gradient);
+}
+
+void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_sky *sky, ccl_cloudscape_params *out)
+{
+    ccl_cloudscape_params q = *p;
+    if (p->lighting == CCL_LIGHTING_SKY) {
+        const float dtheta = 1.5707963f / (float)CCL_CLOUDSCAPE_SKY_THETA_CELLS;
+        const float dphi = 6.2831853f / (float)CCL_CLOUDSCAPE_SKY_PHI_CELLS;
+        float cos_s = sky->sun[1], mean[3] = {0.0f, 0.0f, 0.0f}, cmean[3] = {0.0f, 0.0f, 0.0f}, wsum = 0.0f,
+              csum = 0.0f;
+        ccl_vec3 sun, att;
+        int i, j, c;
+        sun.x = sky->sun[0];
+        sun.y = sky->sun[1];
+        sun.z = sky->sun[2];
+        /* the sun through the atmosphere (Preetham et al. 1999 A.1) */
+        cos_s = cos_s < 0.0f ? 0.0f : (cos_s > 1.0f ? 1.0f : cos_s);
+        att = ccl_sky_sun_attenuation(acosf(cos_s), p->turbidity);
+        q.sun_colour[0] = p->sun_intensity * att.x;
+        q.sun_colour[1] = p->sun_intensity * att.y;
+        q.sun_colour[2] = p->sun_intensity * att.z;
+        /* the sky's mean and cosine-weighted mean over the upper hemisphere, midpoint rule */
+        for (i = 0; i < CCL_CLOUDSCAPE_SKY_THETA_CELLS; ++i) {
+            const float theta = ((float)i + 0.5f) * dtheta, st = sinf(theta), ct = cosf(theta), wc = st * ct;
+            for (j = 0; j < CCL_CLOUDSCAPE_SKY_PHI_CELLS; ++j) {
+                const float phi = ((float)j + 0.5f) * dphi;
+                ccl_vec3 d, s;
+                float v[3];
+                d.x = st * sinf(phi);
+                d.y = ct;
+                d.z = -st * cosf(phi);
+                s = sky_rgb(sky, d, sun);
+                v[0] = s.x > 0.0f ? s.x : 0.0f; /* out-of-gamut Preetham colours: no negative light */
+                v[1] = s.y > 0.0f ? s.y : 0.0f;
+                v[2] = s.z > 0.0f ? s.z : 0.0f;
+                for (c = 0; c < 3; ++c) {
+                    mean[c] += v[c] * st;
+                    cmean[c] += v[c] * wc;
+                }
+                wsum += st;
+                csum += wc;
+            }
+        }
+        for (c = 0; c < 3; ++c) {
+            q.ambient_top[c] = mean[c] / wsum;
+            q.ambient_bottom[c] = p->ambient_bottom_ratio * q.ambient_top[c];
+            q.ambient_ground[c] = cmean[c] / csum;
+        }
+    }
+    *out = q;
+}
+
 void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye, ccl_vec3 dir,
-                          ccl_vec3 to_sun, float offset, float *out_rgb, float *out_transmittance, int *out_samples)
+                          ccl_vec3 to_sun, float offset, float pixel_angle, float *out_rgb, float *out_transmittance,
+                          int *out_samples, float *out_depth_km)
 {
     ccl_vec3 colour = {0.0f, 0.0f, 0.0f};
-    float trans = 1.0f, t0, t1, t_start, dt, cos_theta;
+    float trans = 1.0f, t0, t1, t_start, dt, cos_theta, depth_sum = 0.0f, depth_w = 0.0f;
     int n, i, j, taken = 0;
     const ccl_cloud_layer *L = &p->layer;
     if (ccl_raymarch_layer_segment(eye, dir, L->centre, L->r_earth, L->r_inner, L->r_outer, &t0, &t1)) {
@@ -358,8 +590,20 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                 float precip, rho, h, d_light = 0.0f, a, e;
                 int stop;
                 ccl_vec3 pos = ccl_raymarch_point(eye, dir, t_start, dt, i, offset), light;
+                float lod_b = 0.0f, lod_d = 0.0f, lod_lb = 0.0f, lod_ld = 0.0f;
                 ++taken;
-                rho = ccl_cloudscape_density(p, t, pos, 1, &precip);
+                if (p->lod) {
+                    /* footprint of the sample: the pixel's width at its distance, or the step, whichever is larger */
+                    const float fp = fmaxf((t_start + ((float)i + offset) * dt) * pixel_angle, dt);
+                    const float tb = p->base_scale_km / (float)t->base_size;
+                    const float td = p->detail_scale_km / (float)t->detail_size;
+                    const float fl = fmaxf(fp, p->light_step_km);
+                    lod_b = ccl_cloudscape_lod(fp, tb, p->lod_bias);
+                    lod_d = ccl_cloudscape_lod(fp, td, p->lod_bias);
+                    lod_lb = ccl_cloudscape_lod(fl, tb, p->lod_bias);
+                    lod_ld = ccl_cloudscape_lod(fl, td, p->lod_bias);
+                }
+                rho = ccl_cloudscape_density_lod(p, t, pos, 1, lod_b, lod_d, &precip);
                 if (!(rho > 0.0f)) continue;
                 /* vc-A19: optical depth towards the sun from 6 cone samples */
                 for (j = 0; j < 6; ++j) {
@@ -367,23 +611,27 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     ccl_vec3 q = ccl_raymarch_light_sample_position(pos, to_sun, j, p->light_step_km,
                                                                     p->light_cone_angle, p->light_far_factor,
                                                                     ccl_raymarch_light_cone_kernel(j));
-                    d_light += w * ccl_cloudscape_density(p, t, q, p->light_detail, &pj);
+                    d_light += w * ccl_cloudscape_density_lod(p, t, q, p->light_detail, lod_lb, lod_ld, &pj);
                 }
                 d_light *= p->sigma_light;
                 /* vc-2.31 + vc-A20: sun energy and ambient by relative height, per channel */
                 a = p->absorption_base + p->absorption_precip * precip;
-                if (p->beer && p->powder)
-                    e = ccl_clouds_energy(d_light, a, cos_theta, p->g);
-                else /* the same product with a term replaced by 1 */
-                    e = (p->beer ? expf(-d_light * a) : 1.0f) * ccl_phase_hg(cos_theta, p->g) *
-                        (p->powder ? 1.0f - expf(-2.0f * d_light) : 1.0f);
+                /* E of vc-2.31 (+ multiple-scattering octaves, dual-lobe phase; beer / powder flags) */
+                e = ccl_cloudscape_energy(p, d_light, a, cos_theta);
                 h = ccl_clouds_relative_height(ccl_vec3_length(ccl_vec3_sub(pos, L->centre)),
                                                L->r_inner, L->r_outer, CCL_VARIANT_CORRECTED);
                 light.x = p->sun_colour[0] * e + (p->ambient_bottom[0] + (p->ambient_top[0] - p->ambient_bottom[0]) * h);
                 light.y = p->sun_colour[1] * e + (p->ambient_bottom[1] + (p->ambient_top[1] - p->ambient_bottom[1]) * h);
                 light.z = p->sun_colour[2] * e + (p->ambient_bottom[2] + (p->ambient_top[2] - p->ambient_bottom[2]) * h);
                 /* vc-A21: front-to-back accumulation, early termination */
-                colour = ccl_raymarch_accumulate(colour, trans, p->sigma, rho, dt, light, p->exit_eps, &trans, &stop);
+                {
+                    const float t_before = trans;
+                    colour = ccl_raymarch_accumulate(colour, trans, p->sigma, rho, dt, light, p->exit_eps, &trans,
+                                                     &stop);
+                    /* the sample's weight in the pixel, for the mean distance of the aerial perspective */
+                    depth_w += t_before - trans;
+                    depth_sum += (t_before - trans) * (t_start + ((float)i + offset) * dt);
+                }
                 if (stop && p->early_exit) break;
             }
         }
@@ -393,6 +641,45 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
     out_rgb[2] = colour.z;
     *out_transmittance = trans;
     *out_samples = taken;
+    if (out_depth_km) *out_depth_km = depth_w > 0.0f ? depth_sum / depth_w : 0.0f;
+}
+
+/* (d.x, max(d.y, 0), d.z) normalised, (0, 0, -1) at the nadir: the haze direction of the aerial perspective */
+static ccl_vec3 lift_to_horizon(ccl_vec3 d)
+{
+    ccl_vec3 h = d;
+    float len;
+    if (h.y < 0.0f) h.y = 0.0f;
+    len = ccl_vec3_length(h);
+    if (!(len > 1e-6f)) {
+        h.x = 0.0f;
+        h.y = 0.0f;
+        h.z = -1.0f;
+        return h;
+    }
+    return ccl_vec3_scale(h, 1.0f / len);
+}
+
+/* Sky lighting's ground and aerial perspective (see "Lighting" in cloudscape.h): out = B T + C' with B the lit ground
+ * faded by distance (ground) or the haze colour (sky), C' the clouds faded by their mean distance. */
+static void sky_lit_composite(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye, ccl_vec3 d,
+                              ccl_vec3 sun, const float haze[3], int ground, float t_ground, const float cl[3],
+                              float trans, float depth_km, float *out_rgb)
+{
+    float bg[3], f_g = 1.0f, f_c = 1.0f;
+    int c;
+    if (p->aerial_km > 0.0f) {
+        f_g = expf(-t_ground / p->aerial_km);
+        f_c = expf(-depth_km / p->aerial_km);
+    }
+    if (ground) {
+        ccl_cloudscape_ground(p, t, ccl_vec3_add(eye, ccl_vec3_scale(d, t_ground)), sun, bg, NULL);
+        for (c = 0; c < 3; ++c) bg[c] = bg[c] * f_g + haze[c] * (1.0f - f_g);
+    } else {
+        for (c = 0; c < 3; ++c) bg[c] = haze[c];
+    }
+    for (c = 0; c < 3; ++c)
+        out_rgb[c] = ccl_clouds_composite(bg[c], 1.0f - trans, cl[c] * f_c + haze[c] * ((1.0f - trans) * (1.0f - f_c)));
 }
 
 void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
@@ -400,8 +687,8 @@ void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textur
                           int frame, float *out_rgb)
 {
     ccl_vec3 d = ccl_camera_ray(cam->inv_view_proj_rot, x, y, width, height), sun;
-    float offset, bg[3], cl[3], trans, e0, e1;
-    int samples, c;
+    float offset, bg[3], cl[3], trans, e0, e1, pixel_angle, depth, t_ground = 0.0f;
+    int samples, c, ground = 0;
     d = ccl_raymarch_jitter(d, (uint32_t)x, (uint32_t)y, (uint32_t)frame, p->jitter_amount,
                             (ccl_jitter_mode)p->jitter_mode, &offset);
     sun.x = sky->sun[0];
@@ -411,6 +698,8 @@ void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textur
     if (ccl_raymarch_ray_sphere(cam->eye, d, p->layer.centre, p->layer.r_earth, &e0, &e1) && e1 > 0.0f &&
         (e0 > 0.0f || ccl_vec3_dot(d, ccl_vec3_sub(cam->eye, p->layer.centre)) < 0.0f)) {
         /* the Earth ahead: entered in front of the camera, or (camera on the ground) the ray points downwards */
+        ground = 1;
+        t_ground = e0 > 0.0f ? e0 : 0.0f;
         bg[0] = p->ground_colour[0];
         bg[1] = p->ground_colour[1];
         bg[2] = p->ground_colour[2];
@@ -421,7 +710,17 @@ void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textur
         bg[1] = s.y;
         bg[2] = s.z;
     }
-    ccl_cloudscape_march(p, t, cam->eye, d, sun, offset, cl, &trans, &samples);
+    /* the pixel's angular size, for the level of detail (twin of pixel_angle in pywarp/kernels/cloudscape.py) */
+    pixel_angle = ccl_vec3_length(ccl_vec3_sub(ccl_camera_ray(cam->inv_view_proj_rot, x, y + 1, width, height),
+                                               ccl_camera_ray(cam->inv_view_proj_rot, x, y, width, height)));
+    ccl_cloudscape_march(p, t, cam->eye, d, sun, offset, pixel_angle, cl, &trans, &samples, &depth);
+    if (p->lighting == CCL_LIGHTING_SKY) {
+        /* the haze colour: the sky towards the horizon in the ray's azimuth */
+        const ccl_vec3 h = sky_rgb(sky, lift_to_horizon(d), sun);
+        const float haze[3] = {h.x, h.y, h.z};
+        sky_lit_composite(p, t, cam->eye, d, sun, haze, ground, t_ground, cl, trans, depth, out_rgb);
+        return;
+    }
     /* vc-4.8: C_f = B (1 - O_D) + C_clouds, O_D = 1 - T */
     for (c = 0; c < 3; ++c)
         out_rgb[c] = ccl_clouds_composite(bg[c], 1.0f - trans, cl[c]);
@@ -432,10 +731,13 @@ ccl_status ccl_cloudscape_render(const ccl_cloudscape_params *p, const ccl_cloud
                                  int frame, float *out_rgb, size_t out_len)
 {
     int x, y, c;
+    ccl_cloudscape_params lit;
     ccl_status st = ccl_cloudscape_check(p, t, sky, NULL);
     if (st != CCL_OK) return st;
     if (cam == NULL || out_rgb == NULL || width < 1 || height < 1 || frame < 0) return CCL_EINVAL;
     if (out_len != (size_t)width * (size_t)height * 3u) return CCL_EINVAL;
+    ccl_cloudscape_light(p, sky, &lit); /* once per frame: sun and ambient from the sky model */
+    p = &lit;
     for (y = 0; y < height; ++y) {
         for (x = 0; x < width; ++x) {
             float rgb[3];

@@ -177,12 +177,25 @@ class RenderTextures:
         t = gen.textures(**settings.textures())
         return cls.from_textures(t, settings.device)
 
-    def warp(self) -> tuple:
-        if not self._wp:
-            self._wp = {name: wp.array(getattr(self, name), dtype=wp.vec4, device=self.device)
-                        for name in ("base", "detail", "curl", "weather")}
-        d = self._wp
-        return d["base"], d["detail"], d["curl"], d["weather"]
+    def mips(self, name: str) -> np.ndarray:
+        """The flat mip chain of the base or detail volume (level 0 first; :func:`pywarp.kernels.cloudscape.mip_chain`)."""
+        key = "mips_" + name
+        if key not in self._wp:
+            self._wp[key] = K.mip_chain(getattr(self, name))
+        return self._wp[key]
+
+    def warp(self) -> K.CloudTextures:
+        """The :class:`pywarp.kernels.cloudscape.CloudTextures` the kernels read (built once)."""
+        if "struct" not in self._wp:
+            t = K.CloudTextures()
+            for name in ("base", "detail"):
+                t.__setattr__(name, wp.array(self.mips(name), dtype=wp.vec4, device=self.device))
+                t.__setattr__(name + "_size", int(getattr(self, name).shape[0]))
+                t.__setattr__(name + "_levels", K.mip_levels(getattr(self, name).shape[0]))
+            t.curl = wp.array(self.curl, dtype=wp.vec4, device=self.device)
+            t.weather = wp.array(self.weather, dtype=wp.vec4, device=self.device)
+            self._wp["struct"] = t
+        return self._wp["struct"]
 
 
 # --- parameters shared by Warp and C --------------------------------------------------------------------------------------
@@ -200,6 +213,26 @@ def warp_params(values: dict) -> K.CloudscapeParams:
         else:
             setattr(s, name, t(*[float(x) for x in v]))
     return s
+
+
+#: The fields ccl_cloudscape_light / cloudscape_light fill from the sky model (sky lighting).
+LIGHT_FIELDS = ("sun_colour", "ambient_top", "ambient_bottom", "ambient_ground")
+
+
+def light_params(params: K.CloudscapeParams, sky: "SkyModel", device: str = "cpu") -> K.CloudscapeParams:
+    """The per-frame lighting setup, twin of ``ccl_cloudscape_light``: with sky lighting, ``params`` with sun colour
+    and ambients from ``sky`` (its kind, sun, Preetham and gradient constants), computed once by
+    :func:`pywarp.kernels.cloudscape.cloudscape_light` (one thread, the same float32 operations as the C); the
+    thesis's lighting returns ``params`` unchanged. Called when the settings or the sky change, not per frame."""
+    if params.lighting != K.LIGHTING_SKY:
+        return params
+    out = wp.empty(1, dtype=K.CloudscapeParams, device=device)
+    wp.launch(K.light_kernel, dim=1, inputs=[params, int(sky.kind), wp.vec3(*np.asarray(sky.sun).tolist()),
+                                             sky.preetham, sky.gradient], outputs=[out], device=device)
+    rec = out.numpy()[0]
+    for name in LIGHT_FIELDS:
+        setattr(params, name, wp.vec3(*rec[name].tolist()))
+    return params
 
 
 
@@ -229,7 +262,7 @@ class CloudscapeTechnique:
             self.textures = RenderTextures.generate(self.settings, self.generator)
         if self.sky is None:
             self.sky = make_sky(self.settings)
-        self.params = warp_params(checked_values(self.settings))
+        self.params = light_params(warp_params(checked_values(self.settings)), self.sky, self.device)
         self.resize(self.settings.width, self.settings.height)
 
     def update(self, **changes) -> None:
@@ -250,7 +283,7 @@ class CloudscapeTechnique:
                 self.sky = make_sky(new)  # the sky kind may have changed
             else:
                 self.sky.update(new)  # a user's own sky model
-        self.params = warp_params(checked_values(new))
+        self.params = light_params(warp_params(checked_values(new)), self.sky, self.device)
         if stale & {"size", "device"}:
             self.resize(new.width, new.height)
 
@@ -288,14 +321,14 @@ class CloudscapeTechnique:
         b = self._buffers
         h, w = s.height, s.width
         layer = s.layer()
-        base, detail, curl, weather = self.textures.warp()
+        tex = self.textures.warp()
         sun = wp.vec3(*self.sky.sun.tolist())
         target = b["current"] if reproj else b["out"]
         self.sky.render(target, cam, self.frame, reproj, self.params, self.launcher)
         rows, cols = (RP.reproj_grid(w, h)[::-1]) if reproj else (h, w)
         band_done = None if progress is None else (lambda n, total=rows: progress(n / total))
         self.launcher.launch(K.clouds_kernel, rows, cols,
-                             [self.params, base, detail, curl, weather, sun, cam.mat44("inv_view_proj_rot"),
+                             [self.params, tex, sun, cam.mat44("inv_view_proj_rot"),
                               cam.eye_vec3(), self.frame, int(reproj)], [target, b["reduced"], b["samples"]],
                              progress=band_done)
         if reproj:
@@ -412,6 +445,13 @@ def c_textures(textures: RenderTextures):
         buffers.append(buf)
         setattr(tex, name, f.cast("const float *", buf))
         setattr(tex, f"{name}_size", arr.shape[0])
+    for name in ("base", "detail"):
+        n = getattr(textures, name).shape[0]
+        chain = textures.mips(name)
+        if n > 1:  # levels 1.. of the same chain the Warp kernels read
+            buf = f.from_buffer("float[]", chain[n ** 3:])
+            buffers.append(buf)
+            setattr(tex, f"{name}_mips", f.cast("const float *", buf))
     _KEEP_ALIVE[tex] = buffers
     return tex
 
@@ -446,6 +486,7 @@ def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, 
     field_ = f.new("const char **")
     if lb.ccl_cloudscape_check(params, tex, sky, field_) != 0:
         raise ValueError(f"ccl_cloudscape_check rejected {f.string(field_[0]).decode()}")
+    lb.ccl_cloudscape_light(params, sky, params)  # once, as ccl_cloudscape_render does (sky lighting)
     out = np.empty((len(xs), 3), dtype=np.float32)
     rgb = f.new("float[3]")
     for k, (x, y) in enumerate(zip(xs, ys)):
@@ -461,14 +502,14 @@ def render_pixels_warp(technique: CloudscapeTechnique, xs, ys, pose: CameraPose 
     s = technique.settings
     pose = pose or CameraPose.from_settings(s)
     cam = pose.camera(s.width, s.height)
-    base, detail, curl, weather = technique.textures.warp()
+    tex = technique.textures.warp()
     dev = technique.device
     xa = wp.array(np.asarray(xs, dtype=np.int32), dtype=wp.int32, device=dev)
     ya = wp.array(np.asarray(ys, dtype=np.int32), dtype=wp.int32, device=dev)
     out = wp.zeros((len(xs), 3), dtype=float, device=dev)
     sky = technique.sky
     wp.launch(K.pixels_kernel, dim=len(xs),
-              inputs=[technique.params, base, detail, curl, weather, sky.kind, wp.vec3(*sky.sun.tolist()),
+              inputs=[technique.params, tex, sky.kind, wp.vec3(*sky.sun.tolist()),
                       sky.preetham, sky.gradient, cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), xa, ya, s.width,
                       s.height, frame], outputs=[out], device=dev)
     return out.numpy()

@@ -40,7 +40,7 @@ def param_values(settings) -> dict:
         "jitter_amount": p.jitter_amount, "gradient_clamp": p.gradient_clamp,
         "detail_direction": p.detail_direction, "ground_colour": tuple(p.ground_colour),
         "coverage_threshold": COVERAGE_THRESHOLDS[settings.coverage_threshold], "beer": int(settings.beer),
-        "powder": int(settings.powder),
+        "powder": int(settings.powder), "lod": int(settings.lod), "lod_bias": settings.lod_bias,
     }
     # lighting: 'thesis' is the thesis's model entirely (its constants, one octave, one HG lobe); 'sky' takes the
     # multiple-scattering and silver-lining settings

@@ -307,6 +307,16 @@ class CloudscapeSettings(Settings):
                        reason="on: the formula as printed (ccl_cloudscape_params_default)")
     powder: bool = param(True, group="clouds", doc="powder term of the lighting energy vc-2.31 (off: replaced by 1)",
                          reason="on: the formula as printed (ccl_cloudscape_params_default)")
+    lod: bool = param(True, group="clouds",
+                      doc="level of detail: the base and detail noise sampled at the mip level of each sample's "
+                          "footprint (the larger of the pixel's width at the sample and the view step); off: full "
+                          "resolution everywhere, as the thesis",
+                      reason="on: without it the steps and pixels near the horizon undersample 25-50 m texels and "
+                             "the distant clouds turn into salt-and-pepper noise that changes every frame "
+                             "(ccl_cloudscape_params_default)")
+    lod_bias: float = param(0.0, lo=-4.0, hi=4.0, group="clouds",
+                            doc="added to every mip level of the level of detail (> 0 blurs, < 0 sharpens)",
+                            reason="0: one texel per footprint, the usual mip-mapping criterion")
     seed: int = inherit(BaseShapeSettings, "seed", group="clouds",
                         doc="seed of every texture (uint32); the same seed gives the same image",
                         reason="0: Perlin's reference permutation")
@@ -427,6 +437,24 @@ class CloudscapeSettings(Settings):
     samples_max: int = param(128, kind="int", lo=1, hi=4096, check=_samples_max_check, group="quality",
                              doc="view samples at the horizon (vc-A18), >= samples_min",
                              reason="128: the thesis (vc-A18)")
+    # --- the path-traced ground truth (pywarp.clouds.reference; pywarp render clouds --reference) ---
+    reference: bool = param(False, group="reference",
+                            doc="render the path-traced ground truth of the same density field, sun and sky "
+                                "(Monte Carlo, multiple scattering; pywarp.clouds.reference) instead of the "
+                                "real-time image",
+                            reason="off: the real-time renderer; the reference takes minutes per image")
+    spp: int = param(64, kind="int", lo=1, hi=65536, group="reference",
+                     doc="reference: paths per pixel (the noise falls as 1/sqrt(spp))",
+                     reason="64: a recognisable image in about a minute at 320x180 on 2 cores; the benchmark's "
+                            "references use 1024")
+    reference_seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, group="reference",
+                                doc="reference: seed of the path tracer's random numbers (the textures keep --seed); "
+                                    "the same seed gives the same image on any number of threads",
+                                reason="0: any value; independent seeds give independent noise")
+    reference_bounces: int = param(64, kind="int", lo=1, hi=256, group="reference", cli="--bounces",
+                                   doc="reference: scattering events per path at most (medium or ground)",
+                                   reason="64: pywarp.clouds.reference.DEFAULT_BOUNCES (the energy still missing "
+                                          "at 64 is below the benchmark's noise)")
     device: str = param("cpu", invalidates="device", group="runtime",
                         doc="Warp device: cpu, or cuda:N where present", reason="cpu: nothing requires a GPU")
     threads: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, invalidates="device",

@@ -13,6 +13,7 @@ Frame buffers are ``wp.array3d(dtype=float)`` of shape (height, width, 3), row 0
 """
 from __future__ import annotations
 
+import numpy as np
 import warp as wp
 
 from .clouds import (
@@ -39,8 +40,8 @@ from .raymarch import (
     raymarch_view_sample_count,
 )
 from .reproj import reproj_pixel
-from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb
-from .texgen import texgen_sample_trilinear_wrap
+from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb, sky_sun_attenuation
+from .texgen import _axis_lo, _axis_t
 
 SKY_GRADIENT = 0
 SKY_PREETHAM = 1
@@ -50,6 +51,9 @@ JITTER_NONE = 2
 LIGHTING_THESIS = 0  # ccl_lighting
 LIGHTING_SKY = 1
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
+GROUND_SHADOW_SAMPLES = wp.constant(12)  # CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES
+SKY_THETA_CELLS = wp.constant(8)  # CCL_CLOUDSCAPE_SKY_THETA_CELLS
+SKY_PHI_CELLS = wp.constant(16)  # CCL_CLOUDSCAPE_SKY_PHI_CELLS
 
 
 @wp.struct
@@ -105,6 +109,8 @@ class CloudscapeParams:
     ms_c: float
     silver_g: float
     silver_weight: float
+    lod: int
+    lod_bias: float
 
 
 @wp.func
@@ -138,11 +144,136 @@ def sample_bilinear_wrap(tex: wp.array2d(dtype=wp.vec4), size_mask: int, u: floa
     return c0 + (c1 - c0) * ty
 
 
+def mip_levels(size: int) -> int:
+    """Levels of the full mip chain of a power-of-two edge: size, size / 2, ..., 1."""
+    return int(size).bit_length()
+
+
+def mip_chain(tex: np.ndarray) -> np.ndarray:
+    """The mip chain of a periodic RGBA volume ``tex[z, y, x, 4]`` (power-of-two edge) as one flat float32 (texels, 4)
+    array, level 0 first; each texel of level k + 1 is the mean of its 8 children of level k, added in the order of
+    ``ccl_cloudscape_mip3`` (x fastest, then y, then z), so C and NumPy agree bit for bit."""
+    a = np.ascontiguousarray(tex, dtype=np.float32)
+    n = a.shape[0]
+    if a.ndim != 4 or a.shape[:3] != (n, n, n) or a.shape[3] != 4 or n < 1 or n & (n - 1):
+        raise ValueError(f"mip_chain needs an (n, n, n, 4) volume with n a power of two, got {a.shape}")
+    levels = [a.reshape(-1, 4)]
+    while n > 1:
+        s = a[0::2, 0::2, 0::2] + a[0::2, 0::2, 1::2]
+        s = s + a[0::2, 1::2, 0::2]
+        s = s + a[0::2, 1::2, 1::2]
+        s = s + a[1::2, 0::2, 0::2]
+        s = s + a[1::2, 0::2, 1::2]
+        s = s + a[1::2, 1::2, 0::2]
+        s = s + a[1::2, 1::2, 1::2]
+        a = np.ascontiguousarray(s * np.float32(0.125), dtype=np.float32)
+        n //= 2
+        levels.append(a.reshape(-1, 4))
+    return np.concatenate(levels, axis=0)
+
+
+@wp.struct
+class CloudTextures:
+    """Twin of ``ccl_cloud_textures``: base and detail as flat mip chains (level 0 first, then each half-size level
+    down to 1^3, texel [z, y, x] of level k at ``mip_offset(size, k) + (z n_k + y) n_k + x``), curl and weather 2-D."""
+
+    base: wp.array(dtype=wp.vec4)
+    base_size: int
+    base_levels: int  # mip levels present (1: level 0 only, no level of detail)
+    detail: wp.array(dtype=wp.vec4)
+    detail_size: int
+    detail_levels: int
+    curl: wp.array2d(dtype=wp.vec4)
+    weather: wp.array2d(dtype=wp.vec4)
+
+
 @wp.func
-def cloudscape_density(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detail: wp.array3d(dtype=wp.vec4),
-                       curl: wp.array2d(dtype=wp.vec4), weather: wp.array2d(dtype=wp.vec4), pos: wp.vec3,
-                       with_detail: int):
-    """vc-A17: (density, precipitation) at a world position; twin of ``ccl_cloudscape_density``."""
+def mip_offset(size: int, level: int) -> int:
+    """Texels before mip level ``level`` of a flat chain whose level 0 is size^3."""
+    off = int(0)
+    n = size
+    for k in range(level):
+        off = off + n * n * n
+        n = n / 2
+    return off
+
+
+@wp.func
+def sample_mip_level(tex: wp.array(dtype=wp.vec4), size: int, level: int, p: wp.vec3) -> wp.vec4:
+    """Trilinear wrap sample of mip level ``level`` (twin of ``ccl_texgen_sample_trilinear_wrap`` on that level's
+    texels; the same operations in the same order)."""
+    n = size >> level
+    mask = n - 1
+    base = mip_offset(size, level)
+    fsize = float(n)
+    x = p[0] * fsize
+    y = p[1] * fsize
+    z = p[2] * fsize
+    if not (wp.abs(x) < 8388608.0 and wp.abs(y) < 8388608.0 and wp.abs(z) < 8388608.0):
+        return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
+    ix = _axis_lo(x)
+    iy = _axis_lo(y)
+    iz = _axis_lo(z)
+    tx = _axis_t(x)
+    ty = _axis_t(y)
+    tz = _axis_t(z)
+    x0 = ix & mask
+    x1 = (ix + 1) & mask
+    y0 = (iy & mask) * n
+    y1 = ((iy + 1) & mask) * n
+    z0 = (iz & mask) * n * n
+    z1 = ((iz + 1) & mask) * n * n
+    c000 = tex[base + z0 + y0 + x0]
+    c100 = tex[base + z0 + y0 + x1]
+    c010 = tex[base + z0 + y1 + x0]
+    c110 = tex[base + z0 + y1 + x1]
+    c001 = tex[base + z1 + y0 + x0]
+    c101 = tex[base + z1 + y0 + x1]
+    c011 = tex[base + z1 + y1 + x0]
+    c111 = tex[base + z1 + y1 + x1]
+    c00 = c000 + (c100 - c000) * tx
+    c10 = c010 + (c110 - c010) * tx
+    c01 = c001 + (c101 - c001) * tx
+    c11 = c011 + (c111 - c011) * tx
+    c0 = c00 + (c10 - c00) * ty
+    c1 = c01 + (c11 - c01) * ty
+    return c0 + (c1 - c0) * tz
+
+
+@wp.func
+def sample_mip(tex: wp.array(dtype=wp.vec4), size: int, levels: int, lod: float, p: wp.vec3) -> wp.vec4:
+    """Twin of ``sample_mip`` in cloudscape.c: level 0 for lod <= 0, else the blend of levels floor(lod) and
+    floor(lod) + 1 by frac(lod) (the last level for lod >= levels - 1)."""
+    if lod <= 0.0 or levels <= 1:
+        return sample_mip_level(tex, size, 0, p)
+    top = float(levels - 1)
+    if lod >= top:
+        return sample_mip_level(tex, size, levels - 1, p)
+    l0 = wp.floor(lod)
+    f = lod - l0
+    k = int(l0)
+    a = sample_mip_level(tex, size, k, p)
+    b = sample_mip_level(tex, size, k + 1, p)
+    return a + (b - a) * f
+
+
+@wp.func
+def cloudscape_lod(footprint_km: float, texel_km: float, bias: float) -> float:
+    """Mip level of a sample whose footprint is ``footprint_km``: log2(footprint / texel) + bias (may be <= 0: level
+    0). Twin of ``ccl_cloudscape_lod``."""
+    if not (footprint_km > 0.0):
+        return 0.0
+    return wp.log2(footprint_km / texel_km) + bias
+
+
+@wp.func
+def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, with_detail: int, lod_base: float,
+                           lod_detail: float):
+    """vc-A17 with a level of detail: (density, precipitation) at a world position with the base and detail textures
+    sampled at mip levels ``lod_base`` / ``lod_detail`` (0: full resolution, the thesis); twin of
+    ``ccl_cloudscape_density_lod``. At the detail texture's last level (its mean) the curl lookup is skipped: the
+    detail no longer depends on the position."""
+    weather = tex.weather
     c = p.centre
     r = wp.length(pos - c)
     h = clouds_relative_height(r, p.r_inner, p.r_outer, 0)
@@ -155,9 +286,8 @@ def cloudscape_density(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), det
         if w[0] > 0.0:
             d_v = clouds_height_gradient(h, w[2], p.gradient_clamp)
             if d_v > 0.0:
-                bs = texgen_sample_trilinear_wrap(base, base.shape[0] - 1,
-                                                  wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km,
-                                                          pos[2] / p.base_scale_km))
+                bs = sample_mip(tex.base, tex.base_size, tex.base_levels, lod_base,
+                                wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km, pos[2] / p.base_scale_km))
                 l_fbm, b = clouds_base_shape(bs[0], bs[1], bs[2], bs[3])
                 c_thr = 1.0 - w[0]
                 if p.coverage_threshold == 0:
@@ -166,28 +296,41 @@ def cloudscape_density(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), det
                 if b_d > 0.0:
                     density = b_d
                     if with_detail != 0:
-                        cv = sample_bilinear_wrap(curl, curl.shape[0] - 1, pos[0] / p.curl_scale_km,
-                                                  pos[2] / p.curl_scale_km)
-                        qx = pos[0] + cv[0] * p.curl_strength_km + p.detail_offset[0]
+                        qx = pos[0] + p.detail_offset[0]
                         qy = pos[1] + p.detail_offset[1]
-                        qz = pos[2] + cv[1] * p.curl_strength_km + p.detail_offset[2]
+                        qz = pos[2] + p.detail_offset[2]
+                        if lod_detail < float(tex.detail_levels - 1):
+                            cv = sample_bilinear_wrap(tex.curl, tex.curl.shape[0] - 1, pos[0] / p.curl_scale_km,
+                                                      pos[2] / p.curl_scale_km)
+                            qx = pos[0] + cv[0] * p.curl_strength_km + p.detail_offset[0]
+                            qz = pos[2] + cv[1] * p.curl_strength_km + p.detail_offset[2]
                         h_d = clouds_relative_height(wp.length(wp.vec3(qx, qy, qz) - c), p.r_inner, p.r_outer, 0)
                         h_d = wp.clamp(h_d, 0.0, 1.0)
-                        dt = texgen_sample_trilinear_wrap(detail, detail.shape[0] - 1,
-                                                          wp.vec3(qx / p.detail_scale_km, qy / p.detail_scale_km,
-                                                                  qz / p.detail_scale_km))
+                        dt = sample_mip(tex.detail, tex.detail_size, tex.detail_levels, lod_detail,
+                                        wp.vec3(qx / p.detail_scale_km, qy / p.detail_scale_km,
+                                                qz / p.detail_scale_km))
                         density = clouds_detail_erosion(b_d, dt[0], dt[1], dt[2], h_d, p.detail_direction, 1)
     return density, precip
 
 
 @wp.func
-def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detail: wp.array3d(dtype=wp.vec4),
-                     curl: wp.array2d(dtype=wp.vec4), weather: wp.array2d(dtype=wp.vec4), eye: wp.vec3,
-                     d: wp.vec3, to_sun: wp.vec3, offset: float):
-    """One view ray: (cloud colour, transmittance, samples taken); twin of ``ccl_cloudscape_march``."""
+def cloudscape_density(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, with_detail: int):
+    """vc-A17: (density, precipitation) at a world position at full resolution; twin of ``ccl_cloudscape_density``."""
+    return cloudscape_density_lod(p, tex, pos, with_detail, 0.0, 0.0)
+
+
+@wp.func
+def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, to_sun: wp.vec3,
+                     offset: float, pixel_angle: float):
+    """One view ray: (cloud colour, transmittance, samples taken, mean distance [km]); twin of
+    ``ccl_cloudscape_march`` (the mean distance: the transmittance-weighted mean distance of the samples, 0 where
+    nothing was accumulated, for the aerial perspective).
+    ``pixel_angle``: the angle between neighbouring pixels' rays (rad), for the level of detail."""
     colour = wp.vec3(0.0, 0.0, 0.0)
     trans = float(1.0)
     taken = int(0)
+    depth_sum = float(0.0)
+    depth_w = float(0.0)
     t0, t1 = raymarch_layer_segment(eye, d, p.centre, p.r_earth, p.r_inner, p.r_outer)
     if t1 >= t0:
         n = p.samples_max
@@ -204,7 +347,21 @@ def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
             for i in range(n):
                 pos = raymarch_point(eye, d, t_start, dt, i, offset)
                 taken = taken + 1
-                rho, precip = cloudscape_density(p, base, detail, curl, weather, pos, 1)
+                lod_b = float(0.0)
+                lod_d = float(0.0)
+                lod_lb = float(0.0)
+                lod_ld = float(0.0)
+                if p.lod != 0:
+                    # footprint of the sample: the pixel's width at its distance, or the step, whichever is larger
+                    fp = wp.max((t_start + (float(i) + offset) * dt) * pixel_angle, dt)
+                    tb = p.base_scale_km / float(tex.base_size)
+                    td = p.detail_scale_km / float(tex.detail_size)
+                    lod_b = cloudscape_lod(fp, tb, p.lod_bias)
+                    lod_d = cloudscape_lod(fp, td, p.lod_bias)
+                    fl = wp.max(fp, p.light_step_km)
+                    lod_lb = cloudscape_lod(fl, tb, p.lod_bias)
+                    lod_ld = cloudscape_lod(fl, td, p.lod_bias)
+                rho, precip = cloudscape_density_lod(p, tex, pos, 1, lod_b, lod_d)
                 if rho > 0.0:
                     # vc-A19: optical depth towards the sun from 6 cone samples
                     d_light = float(0.0)
@@ -214,32 +371,30 @@ def cloudscape_march(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detai
                             w = p.light_step_km
                         q = raymarch_light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
                                                            p.light_far_factor, raymarch_light_cone_kernel(j))
-                        rj, pj = cloudscape_density(p, base, detail, curl, weather, q, p.light_detail)
+                        rj, pj = cloudscape_density_lod(p, tex, q, p.light_detail, lod_lb, lod_ld)
                         d_light = d_light + w * rj
                     d_light = d_light * p.sigma_light
                     # vc-2.31 + vc-A20
                     a = p.absorption_base + p.absorption_precip * precip
-                    e = float(0.0)
-                    if p.beer != 0 and p.powder != 0:
-                        e = clouds_energy(d_light, a, cos_theta, p.g)
-                    else:  # the same product with a term replaced by 1
-                        beer = float(1.0)
-                        if p.beer != 0:
-                            beer = wp.exp(-d_light * a)
-                        powder = float(1.0)
-                        if p.powder != 0:
-                            powder = 1.0 - wp.exp(-2.0 * d_light)
-                        e = beer * phase_hg(cos_theta, p.g) * powder
+                    # E of vc-2.31 (+ multiple-scattering octaves, dual-lobe phase; beer / powder flags)
+                    e = cloudscape_energy(p, d_light, a, cos_theta)
                     h = clouds_relative_height(wp.length(pos - p.centre), p.r_inner, p.r_outer, 0)
                     light = wp.vec3(
                         p.sun_colour[0] * e + (p.ambient_bottom[0] + (p.ambient_top[0] - p.ambient_bottom[0]) * h),
                         p.sun_colour[1] * e + (p.ambient_bottom[1] + (p.ambient_top[1] - p.ambient_bottom[1]) * h),
                         p.sun_colour[2] * e + (p.ambient_bottom[2] + (p.ambient_top[2] - p.ambient_bottom[2]) * h))
                     # vc-A21
+                    t_before = trans
                     colour, trans, stop = raymarch_accumulate(colour, trans, p.sigma, rho, dt, light, p.exit_eps)
+                    # the sample's weight in the pixel, for the mean distance of the aerial perspective
+                    depth_w = depth_w + (t_before - trans)
+                    depth_sum = depth_sum + (t_before - trans) * (t_start + (float(i) + offset) * dt)
                     if stop != 0 and p.early_exit != 0:
                         break
-    return colour, trans, taken
+    depth = float(0.0)
+    if depth_w > 0.0:
+        depth = depth_sum / depth_w
+    return colour, trans, taken, depth
 
 
 @wp.func
@@ -251,17 +406,176 @@ def pixel_ray(p: CloudscapeParams, inv_view_proj_rot: wp.mat44, x: int, y: int, 
 
 
 @wp.func
+def pixel_angle(inv_view_proj_rot: wp.mat44, x: int, y: int, width: int, height: int) -> float:
+    """The angle (rad, as the chord of unit vectors) between the rays of pixels (x, y) and (x, y + 1): the angular
+    size of the pixel, for the level of detail. Twin of the same step in ``ccl_cloudscape_pixel``."""
+    return wp.length(camera_ray(inv_view_proj_rot, x, y + 1, width, height)
+                     - camera_ray(inv_view_proj_rot, x, y, width, height))
+
+
+@wp.func
 def sky_colour(sky_kind: int, d: wp.vec3, sun: wp.vec3, preetham: Preetham, gradient: SkyGradient) -> wp.vec3:
     if sky_kind == 1:
         return sky_preetham_rgb(d, sun, preetham)
     return sky_gradient_rgb(d, sun, gradient)
 
 
+# --- lighting (see "Lighting" in cclouds/cloudscape.h) ----------------------------------------------------------------
+
+@wp.func
+def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float) -> float:
+    """Twin of ``ccl_cloudscape_energy``: the sun energy of a sample, sum over i < ms_octaves of ms_b^i beer(ms_a^i d)
+    phase_i powder(ms_a^i d) with the dual-lobe phase (1 - w) HG(ms_c^i g) + w HG(ms_c^i silver_g) (Wrenninge et al.
+    2013, Hillaire 2016); one octave and w = 0 is vc-2.31 (``clouds_energy``) bit for bit."""
+    e = float(0.0)
+    ai = float(1.0)
+    bi = float(1.0)
+    ci = float(1.0)
+    for i in range(p.ms_octaves):
+        di = d * ai
+        beer = float(1.0)
+        if p.beer != 0:
+            beer = wp.exp(-di * a)
+        powder = float(1.0)
+        if p.powder != 0:
+            powder = 1.0 - wp.exp(-2.0 * di)
+        phase = phase_hg(cos_theta, p.g * ci)
+        if p.silver_weight > 0.0:  # dual lobe: (1 - w) HG(g) + w HG(silver_g)
+            phase = (1.0 - p.silver_weight) * phase + p.silver_weight * phase_hg(cos_theta, p.silver_g * ci)
+        e = e + bi * beer * phase * powder
+        ai = ai * p.ms_a
+        bi = bi * p.ms_b
+        ci = ci * p.ms_c
+    return e
+
+
+@wp.func
+def cloudscape_ground(p: CloudscapeParams, tex: CloudTextures, point: wp.vec3, to_sun: wp.vec3):
+    """Twin of ``ccl_cloudscape_ground``: (radiance, T_shadow) of the ground at ``point``: ground_albedo (sun_colour
+    max(n . s, 0) T_shadow / pi + ambient_ground), T_shadow from GROUND_SHADOW_SAMPLES base-shape density samples on
+    the ray towards the sun through the layer."""
+    n = point - p.centre
+    n = n * (1.0 / wp.length(n))
+    cos_sun = wp.dot(n, to_sun)
+    if not (cos_sun > 0.0):
+        cos_sun = 0.0
+    shadow = float(1.0)
+    if cos_sun > 0.0:
+        a0, a1 = raymarch_ray_sphere(point, to_sun, p.centre, p.r_inner)
+        b0, b1 = raymarch_ray_sphere(point, to_sun, p.centre, p.r_outer)
+        if a1 == a1 and b1 == b1:  # both hit (not NaN)
+            ts = float(0.0)
+            if a1 > 0.0:
+                ts = a1
+            dt = (b1 - ts) / float(GROUND_SHADOW_SAMPLES)
+            lod = float(0.0)
+            if p.lod != 0:
+                lod = cloudscape_lod(dt, p.base_scale_km / float(tex.base_size), p.lod_bias)
+            od = float(0.0)
+            if dt > 0.0:
+                for i in range(GROUND_SHADOW_SAMPLES):
+                    q = raymarch_point(point, to_sun, ts, dt, i, 0.5)
+                    rho, pr = cloudscape_density_lod(p, tex, q, 0, lod, 0.0)
+                    od = od + rho
+                shadow = wp.exp(-p.sigma_light * (od * dt))
+    k = cos_sun * shadow * 0.318309886  # 1 / pi
+    return wp.vec3(p.ground_albedo[0] * (p.sun_colour[0] * k + p.ambient_ground[0]),
+                   p.ground_albedo[1] * (p.sun_colour[1] * k + p.ambient_ground[1]),
+                   p.ground_albedo[2] * (p.sun_colour[2] * k + p.ambient_ground[2])), shadow
+
+
+@wp.func
+def cloudscape_light(p: CloudscapeParams, sky_kind: int, sun: wp.vec3, preetham: Preetham,
+                     gradient: SkyGradient) -> CloudscapeParams:
+    """Twin of ``ccl_cloudscape_light``: ``p`` with sun_colour, ambient_top / _bottom / _ground from the sky model
+    (sky lighting), unchanged for the thesis's lighting."""
+    q = p
+    if p.lighting == LIGHTING_SKY:
+        dtheta = 1.5707963 / float(SKY_THETA_CELLS)
+        dphi = 6.2831853 / float(SKY_PHI_CELLS)
+        cos_s = wp.clamp(sun[1], 0.0, 1.0)
+        att = sky_sun_attenuation(wp.acos(cos_s), p.turbidity)
+        q.sun_colour = wp.vec3(p.sun_intensity * att[0], p.sun_intensity * att[1], p.sun_intensity * att[2])
+        mean = wp.vec3(0.0, 0.0, 0.0)
+        cmean = wp.vec3(0.0, 0.0, 0.0)
+        wsum = float(0.0)
+        csum = float(0.0)
+        for i in range(SKY_THETA_CELLS):
+            theta = (float(i) + 0.5) * dtheta
+            st = wp.sin(theta)
+            ct = wp.cos(theta)
+            wc = st * ct
+            for j in range(SKY_PHI_CELLS):
+                phi = (float(j) + 0.5) * dphi
+                s = sky_colour(sky_kind, wp.vec3(st * wp.sin(phi), ct, -st * wp.cos(phi)), sun, preetham, gradient)
+                v = wp.vec3(wp.max(s[0], 0.0), wp.max(s[1], 0.0), wp.max(s[2], 0.0))
+                mean = wp.vec3(mean[0] + v[0] * st, mean[1] + v[1] * st, mean[2] + v[2] * st)
+                cmean = wp.vec3(cmean[0] + v[0] * wc, cmean[1] + v[1] * wc, cmean[2] + v[2] * wc)
+                wsum = wsum + st
+                csum = csum + wc
+        top = wp.vec3(mean[0] / wsum, mean[1] / wsum, mean[2] / wsum)
+        q.ambient_top = top
+        q.ambient_bottom = wp.vec3(p.ambient_bottom_ratio * top[0], p.ambient_bottom_ratio * top[1],
+                                   p.ambient_bottom_ratio * top[2])
+        q.ambient_ground = wp.vec3(cmean[0] / csum, cmean[1] / csum, cmean[2] / csum)
+    return q
+
+
+@wp.func
+def lift_to_horizon(d: wp.vec3) -> wp.vec3:
+    """(d.x, max(d.y, 0), d.z) normalised, (0, 0, -1) at the nadir: the haze direction of the aerial perspective."""
+    h = wp.vec3(d[0], wp.max(d[1], 0.0), d[2])
+    ln = wp.length(h)
+    if not (ln > 1.0e-6):
+        return wp.vec3(0.0, 0.0, -1.0)
+    return h * (1.0 / ln)
+
+
+@wp.func
+def ground_hit(p: CloudscapeParams, eye: wp.vec3, d: wp.vec3):
+    """(1, distance) where the ray meets the Earth sphere ahead (entered in front of the camera, or from the ground
+    pointing downwards: distance 0), else (0, 0): the test of ``ccl_cloudscape_pixel``."""
+    e0, e1 = raymarch_ray_sphere(eye, d, p.centre, p.r_earth)
+    if e1 > 0.0:
+        if e0 > 0.0:
+            return int(1), e0
+        if wp.dot(d, eye - p.centre) < 0.0:
+            return int(1), float(0.0)
+    return int(0), float(0.0)
+
+
+@wp.func
+def sky_lit_composite(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, sun: wp.vec3,
+                      haze: wp.vec3, cl: wp.vec3, trans: float, depth: float) -> wp.vec3:
+    """Sky lighting's ground and aerial perspective (twin of ``sky_lit_composite`` in cloudscape.c): B T + C' with B
+    the lit ground faded by its distance (ground) or the haze colour (sky), C' the clouds faded by their mean
+    distance."""
+    ground, t_ground = ground_hit(p, eye, d)
+    f_g = float(1.0)
+    f_c = float(1.0)
+    if p.aerial_km > 0.0:
+        f_g = wp.exp(-t_ground / p.aerial_km)
+        f_c = wp.exp(-depth / p.aerial_km)
+    bg = haze
+    if ground != 0:
+        g, shadow = cloudscape_ground(p, tex, eye + d * t_ground, sun)
+        bg = wp.vec3(g[0] * f_g + haze[0] * (1.0 - f_g), g[1] * f_g + haze[1] * (1.0 - f_g),
+                     g[2] * f_g + haze[2] * (1.0 - f_g))
+    o_d = 1.0 - trans
+    return wp.vec3(clouds_composite(bg[0], o_d, cl[0] * f_c + haze[0] * (o_d * (1.0 - f_c))),
+                   clouds_composite(bg[1], o_d, cl[1] * f_c + haze[1] * (o_d * (1.0 - f_c))),
+                   clouds_composite(bg[2], o_d, cl[2] * f_c + haze[2] * (o_d * (1.0 - f_c))))
+
+
 @wp.func
 def background(p: CloudscapeParams, sky_kind: int, eye: wp.vec3, d: wp.vec3, sun: wp.vec3, preetham: Preetham,
                gradient: SkyGradient) -> wp.vec3:
     """Twin of the background step of ``ccl_cloudscape_pixel``: the ground colour where the ray hits the Earth
-    sphere ahead, else the sky model's colour."""
+    sphere ahead, else the sky model's colour. With sky lighting: the sky model's colour of the ray lifted to the
+    horizon for every ray (the haze colour, which the cloud pass turns into the lit ground where the ray meets
+    the Earth)."""
+    if p.lighting == LIGHTING_SKY:
+        return sky_colour(sky_kind, lift_to_horizon(d), sun, preetham, gradient)
     e0, e1 = raymarch_ray_sphere(eye, d, p.centre, p.r_earth)
     if e1 > 0.0:
         down = wp.dot(d, eye - p.centre)
@@ -271,14 +585,16 @@ def background(p: CloudscapeParams, sky_kind: int, eye: wp.vec3, d: wp.vec3, sun
 
 
 @wp.func
-def cloudscape_pixel(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detail: wp.array3d(dtype=wp.vec4),
-                     curl: wp.array2d(dtype=wp.vec4), weather: wp.array2d(dtype=wp.vec4), sky_kind: int,
+def cloudscape_pixel(p: CloudscapeParams, tex: CloudTextures, sky_kind: int,
                      sun: wp.vec3, preetham: Preetham, gradient: SkyGradient, inv_view_proj_rot: wp.mat44,
                      eye: wp.vec3, x: int, y: int, width: int, height: int, frame: int) -> wp.vec3:
     """Twin of ``ccl_cloudscape_pixel``: the display-linear colour of one pixel (sky, clouds, composite)."""
     d, offset = pixel_ray(p, inv_view_proj_rot, x, y, width, height, frame)
     bg = background(p, sky_kind, eye, d, sun, preetham, gradient)
-    cl, trans, taken = cloudscape_march(p, base, detail, curl, weather, eye, d, sun, offset)
+    cl, trans, taken, depth = cloudscape_march(p, tex, eye, d, sun, offset,
+                                               pixel_angle(inv_view_proj_rot, x, y, width, height))
+    if p.lighting == LIGHTING_SKY:  # bg is the haze colour
+        return sky_lit_composite(p, tex, eye, d, sun, bg, cl, trans, depth)
     o_d = 1.0 - trans
     return wp.vec3(clouds_composite(bg[0], o_d, cl[0]), clouds_composite(bg[1], o_d, cl[1]),
                    clouds_composite(bg[2], o_d, cl[2]))
@@ -309,9 +625,7 @@ def sky_kernel(row0: int, sky_kind: int, sun: wp.vec3, preetham: Preetham, gradi
 
 
 @wp.kernel
-def clouds_kernel(row0: int, p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4),
-                  detail: wp.array3d(dtype=wp.vec4), curl: wp.array2d(dtype=wp.vec4),
-                  weather: wp.array2d(dtype=wp.vec4), sun: wp.vec3, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
+def clouds_kernel(row0: int, p: CloudscapeParams, tex: CloudTextures, sun: wp.vec3, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
                   frame: int, reprojection: int,
                   # outputs
                   frame_buffer: wp.array3d(dtype=float), reduced: wp.array3d(dtype=float),
@@ -327,14 +641,32 @@ def clouds_kernel(row0: int, p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4
         x, y = reproj_pixel(j, row0 + i, frame)
     if x < width and y < height:
         d, offset = pixel_ray(p, inv_view_proj_rot, x, y, width, height, frame)
-        cl, trans, taken = cloudscape_march(p, base, detail, curl, weather, eye, d, sun, offset)
+        cl, trans, taken, depth = cloudscape_march(p, tex, eye, d, sun, offset,
+                                                   pixel_angle(inv_view_proj_rot, x, y, width, height))
         o_d = 1.0 - trans
-        for ch in range(3):
-            v = clouds_composite(frame_buffer[y, x, ch], o_d, cl[ch])
-            frame_buffer[y, x, ch] = v
-            if reprojection != 0:
-                reduced[row0 + i, j, ch] = v
+        if p.lighting == LIGHTING_SKY:
+            # the sky pass wrote the haze colour (the sky lifted to the horizon): ground, aerial perspective
+            haze = wp.vec3(frame_buffer[y, x, 0], frame_buffer[y, x, 1], frame_buffer[y, x, 2])
+            c = sky_lit_composite(p, tex, eye, d, sun, haze, cl, trans, depth)
+            for ch in range(3):
+                frame_buffer[y, x, ch] = c[ch]
+                if reprojection != 0:
+                    reduced[row0 + i, j, ch] = c[ch]
+        else:
+            for ch in range(3):
+                v = clouds_composite(frame_buffer[y, x, ch], o_d, cl[ch])
+                frame_buffer[y, x, ch] = v
+                if reprojection != 0:
+                    reduced[row0 + i, j, ch] = v
         samples[y, x] = taken
+
+
+@wp.kernel
+def light_kernel(p: CloudscapeParams, sky_kind: int, sun: wp.vec3, preetham: Preetham, gradient: SkyGradient,
+                 # outputs
+                 out: wp.array(dtype=CloudscapeParams)):
+    """The per-frame lighting setup :func:`cloudscape_light` (one thread)."""
+    out[0] = cloudscape_light(p, sky_kind, sun, preetham, gradient)
 
 
 @wp.kernel
@@ -349,15 +681,14 @@ def encode_kernel(row0: int, frame_buffer: wp.array3d(dtype=float),
 
 
 @wp.kernel
-def pixels_kernel(p: CloudscapeParams, base: wp.array3d(dtype=wp.vec4), detail: wp.array3d(dtype=wp.vec4),
-                  curl: wp.array2d(dtype=wp.vec4), weather: wp.array2d(dtype=wp.vec4), sky_kind: int, sun: wp.vec3,
+def pixels_kernel(p: CloudscapeParams, tex: CloudTextures, sky_kind: int, sun: wp.vec3,
                   preetham: Preetham, gradient: SkyGradient, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
                   xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32), width: int, height: int, frame: int,
                   # outputs
                   out: wp.array2d(dtype=float)):
     """:func:`cloudscape_pixel` at a list of pixels (for comparisons with the C reference)."""
     k = wp.tid()
-    c = cloudscape_pixel(p, base, detail, curl, weather, sky_kind, sun, preetham, gradient, inv_view_proj_rot, eye,
+    c = cloudscape_pixel(p, tex, sky_kind, sun, preetham, gradient, inv_view_proj_rot, eye,
                          xs[k], ys[k], width, height, frame)
     out[k, 0] = c[0]
     out[k, 1] = c[1]

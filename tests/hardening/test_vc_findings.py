@@ -180,7 +180,7 @@ def test_cloudscape_check_sun_tolerance_and_march_clamps_the_phase_argument():
         assert (L.ccl_cloudscape_check(p, t, sky, out) == 0) == ok, n
     # a sun 0.09 % too long, looking straight at it: dot(d, sun) > 1 reaches the phase function clamped to 1
     rgb, tr, ns = F.new("float[3]"), F.new("float *"), F.new("int *")
-    L.ccl_cloudscape_march(p, t, (0.0, 2.0, 0.0), (0.0, 1.0, 0.0), (0.0, 1.0009, 0.0), 0.5, rgb, tr, ns)
+    L.ccl_cloudscape_march(p, t, (0.0, 2.0, 0.0), (0.0, 1.0, 0.0), (0.0, 1.0009, 0.0), 0.5, 0.0, rgb, tr, ns, F.NULL)
     assert all(math.isfinite(rgb[i]) for i in range(3)) and math.isfinite(tr[0])
 
 

@@ -28,6 +28,41 @@
  *   negative extinction would amplify light). The early outs (h outside [0, 1], D_h = 0, D_v <= 0, B_D <= 0) return
  *   exactly what the full pipeline returns for those inputs; they only skip texture fetches.
  *
+ *
+ * Lighting (p->lighting; not in the thesis, which gives no light colours, vc-A36):
+ *   CCL_LIGHTING_THESIS: sun_colour, ambient_bottom / _top are the constants of ccl_cloudscape_params_default and B is
+ *     ground_colour on the Earth -- the thesis's images.
+ *   CCL_LIGHTING_SKY (default): ccl_cloudscape_light, called once per frame (per settings change) before the pixels,
+ *     replaces the constants by values of the sky model (gradient or Preetham, whichever the scene uses):
+ *       sun_colour     = sun_intensity * ccl_sky_sun_attenuation(theta_s, turbidity)  (Preetham et al. 1999 A.1:
+ *                        Rayleigh and aerosol extinction along the air mass towards the sun: white at noon, orange
+ *                        at sunset);
+ *       ambient_top    = the mean sky radiance over the upper hemisphere (solid-angle weighted), ambient_bottom =
+ *                        ambient_bottom_ratio x ambient_top, ambient_ground = the cosine-weighted mean (E_sky / pi),
+ *                        by the midpoint rule on CCL_CLOUDSCAPE_SKY_THETA_CELLS x _PHI_CELLS cells of equal
+ *                        (zenith angle, azimuth) size, each weighted by sin(theta) (x cos(theta)), normalised by the
+ *                        quadrature's own weight sum (a constant sky gives exactly its value); sky values are the
+ *                        display-linear colours the background shows (Preetham: tone mapped), negative ones as 0.
+ *     and the pixel changes in three places:
+ *       ground   G = ground_albedo (sun_colour max(n . s, 0) T_shadow / pi + ambient_ground) at the point P where the
+ *                  ray meets the Earth (n its normal, s towards the sun): Lambertian, lit by the sun through the
+ *                  clouds and by the sky; T_shadow = exp(-sigma_light sum_k rho(q_k) dt) over
+ *                  CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES midpoints q_k of the ray from P towards the sun through the
+ *                  layer (between the far roots of the inner and outer spheres), rho the base-shape density (no
+ *                  detail: the shadow is soft at the ground anyway; at the footprint dt's mip level with p->lod):
+ *                  the clouds cast their shadows on the ground (ccl_cloudscape_ground);
+ *       haze     H = the sky model's colour in the ray's direction lifted to the horizon, (d.x, max(d.y, 0), d.z)
+ *                  normalised ((0, 0, -1) for the nadir itself): the colour of the air towards the horizon in that
+ *                  azimuth, where the sky is the in-scattered light of a long path through the air;
+ *       aerial perspective (aerial_km > 0): with f(t) = exp(-t / aerial_km) (an exponential fog of extinction
+ *                  1 / aerial_km, in-scattering H): B = G f(t_ground) + H (1 - f(t_ground)) on the Earth, B = H in
+ *                  the sky; the clouds C_clouds f(t_c) + H O_D (1 - f(t_c)) with t_c the transmittance-weighted
+ *                  mean distance of the view samples, sum_i (T_i-1 - T_i) t_i / sum_i (T_i-1 - T_i).
+ *   In both modes the sun energy E of each sample is ccl_cloudscape_energy: the multiple-scattering octaves of
+ *   Wrenninge et al. 2013 (as Hillaire 2016, "Physically based sky, atmosphere and cloud rendering in Frostbite"),
+ *   E = sum_{i < ms_octaves} ms_b^i E_2.31(ms_a^i d, a, cos_theta, phase with eccentricities x ms_c^i), with the
+ *   dual-lobe phase (1 - w) HG(g) + w HG(silver_g) (w = silver_weight); ms_octaves = 1 and w = 0 is vc-2.31 exactly.
+ *
  * Textures are float32 RGBA, power-of-two sizes, indexed [z][y][x][c] (3-D) or [y][x][c] (2-D) and sampled with
  * wrap-around (they tile): base and detail with ccl_texgen_sample_trilinear_wrap, weather and curl with
  * ccl_cloudscape_sample_bilinear_wrap. World units are kilometres, y is up (see cclouds/raymarch.h).
@@ -62,6 +97,11 @@ typedef struct ccl_cloud_textures {
     int curl_size;
     const float *weather;  /* weather_size^2 RGBA: R coverage, G precipitation, B cloud type (vc-A12) */
     int weather_size;
+    /* Optional mip chains for the level of detail (params.lod): levels 1 .. log2(size) of base / detail, each level
+     * right after the previous one, texel [z][y][x] of the (size >> k)^3 level k, built by ccl_cloudscape_mip3.
+     * NULL: level 0 only (no level of detail). */
+    const float *base_mips;
+    const float *detail_mips;
 } ccl_cloud_textures;
 
 /* Every parameter of the cloud pass. ccl_cloudscape_params_default documents the defaults and their reasons. */
@@ -100,6 +140,9 @@ typedef struct ccl_cloudscape_params {
                                    CCL_COVERAGE_SAME (C := D_h, the spec's literal reading) -- see the .c */
     int beer;                   /* 1: Beer's term exp(-d a) of vc-2.31 on (default); 0: replaced by 1 */
     int powder;                 /* 1: the powder term 1 - exp(-2 d) of vc-2.31 on (default); 0: replaced by 1 */
+    int lod;                    /* 1: level of detail (default): base and detail sampled at the mip level of the
+                                   sample's footprint, see ccl_cloudscape_lod; 0: full resolution everywhere (thesis) */
+    float lod_bias;             /* added to every mip level (default 0; > 0 blurs, < 0 sharpens), in [-4, 4] */
     /* Lighting (see "Lighting" above; defaults and their reasons in cloudscape.c). */
     int lighting;               /* ccl_lighting: CCL_LIGHTING_SKY (default) or CCL_LIGHTING_THESIS */
     float sun_intensity;        /* sky mode: sun_colour = sun_intensity * ccl_sky_sun_attenuation (default 16) */
@@ -126,6 +169,15 @@ typedef enum ccl_lighting {
 
 /* Most multiple-scattering octaves ccl_cloudscape_check accepts (the octave loop runs per light evaluation). */
 #define CCL_CLOUDSCAPE_MAX_MS_OCTAVES 8
+/* Base-shape density samples along the ray from a ground point towards the sun (the clouds' shadow on the ground):
+ * 12 spaces them 0.2 km apart through the default 2.5 km layer under a high sun, finer than the cloud cells, and
+ * costs 12 texture fetches per ground pixel (the clouds take up to 7 x 128). */
+#define CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES 12
+/* Quadrature of the sky means of ccl_cloudscape_light: zenith-angle x azimuth cells over the upper hemisphere. 8 x 16
+ * cells of 11.25 x 22.5 degrees: the Preetham and gradient skies vary slowly except within ~10 degrees of the sun,
+ * which one cell averages; the means converge to ~1 % (tested against 64 x 128), once per frame. */
+#define CCL_CLOUDSCAPE_SKY_THETA_CELLS 8
+#define CCL_CLOUDSCAPE_SKY_PHI_CELLS 16
 
 /* Readings of the threshold C of vc-2.29 in the renderer. */
 typedef enum ccl_coverage_threshold {
@@ -167,21 +219,73 @@ CCL_API void ccl_cloudscape_sample_bilinear_wrap(const float *tex, int size_mask
 CCL_API float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos,
                                      int detail, float *out_precipitation);
 
+/* Density with a level of detail: base and detail textures sampled at mip levels lod_base / lod_detail (<= 0: full
+ * resolution; fractional levels blend the two nearest levels; the last level is the texture's mean, and at the
+ * detail's last level the curl lookup is skipped). Without mips (t->base_mips / detail_mips NULL) level 0. */
+CCL_API float ccl_cloudscape_density_lod(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos,
+                                         int detail, float lod_base, float lod_detail, float *out_precipitation);
+
+/* The mip level of a sample of footprint footprint_km on a texture of texel size texel_km:
+ * log2(footprint / texel) + bias; 0 for a footprint <= 0 or NaN. The march takes as footprint the larger of the
+ * pixel's width at the sample's distance (distance x pixel_angle) and the view step, so that neither the pixels nor
+ * the steps undersample the noise (the cause of the salt-and-pepper noise near the horizon, where steps reach
+ * ~0.7 km and pixels ~0.4 km, against 47 m base and 25 m detail texels); the light samples use at least the light
+ * step as footprint. */
+CCL_API float ccl_cloudscape_lod(float footprint_km, float texel_km, float bias);
+
+/* The mip levels 1 .. log2(size) of a periodic RGBA volume tex (size^3 texels [z][y][x][4], size a power of two):
+ * each texel the mean of its 8 children, summed x fastest, then y, then z. out gets the levels one after another;
+ * out_len must be the number of floats: 4 * sum_{k>=1} (size >> k)^3. CCL_EINVAL otherwise. */
+CCL_API ccl_status ccl_cloudscape_mip3(const float *tex, int size, float *out, size_t out_len);
+
+/* The out_len ccl_cloudscape_mip3 needs for an edge size (floats): 4 * sum_{k>=1} (size >> k)^3; 0 for a size that
+ * is not a power of two in [1, 4096]. */
+CCL_API size_t ccl_cloudscape_mip3_len(int size);
+
+/* The sun energy of one sample (see "Lighting" above): sum over i < p->ms_octaves of
+ *   ms_b^i * beer(ms_a^i d) * phase_i(cos_theta) * powder(ms_a^i d),
+ *   beer(x) = exp(-x a), powder(x) = 1 - exp(-2 x) (each replaced by 1 when p->beer / p->powder is 0),
+ *   phase_i = (1 - w) HG(cos_theta, ms_c^i g) + w HG(cos_theta, ms_c^i silver_g), w = p->silver_weight (HG(g) alone
+ *   when w = 0).
+ * Ref: vc-2.31 (the i = 0 term; with ms_octaves = 1 and w = 0 the result equals ccl_clouds_energy bit for bit),
+ * Wrenninge, Kulla & Lundqvist 2013 "Oz: the great and volumetric" (octaves), Hillaire 2016. d -> optical depth
+ * towards the sun (>= 0), a -> absorption factor of vc-2.31 (>= 0), cos_theta in [-1, 1] (view . sun). Output >= 0
+ * [1/sr]. p must have passed ccl_cloudscape_check. */
+CCL_API float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, float cos_theta);
+
+/* Radiance of the ground at a point on (or near) the Earth sphere, sky lighting (see "Lighting" above): ground_albedo
+ * (sun_colour max(n . to_sun, 0) T_shadow / pi + ambient_ground), n = the sphere's normal at point, T_shadow from
+ * CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES base-shape density samples towards the sun. *out_shadow (may be NULL) gets
+ * T_shadow in [0, 1]. out_rgb[3] >= 0. Inputs must have passed ccl_cloudscape_check; point below the inner sphere. */
+CCL_API void ccl_cloudscape_ground(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 point,
+                                   ccl_vec3 to_sun, float *out_rgb, float *out_shadow);
+
+/* The per-frame lighting setup (see "Lighting" above): *out = *p, and for p->lighting == CCL_LIGHTING_SKY with
+ * sun_colour, ambient_top, ambient_bottom and ambient_ground computed from the sky model and sky->sun (theta_s =
+ * acos(clamp(sun.y, 0, 1))); CCL_LIGHTING_THESIS: an unchanged copy. out may equal p. Call it once before
+ * ccl_cloudscape_pixel (ccl_cloudscape_render does); p and sky must have passed ccl_cloudscape_check. */
+CCL_API void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_sky *sky,
+                                  ccl_cloudscape_params *out);
+
 /* March one view ray through the layer: cloud colour (premultiplied, display-linear), view transmittance T and the
- * number of view samples taken. offset in [0, 1): sample position within each step (0.5 = midpoints). */
+ * number of view samples taken. offset in [0, 1): sample position within each step (0.5 = midpoints).
+ * pixel_angle: the angle between neighbouring pixels' rays (rad), for the level of detail (p->lod).
+ * *out_depth_km (may be NULL): the transmittance-weighted mean distance of the samples (0 where nothing was
+ * accumulated), the distance of the aerial perspective. */
 CCL_API void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye,
-                                  ccl_vec3 dir, ccl_vec3 to_sun, float offset, float *out_rgb,
-                                  float *out_transmittance, int *out_samples);
+                                  ccl_vec3 dir, ccl_vec3 to_sun, float offset, float pixel_angle, float *out_rgb,
+                                  float *out_transmittance, int *out_samples, float *out_depth_km);
 
 /* The display-linear colour (before sRGB encoding) of pixel (x, y) of a width x height frame: sky, clouds,
- * composite. frame seeds the ray jitter. out_rgb[3]. */
+ * composite. frame seeds the ray jitter. out_rgb[3]. With sky lighting, p must come from ccl_cloudscape_light (it
+ * reads sun_colour and the ambients as they are). */
 CCL_API void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
                                   const ccl_cloudscape_sky *sky, const ccl_camera *cam, int x, int y, int width,
                                   int height, int frame, float *out_rgb);
 
-/* Render a whole frame on one thread: out_rgb (height x width x 3, row 0 at the top) gets sRGB-encoded values in
- * [0, 1]. Returns CCL_EINVAL for bad parameters (see ccl_cloudscape_check), sizes < 1, frame < 0, NULL pointers or
- * out_len != width * height * 3. */
+/* Render a whole frame on one thread (ccl_cloudscape_light once, then ccl_cloudscape_pixel per pixel): out_rgb
+ * (height x width x 3, row 0 at the top) gets sRGB-encoded values in [0, 1]. Returns CCL_EINVAL for bad parameters
+ * (see ccl_cloudscape_check), sizes < 1, frame < 0, NULL pointers or out_len != width * height * 3. */
 CCL_API ccl_status ccl_cloudscape_render(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
                                          const ccl_cloudscape_sky *sky, const ccl_camera *cam, int width, int height,
                                          int frame, float *out_rgb, size_t out_len);
