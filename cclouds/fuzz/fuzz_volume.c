@@ -39,7 +39,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     g.origin.y = fz_unit(r, -100.0f, 100.0f);
     g.origin.z = fz_unit(r, -100.0f, 100.0f);
     g.extent.x = fz_u8(r) < 200 ? fz_unit(r, 1.0f, 100.0f) : fz_float(r);
-    g.extent.y = fz_unit(r, 1.0f, 100.0f);
+    g.extent.y = fz_u8(r) < 230 ? fz_unit(r, 1.0f, 100.0f) : fz_float(r);
     g.extent.z = fz_unit(r, 1.0f, 100.0f);
     int count = fz_u8(r) < 230 ? 1 : fz_i32(r);
     int fast = p.light_step_voxels >= 1.0f / 64 && p.step_voxels >= 1.0f / 64 && p.max_steps <= 4096;
@@ -55,11 +55,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         for (int i = 0; i <= VOX; ++i) FZ_CHECK(light[i] == -5.0f, "light written on an error");
     } else {
         FZ_CHECK(len == n && n > 0, "light accepted length %zu of %zu", len, n);
-        /* ccl_volume_check accepts any extent > 0, but the voxel scale n / extent overflows the light ray's length
-         * for tiny (denormal) extents and underflows it for huge ones: NaN light (README.md, finding 5). Checked for
-         * extents in [1e-3, 1e6]. */
-        int sane = fz_all_in(&g.extent.x, 3, 1e-3f, 1e6f);
-        for (size_t i = 0; i < n && sane; ++i)
+        /* every accepted extent (README.md, finding 5: bounded to [1e-6, 1e6] m by the check) */
+        for (size_t i = 0; i < n; ++i)
             FZ_CHECK(light[i] >= 0.0f && light[i] <= 1.0f, "light[%zu] = %g (grid %d %d %d, origin %g %g %g, extent %g %g %g)",
                      i, (double)light[i], g.nx, g.ny, g.nz, (double)g.origin.x, (double)g.origin.y,
                      (double)g.origin.z, (double)g.extent.x, (double)g.extent.y, (double)g.extent.z);
@@ -77,7 +74,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     } else {
         for (size_t i = 0; i < VOX; ++i) FZ_CHECK(occ[i] == 77, "occupancy written on an error");
     }
-    if (ls == CCL_OK && os == CCL_OK && fz_all_in(&g.extent.x, 3, 1e-3f, 1e6f)) {
+    if (ls == CCL_OK && os == CCL_OK) {
         g.skip = skip;
         ccl_volume_grid grids[CCL_VOLUME_MAX_GRIDS + 1]; /* a count the check accepts is covered */
         for (int i = 0; i <= CCL_VOLUME_MAX_GRIDS; ++i) grids[i] = g;
@@ -85,7 +82,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         FZ_CHECK((st == CCL_OK) == (field == NULL), "check status %d, field %s", (int)st, field ? field : "NULL");
         if (st == CCL_OK) {
             FZ_CHECK(count >= 0 && count <= CCL_VOLUME_MAX_GRIDS, "count %d accepted", count);
-            if (count >= 1 && count <= 2 && fz_sane(&p, fields, sizeof fields / sizeof fields[0])) {
+            /* any accepted parameters (README.md, findings 5 and 9: the check bounds extents and colours) */
+            if (count >= 1 && count <= 2) {
                 ccl_camera cam;
                 ccl_vec3 eye = {fz_unit(r, -150.0f, 150.0f), fz_unit(r, -150.0f, 150.0f), fz_unit(r, -150.0f, 150.0f)};
                 ccl_vec3 target = {0.0f, 0.0f, 0.0f}, up = {0.0f, 1.0f, 0.0f};

@@ -55,6 +55,18 @@ void ccl_volume_params_default(ccl_volume_params *out)
 
 static int finite_f(float v) { return v == v && v - v == 0.0f; }
 static int finite_v(ccl_vec3 v) { return finite_f(v.x) && finite_f(v.y) && finite_f(v.z); }
+/* a colour: every component in [0, CCL_VOLUME_MAX_COLOUR] (finite products with the phase and the glow) */
+static int colour_v(ccl_vec3 v)
+{
+    const float hi = (float)CCL_VOLUME_MAX_COLOUR;
+    return finite_v(v) && v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f && v.x <= hi && v.y <= hi && v.z <= hi;
+}
+/* a length in [1 / CCL_VOLUME_LENGTH_RANGE, CCL_VOLUME_LENGTH_RANGE] metres */
+static int length_f(float v)
+{
+    const float r = (float)CCL_VOLUME_LENGTH_RANGE;
+    return finite_f(v) && v >= 1.0f / r && v <= r;
+}
 static int unit_v(ccl_vec3 v)
 {
     float l = ccl_vec3_length(v);
@@ -68,14 +80,15 @@ ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume_grid *g
     int i;
     if (p == NULL) bad = "params";
     else if (!unit_v(p->sun)) bad = "sun";
-    else if (!finite_v(p->sun_colour)) bad = "sun_colour";
-    else if (!finite_v(p->ambient_top)) bad = "ambient_top";
-    else if (!finite_v(p->ambient_bottom)) bad = "ambient_bottom";
-    else if (!finite_v(p->sky_zenith)) bad = "sky_zenith";
-    else if (!finite_v(p->sky_horizon)) bad = "sky_horizon";
-    else if (!finite_v(p->ground_a)) bad = "ground_a";
-    else if (!finite_v(p->ground_b)) bad = "ground_b";
-    else if (!finite_f(p->sun_glow) || p->sun_glow < 0.0f) bad = "sun_glow";
+    else if (!colour_v(p->sun_colour)) bad = "sun_colour";
+    else if (!colour_v(p->ambient_top)) bad = "ambient_top";
+    else if (!colour_v(p->ambient_bottom)) bad = "ambient_bottom";
+    else if (!colour_v(p->sky_zenith)) bad = "sky_zenith";
+    else if (!colour_v(p->sky_horizon)) bad = "sky_horizon";
+    else if (!colour_v(p->ground_a)) bad = "ground_a";
+    else if (!colour_v(p->ground_b)) bad = "ground_b";
+    else if (!finite_f(p->sun_glow) || p->sun_glow < 0.0f || p->sun_glow > (float)CCL_VOLUME_MAX_COLOUR)
+        bad = "sun_glow";
     else if (!finite_f(p->sun_glow_power) || !(p->sun_glow_power > 0.0f)) bad = "sun_glow_power";
     else if (!finite_f(p->field_size) || !(p->field_size > 0.0f)) bad = "field_size";
     else if (!finite_f(p->fog_distance) || !(p->fog_distance > 0.0f)) bad = "fog_distance";
@@ -101,8 +114,7 @@ ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume_grid *g
         else if (gr->nx < 1 || gr->ny < 1 || gr->nz < 1 || gr->nx > 4096 || gr->ny > 4096 || gr->nz > 4096)
             bad = "size";
         else if (!finite_v(gr->origin)) bad = "origin";
-        else if (!finite_v(gr->extent) || !(gr->extent.x > 0.0f && gr->extent.y > 0.0f && gr->extent.z > 0.0f))
-            bad = "extent";
+        else if (!length_f(gr->extent.x) || !length_f(gr->extent.y) || !length_f(gr->extent.z)) bad = "extent";
     }
     if (out_field != NULL) *out_field = bad;
     return bad == NULL ? CCL_OK : CCL_EINVAL;
@@ -343,7 +355,8 @@ ccl_vec3 ccl_volume_sky(const ccl_volume_params *p, ccl_vec3 d)
     float c = ccl_vec3_dot(d, p->sun);
     float glow;
     ccl_vec3 col;
-    c = c > 0.0f ? c : 0.0f;
+    /* clamped to [0, 1]: d . sun of unit vectors can round above 1, and c^power overflowed for huge powers */
+    c = c > 0.0f ? (c < 1.0f ? c : 1.0f) : 0.0f;
     glow = p->sun_glow * powf(c, p->sun_glow_power);
     up = sqrtf(up);
     col = ccl_vec3_add(p->sky_horizon, ccl_vec3_scale(ccl_vec3_sub(p->sky_zenith, p->sky_horizon), up));

@@ -30,6 +30,13 @@ from .phase import phase_hg
 
 BIG_T = wp.constant(3.0e38)
 MAX_GRIDS = 16          # CCL_VOLUME_MAX_GRIDS
+#: Largest colour component and sun_glow accepted (CCL_VOLUME_MAX_COLOUR, reasons in cclouds/volume.h): finite
+#: colour x phase x glow products (FLT_MAX gave a NaN pixel).
+MAX_COLOUR = 1.0e6
+#: Box extents per axis in [1 / LENGTH_RANGE, LENGTH_RANGE] m (CCL_VOLUME_LENGTH_RANGE): a finite, non-zero voxel
+#: scale and light direction (a denormal extent gave NaN light).
+LENGTH_RANGE = 1.0e6
+_COLOUR_FIELDS = ("sun_colour", "ambient_top", "ambient_bottom", "sky_zenith", "sky_horizon", "ground_a", "ground_b")
 AIRCRAFT_STEPS = wp.constant(64)  # CCL_VOLUME_AIRCRAFT_STEPS
 AIRCRAFT_BOUND = wp.constant(6.3)
 BRICK = 2  # CCL_VOLUME_BRICK
@@ -125,11 +132,15 @@ def check_values(values: dict) -> None:
                 raise ValueError(f"{name} must be 3 finite numbers, got {v!r}")
         elif not (isinstance(v, (int, float)) and math.isfinite(v)):
             raise ValueError(f"{name} must be a finite number, got {v!r}")
+    for name in _COLOUR_FIELDS:
+        a = np.asarray(values[name], dtype=np.float64)
+        if np.any(a < 0.0) or np.any(a > MAX_COLOUR):
+            raise ValueError(f"{name} must have components in [0, {MAX_COLOUR:g}], got {values[name]!r}")
     for name in ("sun",) + (("aircraft_forward", "aircraft_right", "aircraft_up") if values.get("aircraft") else ()):
         n = float(np.linalg.norm(np.asarray(values[name], dtype=np.float64)))
         if abs(n - 1.0) > 1e-3:
             raise ValueError(f"{name} must be a unit vector, got |v| = {n:.6g}")
-    rules = {"sun_glow": (0.0, None, False), "sun_glow_power": (0.0, None, True), "field_size": (0.0, None, True),
+    rules = {"sun_glow": (0.0, MAX_COLOUR, False), "sun_glow_power": (0.0, None, True), "field_size": (0.0, None, True),
              "fog_distance": (0.0, None, True), "tau_per_voxel": (0.0, None, False),
              "light_tau_per_voxel": (0.0, None, False), "step_voxels": (0.05, None, False),
              "light_step_voxels": (0.05, None, False), "max_steps": (1, 100000, False)}
@@ -334,7 +345,8 @@ def volume_sky(p: VolumeParams, d: wp.vec3) -> wp.vec3:
     """Twin of ``ccl_volume_sky``."""
     up = wp.where(d[1] > 0.0, d[1], 0.0)
     c = wp.dot(d, p.sun)
-    c = wp.where(c > 0.0, c, 0.0)
+    # clamped to [0, 1] as in C: the dot of unit vectors may round above 1 (c^power overflowed for huge powers)
+    c = wp.where(c > 0.0, wp.where(c < 1.0, c, 1.0), 0.0)
     glow = p.sun_glow * wp.pow(c, p.sun_glow_power)
     up = wp.sqrt(up)
     col = p.sky_horizon + (p.sky_zenith - p.sky_horizon) * up
@@ -703,8 +715,9 @@ class PlacedVolume:
             if v.shape != (3,) or not np.all(np.isfinite(v)):
                 raise ValueError(f"{name} must be 3 finite numbers, got {getattr(self, name)!r}")
             setattr(self, name, tuple(float(x) for x in v))
-        if min(self.extent) <= 0:
-            raise ValueError(f"extent must be > 0 on every axis, got {self.extent}")
+        if min(self.extent) < 1.0 / LENGTH_RANGE or max(self.extent) > LENGTH_RANGE:
+            raise ValueError(f"extent must be in [{1.0 / LENGTH_RANGE:g}, {LENGTH_RANGE:g}] m on every axis, got "
+                             f"{self.extent}")
 
 
 def occupancy(density: np.ndarray) -> np.ndarray:
@@ -791,7 +804,8 @@ class VolumeSet:
         return out
 
     def compute_light(self, values: dict, launcher=None) -> None:
-        """The light volume of every grid (Warp, one thread per voxel)."""
+        """The light volume of every grid (Warp, one thread per voxel); ``values`` validated first."""
+        check_values(values)
         p = warp_params(values)
         self.light = []
         for v, rec in zip(self.volumes, self.records()):

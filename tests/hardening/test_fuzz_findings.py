@@ -3,12 +3,22 @@ before its fix. C functions are called through the cffi binding; Python entries 
 implementations."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
+import warp as wp
 
 import pywarp
+from helpers import ulp_distance
 from pywarp.core.binding import ffi, lib
+from pywarp.core.registry import get, warp_parameters
+from pywarp.kernels import camera as CAM
+from pywarp.kernels import flight as F
+from pywarp.kernels import noise
 from pywarp.kernels import sky as sky_mod
+from pywarp.kernels import volume as V
+from pywarp.kernels.noise import perm_array
 
 IMPLS = ("warp", "c")
 
@@ -113,11 +123,6 @@ def test_c_finite_differences_finite_near_float_max(c):
 def _warp_raw(cid, **arrays):
     """The Warp twin of ``cid`` on float32/int32 arrays without the registry's validation (for points outside the
     Python domain, which the C twin documents): one launch of the generated evaluation kernel."""
-    import warp as wp
-
-    from pywarp.core.registry import get, warp_parameters
-    from pywarp.kernels.noise import perm_array
-
     eq = get(cid)
     n = len(next(iter(arrays.values())))
     inputs = []
@@ -137,9 +142,6 @@ def _warp_raw(cid, **arrays):
 def test_warp_finite_differences_finite_near_float_max_and_equal_c():
     """The Warp twin steps the same way (one-sided at the overflowing end): finite, and equal to C in the same
     ulp bound as on the domain (the twins share the float32 expression tree)."""
-    from helpers import ulp_distance
-    from pywarp.core.registry import get
-
     pts = [(x, y, z) for c in NEAR_MAX for x, y, z in ((c, 0.5, -2.25), (0.5, c, 1.0), (-3.0, 7.5, c))]
     x, y, z = (np.array(v, np.float32) for v in zip(*pts))
     h = np.full(len(pts), 1.0 / 256, np.float32)
@@ -185,6 +187,128 @@ def test_fbm_perlin3_refuses_a_top_frequency_beyond_2_24(impl):
 
 
 def test_fbm_max_frequency_is_the_c_constant():
-    from pywarp.kernels import noise
-
     assert noise.FBM_MAX_FREQUENCY == lib().CCL_NOISE_FBM_MAX_FREQUENCY == 2 ** 24
+
+
+# --- findings 5 and 9: volume extents and colours bounded -------------------------------------------------------------
+
+def _volume_grid(extent, density):
+    """A ccl_volume_grid over ``density`` (nz, ny, nx) at the origin with ``extent``; returns (grid, keep-alive)."""
+    f = ffi()
+    d = np.ascontiguousarray(density, np.uint8)
+    light = np.ones(d.shape, np.float32)
+    skip = np.zeros(d.size, np.uint8)
+    g = f.new("ccl_volume_grid *")
+    bd, bl, bs = f.from_buffer("unsigned char[]", d), f.from_buffer("float[]", light), f.from_buffer(
+        "unsigned char[]", skip)
+    g.density, g.light, g.skip = (f.cast(t, b) for t, b in (("const unsigned char *", bd), ("const float *", bl),
+                                                            ("const unsigned char *", bs)))
+    g.nz, g.ny, g.nx = d.shape
+    g.extent.x, g.extent.y, g.extent.z = extent
+    return g, (d, light, skip, bd, bl, bs)
+
+
+def _c_check(p, g, count=1):
+    fld = ffi().new("const char **")
+    st = lib().ccl_volume_check(p, g, count, fld)
+    return st, (ffi().string(fld[0]).decode() if fld[0] != ffi().NULL else None)
+
+
+@pytest.mark.parametrize("extent", [(9e-41, 1.0, 1.0), (1.0, 1e-7, 1.0), (1.0, 1.0, 2e6), (3e38, 3e38, 3e38)])
+def test_volume_check_refuses_extents_outside_the_length_range(extent):
+    """Before: any extent > 0 passed; 9e-41 made the voxel scale Inf and ccl_volume_light wrote NaN."""
+    p = ffi().new("ccl_volume_params *")
+    lib().ccl_volume_params_default(p)
+    g, keep = _volume_grid(extent, np.full((2, 2, 4), 200, np.uint8))
+    assert _c_check(p, g) == (1, "extent")
+    out = np.full(16, -5.0, np.float32)
+    assert lib().ccl_volume_light(p, g, ffi().from_buffer("float[]", out), out.size) != 0
+    assert np.all(out == -5.0)
+    with pytest.raises(ValueError, match=r"^extent must be in \[1e-06, 1e\+06\] m on every axis"):
+        V.PlacedVolume(np.full((2, 2, 4), 200, np.uint8), (0.0, 0.0, 0.0), extent)
+    del keep
+
+
+@pytest.mark.parametrize("extent", [(1e-6, 1e-6, 1e-6), (1e6, 1e6, 1e6), (1e-6, 1e6, 1.0)])
+def test_volume_light_in_unit_range_at_the_extent_limits(extent):
+    """The limits themselves: light in [0, 1], Warp and C alike (1 um and 1000 km boxes)."""
+    vals = V.default_values()
+    dens = np.zeros((3, 4, 5), np.uint8)
+    dens[1:, :, 2:] = 255
+    v = V.PlacedVolume(dens, (0.0, 0.0, 0.0), extent)
+    vs = V.VolumeSet([v])
+    vs.compute_light(vals)
+    c = V.light_c(vals, v)
+    for a in (vs.light[0], c):
+        assert np.all((a >= 0.0) & (a <= 1.0)), a
+    np.testing.assert_allclose(vs.light[0], c, rtol=2e-6, atol=1e-7)
+
+
+@pytest.mark.parametrize("field, value", [("sun_colour", (F32_MAX, 1.0, 1.0)), ("ambient_top", (0.5, 2e6, 0.5)),
+                                          ("ground_b", (-0.1, 0.3, 0.2)), ("sky_horizon", (0.5, 0.5, 1e30))])
+def test_volume_colours_bounded_in_c_and_python(field, value):
+    """Before: any finite colour passed; sun_colour.x = FLT_MAX with the aircraft on gave a NaN pixel (Inf * 0)."""
+    vals = V.default_values()
+    vals[field] = value
+    g, keep = _volume_grid((10.0, 10.0, 10.0), np.full((2, 2, 2), 100, np.uint8))
+    assert _c_check(V.c_params(vals), g) == (1, field)
+    with pytest.raises(ValueError, match=rf"^{field} must have components in \[0, 1e\+06\]"):
+        V.check_values(vals)
+    del keep
+    vals = V.default_values()
+    vals["sun_glow"] = 2e6
+    assert _c_check(V.c_params(vals), g)[1] == "sun_glow"
+    with pytest.raises(ValueError, match=r"^sun_glow must be in \[0, 1e\+06\]"):
+        V.check_values(vals)
+
+
+def test_volume_pixels_finite_with_colours_at_the_limit():
+    """Every colour and the glow at 10^6, the aircraft in view, a thick cloud: finite pixels, Warp and C alike."""
+    vals = V.default_values()
+    for name in V._COLOUR_FIELDS:
+        vals[name] = (1e6, 1e6, 1e6)
+    vals["sun_glow"] = 1e6
+    fw, rt, up = F.axes(0.3, 0.09, 0.35)
+    vals.update(aircraft=1, aircraft_position=(0.0, 100.0, -60.0), aircraft_forward=fw, aircraft_right=rt,
+                aircraft_up=up, g=0.999)
+    vs = V.VolumeSet([V.PlacedVolume(np.full((8, 8, 8), 255, np.uint8), (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))])
+    vs.compute_light(vals)
+    cam = CAM.camera_look_at(np.array([0.0, 104.0, 0.0]), np.array([0.0, 100.0, -100.0]), (0.0, 1.0, 0.0),
+                             math.radians(60.0), 16 / 9, 0.1, 1e5)
+    xs, ys = np.meshgrid(np.arange(0, 64, 3), np.arange(0, 36, 3))
+    w = V.pixels_warp(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36)
+    c = V.pixels_c(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36)
+    assert np.all(np.isfinite(w)) and np.all(np.isfinite(c))
+    np.testing.assert_allclose(w, c, rtol=1e-5, atol=1e-6 * 1e6)
+
+
+def test_volume_colour_and_length_limits_are_the_c_constants():
+    assert V.MAX_COLOUR == lib().CCL_VOLUME_MAX_COLOUR == 1e6
+    assert V.LENGTH_RANGE == lib().CCL_VOLUME_LENGTH_RANGE == 1e6
+
+
+def test_volume_sky_glow_clamps_the_cosine_in_c_and_warp():
+    """The volume sky's glow has the gradient sky's rounding (finding 4): d . sun of unit vectors rounds above 1 and
+    c^power overflowed for powers above ~7e8. Both twins clamp the cosine to [0, 1]."""
+    vals = V.default_values()
+    vals["sun"] = (1.0, 0.0, 0.0)
+    vals["sun_glow_power"] = 3e38
+    d = float(np.float32(1.0 + 2.0 ** -23))  # d . sun = 1 + 2^-23 in float32
+    p = V.c_params(vals)
+    dv = ffi().new("ccl_vec3 *")
+    dv.x, dv.y, dv.z = d, 0.0, 0.0
+    r = lib().ccl_volume_sky(p, dv[0])
+    c = np.array([r.x, r.y, r.z], np.float32)
+    out = wp.zeros(1, dtype=wp.vec3, device="cpu")
+    wp.launch(_volume_sky_kernel, dim=1, inputs=[V.warp_params(vals), wp.vec3(d, 0.0, 0.0)], outputs=[out],
+              device="cpu")
+    w = out.numpy()[0]
+    sky = np.array(vals["sky_horizon"], np.float32) + np.array(vals["sun_colour"], np.float32) * np.float32(0.6)
+    for a in (c, w):
+        assert np.all(np.isfinite(a)), a
+        np.testing.assert_allclose(a, sky, rtol=1e-6)
+
+
+@wp.kernel
+def _volume_sky_kernel(p: V.VolumeParams, d: wp.vec3, out: wp.array(dtype=wp.vec3)):
+    out[0] = V.volume_sky(p, d)

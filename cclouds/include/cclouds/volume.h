@@ -49,6 +49,13 @@ extern "C" {
 #endif
 
 #define CCL_VOLUME_MAX_GRIDS 16
+/* Largest colour component (and sun_glow) ccl_volume_check accepts: 10^6, far above display-linear use (<= a few),
+ * low enough that colour x phase x glow stays finite (with FLT_MAX the aircraft's Inf x 0 was a NaN pixel). */
+#define CCL_VOLUME_MAX_COLOUR 1000000
+/* Box extents per axis must lie in [1 / R, R] metres, R = 10^6 (1 um .. 1000 km): the voxel scale n / extent and
+ * the light ray's voxel-space direction stay finite and non-zero (a denormal extent made them Inf, a huge one
+ * underflowed the direction's length to 0: NaN light). */
+#define CCL_VOLUME_LENGTH_RANGE 1000000
 #define CCL_VOLUME_AIRCRAFT_STEPS 64
 #define CCL_VOLUME_BRICK 2 /* edge of the empty-space-skipping bricks, voxels (2: measured faster than 4 on the
                                 flight scene's soft clouds, whose 4^3 bricks are 40 % occupied) */
@@ -62,7 +69,7 @@ typedef struct ccl_volume_grid {
                                      Chebyshev distance m - 1); all zeros = no skipping */
     int nx, ny, nz;               /* >= 1 */
     ccl_vec3 origin;              /* world position of the box's minimum corner [m] */
-    ccl_vec3 extent;              /* world size of the box per axis [m], > 0 */
+    ccl_vec3 extent;              /* world size of the box per axis [m], in [1e-6, 1e6] (CCL_VOLUME_LENGTH_RANGE) */
 } ccl_volume_grid;
 
 /* Everything else of a frame (defaults and reasons: ccl_volume_params_default, volume.c). */
@@ -98,8 +105,9 @@ typedef struct ccl_volume_params {
 /* The documented defaults (reasons in volume.c). */
 CCL_API void ccl_volume_params_default(ccl_volume_params *out);
 
-/* Validate parameters and grids (count in [0, CCL_VOLUME_MAX_GRIDS], sizes >= 1, extents > 0, non-NULL arrays, unit
- * sun and axes, finite values, steps > 0, max_steps in [1, 100000], g in (-1, 1)). Returns CCL_OK or CCL_EINVAL
+/* Validate parameters and grids (count in [0, CCL_VOLUME_MAX_GRIDS], sizes >= 1, extents in [1e-6, 1e6] m
+ * (CCL_VOLUME_LENGTH_RANGE), non-NULL arrays, unit sun and axes, finite values, colour components and sun_glow in
+ * [0, CCL_VOLUME_MAX_COLOUR], steps > 0, max_steps in [1, 100000], g in (-1, 1)). Returns CCL_OK or CCL_EINVAL
  * with *out_field = the first bad field (static string; out_field may be NULL). */
 CCL_API ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume_grid *grids, int count,
                                     const char **out_field);
@@ -139,7 +147,8 @@ CCL_API ccl_status ccl_volume_occupancy(const ccl_volume_grid *grid, unsigned ch
 CCL_API ccl_status ccl_volume_skip(const ccl_volume_grid *grid, unsigned char *out, size_t out_len);
 
 /* The sky colour in direction d (unit): sky_horizon + (sky_zenith - sky_horizon) sqrt(max(d.y, 0)) + sun_colour
- * sun_glow max(dot(d, sun), 0)^sun_glow_power. Display-linear. */
+ * sun_glow clamp(dot(d, sun), 0, 1)^sun_glow_power (clamped at 1: the dot of unit vectors may round above it).
+ * Display-linear. */
 CCL_API ccl_vec3 ccl_volume_sky(const ccl_volume_params *p, ccl_vec3 d);
 
 /* The background of a ray without clouds: the aircraft (when hit), else the ground (d.y < 0 and eye.y > 0: field
