@@ -47,6 +47,8 @@ class BenchOptions(Settings):
                         reason="the benchmark's own default (listed with it)")
     workers: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, default_text="one per core",
                                 doc="worker threads of the tile launcher", reason="None: one per core")
+    spp: int = param(1024, kind="int", lo=1, hi=65536, doc="paths per pixel of the path-traced references",
+                     default_text="per benchmark", reason="the benchmark's own default (listed with it)")
 
 
 def _check_device(device: str, option: str = "--device") -> str:

@@ -7,7 +7,12 @@ from .settings import CloudscapeSettings
 
 
 def make_technique(settings: CloudscapeSettings):
-    """The cloudscape technique (vc-A33: init / update / render / resize), textures generated (cached)."""
+    """The cloudscape technique (vc-A33: init / update / render / resize), textures generated (cached); with
+    ``settings.reference`` the path-traced ground truth (:class:`pywarp.clouds.reference.ReferenceRenderer`)."""
+    if settings.reference:
+        from .reference import ReferenceRenderer
+
+        return ReferenceRenderer(settings)
     from .cloudscape import CloudscapeTechnique
 
     return CloudscapeTechnique(settings)
@@ -27,6 +32,9 @@ def _lazy(module: str, name: str):
     call.__name__ = name
     return call
 
+
+#: the path tracer's settings: options of ``pywarp render`` only
+_REFERENCE_FIELDS = ("reference", "spp", "reference_seed", "reference_bounces")
 
 SCENE = register(Scene(
     name="clouds",
@@ -60,11 +68,17 @@ SCENE = register(Scene(
                                   "speed-up of 2 over 1 and frames/s per worker, to size a cluster (needs dask)",
                           _lazy("..core.animation", "run_dask_bench"), _lazy("..core.animation", "report_dask"),
                           {"width": 320, "height": 180, "repeat": 1}),
+        "reference": Benchmark("reference", "the real-time lighting models (thesis, +sky light, +multiple "
+                                            "scattering) against the path-traced ground truth of three scenes: "
+                                            "SSIM and mean CIEDE2000 after the best exposure scale (needs "
+                                            "scikit-image and colour-science)",
+                               _lazy(".bench_reference", "bench_reference"), _lazy(".bench_reference", "report"),
+                               {"width": 160, "height": 90, "spp": 1024, "workers": None}),
     },
     outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360, "reprojection": True}},
     # --accumulate averages the frames of one still (render only)
-    command_exclude={"render": ("reprojection", "reprojection_neighbourhood"), "animate": ("accumulate",),
-                     "view": ("accumulate",)},
+    command_exclude={"render": ("reprojection", "reprojection_neighbourhood"),
+                     "animate": ("accumulate",) + _REFERENCE_FIELDS, "view": ("accumulate",) + _REFERENCE_FIELDS},
     time_field="time_s",
 ))

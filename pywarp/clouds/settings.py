@@ -451,10 +451,10 @@ class CloudscapeSettings(Settings):
                                 doc="reference: seed of the path tracer's random numbers (the textures keep --seed); "
                                     "the same seed gives the same image on any number of threads",
                                 reason="0: any value; independent seeds give independent noise")
-    reference_bounces: int = param(64, kind="int", lo=1, hi=256, group="reference", cli="--bounces",
+    reference_bounces: int = param(1024, kind="int", lo=1, hi=4096, group="reference", cli="--bounces",
                                    doc="reference: scattering events per path at most (medium or ground)",
-                                   reason="64: pywarp.clouds.reference.DEFAULT_BOUNCES (the energy still missing "
-                                          "at 64 is below the benchmark's noise)")
+                                   reason="1024: pywarp.clouds.reference.DEFAULT_BOUNCES (the light still missing "
+                                          "at 1024 is below the benchmark's noise; deeper paths are rare and cheap)")
     device: str = param("cpu", invalidates="device", group="runtime",
                         doc="Warp device: cpu, or cuda:N where present", reason="cpu: nothing requires a GPU")
     threads: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, invalidates="device",

@@ -187,8 +187,8 @@ def test_encoded_image_is_the_real_time_encoding(textures):
 @pytest.mark.parametrize("kwargs,message", [
     (dict(spp=0), "spp must be in [1, 65536], got 0"),
     (dict(spp=65537), "spp must be in [1, 65536], got 65537"),
-    (dict(bounces=0), "bounces must be in [1, 256], got 0"),
-    (dict(bounces=257), "bounces must be in [1, 256], got 257"),
+    (dict(bounces=0), "bounces must be in [1, 4096], got 0"),
+    (dict(bounces=4097), "bounces must be in [1, 4096], got 4097"),
     (dict(seed=-1), "seed must be in [0, 4294967295], got -1"),
     (dict(albedo=1.5), "albedo must be in [0, 1], got 1.5"),
     (dict(phase_g=1.0), "phase_g must be in [-0.999, 0.999], got 1.0"),
@@ -218,7 +218,7 @@ def test_settings_fields_are_validated():
     with pytest.raises(ValueError, match="spp"):
         small(spp=0)
     with pytest.raises(ValueError, match="reference_bounces"):
-        small(reference_bounces=300)
+        small(reference_bounces=5000)
 
 
 # --- the command line ---------------------------------------------------------------------------------------------------
@@ -244,7 +244,7 @@ def test_cli_reference_writes_the_path_traced_image(tmp_path, textures):
 
 @pytest.mark.parametrize("args,message", [
     (["--spp", "0"], "pywarp render: error: --spp must be in [1, 65536], got 0"),
-    (["--bounces", "257"], "pywarp render: error: --bounces must be in [1, 256], got 257"),
+    (["--bounces", "4097"], "pywarp render: error: --bounces must be in [1, 4096], got 4097"),
     (["--reference-seed", "-2"], "pywarp render: error: --reference-seed must be in [0, 4294967295], got -2"),
 ])
 def test_cli_reference_bad_values_one_line_no_file(tmp_path, args, message):

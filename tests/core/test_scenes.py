@@ -21,7 +21,7 @@ def test_clouds_is_registered_and_the_default():
     assert sc is all_["clouds"] is scenes.scene("clouds")
     assert sc.settings is CloudscapeSettings and issubclass(sc.settings, Settings)
     assert sc.description and sc.default_path == "flythrough" and sc.path().name == "flythrough"
-    assert set(sc.benchmarks) == {"tiles", "cloudscape", "textures", "reprojection", "dask"}
+    assert set(sc.benchmarks) == {"tiles", "cloudscape", "textures", "reprojection", "dask", "reference"}
     assert {"camera_altitude_km", "camera_pitch_deg", "camera_yaw_deg"} <= set(sc.path().start_fields)
     assert sc.outputs["render"] == "cloudscape.png"
     with pytest.raises(ValueError, match=r"^scene must be one of 'clouds'(, '[a-z]+')*, got 'nope'$"):
@@ -63,6 +63,7 @@ def test_cli_scenes_lists_them(capsys):
 def fake_benchmarks(monkeypatch):
     """Every benchmark's run replaced by a recorder (the real ones take seconds to minutes)."""
     import pywarp.clouds.bench as bench
+    import pywarp.clouds.bench_reference as bench_reference
     import pywarp.clouds.bench_textures as bench_textures
     import pywarp.core.animation as animation
 
@@ -75,7 +76,8 @@ def fake_benchmarks(monkeypatch):
         return run
 
     for mod, name in ((bench, "bench_tiles"), (bench, "bench_cloudscape"), (bench, "run_reprojection"),
-                      (bench_textures, "bench_textures"), (animation, "run_dask_bench")):
+                      (bench_textures, "bench_textures"), (animation, "run_dask_bench"),
+                      (bench_reference, "bench_reference")):
         monkeypatch.setattr(mod, name, fake(name))
     return calls
 
@@ -89,6 +91,8 @@ def fake_benchmarks(monkeypatch):
     (["bench", "textures", "--repeat", "1"], "bench_textures", {"repeat": 1, "workers": None}),
     (["bench", "clouds", "reprojection", "--height", "90"], "run_reprojection", {"width": 640, "height": 90}),
     (["bench", "clouds", "dask", "--width", "64"], "run_dask_bench", {"width": 64, "height": 180, "repeat": 1}),
+    (["bench", "clouds", "reference", "--width", "32", "--spp", "8"], "bench_reference",
+     {"width": 32, "height": 90, "spp": 8, "workers": None}),
     (["bench", "clouds", "--repeat", "1"], "bench_cloudscape",  # a scene alone: its default benchmark
      {"width": 960, "height": 540, "repeat": 1, "workers": None}),
 ])
@@ -106,10 +110,10 @@ def test_cli_bench_every_benchmark_has_json_and_honours_device(fake_benchmarks, 
     (["bench", "tiles", "--width", "-5"], "--width must be in [1, 8192], got -5"),
     (["bench", "tiles", "--repeat", "x"], "--repeat must be an integer, got 'x'"),
     (["bench", "tiles", "--device", "cuda:3"], "--device must be one of 'cpu'"),
-    (["bench", "nope"], "benchmark must be one of 'tiles', 'cloudscape', 'textures', 'reprojection', 'dask' (scene "
-                        "clouds), got 'nope'"),
+    (["bench", "nope"], "benchmark must be one of 'tiles', 'cloudscape', 'textures', 'reprojection', 'dask', "
+                        "'reference' (scene clouds), got 'nope'"),
     (["bench", "clouds", "drops"], "benchmark must be one of 'tiles', 'cloudscape', 'textures', 'reprojection', "
-                                   "'dask' (scene clouds), got 'drops'"),
+                                   "'dask', 'reference' (scene clouds), got 'drops'"),
 ])
 def test_cli_bench_bad_arguments(fake_benchmarks, capsys, argv, message):
     with pytest.raises(SystemExit) as exc:

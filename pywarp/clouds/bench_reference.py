@@ -1,0 +1,218 @@
+"""``pywarp bench clouds reference``: the real-time lighting models against the path-traced ground truth.
+
+    pywarp bench clouds reference [--width 160 --height 90 --spp 1024 --workers N --device D --json]
+
+Three fixed scenes (:data:`SCENES`: noon; a low sun, 5 deg; from above, 8 km up looking 30 deg down), each rendered
+by :class:`pywarp.clouds.reference.ReferenceRenderer` (the same density field, sun, sky and ground) and by the
+real-time renderer with each lighting model of :data:`MODELS`:
+
+* ``thesis``                -- lighting=thesis: the thesis's constant sun and ambient, one octave, one HG lobe;
+* ``+sky light``            -- lighting=sky with ms_octaves=1, silver_weight=0: sun and ambient from the sky model;
+* ``+multiple scattering``  -- lighting=sky with the settings' octaves (> 1) and silver lobe (weight > 0).
+
+The error of a model, after the best single exposure scale:
+
+1. the reference is exposed for display: divided by the :data:`WHITE_PERCENTILE` th percentile of its largest
+   channel (a physically lit cloud is several times brighter than the sky, beyond display white);
+2. the model's linear RGB is scaled by the least-squares factor ``k = <M, R> / <M, M>`` onto the exposed reference;
+3. both are clamped and sRGB-encoded (the renderer's display step), then
+   * SSIM: ``skimage.metrics.structural_similarity(..., channel_axis=2, data_range=1)``, 1 = identical;
+   * mean CIEDE2000: colour-science, sRGB -> XYZ -> CIE Lab (D65), ``colour.delta_E(method="CIE 2000")``; 1 is a
+     just-noticeable difference.
+
+The real-time images are stills of :data:`ACCUMULATE` jittered frames (``render_accumulated``) where the renderer has
+them, so that their ray-jitter noise and aliasing do not count as lighting error.
+
+Noise of the reference: its samples are two independent halves (seeds s and s + 1); the report gives the mean
+per-pixel standard error of the (exposed, linear) reference, and the *noise floor*: SSIM and Delta E of one half
+against the other (each with half the paths, so the floor is pessimistic by ~sqrt 2). A model error near the floor
+is noise, not lighting.
+
+Models whose settings do not exist in this installation are skipped with a message (the JSON has ``skipped``).
+"""
+from __future__ import annotations
+
+import sys
+import time
+from dataclasses import replace
+
+import numpy as np
+
+#: The scenes: settings changes from the defaults (camera, sun).
+SCENES = {
+    "noon": dict(sun_elevation_deg=75.0, sun_azimuth_deg=150.0),
+    "low sun": dict(sun_elevation_deg=5.0, sun_azimuth_deg=45.0),
+    "from above": dict(camera_altitude_km=8.0, camera_pitch_deg=-30.0, sun_elevation_deg=35.0),
+}
+#: The real-time lighting models: settings changes (None: the setting's default, which must satisfy the model).
+MODELS = {
+    "thesis": dict(lighting="thesis", ms_octaves=1, silver_weight=0.0),
+    "+sky light": dict(lighting="sky", ms_octaves=1, silver_weight=0.0),
+    "+multiple scattering": dict(lighting="sky", ms_octaves=None, silver_weight=None),
+}
+#: Percentile of the reference's largest channel mapped to display white (step 1 above): 99.5, so that the
+#: brightest 0.5 % (the sunlit cloud edges) may clip, as a photograph exposed for the clouds would.
+WHITE_PERCENTILE = 99.5
+#: Jittered frames per real-time still: 16 (the noise of one frame falls 4x; more changes the metrics by < 0.002).
+ACCUMULATE = 16
+
+
+def _fields():
+    from ..core.params import specs
+    from .settings import CloudscapeSettings
+
+    return {p.name: p for p in specs(CloudscapeSettings)}
+
+
+def model_settings(base, name: str):
+    """The settings of model ``name`` on top of ``base``, or (None, reason) when this installation lacks them."""
+    fields = _fields()
+    changes = {}
+    for key, value in MODELS[name].items():
+        if key not in fields:
+            return None, f"needs the setting {key!r}, which this installation does not have"
+        changes[key] = fields[key].default if value is None else value
+    if name == "+multiple scattering" and not (changes["ms_octaves"] > 1 and changes["silver_weight"] > 0):
+        changes["ms_octaves"] = max(changes["ms_octaves"], 3)
+        changes["silver_weight"] = changes["silver_weight"] or 0.3
+    return replace(base, **changes), None
+
+
+def _srgb(linear: np.ndarray) -> np.ndarray:
+    """Clamp to [0, 1] and sRGB-encode (IEC 61966-2-1, the renderer's display step) in float64."""
+    c = np.clip(np.asarray(linear, dtype=np.float64), 0.0, 1.0)
+    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1.0 / 2.4) - 0.055)
+
+
+def exposure(reference: np.ndarray) -> float:
+    """The display scale of a reference: 1 / the WHITE_PERCENTILE th percentile of its largest channel."""
+    w = float(np.percentile(np.max(reference, axis=2), WHITE_PERCENTILE))
+    return 1.0 / w if w > 0 else 1.0
+
+
+def best_scale(model: np.ndarray, target: np.ndarray) -> float:
+    """Least-squares k minimising ||k model - target||^2 over linear RGB."""
+    m = np.asarray(model, dtype=np.float64).ravel()
+    t = np.asarray(target, dtype=np.float64).ravel()
+    mm = float(m @ m)
+    return float(m @ t) / mm if mm > 0 else 1.0
+
+
+def errors(model: np.ndarray, target: np.ndarray) -> dict:
+    """SSIM and mean CIEDE2000 of ``model`` against the (already exposed) linear ``target`` after the best scale."""
+    import colour
+    from skimage.metrics import structural_similarity
+
+    k = best_scale(model, target)
+    a = _srgb(k * np.asarray(model, dtype=np.float64))
+    b = _srgb(target)
+    ssim = float(structural_similarity(a, b, channel_axis=2, data_range=1.0))
+    lab_a = colour.XYZ_to_Lab(colour.sRGB_to_XYZ(a))
+    lab_b = colour.XYZ_to_Lab(colour.sRGB_to_XYZ(b))
+    de = float(np.mean(colour.delta_E(lab_a, lab_b, method="CIE 2000")))
+    return {"scale": k, "ssim": ssim, "delta_e": de}
+
+
+def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | None = None, device: str = "cpu",
+            seed: int = 0, scenes=None, progress=None) -> tuple[dict, dict]:
+    """Run the comparison: (result, images). ``images[scene]`` maps 'reference' and each rendered model to its
+    display image (uint8 sRGB, after the exposure of the table) -- for the tutorial. ``spp`` >= 2 (two halves)."""
+    from ..core.timing import machine
+    from .cloudscape import CloudscapeTechnique, RenderTextures
+    from .reference import ReferenceRenderer
+    from .settings import CloudscapeSettings
+
+    if isinstance(spp, bool) or not isinstance(spp, (int, np.integer)) or not 2 <= spp <= 65536:
+        raise ValueError(f"spp must be in [2, 65536] (two halves of independent seeds), got {spp!r}")
+    base = CloudscapeSettings(width=width, height=height, device=device, threads=workers)
+    names = list(SCENES) if scenes is None else list(scenes)
+    for n in names:
+        if n not in SCENES:
+            raise ValueError(f"scenes must be among {', '.join(map(repr, SCENES))}, got {n!r}")
+    say = progress or (lambda msg: print(msg, file=sys.stderr, flush=True))
+    textures = RenderTextures.generate(base)
+    # the models' settings and the reference's (the sky model's light where the installation has it)
+    ref_changes = {"lighting": "sky"} if "lighting" in _fields() else {}
+    result = {"benchmark": "reference", "size": [width, height], "spp": int(spp), "seed": seed,
+              "white_percentile": WHITE_PERCENTILE, "accumulate": ACCUMULATE, "scenes": [], "machine": machine()}
+    images = {}
+    half = spp // 2
+    for name in names:
+        s = replace(base, **SCENES[name])
+        say(f"reference {name}: {width}x{height}, {spp} paths per pixel ...")
+        t0 = time.perf_counter()
+        ra = ReferenceRenderer(replace(s, **ref_changes), textures, spp=half, seed=seed)
+        a = ra.render(encode=False).astype(np.float64)
+        rb = ReferenceRenderer(replace(s, **ref_changes), textures, spp=spp - half, seed=seed + 1)
+        b = rb.render(encode=False).astype(np.float64)
+        seconds = time.perf_counter() - t0
+        ref = (half * a + (spp - half) * b) / spp
+        ex = exposure(ref)
+        se_a = ra.stats["std_error_image"].astype(np.float64)
+        se_b = rb.stats["std_error_image"].astype(np.float64)
+        se = np.sqrt((half * se_a) ** 2 + ((spp - half) * se_b) ** 2) / spp * ex
+        row = {"scene": name, "settings": SCENES[name], "seconds": round(seconds, 2),
+               "seconds_per_spp": round(seconds / spp, 4), "exposure": ex,
+               "std_error": float(se.mean()), "std_error_max": float(se.max()),
+               "noise_floor": {k: v for k, v in errors(a * ex, b * ex).items() if k != "scale"}, "models": []}
+        target = ref * ex
+        imgs = {"reference": (_srgb(target) * 255.0 + 0.5).astype(np.uint8)}
+        for model in MODELS:
+            ms, why = model_settings(s, model)
+            if ms is None:
+                say(f"  {model}: skipped ({why})")
+                row["models"].append({"model": model, "skipped": why})
+                continue
+            tech = CloudscapeTechnique(ms, textures=textures)
+            if hasattr(tech, "render_accumulated"):
+                lin = tech.render_accumulated(None, ACCUMULATE, encode=False)
+            else:
+                lin = tech.render(reprojection=False, encode=False)
+            e = errors(lin, target)
+            changes = {k: getattr(ms, k) for k in MODELS[model]}
+            row["models"].append({"model": model, "settings": changes, **e})
+            imgs[model] = (_srgb(e["scale"] * np.asarray(lin, dtype=np.float64)) * 255.0 + 0.5).astype(np.uint8)
+        result["scenes"].append(row)
+        images[name] = imgs
+    return result, images
+
+
+def bench_reference(width: int = 160, height: int = 90, spp: int = 1024, workers: int | None = None,
+                    device: str = "cpu") -> dict:
+    """``pywarp bench clouds reference`` (module docstring): the JSON-serialisable result of :func:`compare`."""
+    return compare(width, height, spp, workers, device)[0]
+
+
+def report(res: dict) -> str:
+    """The table of :func:`bench_reference`."""
+    w, h = res["size"]
+    lines = [f"Real-time lighting models vs the path-traced reference: {w}x{h}, {res['spp']} paths per pixel "
+             f"(two halves of seeds {res['seed']}, {res['seed'] + 1}); model stills of {res['accumulate']} frames; "
+             f"best exposure scale, then sRGB",
+             f"  {'scene':<11} {'model':<22} {'SSIM':>7} {'dE2000':>7} {'scale':>7}"]
+    for sc in res["scenes"]:
+        nf = sc["noise_floor"]
+        for m in sc["models"]:
+            if "skipped" in m:
+                lines.append(f"  {sc['scene']:<11} {m['model']:<22} skipped: {m['skipped']}")
+            else:
+                lines.append(f"  {sc['scene']:<11} {m['model']:<22} {m['ssim']:7.3f} {m['delta_e']:7.2f} "
+                             f"{m['scale']:7.3f}")
+        lines.append(f"  {sc['scene']:<11} {'(noise floor)':<22} {nf['ssim']:7.3f} {nf['delta_e']:7.2f}    "
+                     f"-- reference: std. error {sc['std_error']:.4f} of white (max {sc['std_error_max']:.3f}), "
+                     f"{sc['seconds']:.0f} s, {sc['seconds_per_spp']:.3f} s per spp")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    import argparse
+    import json
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--width", type=int, default=160)
+    ap.add_argument("--height", type=int, default=90)
+    ap.add_argument("--spp", type=int, default=1024)
+    ap.add_argument("--json", action="store_true")
+    args = ap.parse_args()
+    r = bench_reference(args.width, args.height, args.spp)
+    print(json.dumps(r) if args.json else report(r))
