@@ -49,6 +49,11 @@ class BenchOptions(Settings):
                                 doc="worker threads of the tile launcher", reason="None: one per core")
     spp: int = param(1024, kind="int", lo=1, hi=65536, doc="paths per pixel of the path-traced references",
                      default_text="per benchmark", reason="the benchmark's own default (listed with it)")
+    baseline: str | None = param(None, kind="str", optional=True, default_text="none",
+                                 doc="another Python interpreter (a venv with another version of this project "
+                                     "installed): the benchmark runs there too, interleaved with this one, and "
+                                     "both are printed with the ratios",
+                                 reason="None: this installation only")
 
 
 def _check_device(device: str, option: str = "--device") -> str:
@@ -248,6 +253,8 @@ def cmd_bench(args) -> int:
     elif names[0] in all_scenes() and names[0] not in get_scene().benchmarks:
         sc = get_scene(names[0])  # `pywarp bench <scene>`: the scene's default benchmark
         name = sc.default_benchmark or next(iter(sc.benchmarks), None)
+        if hasattr(args, "bench_baseline"):  # `pywarp bench <scene> --baseline PYTHON`: the benchmark that takes it
+            name = next((n for n, bm in sc.benchmarks.items() if "baseline" in bm.defaults), name)
         if name is None:
             raise ValueError(f"scene {sc.name!r} has no benchmarks")
     else:

@@ -4,6 +4,12 @@ things, because machines (this one included) are noisy; no test asserts on wall 
 
     pywarp bench [clouds] tiles|cloudscape|textures|reprojection [--width W --height H --repeat N --workers N
                                                                   --device D --json]
+    pywarp bench [clouds] speed [--repeat N --workers N --device D --json] [--baseline PYTHON]
+    pywarp bench clouds --baseline PYTHON          (the same: a scene with --baseline runs ``speed``)
+
+``speed`` measures the issue's numbers (640 x 360 reprojected on a steady path, 1280 x 720 full, their ratio); with
+``--baseline`` the same probe runs in another interpreter (e.g. a venv with an older commit installed), the two taking
+turns measurement by measurement, and both are printed with the ratios (:func:`bench_speed`).
 
 ``pywarp.clouds.scene`` registers them with the scene (name -> :class:`pywarp.core.scenes.Benchmark`); the command
 line is built from there.
@@ -90,11 +96,78 @@ def _reprojected_ms(t, n_frames: int = 16) -> float:
     return median_ms(next_frame, n_frames, warmup=0)
 
 
+class _KernelTimer:
+    """A stand-in for a technique's :class:`pywarp.core.runtime.TileLauncher` that adds up the wall time of every
+    launch per kernel (launches wait for their kernel): how a frame's time divides between its passes, measured
+    without touching the renderer."""
+
+    def __init__(self, launcher):
+        self._launcher = launcher
+        self.ms: dict[str, float] = {}
+
+    def launch(self, kernel, *args, **kwargs):
+        import time
+
+        t = time.perf_counter()
+        try:
+            return self._launcher.launch(kernel, *args, **kwargs)
+        finally:
+            name = getattr(kernel, "key", None) or getattr(kernel, "__name__", "kernel")
+            self.ms[name] = self.ms.get(name, 0.0) + 1e3 * (time.perf_counter() - t)
+
+    def __getattr__(self, name):
+        return getattr(self._launcher, name)
+
+
+#: The passes of a reprojected frame (fig 4.17 splits its bar into raymarch + reprojection, as the thesis does): the
+#: kernels of each, by name; everything else in the frame (sRGB encoding, copies to the host) is ``other``
+REPROJECTION_SPLIT = {"raymarch": ("sky_kernel", "clouds_kernel"), "reprojection": ("reproject_frame_kernel",)}
+
+
+def _reprojected_path_ms(t, n_frames: int = 16) -> tuple[float, dict]:
+    """One pass of the steady reprojected path of :func:`_reprojected_ms` (a frame without history, then
+    ``n_frames`` frames of a slowly moving camera): the mean frame time (ms) and its split into
+    :data:`REPROJECTION_SPLIT` + ``other`` (mean ms per frame)."""
+    import time
+
+    from .cloudscape import CameraPose
+
+    p = CameraPose.from_settings(t.settings)
+    t.render(p, reprojection=True)  # the frame without history
+    timer = _KernelTimer(t.launcher)
+    t.launcher = timer
+    total = 0.0
+    try:
+        for k in range(1, n_frames + 1):
+            q = CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * k, p.yaw_deg + 0.02 * k, p.pitch_deg,
+                           p.fov_y_deg)
+            t0 = time.perf_counter()
+            t.render(q, reprojection=True)
+            total += 1e3 * (time.perf_counter() - t0)
+    finally:
+        t.launcher = timer._launcher
+    frame = total / n_frames
+    split = {g: sum(timer.ms.get(k, 0.0) for k in kernels) / n_frames for g, kernels in REPROJECTION_SPLIT.items()}
+    split["other"] = max(frame - sum(split.values()), 0.0)
+    return frame, split
+
+
+#: The steps of the fig 4.17 ladder, each including the previous ones: settings changes of a full frame
+LADDER_STEPS = {"unoptimised": dict(adaptive_samples=False, early_exit=False),
+                "adaptive_samples": dict(adaptive_samples=True, early_exit=False),
+                "early_exit": dict(adaptive_samples=True, early_exit=True)}
+
+
 def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers: int | None = None,
-                   device: str | None = None, **settings):
+                   device: str | None = None, detail: dict | None = None, **settings):
     """The fig 4.17 ladder on one frame and camera, each step including the previous ones (ms):
-    unoptimised, adaptive_samples, early_exit, reprojection. Returns (technique, ladder)."""
+    unoptimised, adaptive_samples, early_exit, reprojection. Returns (technique, ladder): each value the best of
+    ``repeat`` repetitions after one warm-up frame; the full-frame steps are interleaved (one frame of each step per
+    round, so that all see the same machine). ``detail``: a dict that receives every repetition --
+    ``samples`` (step -> [ms per round], ``reprojection`` the mean frame of each pass of the steady path) and
+    ``reprojection_split`` (raymarch / reprojection / other -> [ms per round], :data:`REPROJECTION_SPLIT`)."""
     from .cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique
+    from ..core.timing import samples_ms
 
     if width < 1 or height < 1:
         raise ValueError(f"width and height must be >= 1, got {width}x{height}")
@@ -104,23 +177,38 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
                                                   threads=workers, **settings))
     pose = CameraPose.from_settings(tech.settings)
 
-    def full(**changes):
+    def frame(**changes):
         tech.update(**changes)
-        return _timed(lambda: tech.render(pose, reprojection=False), repeat)
+        return samples_ms(lambda: tech.render(pose, reprojection=False), 1, warmup=0)[0]
 
-    ladder = {
-        "unoptimised": full(adaptive_samples=False, early_exit=False),
-        "adaptive_samples": full(adaptive_samples=True, early_exit=False),
-        "early_exit": full(adaptive_samples=True, early_exit=True),
-    }
+    frame(**LADDER_STEPS["early_exit"])  # warm-up: kernels loaded, buffers touched
+    samples = {k: [] for k in LADDER_STEPS}
+    for _ in range(repeat):
+        for k, changes in LADDER_STEPS.items():
+            samples[k].append(frame(**changes))
+    ladder = {k: min(v) for k, v in samples.items()}
     ladder["reprojection"] = _reprojected_ms(tech)
+    if detail is not None:
+        split = {g: [] for g in (*REPROJECTION_SPLIT, "other")}
+        samples["reprojection"] = []
+        for _ in range(repeat):
+            ms, parts = _reprojected_path_ms(tech)
+            samples["reprojection"].append(ms)
+            for g, v in parts.items():
+                split[g].append(v)
+        detail["samples"] = samples
+        detail["reprojection_split"] = split
     # vc-M7: early termination saves more with denser clouds (the thesis: up to 85 %); same frame, twice the
     # extinction, measured against its own unoptimised time
     sigma = tech.settings.sigma_per_km
-    dense_unopt = full(adaptive_samples=False, early_exit=False, sigma_per_km=2.0 * sigma)
-    dense_exit = full(adaptive_samples=True, early_exit=True)
-    tech.update(sigma_per_km=sigma)
-    ladder["dense_clouds_cut_percent"] = 100.0 * (1.0 - dense_exit / dense_unopt)
+    dense = {"unoptimised": [], "early_exit": []}
+    for _ in range(repeat):
+        for k in dense:
+            dense[k].append(frame(**LADDER_STEPS[k], sigma_per_km=2.0 * sigma))
+    tech.update(sigma_per_km=sigma, **LADDER_STEPS["early_exit"])
+    ladder["dense_clouds_cut_percent"] = 100.0 * (1.0 - min(dense["early_exit"]) / min(dense["unoptimised"]))
+    if detail is not None:
+        detail["dense_samples"] = dense
     return tech, ladder
 
 
@@ -303,6 +391,365 @@ def report_reprojection(res: dict) -> str:
         f"reprojection {r['size'][0]}x{r['size'][1]}, neighbourhood {n}: SSIM mean {r['ssim_mean']} "
         f"(min {r['ssim_min']}), PSNR mean {r['psnr_mean_db']} dB (min {r['psnr_min_db']} dB) "
         f"over {r['frames_compared']} frames" for n, r in res["neighbourhoods"].items())
+
+
+# --- speed: the issue's numbers, optionally side by side with another installation ------------------------------------
+
+#: The scene of ``bench_speed``, pinned so that both installations render the same picture whatever their defaults
+#: (the defaults of today: the camera 0.3 km up looking 20 deg above the horizon, coverage 0.5, a 35 deg sun). Fields
+#: an installation's settings lack are left out there and listed in its ``settings_not_applied``.
+SPEED_SCENE = {"coverage": 0.5, "sun_elevation_deg": 35.0, "sun_azimuth_deg": 150.0, "camera_altitude_km": 0.3,
+               "camera_x_km": 0.0, "camera_z_km": 0.0, "camera_yaw_deg": 0.0, "camera_pitch_deg": 20.0,
+               "fov_y_deg": 60.0}
+#: The sizes of the issue: a 640 x 360 reprojected frame (the interactive view) and a 1280 x 720 full frame (a still)
+SPEED_SIZES = {"reprojected": (640, 360), "full": (1280, 720)}
+#: Version of the JSON of ``bench_speed`` (keys are only ever added; a reader tolerates missing ones)
+SPEED_SCHEMA = 1
+#: The numbers of one side, in the JSON and the report; any of them may be missing (None) in a side's answer.
+#: reprojected_over_full compares frames of one size (the reprojected frame's), as the ladder of fig 4.17 does
+SPEED_KEYS = ("reprojected_ms", "full_ms", "full_same_size_ms", "reprojected_over_full")
+#: The measurements of a round, in order (probe commands)
+SPEED_MEASUREMENTS = ("reprojected", "full_same_size", "full")
+
+#: The measurement, as source: run by ``exec`` in this process (ours) and by ``PYTHON -c`` in another interpreter
+#: (the baseline), where it imports *that* interpreter's pywarp. It uses only what every version of the package has
+#: had (CloudscapeSettings, CloudscapeTechnique(settings, textures=), render(pose, reprojection=), CameraPose;
+#: pywarp.clouds.cloudscape, before that pywarp.cloudscape). As a program it answers one JSON line per command
+#: (``reprojected``, ``full``, ``quit``) on the original stdout; everything else that writes to stdout (library
+#: notices) is sent to stderr.
+_SPEED_PROBE = r"""
+import dataclasses, json, os, sys, time
+
+if __name__ == "__main__":  # the protocol keeps the real stdout; anything else printed (import notices) goes to stderr
+    proto = os.fdopen(os.dup(1), "w")
+    os.dup2(2, 1)
+
+try:
+    from pywarp.clouds import cloudscape as C
+    API = "pywarp.clouds.cloudscape"
+except ImportError:
+    from pywarp import cloudscape as C
+    API = "pywarp.cloudscape"
+
+
+class SpeedProbe:
+    def __init__(self, cfg):
+        names = {f.name for f in dataclasses.fields(C.CloudscapeSettings)}
+        wanted = dict(cfg["scene"], device=cfg["device"], threads=cfg["workers"])
+        common = {k: v for k, v in wanted.items() if k in names}
+        self.not_applied = sorted(k for k in wanted if k not in names)
+        (rw, rh), (fw, fh) = cfg["reprojected"], cfg["full"]
+        self.rep = C.CloudscapeTechnique(C.CloudscapeSettings(width=rw, height=rh, **common))
+        self.fullt = C.CloudscapeTechnique(C.CloudscapeSettings(width=fw, height=fh, **common),
+                                           textures=self.rep.textures)
+        self.pose = C.CameraPose.from_settings(self.rep.settings)
+        self.frames = int(cfg["frames"])
+        self.reprojected()  # warm-up: every kernel of both paths loaded, the buffers touched
+
+    def reprojected(self):
+        # the steady path: one frame without history, then the mean over frames of a slowly moving camera
+        p, t = self.pose, self.rep
+        t.render(p, reprojection=True)
+        total = 0.0
+        for k in range(1, self.frames + 1):
+            q = C.CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * k, p.yaw_deg + 0.02 * k, p.pitch_deg,
+                             p.fov_y_deg)
+            t0 = time.perf_counter()
+            t.render(q, reprojection=True)
+            total += time.perf_counter() - t0
+        return 1e3 * total / self.frames
+
+    def full(self):
+        t0 = time.perf_counter()
+        self.fullt.render(self.pose, reprojection=False)
+        return 1e3 * (time.perf_counter() - t0)
+
+    def full_same_size(self):
+        # a full frame at the size of the reprojected one: the reference of the ratio reprojected / full
+        t0 = time.perf_counter()
+        self.rep.render(self.pose, reprojection=False)
+        return 1e3 * (time.perf_counter() - t0)
+
+
+def describe(probe):
+    import pywarp
+    return {"api": API, "pywarp": os.path.dirname(os.path.abspath(pywarp.__file__)),
+            "version": getattr(pywarp, "__version__", None), "python": sys.executable,
+            "python_version": sys.version.split()[0], "settings_not_applied": probe.not_applied}
+
+
+if __name__ == "__main__":
+    def send(obj):
+        proto.write(json.dumps(obj) + "\n")
+        proto.flush()
+
+    try:
+        probe = SpeedProbe(json.loads(sys.argv[1]))
+        send(dict(describe(probe), ready=True))
+        for line in sys.stdin:
+            cmd = line.strip()
+            if cmd == "quit":
+                break
+            if cmd not in ("reprojected", "full", "full_same_size"):
+                raise ValueError("unknown command " + repr(cmd))
+            send({"ms": getattr(probe, cmd)()})
+    except Exception as exc:
+        send({"error": type(exc).__name__ + ": " + str(exc)})
+        raise
+"""
+
+#: Variables removed from the baseline's environment: they point at this checkout (its package, its C library), and
+#: the other interpreter must import its own installation
+_BASELINE_ENV_DROP = ("PYTHONPATH", "PYTHONHOME", "PYTHONSTARTUP", "CCLOUDS_LIBRARY", "CCLOUDS_INCLUDE_DIR")
+
+
+class BaselineError(ValueError):
+    """The ``--baseline`` interpreter is missing, cannot import pywarp, or failed during the measurement."""
+
+
+def _check_baseline(python) -> str:
+    import os
+    import shutil
+
+    if not isinstance(python, (str, os.PathLike)) or not str(python):
+        raise BaselineError(f"--baseline must be the path of a Python interpreter, got {python!r}")
+    found = shutil.which(str(python))
+    if found is None:
+        why = "not executable" if os.path.exists(str(python)) else "no such file"
+        raise BaselineError(f"--baseline must be a Python interpreter with pywarp installed; {str(python)!r}: {why}")
+    return found
+
+
+class _BaselineProcess:
+    """The probe in another interpreter, answering one command at a time (so that the two sides never run at once)."""
+
+    def __init__(self, python: str, cfg: dict):
+        import json
+        import os
+        import subprocess
+        import tempfile
+
+        self.python = python
+        env = {k: v for k, v in os.environ.items() if k not in _BASELINE_ENV_DROP}
+        self._dir = tempfile.TemporaryDirectory(prefix="pywarp-baseline-")  # no source folder on its path
+        self._err = tempfile.TemporaryFile()
+        self.proc = subprocess.Popen([python, "-c", _SPEED_PROBE, json.dumps(cfg)], stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, stderr=self._err, text=True, env=env,
+                                     cwd=self._dir.name)
+        self.info = self._answer("start")
+
+    def _stderr_tail(self, lines: int = 3) -> str:
+        self._err.seek(0)
+        text = self._err.read().decode("utf-8", "replace").strip().splitlines()
+        return " | ".join(line.strip() for line in text[-lines:]) or "no output"
+
+    def _fail(self, what: str):
+        try:
+            rc = self.proc.wait(timeout=30)
+        except Exception:  # noqa: BLE001  (still running after a broken answer)
+            self.proc.kill()
+            rc = self.proc.wait()
+        tail = self._stderr_tail()
+        self.close()
+        raise BaselineError(f"--baseline {self.python} failed {what} (exit status {rc}): {tail}")
+
+    def _answer(self, what: str) -> dict:
+        import json
+
+        line = self.proc.stdout.readline()
+        if not line:
+            self._fail(f"at the {what}" if what == "start" else f"while measuring {what}")
+        try:
+            reply = json.loads(line)
+        except ValueError:
+            reply = None
+        if not isinstance(reply, dict):
+            self.proc.kill()
+            self._fail(f"at the {what}: it answered {line.strip()[:80]!r}, not the probe's JSON")
+        if "error" in reply:
+            self._fail(f"at the {what}" if what == "start" else f"while measuring {what}")
+        return reply
+
+    def measure(self, kind: str) -> float:
+        try:
+            self.proc.stdin.write(kind + "\n")
+            self.proc.stdin.flush()
+        except (BrokenPipeError, OSError):
+            self._fail(f"while measuring {kind}")
+        ms = self._answer(kind).get("ms")
+        if not isinstance(ms, (int, float)):
+            self._fail(f"while measuring {kind}: no time in its answer")
+        return float(ms)
+
+    def close(self) -> None:
+        import subprocess
+
+        if self.proc.poll() is None:
+            try:
+                self.proc.stdin.write("quit\n")
+                self.proc.stdin.flush()
+                self.proc.wait(timeout=30)
+            except (OSError, ValueError, subprocess.TimeoutExpired):
+                self.proc.kill()
+                self.proc.wait()
+        for f in (self.proc.stdin, self.proc.stdout):
+            try:
+                f.close()
+            except (OSError, ValueError):
+                pass
+        self._err.close()
+        self._dir.cleanup()
+
+
+def _speed_probe_module() -> dict:
+    """The probe's namespace in this process (the same source the baseline runs)."""
+    ns = {"__name__": "pywarp_speed_probe"}
+    exec(compile(_SPEED_PROBE, "<pywarp speed probe>", "exec"), ns)  # noqa: S102  (our own constant source)
+    return ns
+
+
+def speed_side(answer: dict | None) -> dict | None:
+    """One side's numbers from a probe's answers, every key of :data:`SPEED_KEYS` present (None where the side did not
+    give it: a baseline of an older layout); the ratio is computed when both times are there."""
+    if answer is None:
+        return None
+    out = dict(answer)
+    for k in SPEED_KEYS:
+        v = out.get(k)
+        out[k] = float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) else None
+    if out["reprojected_over_full"] is None and out["reprojected_ms"] and out["full_same_size_ms"]:
+        out["reprojected_over_full"] = out["reprojected_ms"] / out["full_same_size_ms"]
+    return out
+
+
+def speed_compare(ours: dict, baseline: dict | None) -> dict:
+    """Ratios of two sides (:func:`speed_side`): ``ours_over_baseline`` (time ours / time baseline; for the ratio
+    reprojected/full, ours / baseline too) and ``speedup`` (baseline / ours, for the two times). None where either
+    side lacks the number."""
+    ours, baseline = speed_side(ours), speed_side(baseline)
+    if baseline is None:
+        return {"ours_over_baseline": None, "speedup": None}
+    q = {k: (ours[k] / baseline[k] if ours.get(k) and baseline.get(k) else None) for k in SPEED_KEYS}
+    return {"ours_over_baseline": q,
+            "speedup": {k: (1.0 / q[k] if q[k] else None) for k in ("reprojected_ms", "full_ms", "full_same_size_ms")}}
+
+
+def bench_speed(repeat: int = 3, workers: int | None = None, device: str | None = None, baseline: str | None = None,
+                frames: int = 16, sizes: dict | None = None, scene: dict | None = None) -> dict:
+    """The speed numbers of the issue: the mean time of a reprojected frame on a steady path (``frames`` frames of a
+    slowly moving camera after one without history) at 640 x 360, the time of a full frame at 1280 x 720, and the
+    ratio of the reprojected frame to a full frame of its own size (640 x 360, also measured: the ratio of the
+    ladder, fig 4.17); each the best of ``repeat`` rounds.
+
+    ``baseline``: another Python interpreter (e.g. a venv with an older commit of this project installed). The same
+    probe (:data:`_SPEED_PROBE`) then runs there too, in a subprocess that imports that interpreter's pywarp, with
+    the same scene (:data:`SPEED_SCENE`), sizes, device and workers; the two sides take turns, one measurement at a
+    time (A B, then B A in the next round: interleaved, so both see the same machine), and the result holds both
+    sides and the ratios (ours / baseline, and the speed-up baseline / ours). The interpreter is checked and started
+    (importing its pywarp) before this side renders anything; a missing or failing one raises
+    :class:`BaselineError` (a ValueError) naming ``--baseline``. ``sizes``/``scene`` override the issue's (tests).
+    """
+    import os
+
+    if isinstance(repeat, bool) or not isinstance(repeat, int) or repeat < 1:
+        raise ValueError(f"repeat must be an integer >= 1, got {repeat!r}")
+    if isinstance(frames, bool) or not isinstance(frames, int) or frames < 1:
+        raise ValueError(f"frames must be an integer >= 1, got {frames!r}")
+    sizes = {**SPEED_SIZES, **(sizes or {})}
+    scene = dict(SPEED_SCENE if scene is None else scene)
+    python = None if baseline is None else _check_baseline(baseline)
+    cfg = {"scene": scene, "device": device or "cpu", "workers": workers, "frames": frames,
+           "reprojected": list(sizes["reprojected"]), "full": list(sizes["full"])}
+    load_before = list(os.getloadavg()) if hasattr(os, "getloadavg") else None
+    other = _BaselineProcess(python, cfg) if python else None
+    try:
+        ns = _speed_probe_module()
+        probe = ns["SpeedProbe"](cfg)
+        sides = {"ours": probe}
+        info = {"ours": ns["describe"](probe)}
+        if other is not None:
+            sides["baseline"] = other
+            info["baseline"] = {**other.info, "interpreter": python}  # as given (python: what it runs)
+        rounds = {name: {kind: [] for kind in SPEED_MEASUREMENTS} for name in sides}
+        order = list(sides)
+        for r in range(repeat):
+            for kind in SPEED_MEASUREMENTS:
+                for name in (order if r % 2 == 0 else order[::-1]):
+                    side = sides[name]
+                    ms = getattr(side, kind)() if name == "ours" else side.measure(kind)
+                    rounds[name][kind].append(round(float(ms), 3))
+    finally:
+        if other is not None:
+            other.close()
+    load_after = list(os.getloadavg()) if hasattr(os, "getloadavg") else None
+
+    def side(name):
+        if name not in rounds:
+            return None
+        d = {k: v for k, v in info[name].items() if k != "ready"}
+        for kind in SPEED_MEASUREMENTS:
+            d[f"{kind}_ms"] = min(rounds[name][kind])
+        d["rounds_ms"] = rounds[name]
+        return speed_side(d)
+
+    ours, base = side("ours"), side("baseline")
+    return {
+        "benchmark": "speed",
+        "schema": SPEED_SCHEMA,
+        "device": cfg["device"],
+        "workers": workers,
+        "repeat": repeat,
+        "path_frames": frames,
+        "sizes": {k: list(v) for k, v in sizes.items()},
+        "scene": scene,
+        "ours": ours,
+        "baseline": base,
+        **speed_compare(ours, base),
+        "targets": {"speedup": 1.8, "reprojected_over_full": round(1.0 / 14.0, 4)},
+        "load_average": {"before": load_before, "after": load_after},
+        "machine": machine(),
+    }
+
+
+def report_speed(res: dict) -> str:
+    """The table of :func:`bench_speed`; tolerates a result whose sides lack keys (an older baseline)."""
+    sizes = res.get("sizes", {k: list(v) for k, v in SPEED_SIZES.items()})
+    rw, rh = sizes["reprojected"]
+    fw, fh = sizes["full"]
+    fmt = lambda v, spec: "n/a" if v is None else format(v, spec)  # noqa: E731
+    ours = speed_side(res.get("ours")) or {}
+    base = speed_side(res.get("baseline"))
+    rows = ((f"{rw}x{rh} reprojected (mean of {res.get('path_frames', '?')} frames)", "reprojected_ms", "10.1f",
+             " ms"),
+            (f"{fw}x{fh} full frame", "full_ms", "10.1f", " ms"),
+            (f"{rw}x{rh} full frame", "full_same_size_ms", "10.1f", " ms"),
+            (f"reprojected / full, both {rw}x{rh}", "reprojected_over_full", "10.4f", ""))
+    m = res.get("machine", {})
+    head = (f"speed on {res.get('device', '?')}, {m.get('cores', '?')} cores ({m.get('cpu', '?')}), best of "
+            f"{res.get('repeat', '?')} interleaved rounds")
+    lines = [head]
+    if base is None:
+        for label, key, spec, unit in rows:
+            lines.append(f"  {label:<40} {fmt(ours.get(key), spec)}{unit}")
+    else:
+        q = res.get("ours_over_baseline") or {}
+        sp = res.get("speedup") or {}
+        lines.append(f"  {'':<40} {'ours':>10}   {'baseline':>10}   {'ours/base':>9}   {'speed-up':>8}")
+        for label, key, spec, unit in rows:
+            lines.append(f"  {label:<40} {fmt(ours.get(key), spec):>10}   {fmt(base.get(key), spec):>10}   "
+                         f"{fmt(q.get(key), '9.3f'):>9}   {fmt(sp.get(key), '7.2f') + ('x' if sp.get(key) else ''):>8}")
+        lines.append(f"  baseline: {base.get('interpreter') or base.get('python')} (pywarp {base.get('version')} at "
+                     f"{base.get('pywarp')})")
+        if base.get("settings_not_applied"):
+            lines.append(f"  the baseline's settings lack {', '.join(base['settings_not_applied'])} (its defaults)")
+    t = res.get("targets", {})
+    if t:
+        lines.append(f"  targets: speed-up >= {t.get('speedup')}x, reprojected / full <= {t.get('reprojected_over_full')}"
+                     " (1/14)")
+    la = res.get("load_average") or {}
+    if la.get("before"):
+        lines.append(f"  load average before {la['before'][0]:.2f}, after {la['after'][0]:.2f}")
+    return "\n".join(lines)
 
 
 def main(name: str, as_json: bool = False, **kw) -> dict:

@@ -68,6 +68,11 @@ SCENE = register(Scene(
                                   "speed-up of 2 over 1 and frames/s per worker, to size a cluster (needs dask)",
                           _lazy("..core.animation", "run_dask_bench"), _lazy("..core.animation", "report_dask"),
                           {"width": 320, "height": 180, "repeat": 1}),
+        "speed": Benchmark("speed", "640x360 reprojected (mean over a steady path) and 1280x720 full frame, and their "
+                                    "ratio; --baseline PYTHON measures another installation's the same way, "
+                                    "interleaved in one run, and prints both and the speed-ups",
+                           _lazy(".bench", "bench_speed"), _lazy(".bench", "report_speed"),
+                           {"repeat": 3, "workers": None, "baseline": None}),
         "reference": Benchmark("reference", "the real-time lighting models (thesis, +sky light, +multiple "
                                             "scattering) against the path-traced ground truth of three scenes: "
                                             "SSIM and mean CIEDE2000 after the best exposure scale (needs "
