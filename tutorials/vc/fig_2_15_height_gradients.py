@@ -3,8 +3,10 @@
 Both figures plot the vertical density profiles of vc-4.7 (``pywarp.clouds_height_gradient``), blended over the weather map's
 cloud type by vc-A16, as functions of the relative height h in the cloud layer (vc-A15). The remap inside them is
 vc-2.27. The thesis does not say whether its remap clamps (spec vc-4.7 note), so both variants are drawn: unclamped as
-printed (the default, clamp=False) and each remap saturated to [0, 1] (clamp=True), with the peak values the
-cataloguer computed in spec/vc.md annotated next to the values our function returns.
+printed (the default of ``clouds_height_gradient``, clamp=False) and each remap saturated to [0, 1] (clamp=True), with
+the peak values the cataloguer computed in spec/vc.md annotated next to the values our function returns. The
+cloudscape renderer uses the clamped gradient (``gradient_clamp = 1`` in ``ccl_cloudscape_params_default``,
+cclouds/src/cloudscape.c; read from there when the figure is drawn): both figures mark it.
 
 Outputs: figures/vc/fig-2.15.png (density over cloud type and height, the three named types marked) and
 figures/vc/fig-4.9.png (the three profiles against h, with their formulas).
@@ -19,7 +21,9 @@ figures/vc/fig-4.9.png (the three profiles against h, with their formulas).
 # The catch: remap (2.27) is a plain linear map. Outside its input range it keeps going, so the "ramps" are really
 # straight lines and their product is a parabola that can climb far above 1 (cumulus reaches 2.18). If each remap is
 # clamped to [0, 1] instead, the curves become the trapezoids one expects from the description. The thesis prints no
-# clamp; pywarp follows the print by default and offers clamp=True.
+# clamp; the function follows the print by default and offers clamp=True. The renderer draws its clouds with the
+# clamped gradient: unclamped, D_v reaches 2.18 and the coverage remap of vc-2.29 would then amplify density instead of
+# thinning it (the reason given with ``ccl_cloudscape_params_default``).
 
 # %%
 from __future__ import annotations
@@ -44,7 +48,21 @@ TYPES = (  # name, cloud_type, (a, b) rising remap, (c, d) falling remap
 # description. Typed in from the spec, never computed here, so the figure shows any disagreement with the code.
 SPEC_UNCLAMPED = {"cumulus": ("2.1764", 0.48), "stratocumulus": ("1.2190", 0.33), "stratus": ("1.1281", 0.105)}
 SPEC_CLAMPED = {"cumulus": "1 on [0.30, 0.60]", "stratocumulus": "1 on [0.25, 0.30]", "stratus": "0.75 at h = 0.05"}
-VARIANTS = ((False, "remap unclamped, as printed (default)"), (True, "each remap clamped to [0, 1]"))
+
+
+def renderer_clamp() -> bool:
+    """Whether the cloudscape renderer clamps the gradient: ``gradient_clamp`` of ``ccl_cloudscape_params_default``."""
+    from pywarp.clouds.cloudscape import CloudscapeSettings, param_values
+
+    return bool(param_values(CloudscapeSettings())["gradient_clamp"])
+
+
+def variants() -> tuple:
+    """(clamp, label) of the two readings; the renderer's is named."""
+    used = renderer_clamp()
+    mark = lambda clamp: " — used by the renderer" if clamp == used else ""  # noqa: E731
+    return ((False, "remap unclamped, as printed (function default)" + mark(False)),
+            (True, "each remap clamped to [0, 1]" + mark(True)))
 
 
 def _peak(h, d):
@@ -66,7 +84,8 @@ def fig_2_15(out_dir: Path, quick: bool) -> Path:
     cloud_type = np.linspace(0.0, 1.0, n_t, dtype=np.float32)
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.6), dpi=90 if quick else 150, sharey=True)
     vmax = 2.2  # shared colour scale: the unclamped cumulus peak (2.18) fits, and the two panels compare directly
-    for ax, (clamp, label) in zip(axes, VARIANTS):
+    used = renderer_clamp()
+    for ax, (clamp, label) in zip(axes, variants()):
         d_v = pywarp.clouds_height_gradient(h[:, None], cloud_type[None, :], clamp=clamp)
         im = ax.imshow(d_v, origin="lower", extent=(0.0, 1.0, 0.0, 1.0), aspect="auto", cmap="cividis",
                        vmin=0.0, vmax=vmax, interpolation="bilinear")
@@ -89,14 +108,21 @@ def fig_2_15(out_dir: Path, quick: bool) -> Path:
         ax.set_xticks([0.0, 0.25, 0.5, 0.75, 1.0],
                       ["0\nstratus", "0.25", "0.5\nstratocumulus", "0.75", "1\ncumulus"])
         ax.set_xlabel("cloud type (weather map blue channel, vc-A16)")
-        ax.set_title(label, fontsize=11)
+        ax.set_title(label, fontsize=11, fontweight="bold" if clamp == used else "normal")
+        if clamp == used:  # the renderer's gradient: a frame around its panel
+            for spine in ax.spines.values():
+                spine.set_edgecolor("C3")
+                spine.set_linewidth(2.5)
     axes[0].set_ylabel("relative height h in the cloud layer (vc-A15)")
     fig.colorbar(im, cax=fig.add_axes((0.895, 0.17, 0.015, 0.72)), label="vertical density $D_v$ (vc-4.7)")
     fig.suptitle("Height gradients by cloud type (vc-4.7 blended by vc-A16); white contour: $D_v = 1$")
-    fig.text(0.43, 0.015, "Difference: printed unclamped, remap extrapolates and the products exceed 1 "
+    fig.text(0.43, 0.045, "Difference: printed unclamped, remap extrapolates and the products exceed 1 "
              "(cumulus 2.18); clamped, every profile stays <= 1 and stratus peaks at only 0.75.",
              ha="center", fontsize=9)
-    fig.subplots_adjust(left=0.06, right=0.87, top=0.89, bottom=0.17, wspace=0.14)
+    fig.text(0.43, 0.012, f"The renderer uses the {'clamped' if used else 'unclamped'} gradient (framed; "
+             f"gradient_clamp = {int(used)} in ccl_cloudscape_params_default): unclamped, the coverage remap "
+             "would amplify density.", ha="center", fontsize=9, color="C3")
+    fig.subplots_adjust(left=0.06, right=0.87, top=0.89, bottom=0.19, wspace=0.14)
     out = out_dir / "fig-2.15.png"
     fig.savefig(out)
     plt.close(fig)
@@ -105,8 +131,8 @@ def fig_2_15(out_dir: Path, quick: bool) -> Path:
 
 def fig_4_9(out_dir: Path, quick: bool) -> Path:
     # %% [markdown]
-    # Figure 4.9: each profile against h with its formula. Solid: the printed, unclamped formula (pywarp's default);
-    # dashed: the clamped variant. The dotted line is density 1. The variants agree only where both ramps are inside
+    # Figure 4.9: each profile against h with its formula. Solid: the printed, unclamped formula (the function's
+    # default); dashed: the clamped variant, the one the renderer uses. The dotted line is density 1. The variants agree only where both ramps are inside
     # their input ranges at the same height: for stratus on [0.01, 0.05]. For the other two types the ramps do not
     # overlap, so at every height one of them is extrapolated beyond 1 and the printed curve lies above the clamped.
 
@@ -116,7 +142,7 @@ def fig_4_9(out_dir: Path, quick: bool) -> Path:
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.9), dpi=90 if quick else 150, sharey=True)
     styles = {False: {"ls": "-", "lw": 2.0}, True: {"ls": "--", "lw": 1.6}}
     for ax, (name, t, (a, b), (c, d)) in zip(axes, TYPES):
-        for clamp, label in VARIANTS:
+        for clamp, label in variants():
             d_v = pywarp.clouds_height_gradient(h, t, clamp=clamp)
             ax.plot(h, d_v, color="C0" if not clamp else "C3", label=label, **styles[clamp])
             top, h_top = _peak(h, d_v)
@@ -138,12 +164,17 @@ def fig_4_9(out_dir: Path, quick: bool) -> Path:
         ax.grid(alpha=0.25)
     axes[0].set_ylabel("vertical density $D_v$")
     handles, labels = axes[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", bbox_to_anchor=(0.5, 0.065), ncol=2, fontsize=9, frameon=False)
+    fig.legend(handles, labels, loc="lower center", bbox_to_anchor=(0.5, 0.085), ncol=2, fontsize=9, frameon=False)
     fig.suptitle("Height gradients of clouds, formula 4.7 (pywarp.clouds_height_gradient); markers: maxima computed by "
                  "pywarp", fontsize=11)
-    fig.text(0.5, 0.015, "Difference: solid = printed, unclamped remap (default; peaks 2.1764, 1.2190, 1.1281); "
-             "dashed = each remap clamped to [0, 1] (plateaus at 1, stratus only 0.75).", ha="center", fontsize=9)
-    fig.subplots_adjust(left=0.05, right=0.99, top=0.80, bottom=0.24, wspace=0.1)
+    used = renderer_clamp()
+    fig.text(0.5, 0.045, "Difference: solid = printed, unclamped remap (function default; peaks 2.1764, 1.2190, "
+             "1.1281); dashed = each remap clamped to [0, 1] (plateaus at 1, stratus only 0.75).", ha="center",
+             fontsize=9)
+    fig.text(0.5, 0.012, f"The cloudscape renderer draws its clouds with the "
+             f"{'dashed (clamped)' if used else 'solid (unclamped)'} profiles (gradient_clamp = {int(used)} in "
+             "ccl_cloudscape_params_default).", ha="center", fontsize=9, color="C3")
+    fig.subplots_adjust(left=0.05, right=0.99, top=0.80, bottom=0.27, wspace=0.1)
     out = out_dir / "fig-4.9.png"
     fig.savefig(out)
     plt.close(fig)

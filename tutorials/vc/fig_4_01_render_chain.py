@@ -2,8 +2,8 @@
 
 A diagram, not a computation: sky model -> cloud raymarch -> optional reprojection, with the reprojection flag acting on
 every stage (it selects the pixel index of vc-4.1 and launches 1/16 of the threads), and the inputs of the technique —
-the noise textures from the generator, the camera and the settings. It is drawn from the design of this implementation
-(ARCHITECTURE.md, "One frame of the cloudscape"; pywarp/clouds/cloudscape.py) with the names of the pywarp pipeline: sky
+the noise textures from the generator, the camera and the settings. It is drawn from this implementation (the module
+docstring of pywarp/clouds/cloudscape.py and CloudscapeTechnique.render there) with the names of the pywarp pipeline: sky
 models GradientSky (vc-A28) and PreethamSky (vc-A29), textures from BasicTextureGenerator (vc-A9, vc-A10, vc-A11,
 vc-A12), the technique CloudscapeTechnique with init / update / render, the camera as CameraPose, the cloud density
 and light of vc-A17 and vc-A20 composited by vc-4.8, and the temporal reprojection of vc-A26 and vc-A27.
@@ -142,7 +142,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax.text(5.2, 0.9, "sky and clouds need no history: only the reprojection reads the previous frame",
             ha="center", va="center", fontsize=8, color="0.35", style="italic")
 
-    fig.suptitle("Rendering chain of the cloudscape (one frame): redrawn from the pywarp design (ARCHITECTURE.md)",
+    fig.suptitle("Rendering chain of the cloudscape (one frame), redrawn from pywarp/clouds/cloudscape.py "
+                 "(CloudscapeTechnique.render)",
                  fontsize=12, y=0.985)
     fig.subplots_adjust(left=0.01, right=0.99, top=0.95, bottom=0.01)
     out = out_dir / "fig-4.1.png"
