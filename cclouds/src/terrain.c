@@ -519,7 +519,9 @@ ccl_status ccl_terrain_params_check(ccl_terrain_params *p, const char **out_fiel
     CCL_TERRAIN_BAD(p->heightmap != CCL_TERRAIN_TEST && p->heightmap != CCL_TERRAIN_FBM, "heightmap");
     CCL_TERRAIN_BAD(p->march_octaves < 1 || p->march_octaves > 16, "march_octaves");
     CCL_TERRAIN_BAD(!in_range(p->height_scale, 0.0f, 1000.0f), "height_scale");
-    CCL_TERRAIN_BAD(!(p->horizontal_scale > 0.0f && p->horizontal_scale <= 10000.0f), "horizontal_scale");
+    /* the three noise scales (units per noise unit) >= CCL_TERRAIN_MIN_SCALE: a tiny one (1.02e-38) overflowed
+     * x / scale to Inf and the shade to NaN */
+    CCL_TERRAIN_BAD(!in_range(p->horizontal_scale, CCL_TERRAIN_MIN_SCALE, 10000.0f), "horizontal_scale");
     CCL_TERRAIN_BAD(p->march_method < 0 || p->march_method > 2, "march_method");
     CCL_TERRAIN_BAD(!(p->max_t > 0.0f && p->max_t <= 10000.0f), "max_t");
     CCL_TERRAIN_BAD(!in_range(p->step_size, 0.015625f, 100.0f), "step_size");
@@ -560,13 +562,13 @@ ccl_status ccl_terrain_params_check(ccl_terrain_params *p, const char **out_fiel
     CCL_TERRAIN_BAD(p->cloud_variant != CCL_VARIANT_CORRECTED && p->cloud_variant != CCL_VARIANT_THESIS,
                     "cloud_variant");
     CCL_TERRAIN_BAD(!in_range(p->cloud_height, -10000.0f, 10000.0f), "cloud_height");
-    CCL_TERRAIN_BAD(!(p->cloud_scale > 0.0f && p->cloud_scale <= 1e6f), "cloud_scale");
+    CCL_TERRAIN_BAD(!in_range(p->cloud_scale, CCL_TERRAIN_MIN_SCALE, 1e6f), "cloud_scale");
     CCL_TERRAIN_BAD(!in_range(p->wind.x, -1000.0f, 1000.0f) || !in_range(p->wind.y, -1000.0f, 1000.0f), "wind");
     CCL_TERRAIN_BAD(!in_range(p->time, 0.0f, 1e6f), "time");
     CCL_TERRAIN_BAD(!colour_ok(p->cloud_colour), "cloud_colour");
     CCL_TERRAIN_BAD(!in_range(p->water_level, -10000.0f, 10000.0f), "water_level");
     CCL_TERRAIN_BAD(!(p->water_kappa > 0.0f && p->water_kappa <= 100.0f), "water_kappa");
-    CCL_TERRAIN_BAD(!(p->wave_scale > 0.0f && p->wave_scale <= 1e4f), "wave_scale");
+    CCL_TERRAIN_BAD(!in_range(p->wave_scale, CCL_TERRAIN_MIN_SCALE, 1e4f), "wave_scale");
     CCL_TERRAIN_BAD(!in_range(p->wave_strength, 0.0f, 10.0f), "wave_strength");
     CCL_TERRAIN_BAD(!colour_ok(p->water_tint), "water_tint");
     CCL_TERRAIN_BAD(p->samples_per_axis < 1 || p->samples_per_axis > 8, "samples_per_axis");

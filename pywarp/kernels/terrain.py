@@ -63,7 +63,10 @@ _STEP_SCALE = Arg("step_scale", "factor on the dynamic step (1: Kod 7.5; 0.5: 'h
 _OCTAVES = Arg("octaves", "fBm octaves of the heightmap (fbm only)", lo=1, hi=16, default=4, sample_range=(1, 6))
 _HEIGHT = Arg("height_scale", "height of the fBm heightmap (units; fbm only)", lo=0.0, hi=1000.0, default=12.0,
               sample_range=(1.0, 20.0))
-_HSCALE = Arg("horizontal_scale", "units per fBm unit (fbm only)", lo=0.0, hi=1.0e4, lo_open=True, default=24.0,
+#: Smallest noise scale (units per noise unit) of horizontal_scale, cloud_scale and wave_scale (the C
+#: CCL_TERRAIN_MIN_SCALE): finer noise only aliases, and position / scale stays finite (1.02e-38 gave a NaN shade).
+MIN_SCALE = 0.015625  # 1/64, exact in float32
+_HSCALE = Arg("horizontal_scale", "units per fBm unit (fbm only)", lo=MIN_SCALE, hi=1.0e4, default=24.0,
               sample_range=(5.0, 50.0))
 _SEED = Arg("seed", "Perlin seed of the fBm (uint32; 0 = Perlin's table; fbm only)", lo=0, hi=4294967295,
             dtype="uint32", default=0)
@@ -523,8 +526,8 @@ def clouds_perm(colour: wp.vec3, ro: wp.vec3, rd: wp.vec3, cloud_height: float, 
                Arg("cloud_height", "cloudHeight: y of the cloud plane (units)", sample_range=(60.0, 500.0)),
                Arg("wind", "windSpeed (x, z) (units/s)", sample_range=(-10.0, 10.0)),
                Arg("time", "time (s)", lo=0.0, hi=1.0e6, default=0.0, sample_range=(0.0, 100.0)),
-               Arg("cloud_scale", "units per fBm unit (1: the listing, which has no scale)", lo=0.0, hi=1.0e6,
-                   lo_open=True, default=1.0, sample_range=(1.0, 300.0)),
+               Arg("cloud_scale", "units per fBm unit (1: the listing, which has no scale)", lo=MIN_SCALE, hi=1.0e6,
+                   default=1.0, sample_range=(1.0, 300.0)),
                Arg("cloud_colour", "cloudColor (RGB)", **_COLOUR, default=(1.0, 1.0, 1.0), sample_range=(0.0, 1.0)),
                _SEED),
          options=(VARIANT,), outputs=("colour",), derived=_PERM,
@@ -898,9 +901,10 @@ def water_normal(x, z, time: float = 0.0, wave_scale: float = 2.0, wave_strength
     ``ccl_terrain_water_normal_perm``."""
     xa = Arg("x").check(x)
     za = Arg("z").check(z)
-    for name, v, lo in (("time", time, 0.0), ("wave_scale", wave_scale, None), ("wave_strength", wave_strength, 0.0)):
-        if not math.isfinite(float(v)) or (lo is not None and float(v) < lo) or (lo is None and not float(v) > 0.0):
-            raise ValueError(f"{name} must be finite and {'>= 0' if lo is not None else '> 0'}, got {v!r}")
+    for name, v, lo in (("time", time, 0.0), ("wave_scale", wave_scale, MIN_SCALE),
+                        ("wave_strength", wave_strength, 0.0)):
+        if not math.isfinite(float(v)) or float(v) < lo:
+            raise ValueError(f"{name} must be finite and >= {lo:g}, got {v!r}")
     seed = _check_seed(seed)
     shape = np.broadcast_shapes(xa.shape, za.shape)
     xf = np.ascontiguousarray(np.broadcast_to(xa, shape).ravel())

@@ -102,7 +102,7 @@ class TerrainSettings(Settings):
     height_scale: float = param(12.0, unit="units", lo=0.0, hi=1000.0, group="heightmap",
                                 doc="fBm amplitude: heights within +-2 height_scale",
                                 reason="12: hills up to ~20 units over valleys ~50 units wide, slopes up to ~45 deg")
-    horizontal_scale: float = param(24.0, unit="units", lo=0.0, hi=1e4, lo_open=True, group="heightmap",
+    horizontal_scale: float = param(24.0, unit="units", lo=0.015625, hi=1e4, group="heightmap",
                                     doc="units per fBm unit (the largest hills are 2 x this apart)",
                                     reason="24: with height_scale 12 the relief of rolling hills; a hiker's eye "
                                            "(~5 units) sees several ridges before the fog")
@@ -234,7 +234,7 @@ class TerrainSettings(Settings):
     cloud_height: float = param(250.0, unit="units", lo=-1e4, hi=1e4, group="atmosphere",
                                 doc="cloudHeight: y of the cloud plane",
                                 reason="250: ten times the highest hills, a cloud deck that stretches to the horizon")
-    cloud_scale: float = param(150.0, unit="units", lo=0.0, hi=1e6, lo_open=True, group="atmosphere",
+    cloud_scale: float = param(150.0, unit="units", lo=0.015625, hi=1e6, group="atmosphere",
                                doc="units per fBm unit of the cloud noise (Kod 7.11 has no scale: 1)",
                                reason="150: clouds ~300 units across, a few over the sky at cloud_height 250")
     wind_x: float = param(6.0, unit="units/s", lo=-1000.0, hi=1000.0, group="atmosphere",
@@ -253,7 +253,7 @@ class TerrainSettings(Settings):
                                doc="kappa of eq 7.4 (1, 3, 6 in Obrazok 7.9)",
                                reason="3: the middle value of Obrazok 7.9: the bottom shows near the shore, the sky "
                                       "farther out")
-    wave_scale: float = param(2.0, unit="units", lo=0.0, hi=1e4, lo_open=True, group="water",
+    wave_scale: float = param(2.0, unit="units", lo=0.015625, hi=1e4, group="water",
                               doc="size of the waves (units per noise unit)",
                               reason="2: ripples a fraction of a hiker's height")
     wave_strength: float = param(0.08, lo=0.0, hi=10.0, group="water", doc="slope amplitude of the wave normals",

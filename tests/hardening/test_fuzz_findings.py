@@ -17,8 +17,11 @@ from pywarp.kernels import camera as CAM
 from pywarp.kernels import flight as F
 from pywarp.kernels import noise
 from pywarp.kernels import sky as sky_mod
+from pywarp.kernels import terrain as K
 from pywarp.kernels import volume as V
 from pywarp.kernels.noise import perm_array
+from pywarp.terrain.settings import TerrainSettings
+from pywarp.terrain.technique import render_pixels_c, render_pixels_warp
 
 IMPLS = ("warp", "c")
 
@@ -312,3 +315,57 @@ def test_volume_sky_glow_clamps_the_cosine_in_c_and_warp():
 @wp.kernel
 def _volume_sky_kernel(p: V.VolumeParams, d: wp.vec3, out: wp.array(dtype=wp.vec3)):
     out[0] = V.volume_sky(p, d)
+
+
+# --- finding 8: terrain noise scales bounded below ----------------------------------------------------------------------
+
+@pytest.mark.parametrize("field", ["horizontal_scale", "cloud_scale", "wave_scale"])
+@pytest.mark.parametrize("value", [1.02e-38, 1e-45, 0.0155])
+def test_terrain_check_refuses_tiny_noise_scales(field, value):
+    """Before: the domains were (0, max]; horizontal_scale 1.02e-38 overflowed x / scale and ccl_terrain_shade
+    returned NaN (cloud_scale and wave_scale alike, found by the strict harness)."""
+    with pytest.raises(ValueError, match=rf"^{field} is out of range \(ccl_terrain_params_check\)"):
+        K.c_params({field: value})
+    with pytest.raises(ValueError, match=field):
+        TerrainSettings(**{field: value})
+
+
+def test_terrain_shade_nan_case_of_the_finding_is_refused_and_the_limit_is_finite():
+    """The finding's parameters (march_octaves 1, step_size 3.14, precision 1.001, max_steps 1) with
+    horizontal_scale 1.02e-38 are refused; at the limit 1/64 of all three scales ccl_terrain_shade is finite for
+    rays in every direction."""
+    base = dict(heightmap=1, march_octaves=1, step_size=3.14, precision=1.001, max_steps=1)
+    with pytest.raises(ValueError, match=r"^horizontal_scale"):
+        K.c_params(dict(base, horizontal_scale=1.02e-38))
+    p = K.c_params(dict(base, horizontal_scale=K.MIN_SCALE, cloud_scale=K.MIN_SCALE, wave_scale=K.MIN_SCALE))
+    rng = np.random.default_rng(3)
+    steps = ffi().new("int *")
+    for _ in range(200):
+        d = rng.normal(size=3)
+        d /= np.linalg.norm(d)
+        ro, rd = ffi().new("ccl_vec3 *"), ffi().new("ccl_vec3 *")
+        ro.x, ro.y, ro.z = rng.uniform(-100, 100), rng.uniform(0, 50), rng.uniform(-100, 100)
+        rd.x, rd.y, rd.z = (float(v) for v in d.astype(np.float32))
+        c = lib().ccl_terrain_shade(p, ro[0], rd[0], steps)
+        assert np.all(np.isfinite([c.x, c.y, c.z])), (ro, d)
+
+
+def test_terrain_pixels_at_the_scale_limit_finite_and_twins_equal():
+    s = TerrainSettings(width=48, height=27, horizontal_scale=K.MIN_SCALE, cloud_scale=K.MIN_SCALE, wave_scale=K.MIN_SCALE,
+                        water_level=0.0)
+    rng = np.random.default_rng(5)
+    xs, ys = rng.integers(0, s.width, 24), rng.integers(0, s.height, 24)
+    cw, sw = render_pixels_warp(s, xs, ys)
+    cc, sc = render_pixels_c(s, xs, ys)
+    assert np.all(np.isfinite(cw))
+    np.testing.assert_array_equal(cw, cc)
+    np.testing.assert_array_equal(sw, sc)
+
+
+def test_terrain_min_scale_is_the_c_check_limit():
+    """The Python limit is the C one: the C check accepts MIN_SCALE and refuses the float below it."""
+    below = float(np.nextafter(np.float32(K.MIN_SCALE), np.float32(0)))
+    for field in ("horizontal_scale", "cloud_scale", "wave_scale"):
+        K.c_params({field: K.MIN_SCALE})
+        with pytest.raises(ValueError, match=field):
+            K.c_params({field: below})

@@ -60,6 +60,12 @@ typedef enum ccl_terrain_stage {
     CCL_TERRAIN_STAGE_FINAL = 3       /* (d) + water */
 } ccl_terrain_stage;
 
+/* Smallest noise scale (units per noise unit) of horizontal_scale, cloud_scale and wave_scale: 1/64 (exact in
+ * float32, like the smallest step_size), far below any use (defaults 24, 150, 2: finer noise only aliases) and large
+ * enough that position / scale stays finite for every position the march reaches (1.02e-38 made x / horizontal_scale
+ * Inf and the shade NaN). */
+#define CCL_TERRAIN_MIN_SCALE 0.015625f
+
 /* Upper bound of the iterations of the fixed-step march: max_t / step_size <= 10000 * 64 < 10^6. */
 #define CCL_TERRAIN_MAX_FIXED_STEPS 1000000
 
@@ -71,7 +77,7 @@ typedef struct ccl_terrain_params {
     uint32_t seed;             /* Perlin permutation seed of the fBm (0: Perlin's table) */
     int32_t march_octaves;     /* fBm octaves of the march and the shadows, [1, 16] */
     float height_scale;        /* units, [0, 1000] */
-    float horizontal_scale;    /* units per fBm unit, (0, 10000] */
+    float horizontal_scale;    /* units per fBm unit, [1/64, 10000] */
     /* marching */
     int32_t march_method;      /* ccl_terrain_march_method */
     float max_t;               /* MAX_T, (0, 10000] */
@@ -117,14 +123,14 @@ typedef struct ccl_terrain_params {
     float sun_power;           /* exponent of the sun glow (Kod 7.10: 80), (0, 10000] */
     int32_t cloud_variant;     /* ccl_variant of Kod 7.11 (CCL_VARIANT_CORRECTED: no clouds below the horizon) */
     float cloud_height;        /* cloudHeight, units */
-    float cloud_scale;         /* units per fBm unit of the cloud noise, (0, 1e6] */
+    float cloud_scale;         /* units per fBm unit of the cloud noise, [1/64, 1e6] */
     ccl_vec2 wind;             /* windSpeed (x, z), units per second */
     float time;                /* seconds, [0, 1e6] */
     ccl_vec3 cloud_colour;     /* cloudColor of Kod 7.11 */
     /* water */
     float water_level;         /* y of the water plane */
     float water_kappa;         /* kappa of eq 7.4, (0, 100] */
-    float wave_scale;          /* units per noise unit of the wave normal, (0, 1e4] */
+    float wave_scale;          /* units per noise unit of the wave normal, [1/64, 1e4] */
     float wave_strength;       /* slope amplitude of the waves, [0, 10] */
     ccl_vec3 water_tint;       /* factor on the underwater colour ((1, 1, 1): the text's plain blend) */
     /* image */
