@@ -114,17 +114,20 @@ def errors(model: np.ndarray, target: np.ndarray) -> dict:
 
 
 def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | None = None, device: str = "cpu",
-            seed: int = 0, scenes=None, progress=None) -> tuple[dict, dict]:
+            seed: int = 0, scenes=None, progress=None, settings: dict | None = None) -> tuple[dict, dict]:
     """Run the comparison: (result, images). ``images[scene]`` maps 'reference' and each rendered model to its
-    display image (uint8 sRGB, after the exposure of the table) -- for the tutorial. ``spp`` >= 2 (two halves)."""
+    display image (uint8 sRGB, after the exposure of the table) -- for the tutorial. ``spp`` >= 4 (two halves).
+    ``settings``: further settings for every render (e.g. smaller textures for a quick run)."""
     from ..core.timing import machine
     from .cloudscape import CloudscapeTechnique, RenderTextures
     from .reference import ReferenceRenderer
     from .settings import CloudscapeSettings
 
-    if isinstance(spp, bool) or not isinstance(spp, (int, np.integer)) or not 2 <= spp <= 65536:
-        raise ValueError(f"spp must be in [2, 65536] (two halves of independent seeds), got {spp!r}")
-    base = CloudscapeSettings(width=width, height=height, device=device, threads=workers)
+    if isinstance(spp, bool) or not isinstance(spp, (int, np.integer)) or not 4 <= spp <= 65536:
+        raise ValueError(f"spp must be in [4, 65536] (two halves of independent seeds, each of at least 2 paths for "
+                         f"its standard error), got {spp!r}")
+    base = CloudscapeSettings(**{**(settings or {}), "width": width, "height": height, "device": device,
+                                 "threads": workers})
     names = list(SCENES) if scenes is None else list(scenes)
     for n in names:
         if n not in SCENES:

@@ -748,7 +748,7 @@ class ReferenceRenderer:
         """The path-traced frame: uint8 sRGB (height, width, 3), or display-linear float32 with ``encode=False``
         (the mean of ``spp`` paths per pixel). ``progress(fraction)`` as passes of PASS_SPP samples finish. Sets
         :attr:`stats`: spp, seconds, std_error (per-pixel Monte Carlo standard error of the linear image, mean over
-        pixels and channels), std_error_max, flags."""
+        pixels and channels; NaN at spp = 1), std_error_max, std_error_image."""
         s = self.settings
         pose = pose or CameraPose.from_settings(s)
         cam = pose.camera(s.width, s.height)
@@ -781,7 +781,7 @@ class ReferenceRenderer:
         n = float(self.spp)
         mean = accum.numpy() / n
         var = np.maximum(accum_sq.numpy() / n - mean * mean, 0.0) * (n / max(n - 1.0, 1.0))
-        se = np.sqrt(var / n)
+        se = np.sqrt(var / n) if self.spp > 1 else np.full_like(mean, np.nan)  # one path: no variance estimate
         self.stats = {"spp": self.spp, "seed": self.seed, "bounces": self.bounces, "seconds": seconds,
                       "seconds_per_spp": seconds / n, "std_error": float(se.mean()),
                       "std_error_max": float(se.max()), "std_error_image": se.astype(np.float32)}

@@ -252,3 +252,39 @@ def test_cli_reference_bad_values_one_line_no_file(tmp_path, args, message):
     assert res.returncode == 2
     assert res.stderr.strip().splitlines()[-1].startswith(message), res.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+# --- the benchmark's metrics ----------------------------------------------------------------------------------------
+
+def test_error_metrics_after_the_best_exposure_scale(rng):
+    from pywarp.clouds.bench_reference import best_scale, errors, exposure
+
+    ref = rng.uniform(0.0, 2.0, (20, 30, 3))
+    k = best_scale(ref / 3.0, ref)
+    assert k == pytest.approx(3.0, rel=1e-12)
+    same = errors(ref / 3.0, ref * exposure(ref))  # a model that differs only by its exposure: no error
+    assert same["ssim"] == pytest.approx(1.0, abs=1e-9) and same["delta_e"] == pytest.approx(0.0, abs=1e-6)
+    assert np.percentile(np.max(ref * exposure(ref), axis=2), 99.5) == pytest.approx(1.0)
+    noisy = errors(ref + rng.normal(0.0, 0.5, ref.shape), ref * exposure(ref))
+    assert noisy["ssim"] < 0.9 and noisy["delta_e"] > 1.0
+    # a colour cast the exposure cannot remove
+    tinted = errors(ref * np.array([1.0, 0.8, 0.6]), ref * exposure(ref))
+    assert tinted["delta_e"] > 3.0
+
+
+def test_compare_gives_a_row_per_scene_and_model():
+    from pywarp.clouds.bench_reference import MODELS, compare, report
+
+    res, images = compare(16, 9, spp=4, scenes=["noon"], progress=lambda m: None, settings=SMALL)
+    (sc,) = res["scenes"]
+    assert sc["scene"] == "noon" and [m["model"] for m in sc["models"]] == list(MODELS)
+    for m in sc["models"]:
+        assert -1.0 <= m["ssim"] <= 1.0 and m["delta_e"] >= 0.0 and m["scale"] > 0.0
+        assert images["noon"][m["model"]].shape == (9, 16, 3)
+    assert sc["std_error"] > 0 and 0 < sc["noise_floor"]["ssim"] <= 1
+    assert "noise floor" in report(res)
+    import json
+
+    json.dumps(res)  # the --json output
+    with pytest.raises(ValueError, match=r"spp must be in \[4, 65536\]"):
+        compare(16, 9, spp=3)
