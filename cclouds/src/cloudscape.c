@@ -32,8 +32,17 @@
  *                             slightly warm, as low sunlight is.
  *   ambient bottom (0.12, 0.14, 0.18), top (0.30, 0.34, 0.42)   bluish sky light, about a third of the sunlit
  *                             brightness, darker at the shadowed base: the bases stay grey-blue, not black.
- *   samples 64 .. 128, adaptive, early exit with eps 1/256, light cone 0.1 km / 15 deg / far 3, tilt jitter 0.002:
+ *   samples 64 .. 128, adaptive, early exit with eps 1/256, light cone 0.1 km / 15 deg / far 3:
  *                             the thesis's counts and our raymarch defaults (cclouds/raymarch.h).
+ *   jitter offset (amount 0.002 for the tilt mode)   the first sample's position along the ray; the thesis's tilt
+ *                             of up to 0.002 rad per axis moves the ray by more than a pixel (0.0019 rad at
+ *                             960 x 540): far clouds changed from frame to frame (the flickering horizon) and near
+ *                             ones looked out of focus.
+ *   lod 1, lod_bias 0         level of detail (see ccl_cloudscape_lod): one texel per footprint, the usual mip-mapping
+ *                             criterion; without it steps and pixels near the horizon undersample the 25-50 m texels.
+ *   refine_step_km 0.1, refine_max 8   near the horizon the view steps reach ~0.8 km and one step crossed a whole
+ *                             cloud: the pixel took the light of one random depth. 0.1 km is about three mean free
+ *                             paths of the default extinction in a typical cloud; 8 sub-steps take 0.8 km to 0.1 km.
  *   light_detail 1            light samples use the full density (the thesis takes the density towards the sun;
  *                             it does not say that the light samples skip the detail).
  *   ground_colour (0.09, 0.10, 0.08)  a dark, slightly green-brown ground (albedo ~0.1 of vegetation and soil under
@@ -59,14 +68,20 @@
  *   ambient_bottom_ratio 0.4  the ratio of the thesis's constants above: ambient_bottom / ambient_top =
  *                             (0.40, 0.41, 0.43).
  *   ambient_ground            = ambient_top (unused in thesis mode; ccl_cloudscape_light overwrites it in sky mode).
- *   ground_albedo (0.06, 0.08, 0.05)  darker than the albedo of vegetation and soil (0.1-0.2): the energy of
- *                             vc-2.31 makes the clouds dim reflectors (a lit cloud top reaches ~0.15 of a white
- *                             Lambertian surface under the same sun), so a physical albedo would light the ground
- *                             almost as brightly as the clouds; at 0.06-0.08 the ground keeps the contrast of a
- *                             photograph (clouds several times brighter than the land).
+ *   ground_albedo (0.04, 0.05, 0.03)  a third of the albedo of vegetation and soil (0.1-0.2), for the exposure of
+ *                             this renderer: the energy of vc-2.31 makes the clouds dim reflectors (a lit cloud top
+ *                             reaches ~0.15 of a white Lambertian surface under the same sun), so the sun constant
+ *                             that exposes the clouds is ~3.5 times brighter, relative to the display-linear sky,
+ *                             than the real sun (100 klx against a ~6 kcd/m^2 zenith: a white surface ~5 times the
+ *                             zenith sky; here 3.9 / 0.22 ~ 18 times). Scaled by that factor, the sunlit ground
+ *                             stays darker than the zenith sky and the clouds stand out from it, as in a
+ *                             photograph.
  *   aerial_km 30              an extinction of 1/30 per km near the ground: Koschmieder's visual range 3.912 x 30 =
  *                             117 km, a clear day (turbidity 2-3); the horizon band of clouds (40-100 km away)
  *                             fades into the horizon sky, clouds a few km away keep their colour.
+ *   aerial_height_km 2        the haze that limits the visual range is mostly aerosol, held in the lowest kilometres
+ *                             (aerosol scale heights 1-2 km; the air's own, Rayleigh, is 8 km): seen from 8 km up the
+ *                             ground is then veiled, not lost in a homogeneous fog 8 km deep.
  *   ms_octaves 3, ms_a = ms_b = ms_c = 0.5   each octave halves the optical depth, the contribution and the phase
  *                             eccentricity (the octave form of Wrenninge et al. 2013 as Hillaire 2016 uses it, which
  *                             needs a <= b to conserve energy); 0.5 for all three is our choice; three octaves bring
@@ -80,7 +95,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     static const float amb_bottom[3] = {0.12f, 0.14f, 0.18f};
     static const float amb_top[3] = {0.30f, 0.34f, 0.42f};
     static const float ground[3] = {0.09f, 0.10f, 0.08f};
-    static const float albedo[3] = {0.06f, 0.08f, 0.05f};
+    static const float albedo[3] = {0.04f, 0.05f, 0.03f};
     CCL_REQUIRE(out != NULL);
     memset(out, 0, sizeof *out);
     ccl_raymarch_cloud_layer_default(&out->layer);
@@ -106,7 +121,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->light_cone_angle = 0.2617994f; /* 15 degrees */
     out->light_far_factor = 3.0f;
     out->light_detail = 1;
-    out->jitter_mode = CCL_JITTER_TILT;
+    out->jitter_mode = CCL_JITTER_OFFSET;
     out->jitter_amount = 0.002f;
     out->gradient_clamp = 1;
     out->detail_direction = CCL_DETAIL_FORMULA;
@@ -121,6 +136,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     memcpy(out->ambient_ground, amb_top, sizeof amb_top);
     memcpy(out->ground_albedo, albedo, sizeof albedo);
     out->aerial_km = 30.0f;
+    out->aerial_height_km = 2.0f;
     out->ms_octaves = 3;
     out->ms_a = 0.5f;
     out->ms_b = 0.5f;
@@ -129,6 +145,8 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->silver_weight = 0.3f;
     out->lod = 1;
     out->lod_bias = 0.0f;
+    out->refine_step_km = 0.1f;
+    out->refine_max = 8;
 }
 
 static int finite_pos(float v) { return v > 0.0f && v < INFINITY; }
@@ -205,6 +223,7 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         if (!(p->ground_albedo[c] >= 0.0f && p->ground_albedo[c] <= 1.0f)) return bad(out_field, "ground_albedo");
     }
     if (!finite_nonneg(p->aerial_km)) return bad(out_field, "aerial_km");
+    if (!finite_nonneg(p->aerial_height_km)) return bad(out_field, "aerial_height_km");
     if (!(p->ms_octaves >= 1 && p->ms_octaves <= CCL_CLOUDSCAPE_MAX_MS_OCTAVES)) return bad(out_field, "ms_octaves");
     if (!(p->ms_a >= 0.0f && p->ms_a <= 1.0f)) return bad(out_field, "ms_a");
     if (!(p->ms_b >= 0.0f && p->ms_b <= 1.0f)) return bad(out_field, "ms_b");
@@ -213,6 +232,8 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!(p->silver_weight >= 0.0f && p->silver_weight <= 1.0f)) return bad(out_field, "silver_weight");
     if (!(p->lod == 0 || p->lod == 1)) return bad(out_field, "lod");
     if (!(p->lod_bias >= -4.0f && p->lod_bias <= 4.0f)) return bad(out_field, "lod_bias");
+    if (!(p->refine_step_km >= 0.0f && p->refine_step_km < INFINITY)) return bad(out_field, "refine_step_km");
+    if (!(p->refine_max >= 1 && p->refine_max <= 64)) return bad(out_field, "refine_max");
     if (t == NULL) return bad(out_field, "textures");
     if (t->base == NULL || !is_pow2(t->base_size)) return bad(out_field, "base");
     if (t->detail == NULL || !is_pow2(t->detail_size)) return bad(out_field, "detail");
@@ -575,8 +596,8 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                           int *out_samples, float *out_depth_km)
 {
     ccl_vec3 colour = {0.0f, 0.0f, 0.0f};
-    float trans = 1.0f, t0, t1, t_start, dt, cos_theta, depth_sum = 0.0f, depth_w = 0.0f;
-    int n, i, j, taken = 0;
+    float trans = 1.0f, t0, t1, t_start, dt, dt_view, cos_theta, depth_sum = 0.0f, depth_w = 0.0f;
+    int n, i, j, k, m, sub, prev_cloud = 0, taken = 0;
     const ccl_cloud_layer *L = &p->layer;
     if (ccl_raymarch_layer_segment(eye, dir, L->centre, L->r_earth, L->r_inner, L->r_outer, &t0, &t1)) {
         n = p->adaptive_samples ? ccl_raymarch_view_sample_count(dir.y, p->samples_min, p->samples_max)
@@ -585,16 +606,47 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
         /* |d| and |to_sun| are 1 only to within rounding (and the check's tolerance): keep the phase function's
          * argument in its domain [-1, 1] */
         cos_theta = cos_theta > 1.0f ? 1.0f : (cos_theta < -1.0f ? -1.0f : cos_theta);
-        if (ccl_raymarch_interval(t0, t1, n, &t_start, &dt)) {
-            for (i = 0; i < n; ++i) {
-                float precip, rho, h, d_light = 0.0f, a, e;
+        if (ccl_raymarch_interval(t0, t1, n, &t_start, &dt_view)) {
+            /* refinement: a view step longer than refine_step_km is split into k sub-steps where the coarse test
+             * (base shape, no detail, at the step's own sample) finds cloud here or at the previous step; an empty
+             * step costs that one lookup */
+            k = 1;
+            if (p->refine_step_km > 0.0f && dt_view > p->refine_step_km) {
+                const float kf = ceilf(dt_view / p->refine_step_km);
+                k = kf < (float)p->refine_max ? (int)kf : p->refine_max;
+            }
+            dt = dt_view / (float)k;
+            m = 0;
+            while (m < n * k) {
+                float precip, rho, h, d_light = 0.0f, a, e, t_i;
                 int stop;
-                ccl_vec3 pos = ccl_raymarch_point(eye, dir, t_start, dt, i, offset), light;
+                ccl_vec3 pos, light;
                 float lod_b = 0.0f, lod_d = 0.0f, lod_lb = 0.0f, lod_ld = 0.0f;
+                i = m / k;
+                sub = m - i * k;
+                if (k > 1 && sub == 0) {
+                    const float t_c = t_start + ((float)i + offset) * dt_view;
+                    const float fp_c = fmaxf(t_c * pixel_angle, dt_view);
+                    float p_c, lod_c = 0.0f, r_c;
+                    int cloud;
+                    if (p->lod) lod_c = ccl_cloudscape_lod(fp_c, p->base_scale_km / (float)t->base_size, p->lod_bias);
+                    r_c = ccl_cloudscape_density_lod(p, t, ccl_vec3_add(eye, ccl_vec3_scale(dir, t_c)), 0, lod_c,
+                                                     0.0f, &p_c);
+                    ++taken;
+                    cloud = r_c > 0.0f;
+                    if (!cloud && !prev_cloud) {
+                        m += k;
+                        continue;
+                    }
+                    prev_cloud = cloud;
+                }
+                t_i = t_start + ((float)i + ((float)sub + offset) / (float)k) * dt_view;
+                pos = ccl_vec3_add(eye, ccl_vec3_scale(dir, t_i));
+                ++m;
                 ++taken;
                 if (p->lod) {
                     /* footprint of the sample: the pixel's width at its distance, or the step, whichever is larger */
-                    const float fp = fmaxf((t_start + ((float)i + offset) * dt) * pixel_angle, dt);
+                    const float fp = fmaxf(t_i * pixel_angle, dt);
                     const float tb = p->base_scale_km / (float)t->base_size;
                     const float td = p->detail_scale_km / (float)t->detail_size;
                     const float fl = fmaxf(fp, p->light_step_km);
@@ -630,7 +682,7 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                                                      &stop);
                     /* the sample's weight in the pixel, for the mean distance of the aerial perspective */
                     depth_w += t_before - trans;
-                    depth_sum += (t_before - trans) * (t_start + ((float)i + offset) * dt);
+                    depth_sum += (t_before - trans) * t_i;
                 }
                 if (stop && p->early_exit) break;
             }
@@ -660,6 +712,28 @@ static ccl_vec3 lift_to_horizon(ccl_vec3 d)
     return ccl_vec3_scale(h, 1.0f / len);
 }
 
+/* t_air of the aerial perspective (see "Lighting" in cloudscape.h): the length of ground-level air with the optical
+ * depth of the first t km of the ray, the haze thinning with altitude (scale height aerial_height_km; 0: t). */
+static float aerial_air_km(const ccl_cloudscape_params *p, ccl_vec3 eye, ccl_vec3 d, float t)
+{
+    const float hs = p->aerial_height_km;
+    ccl_vec3 r;
+    float len, y0, u, x, a0, t_air;
+    if (!(hs > 0.0f)) return t;
+    r = ccl_vec3_sub(eye, p->layer.centre);
+    len = ccl_vec3_length(r);
+    y0 = len - p->layer.r_earth;
+    y0 = y0 > 0.0f ? y0 : 0.0f;
+    u = ccl_vec3_dot(d, r) / len; /* the ray's vertical component at the camera */
+    x = u * t / hs;
+    a0 = expf(-y0 / hs);
+    if (fabsf(x) < 1e-3f)
+        t_air = t * a0 * (1.0f - 0.5f * x);
+    else
+        t_air = (a0 - expf(-(y0 + u * t) / hs)) * (hs / u);
+    return t_air < t ? t_air : t;
+}
+
 /* Sky lighting's ground and aerial perspective (see "Lighting" in cloudscape.h): out = B T + C' with B the lit ground
  * faded by distance (ground) or the haze colour (sky), C' the clouds faded by their mean distance. */
 static void sky_lit_composite(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye, ccl_vec3 d,
@@ -669,8 +743,8 @@ static void sky_lit_composite(const ccl_cloudscape_params *p, const ccl_cloud_te
     float bg[3], f_g = 1.0f, f_c = 1.0f;
     int c;
     if (p->aerial_km > 0.0f) {
-        f_g = expf(-t_ground / p->aerial_km);
-        f_c = expf(-depth_km / p->aerial_km);
+        f_g = expf(-aerial_air_km(p, eye, d, t_ground) / p->aerial_km);
+        f_c = expf(-aerial_air_km(p, eye, d, depth_km) / p->aerial_km);
     }
     if (ground) {
         ccl_cloudscape_ground(p, t, ccl_vec3_add(eye, ccl_vec3_scale(d, t_ground)), sun, bg, NULL);

@@ -41,6 +41,7 @@ def param_values(settings) -> dict:
         "detail_direction": p.detail_direction, "ground_colour": tuple(p.ground_colour),
         "coverage_threshold": COVERAGE_THRESHOLDS[settings.coverage_threshold], "beer": int(settings.beer),
         "powder": int(settings.powder), "lod": int(settings.lod), "lod_bias": settings.lod_bias,
+        "refine_step_km": settings.refine_step_km, "refine_max": settings.refine_max,
     }
     # lighting: 'thesis' is the thesis's model entirely (its constants, one octave, one HG lobe); 'sky' takes the
     # multiple-scattering and silver-lining settings
@@ -49,7 +50,7 @@ def param_values(settings) -> dict:
         "lighting": LIGHTINGS[settings.lighting], "sun_intensity": settings.sun_intensity,
         "turbidity": settings.turbidity, "ambient_bottom_ratio": p.ambient_bottom_ratio,
         "ambient_ground": tuple(p.ambient_ground), "ground_albedo": tuple(settings.ground_albedo),
-        "aerial_km": settings.aerial_km, "ms_octaves": 1 if thesis else settings.ms_octaves, "ms_a": p.ms_a,
+        "aerial_km": settings.aerial_km, "aerial_height_km": settings.aerial_height_km, "ms_octaves": 1 if thesis else settings.ms_octaves, "ms_a": p.ms_a,
         "ms_b": p.ms_b, "ms_c": p.ms_c, "silver_g": settings.silver_g,
         "silver_weight": 0.0 if thesis else settings.silver_weight,
     })

@@ -50,6 +50,7 @@ SKIES = ("preetham", "gradient")
 JITTER_NAMES = ("tilt", "offset", "none")  # ccl_jitter_mode order
 COVERAGE_THRESHOLD_NAMES = ("coverage", "one_minus_coverage")  # ccl_coverage_threshold order
 LIGHTING_NAMES = ("thesis", "sky")  # ccl_lighting order
+REPROJECTION_DEPTHS = ("clouds", "inner_sphere")  # pywarp.kernels.reproj: depth iterations 3 / 0
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
 
 
@@ -317,6 +318,16 @@ class CloudscapeSettings(Settings):
     lod_bias: float = param(0.0, lo=-4.0, hi=4.0, group="clouds",
                             doc="added to every mip level of the level of detail (> 0 blurs, < 0 sharpens)",
                             reason="0: one texel per footprint, the usual mip-mapping criterion")
+    refine_step_km: float = param(0.1, unit="km", lo=0.0, hi=10.0, group="clouds",
+                                  doc="refinement: view steps longer than this are split into sub-steps of at most "
+                                      "this length where a coarse base-shape test finds cloud (0: off, the thesis)",
+                                  reason="0.1 km: about three mean free paths of the default extinction in a "
+                                         "typical cloud; near the horizon the view steps reach ~0.8 km, one step "
+                                         "crossed a whole cloud and the pixel took the light of one random depth "
+                                         "(the horizon's salt-and-pepper noise)")
+    refine_max: int = param(8, lo=1, hi=64, group="clouds",
+                            doc="most sub-steps per view step of the refinement",
+                            reason="8: 0.8 km horizon steps down to 0.1 km; bounds the work per ray")
     seed: int = inherit(BaseShapeSettings, "seed", group="clouds",
                         doc="seed of every texture (uint32); the same seed gives the same image",
                         reason="0: Perlin's reference permutation")
@@ -372,9 +383,23 @@ class CloudscapeSettings(Settings):
                                             doc="vc-A27 neighbourhood averaging of reprojected pixels: 1 (exact "
                                                 "sampling) or an odd n (n x n box)",
                                             reason="1: exact sampling, no blur")
-    jitter: str = param("tilt", choices=JITTER_NAMES, group="quality",
-                        doc="ray jitter against banding (vc-A23): tilt (the thesis), offset or none",
-                        reason="'tilt': the thesis' jitter (ccl_cloudscape_params_default)")
+    reprojection_depth: str = param("clouds", choices=REPROJECTION_DEPTHS, group="quality",
+                                    doc="where a reprojected pixel's point is looked for in the previous frame: "
+                                        "'clouds' (at the distance of what the pixel shows -- the clouds' mean "
+                                        "distance from the march, kept in a depth buffer -- found by "
+                                        "3 fixed-point steps along the ray, pywarp.kernels.reproj."
+                                        "reproj_uv_depth) or 'inner_sphere' (the thesis, vc-A26: every cloud as if "
+                                        "on the layer base)",
+                                    reason="'clouds': with the thesis's inner-sphere point, clouds at other distances "
+                                           "are fetched from the wrong place while the camera translates (parallax) "
+                                           "and the freshly marched pixel of every 4x4 block shows as a dot grid")
+    jitter: str = param("offset", choices=JITTER_NAMES, group="quality",
+                        doc="ray jitter against banding (vc-A23): offset (the first sample's position along the "
+                            "ray), tilt (the thesis: the ray's direction) or none",
+                        reason="'offset': the thesis' tilt of up to 0.002 rad per axis moves the ray by more than a "
+                               "pixel (0.0019 rad at 960x540), so far clouds changed from frame to frame (the "
+                               "flickering horizon: 6.2 grey levels between frames against 0.77 with offset) and "
+                               "near ones looked out of focus (ccl_cloudscape_params_default)")
     light_detail: bool = param(True, group="quality",
                                doc="light samples with the detail erosion (off: the base shape only, cheaper)",
                                reason="on: the thesis' density (ccl_cloudscape_params_default)")
@@ -409,16 +434,22 @@ class CloudscapeSettings(Settings):
                                      "sun colour is this times the atmosphere's transmittance towards the sun)",
                                  reason="16: at the default sun (35 deg) the sun's red channel is ~12, the thesis "
                                         "constant's (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
-    ground_albedo: tuple = param((0.06, 0.08, 0.05), lo=0.0, hi=1.0, check=_albedo_check, group="lighting",
+    ground_albedo: tuple = param((0.04, 0.05, 0.03), lo=0.0, hi=1.0, check=_albedo_check, group="lighting",
                                  doc="sky lighting: Lambertian albedo of the ground (RGB)",
-                                 reason="(0.06, 0.08, 0.05): dark vegetation; the clouds of vc-2.31 reflect little, "
-                                        "so a physical albedo (0.1-0.2) would light the ground almost as brightly "
-                                        "(ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
+                                 reason="(0.04, 0.05, 0.03): vegetation (0.1-0.2) scaled by the ~3.5 times too "
+                                        "bright sun that exposes the dim clouds of vc-2.31, so the sunlit ground stays "
+                                        "darker than the sky (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
     aerial_km: float = param(30.0, unit="km", lo=0.0, hi=1e6, group="lighting", cli="--aerial",
                              doc="sky lighting: aerial-perspective e-folding distance (0 = off): colour = C e^(-t/L) "
                                  "+ horizon sky (1 - e^(-t/L))",
                              reason="30: a visual range of ~117 km (Koschmieder 3.912 x 30), a clear day; the "
                                     "horizon band of clouds fades into the sky (ccl_cloudscape_params_default)")
+    aerial_height_km: float = param(2.0, unit="km", lo=0.0, hi=1e6, group="lighting",
+                                    doc="sky lighting: scale height of the haze (its density falls as e^(-altitude "
+                                        "/ H)); 0 = a homogeneous fog",
+                                    reason="2: the haze is mostly aerosol in the lowest kilometres (scale heights "
+                                           "1-2 km); a view from above sees the ground veiled, not fogged "
+                                           "(ccl_cloudscape_params_default)")
     ms_octaves: int = param(3, kind="int", lo=1, hi=MAX_MS_OCTAVES, group="lighting",
                             doc="sky lighting: multiple-scattering octaves (Wrenninge et al. 2013; 1 = single "
                                 "scattering); octave i scales the optical depth, contribution and phase eccentricity "

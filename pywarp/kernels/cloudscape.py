@@ -39,7 +39,7 @@ from .raymarch import (
     raymarch_ray_sphere,
     raymarch_view_sample_count,
 )
-from .reproj import reproj_pixel
+from .reproj import reproj_pixel, reproj_surface_depth
 from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb, sky_sun_attenuation
 from .texgen import _axis_lo, _axis_t
 
@@ -103,6 +103,7 @@ class CloudscapeParams:
     ambient_ground: wp.vec3
     ground_albedo: wp.vec3
     aerial_km: float
+    aerial_height_km: float
     ms_octaves: int
     ms_a: float
     ms_b: float
@@ -111,6 +112,8 @@ class CloudscapeParams:
     silver_weight: float
     lod: int
     lod_bias: float
+    refine_step_km: float
+    refine_max: int
 
 
 @wp.func
@@ -342,10 +345,40 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
             cos_theta = 1.0
         elif cos_theta < -1.0:
             cos_theta = -1.0
-        t_start, dt = raymarch_interval(t0, t1, n)
-        if dt == dt:  # not NaN
-            for i in range(n):
-                pos = raymarch_point(eye, d, t_start, dt, i, offset)
+        t_start, dt_view = raymarch_interval(t0, t1, n)
+        if dt_view == dt_view:  # not NaN
+            # refinement: a view step longer than refine_step_km is split into k sub-steps where the coarse test
+            # finds cloud (here or at the previous step); empty steps cost one base-shape lookup
+            k = int(1)
+            if p.refine_step_km > 0.0 and dt_view > p.refine_step_km:
+                kf = wp.ceil(dt_view / p.refine_step_km)
+                k = p.refine_max
+                if kf < float(p.refine_max):  # never an int() of a huge or infinite ratio
+                    k = int(kf)
+            dt = dt_view / float(k)
+            prev_cloud = int(0)
+            m = int(0)
+            while m < n * k:
+                i = m / k
+                sub = m - i * k
+                if k > 1 and sub == 0:
+                    t_c = t_start + (float(i) + offset) * dt_view
+                    fp_c = wp.max(t_c * pixel_angle, dt_view)
+                    lod_c = float(0.0)
+                    if p.lod != 0:
+                        lod_c = cloudscape_lod(fp_c, p.base_scale_km / float(tex.base_size), p.lod_bias)
+                    r_c, p_c = cloudscape_density_lod(p, tex, eye + d * t_c, 0, lod_c, 0.0)
+                    taken = taken + 1
+                    cloud = int(0)
+                    if r_c > 0.0:
+                        cloud = 1
+                    if cloud == 0 and prev_cloud == 0:
+                        m = m + k
+                        continue
+                    prev_cloud = cloud
+                t_i = t_start + (float(i) + (float(sub) + offset) / float(k)) * dt_view
+                pos = eye + d * t_i
+                m = m + 1
                 taken = taken + 1
                 lod_b = float(0.0)
                 lod_d = float(0.0)
@@ -353,7 +386,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 lod_ld = float(0.0)
                 if p.lod != 0:
                     # footprint of the sample: the pixel's width at its distance, or the step, whichever is larger
-                    fp = wp.max((t_start + (float(i) + offset) * dt) * pixel_angle, dt)
+                    fp = wp.max(t_i * pixel_angle, dt)
                     tb = p.base_scale_km / float(tex.base_size)
                     td = p.detail_scale_km / float(tex.detail_size)
                     lod_b = cloudscape_lod(fp, tb, p.lod_bias)
@@ -388,7 +421,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                     colour, trans, stop = raymarch_accumulate(colour, trans, p.sigma, rho, dt, light, p.exit_eps)
                     # the sample's weight in the pixel, for the mean distance of the aerial perspective
                     depth_w = depth_w + (t_before - trans)
-                    depth_sum = depth_sum + (t_before - trans) * (t_start + (float(i) + offset) * dt)
+                    depth_sum = depth_sum + (t_before - trans) * t_i
                     if stop != 0 and p.early_exit != 0:
                         break
     depth = float(0.0)
@@ -545,6 +578,32 @@ def ground_hit(p: CloudscapeParams, eye: wp.vec3, d: wp.vec3):
 
 
 @wp.func
+def aerial_air_km(p: CloudscapeParams, eye: wp.vec3, d: wp.vec3, t: float) -> float:
+    """t_air of the aerial perspective (twin of ``aerial_air_km`` in cloudscape.c): the length of ground-level air
+    with the optical depth of the first ``t`` km of the ray, the haze thinning with altitude (scale height
+    ``aerial_height_km``; 0: ``t``)."""
+    hs = p.aerial_height_km
+    if not (hs > 0.0):
+        return t
+    r = eye - p.centre
+    ln = wp.length(r)
+    y0 = ln - p.r_earth
+    if not (y0 > 0.0):
+        y0 = 0.0
+    u = wp.dot(d, r) / ln  # the ray's vertical component at the camera
+    x = u * t / hs
+    a0 = wp.exp(-y0 / hs)
+    t_air = float(0.0)
+    if wp.abs(x) < 1.0e-3:
+        t_air = t * a0 * (1.0 - 0.5 * x)
+    else:
+        t_air = (a0 - wp.exp(-(y0 + u * t) / hs)) * (hs / u)
+    if t_air < t:
+        return t_air
+    return t
+
+
+@wp.func
 def sky_lit_composite(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, sun: wp.vec3,
                       haze: wp.vec3, cl: wp.vec3, trans: float, depth: float) -> wp.vec3:
     """Sky lighting's ground and aerial perspective (twin of ``sky_lit_composite`` in cloudscape.c): B T + C' with B
@@ -554,8 +613,8 @@ def sky_lit_composite(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: 
     f_g = float(1.0)
     f_c = float(1.0)
     if p.aerial_km > 0.0:
-        f_g = wp.exp(-t_ground / p.aerial_km)
-        f_c = wp.exp(-depth / p.aerial_km)
+        f_g = wp.exp(-aerial_air_km(p, eye, d, t_ground) / p.aerial_km)
+        f_c = wp.exp(-aerial_air_km(p, eye, d, depth) / p.aerial_km)
     bg = haze
     if ground != 0:
         g, shadow = cloudscape_ground(p, tex, eye + d * t_ground, sun)
@@ -629,9 +688,12 @@ def clouds_kernel(row0: int, p: CloudscapeParams, tex: CloudTextures, sun: wp.ve
                   frame: int, reprojection: int,
                   # outputs
                   frame_buffer: wp.array3d(dtype=float), reduced: wp.array3d(dtype=float),
-                  samples: wp.array2d(dtype=wp.int32)):
+                  samples: wp.array2d(dtype=wp.int32), depth_buffer: wp.array2d(dtype=float)):
     """Stage 2 (vc-A14..A22): clouds over the sky already in ``frame_buffer`` (vc-4.8); with reprojection the thread
-    grid is the 4 x 4 block grid and the reduced buffer receives this frame's pixels (vc-A22)."""
+    grid is the 4 x 4 block grid and the reduced buffer receives this frame's pixels (vc-A22). ``depth_buffer``
+    receives the distance (km) of what each marched pixel shows, for the depth-aware reprojection
+    (:func:`pywarp.kernels.reproj.reproj_surface_depth`: the clouds' mean distance, else the ground, else the inner
+    sphere)."""
     i, j = wp.tid()
     height = frame_buffer.shape[0]
     width = frame_buffer.shape[1]
@@ -659,6 +721,7 @@ def clouds_kernel(row0: int, p: CloudscapeParams, tex: CloudTextures, sun: wp.ve
                 if reprojection != 0:
                     reduced[row0 + i, j, ch] = v
         samples[y, x] = taken
+        depth_buffer[y, x] = reproj_surface_depth(depth, eye, d, p.centre, p.r_earth, p.r_inner)
 
 
 @wp.kernel
