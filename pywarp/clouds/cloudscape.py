@@ -223,12 +223,21 @@ def light_params(params: K.CloudscapeParams, sky: "SkyModel", device: str = "cpu
     """The per-frame lighting setup, twin of ``ccl_cloudscape_light``: with sky lighting, ``params`` with sun colour
     and ambients from ``sky`` (its kind, sun, Preetham and gradient constants), computed once by
     :func:`pywarp.kernels.cloudscape.cloudscape_light` (one thread, the same float32 operations as the C); the
-    thesis's lighting returns ``params`` unchanged. Called when the settings or the sky change, not per frame."""
+    thesis's lighting returns ``params`` unchanged. Called when the settings or the sky change, not per frame.
+
+    A user's own sky model (a :class:`SkyModel` whose ``kind`` is neither gradient nor Preetham) cannot be evaluated
+    per direction by the kernel: its sun still sets the sun colour, and the ambient comes from the default gradient
+    sky (vc-A28)."""
     if params.lighting != K.LIGHTING_SKY:
         return params
+    kind = int(sky.kind)
+    if kind not in (K.SKY_GRADIENT, K.SKY_PREETHAM):
+        kind, preetham, gradient = K.SKY_GRADIENT, S.Preetham(), S.gradient_params()
+    else:
+        preetham, gradient = sky.preetham, sky.gradient
     out = wp.empty(1, dtype=K.CloudscapeParams, device=device)
-    wp.launch(K.light_kernel, dim=1, inputs=[params, int(sky.kind), wp.vec3(*np.asarray(sky.sun).tolist()),
-                                             sky.preetham, sky.gradient], outputs=[out], device=device)
+    wp.launch(K.light_kernel, dim=1, inputs=[params, kind, wp.vec3(*np.asarray(sky.sun).tolist()), preetham,
+                                             gradient], outputs=[out], device=device)
     rec = out.numpy()[0]
     for name in LIGHT_FIELDS:
         setattr(params, name, wp.vec3(*rec[name].tolist()))

@@ -249,8 +249,9 @@ def test_gradient_sky_low_sun_renders_and_below_the_horizon_is_refused():
 @pytest.mark.parametrize("altitude", [0.0, 0.3, 6.0])
 def test_ground_below_the_horizon_sky_above(altitude):
     """Rays that hit the Earth sphere show the ground colour, the others the sky (also for a camera on the ground).
-    No clouds (coverage 0), so nothing stands between the camera and the ground."""
-    s = small(sky="gradient", coverage=0.0, jitter="none")
+    No clouds (coverage 0), so nothing stands between the camera and the ground. The thesis's lighting: a flat
+    ground colour (the sky lighting's lit ground: tests/clouds/test_lighting.py)."""
+    s = small(sky="gradient", coverage=0.0, jitter="none", lighting="thesis")
     t = CloudscapeTechnique(s)
     lin = t.render(CameraPose(0.0, altitude, 0.0, 0.0, 0.0, 60.0), reprojection=False, encode=False)
     ground = np.array(t.params.ground_colour, dtype=np.float32)
