@@ -51,6 +51,22 @@ def fuzz_build(tmp_path_factory):
     return build
 
 
+@pytest.fixture(scope="module")
+def fuzz_summary(request):
+    """Executions and findings per harness, printed as one table at the end of the module (also without -s) and
+    recorded as test properties (JUnit XML)."""
+    rows: dict[str, tuple[int, int]] = {}
+    yield rows
+    reporter = request.config.pluginmanager.get_plugin("terminalreporter")
+    if rows and reporter is not None:
+        reporter.write_line("")
+        reporter.write_line(f"fuzzing: {FUZZ_SECONDS} s per harness after the corpus replay (-seed=1)")
+        for name, (runs, found) in sorted(rows.items()):
+            reporter.write_line(f"  {name:<18} {runs:>10} executions  {found} findings")
+        reporter.write_line(f"  {'total':<18} {sum(r for r, _ in rows.values()):>10} executions  "
+                            f"{sum(f for _, f in rows.values())} findings")
+
+
 def test_every_harness_has_a_seed_corpus():
     assert HARNESSES, "no harness in cclouds/fuzz"
     for name in HARNESSES:
@@ -66,7 +82,7 @@ def _run(binary: Path, args: list, cwd: Path, timeout: float):
 
 
 @pytest.mark.parametrize("name", HARNESSES)
-def test_fuzz_harness(fuzz_build, tmp_path, name):
+def test_fuzz_harness(fuzz_build, fuzz_summary, record_property, tmp_path, name):
     binary = fuzz_build / name
     seeds = FUZZ / "corpus" / name.removeprefix("fuzz_")
     artifacts = f"-artifact_prefix={tmp_path}/"
@@ -80,7 +96,12 @@ def test_fuzz_harness(fuzz_build, tmp_path, name):
                     FUZZ_SECONDS + 120)
     found = sorted(p.name for p in tmp_path.glob("*-*") if p.is_file() and p.name.split("-")[0] in
                    ("crash", "leak", "timeout", "oom", "slow-unit"))
-    assert res.returncode == 0 and not found, f"{name}: finding {found}:\n{log[-6000:]}"
     runs = re.search(r"stat::number_of_executed_units:\s*(\d+)", log)
-    assert runs and int(runs.group(1)) > 0, f"{name}: no executions reported:\n{log[-2000:]}"
-    print(f"{name}: {runs.group(1)} executions in {FUZZ_SECONDS} s, 0 findings")
+    n_runs = int(runs.group(1)) if runs else 0
+    n_found = max(len(found), int(res.returncode != 0))
+    fuzz_summary[name] = (n_runs, n_found)
+    record_property("executions", n_runs)
+    record_property("findings", n_found)
+    assert res.returncode == 0 and not found, f"{name}: finding {found}:\n{log[-6000:]}"
+    assert n_runs > 0, f"{name}: no executions reported:\n{log[-2000:]}"
+    print(f"{name}: {n_runs} executions in {FUZZ_SECONDS} s, 0 findings")
