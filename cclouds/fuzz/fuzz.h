@@ -7,6 +7,7 @@
 #ifndef CCLOUDS_FUZZ_H
 #define CCLOUDS_FUZZ_H
 
+#include <assert.h> /* harnesses assert their own setup (asserts stay on in this build) */
 #include <float.h>
 #include <math.h>
 #include <stddef.h> /* offsetof */
