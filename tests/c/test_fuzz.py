@@ -58,13 +58,15 @@ def fuzz_summary(request):
     rows: dict[str, tuple[int, int]] = {}
     yield rows
     reporter = request.config.pluginmanager.get_plugin("terminalreporter")
-    if rows and reporter is not None:
-        reporter.write_line("")
-        reporter.write_line(f"fuzzing: {FUZZ_SECONDS} s per harness after the corpus replay (-seed=1)")
-        for name, (runs, found) in sorted(rows.items()):
-            reporter.write_line(f"  {name:<18} {runs:>10} executions  {found} findings")
-        reporter.write_line(f"  {'total':<18} {sum(r for r, _ in rows.values()):>10} executions  "
-                            f"{sum(f for _, f in rows.values())} findings")
+    capture = request.config.pluginmanager.get_plugin("capturemanager")
+    if rows and reporter is not None and capture is not None:
+        with capture.global_and_fixture_disabled():
+            reporter.write_line("")
+            reporter.write_line(f"fuzzing: {FUZZ_SECONDS} s per harness after the corpus replay (-seed=1)")
+            for name, (runs, found) in sorted(rows.items()):
+                reporter.write_line(f"  {name:<18} {runs:>10} executions  {found} findings")
+            reporter.write_line(f"  {'total':<18} {sum(r for r, _ in rows.values()):>10} executions  "
+                                f"{sum(f for _, f in rows.values())} findings")
 
 
 def test_every_harness_has_a_seed_corpus():
