@@ -645,8 +645,9 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                 ++m;
                 ++taken;
                 if (p->lod) {
-                    /* footprint of the sample: the pixel's width at its distance, or the step, whichever is larger */
-                    const float fp = fmaxf(t_i * pixel_angle, dt);
+                    /* footprint of the sample: the pixel's width at its distance (the refinement keeps the steps
+                     * short where there is cloud, so they need no blur along the ray) */
+                    const float fp = t_i * pixel_angle;
                     const float tb = p->base_scale_km / (float)t->base_size;
                     const float td = p->detail_scale_km / (float)t->detail_size;
                     const float fl = fmaxf(fp, p->light_step_km);

@@ -310,8 +310,8 @@ class CloudscapeSettings(Settings):
                          reason="on: the formula as printed (ccl_cloudscape_params_default)")
     lod: bool = param(True, group="clouds",
                       doc="level of detail: the base and detail noise sampled at the mip level of each sample's "
-                          "footprint (the larger of the pixel's width at the sample and the view step); off: full "
-                          "resolution everywhere, as the thesis",
+                          "footprint (the pixel's width at the sample; the light samples at least the light step); "
+                          "off: full resolution everywhere, as the thesis",
                       reason="on: without it the steps and pixels near the horizon undersample 25-50 m texels and "
                              "the distant clouds turn into salt-and-pepper noise that changes every frame "
                              "(ccl_cloudscape_params_default)")

@@ -385,8 +385,9 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 lod_lb = float(0.0)
                 lod_ld = float(0.0)
                 if p.lod != 0:
-                    # footprint of the sample: the pixel's width at its distance, or the step, whichever is larger
-                    fp = wp.max(t_i * pixel_angle, dt)
+                    # footprint of the sample: the pixel's width at its distance (the refinement keeps the steps
+                    # short where there is cloud, so they need no blur along the ray)
+                    fp = t_i * pixel_angle
                     tb = p.base_scale_km / float(tex.base_size)
                     td = p.detail_scale_km / float(tex.detail_size)
                     lod_b = cloudscape_lod(fp, tb, p.lod_bias)

@@ -238,11 +238,10 @@ CCL_API float ccl_cloudscape_density_lod(const ccl_cloudscape_params *p, const c
                                          int detail, float lod_base, float lod_detail, float *out_precipitation);
 
 /* The mip level of a sample of footprint footprint_km on a texture of texel size texel_km:
- * log2(footprint / texel) + bias; 0 for a footprint <= 0 or NaN. The march takes as footprint the larger of the
- * pixel's width at the sample's distance (distance x pixel_angle) and the view step, so that neither the pixels nor
- * the steps undersample the noise (the cause of the salt-and-pepper noise near the horizon, where steps reach
- * ~0.7 km and pixels ~0.4 km, against 47 m base and 25 m detail texels); the light samples use at least the light
- * step as footprint. */
+ * log2(footprint / texel) + bias; 0 for a footprint <= 0 or NaN. The march takes as footprint the pixel's width at
+ * the sample's distance (distance x pixel_angle: ~0.4 km near the horizon against 47 m base and 25 m detail
+ * texels), the coarse test of the refinement the larger of that and the view step, and the light samples at least
+ * the light step. */
 CCL_API float ccl_cloudscape_lod(float footprint_km, float texel_km, float bias);
 
 /* The mip levels 1 .. log2(size) of a periodic RGBA volume tex (size^3 texels [z][y][x][4], size a power of two):
