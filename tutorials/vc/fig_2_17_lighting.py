@@ -4,20 +4,25 @@ and directional light.
 The thesis shows reference photographs of the three effects its lighting model targets (reproducible: no). The
 stand-in isolates each term of the cloud energy E = exp(-d a) HG(theta, g) (1 - exp(-2 d)) (vc-2.31; HG is vc-2.13,
 the optical depth d towards the sun comes from the six cone samples of vc-A19, a from the precipitation, plus the
-ambient term of vc-A20) in renders of the full cloud pass (vc-A17, vc-A21, vc-4.8; Preetham sky vc-A29).
-Renderer: pywarp.clouds.cloudscape. The plots evaluate pywarp.phase_hg and pywarp.clouds_energy.
+ambient term of vc-A20) in renders of the full cloud pass (vc-A17, vc-A21, vc-4.8; Preetham sky vc-A29), with the
+thesis's constant lighting (lighting='thesis') so that only the term under study changes, and compares the
+renderer's dual-lobe phase (the sky lighting's silver-lining lobe, cclouds/cloudscape.h "Lighting").
+Renderer: pywarp.clouds.cloudscape. The plots evaluate pywarp.phase_hg, pywarp.clouds_energy and the renderer's
+ccl_cloudscape_energy (multiple-scattering octaves).
 
-Rows (the thesis gives no parameters; coverage 0.45, cloud type 0.75, seed 0, 400x225 per panel, 50° field of view):
-(1) silver lining -- camera 0.3 km up looking 15° up towards a sun 10° above the horizon, g = 0 / 0.2 (the default) /
-0.4: the forward lobe of Henyey-Greenstein lights the cloud edges around the sun;
-(2) powder darkening ("dark edges") -- sun 20° up behind the camera (azimuth 180°), camera looking 22° up:
-the default (Beer x powder), the powder term switched off, and the Beer term switched off. The renderer has no switch
-for the powder term, so "powder off" is emulated with `advanced`: sigma_light x 50 and absorption_base,
-absorption_precip / 50 leave exp(-d a) unchanged while 1 - exp(-2 d) becomes 1 - exp(-100 d) ~ 1 (exact except where
-d < ~0.03). "Beer off" is absorption_base = absorption_precip = 0 (a = 0).
-(3) directional light -- seen from 5 km (12° down), sun 12° up from the left (azimuth -90°), from the right (+90°) and
-from behind the camera (180°): the sides facing the sun are bright, the far sides are shadowed by the cloud itself
-(Beer's law on d).
+Rows (the thesis gives no parameters; coverage 0.45, cloud type 0.75, seed 0, 400x225 per panel):
+(1) silver lining -- camera 0.3 km up looking 15 deg up towards a sun 10 deg above the horizon (50 deg field of
+view): one HG lobe with g = 0 (isotropic), g = 0.2 (the thesis lighting's default), and the dual lobe
+0.7 HG(0.2) + 0.3 HG(0.8) of the sky lighting: the narrow forward lobe lights the cloud edges around the sun;
+(2) powder darkening ("dark edges") -- sun 20 deg up behind the camera (azimuth 180 deg), camera looking 22 deg up:
+the default (Beer x powder), the powder term off (powder=False: 1 - exp(-2 d) replaced by 1) and the Beer term off
+(beer=False);
+(3) directional light -- one cumulus seen from 1 km up (40 deg field of view), sun 15 deg up from the left (azimuth
+-98 deg, at right angles to the view), from the right (+82 deg) and from behind the camera (172 deg): the side
+facing the sun is bright, the far side is shadowed by the cloud itself (Beer's law on d). This row isolates Beer's
+term: the powder term is off (its dark sunward rim would hide which side is lit) and the ambient light is half the
+thesis's constants, so that the sun's term dominates (with both as default the same shading shows at lower
+contrast, row 2's first panel).
 Output: figures/vc/fig-2.17.png.
 """
 # %% [markdown]
@@ -25,7 +30,9 @@ Output: figures/vc/fig-2.17.png.
 #
 # * **silver lining** — the bright rim of a cloud seen against the sun. Droplets scatter mostly forward; the
 #   Henyey–Greenstein phase function HG(θ, g) with g > 0 has a peak at θ = 0 (looking towards the sun), so thin
-#   edges between the camera and the sun light up. With g = 0 (isotropic) the rim disappears.
+#   edges between the camera and the sun light up. With g = 0 (isotropic) the rim disappears; the thesis's mild
+#   g = 0.2 shows a faint one. Real droplets have a much narrower forward peak: the renderer's sky lighting adds a
+#   second lobe, (1 − w) HG(g) + w HG(0.8) with w = 0.3, and the rims glow.
 # * **dark edges (powder effect)** — with the sun behind the viewer, the outermost parts of a cumulus look darker
 #   than the parts just inside: a point at the very surface has little cloud around it to scatter light towards the
 #   viewer. The thesis models it with the factor 1 − exp(−2d), which is 0 at d = 0 and goes to 1 inside.
@@ -47,36 +54,35 @@ import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
+from pywarp.clouds.cloudscape import (CameraPose, CloudscapeSettings, CloudscapeTechnique, c_params,  # noqa: E402
+                                      param_values)
 
-SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, fov_y_deg=50.0)
+SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, fov_y_deg=50.0, lighting="thesis")
 FULL = dict(width=400, height=225)
 QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
-POWDER_OFF_K = 50.0  # sigma_light x K, absorption / K: Beer unchanged, powder 1 - exp(-2 K d) ~ 1
 BELOW_TO_SUN = CameraPose(0.0, 0.3, 0.0, 0.0, 15.0, 50.0)
 BELOW_AWAY = CameraPose(0.0, 0.3, 0.0, 0.0, 22.0, 50.0)
-ABOVE = CameraPose(0.0, 5.0, 0.0, 0.0, -12.0, 50.0)
+CUMULUS = CameraPose(0.0, 1.0, 0.0, -8.0, 9.0, 40.0)
+SILVER = {"silver_g": 0.8, "silver_weight": 0.3}  # the sky lighting's defaults (ccl_cloudscape_params_default)
+AMBIENT_SCALE = 0.5  # row 3: the ambient constants x 1/2, so that the sun's term dominates
 
 
 def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     size = QUICK if quick else FULL
-    p = param_values(CloudscapeSettings())  # the renderer's defaults of sigma_light and the absorption a
-    powder_off = {"sigma_light": p["sigma_light"] * POWDER_OFF_K,
-                  "absorption_base": p["absorption_base"] / POWDER_OFF_K,
-                  "absorption_precip": p["absorption_precip"] / POWDER_OFF_K}
-    beer_off = {"absorption_base": 0.0, "absorption_precip": 0.0}
+    p = param_values(CloudscapeSettings(lighting="thesis"))  # the thesis lighting's constants
+    dim = {name: tuple(AMBIENT_SCALE * v for v in p[name]) for name in ("ambient_bottom", "ambient_top")}
     rows = (
         ("silver lining", BELOW_TO_SUN, dict(sun_elevation_deg=10.0, sun_azimuth_deg=0.0),
-         (("g = 0 (isotropic)", dict(g=0.0)), ("g = 0.2 (default)", dict(g=0.2)), ("g = 0.4", dict(g=0.4)))),
+         (("one lobe, g = 0 (isotropic)", dict(g=0.0)), ("one lobe, g = 0.2 (thesis)", dict(g=0.2)),
+          ("0.7 HG(0.2) + 0.3 HG(0.8) (sky lighting)", dict(g=0.2, advanced=SILVER)))),
         ("dark edges (powder)", BELOW_AWAY, dict(sun_elevation_deg=20.0, sun_azimuth_deg=180.0),
-         (("Beer × powder (default)", {}), ("powder off (emulated)", dict(advanced=powder_off)),
-          ("Beer off (a = 0): powder only", dict(advanced=beer_off)))),
-        ("directional light", ABOVE, dict(sun_elevation_deg=12.0),
-         (("sun from the left (az −90°)", dict(sun_azimuth_deg=-90.0)),
-          ("sun from the right (az +90°)", dict(sun_azimuth_deg=90.0)),
-          ("sun behind the camera (az 180°)", dict(sun_azimuth_deg=180.0)))),
+         (("Beer × powder (default)", {}), ("powder off", dict(powder=False)),
+          ("Beer off: powder only", dict(beer=False)))),
+        ("directional light", CUMULUS, dict(sun_elevation_deg=15.0, advanced=dim, powder=False),
+         (("sun from the left", dict(sun_azimuth_deg=-98.0)), ("sun from the right", dict(sun_azimuth_deg=82.0)),
+          ("sun behind the camera", dict(sun_azimuth_deg=172.0)))),
     )
 
     # %% [markdown]
@@ -86,12 +92,12 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # %%
     tech = CloudscapeTechnique(CloudscapeSettings(**size, **SCENE))
     base_settings = tech.settings
+    reset = {f: getattr(base_settings, f) for f in ("g", "sun_azimuth_deg", "advanced", "beer", "powder")}
     images = []
     for _, pose, common, panels in rows:
         row = []
         for _, changes in panels:
-            tech.update(**{**{f: getattr(base_settings, f) for f in ("g", "sun_azimuth_deg", "advanced")},
-                           **common, **changes})
+            tech.update(**{**reset, **common, **changes})
             row.append(tech.render(pose))
         images.append(row)
 
@@ -110,22 +116,27 @@ def main(out_dir, quick: bool = False) -> list[Path]:
                 ax.set_ylabel(label, fontsize=11)
 
     # %% [markdown]
-    # The plots: (1) the phase function HG(θ, g) of the three renders — the silver lining is the forward peak at
-    # θ = 0; (2) the three factors of 2.31 against the optical depth d towards the sun (a = 1.4, the renderer's
-    # a = 1 + 2·precipitation at precipitation 0.2): powder rises from 0, Beer falls from 1, their product peaks at
-    # d = ln(3)/2 ≈ 0.55 for a = 1 — the edges (small d) are dark, a thin layer just inside is brightest;
-    # (3) the energy E with HG at θ = 90° (side light) for a = 1 and a = 3 (rain): the shadowed side (large d) is dark.
+    # The plots: (1) the phase functions of the three renders — the silver lining is the forward peak at θ = 0, 24x
+    # higher for the dual lobe than for g = 0.2; (2) the three factors of 2.31 against the optical depth d towards the
+    # sun (a = 1.4, the renderer's a = 1 + 2·precipitation at precipitation 0.2): powder rises from 0, Beer falls from
+    # 1, their product peaks at d = ln(3)/2 ≈ 0.55 for a = 1 — the edges (small d) are dark, a thin layer just inside
+    # is brightest; (3) the energy E with HG at θ = 90° (side light): the shadowed side (large d) is dark; the
+    # renderer's multiple-scattering octaves (sky lighting: octave i with d·0.5^i, contribution 0.5^i) lift the deep,
+    # shadowed parts.
 
     # %%
     theta = np.linspace(0.0, np.pi, 361)
     ax = fig.add_subplot(gp[0, 0])
-    for g in (0.0, 0.2, 0.4):
-        ax.semilogy(np.degrees(theta), pywarp.phase_hg(np.cos(theta), g), label=f"g = {g}")
+    for g in (0.0, 0.2):
+        ax.semilogy(np.degrees(theta), pywarp.phase_hg(np.cos(theta), g), label=f"HG(θ, {g})")
+    dual = (1.0 - SILVER["silver_weight"]) * pywarp.phase_hg(np.cos(theta), 0.2) + \
+        SILVER["silver_weight"] * pywarp.phase_hg(np.cos(theta), SILVER["silver_g"])
+    ax.semilogy(np.degrees(theta), dual, label="0.7 HG(θ, 0.2) + 0.3 HG(θ, 0.8)")
     ax.set_xlabel("scattering angle θ [deg] (0 = towards the sun)", fontsize=8)
-    ax.set_ylabel("HG(θ, g) [sr⁻¹]", fontsize=8)
+    ax.set_ylabel("phase [sr⁻¹]", fontsize=8)
     ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.legend(fontsize=8, frameon=False)
-    ax.set_title("phase function (2.13)", fontsize=10)
+    ax.set_title("phase functions (2.13, dual lobe)", fontsize=10)
     ax.tick_params(labelsize=7)
 
     d = np.linspace(0.0, 4.0, 401)
@@ -134,19 +145,19 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax.plot(d, np.exp(-d * a), label="Beer exp(−d·a)")
     ax.plot(d, 1.0 - np.exp(-2.0 * d), label="powder 1 − exp(−2d)")
     ax.plot(d, np.exp(-d * a) * (1.0 - np.exp(-2.0 * d)), "k", label="product")
-    ax.plot(d, 1.0 - np.exp(-2.0 * POWDER_OFF_K * d), ":", color="tab:orange", label="powder 'off' (emulated)")
     ax.set_xlabel("optical depth towards the sun d", fontsize=8)
     ax.legend(fontsize=7, frameon=False)
     ax.set_title(f"terms of 2.31 (a = {a})", fontsize=10)
     ax.tick_params(labelsize=7)
 
     ax = fig.add_subplot(gp[2, 0])
-    for a_ in (1.0, 3.0):
-        ax.plot(d, pywarp.clouds_energy(d, a_, 0.0, 0.2), label=f"E(d), a = {a_:g}, θ = 90°, g = 0.2")
+    ax.plot(d, pywarp.clouds_energy(d, 1.0, 0.0, 0.2), label="E(d) of 2.31 (1 octave), a = 1")
+    ax.plot(d, pywarp.clouds_energy(d, 3.0, 0.0, 0.2), label="E(d) of 2.31, a = 3 (rain)")
+    ax.plot(d, _energy_octaves(d, 1.0, 3), "--", label="3 octaves (sky lighting), a = 1")
     ax.set_xlabel("optical depth towards the sun d", fontsize=8)
-    ax.set_ylabel("E [sr⁻¹]", fontsize=8)
+    ax.set_ylabel("E [sr⁻¹] (θ = 90°, g = 0.2)", fontsize=8)
     ax.legend(fontsize=7, frameon=False)
-    ax.set_title("energy E (2.31, pywarp.clouds_energy)", fontsize=10)
+    ax.set_title("energy E (2.31; ccl_cloudscape_energy)", fontsize=10)
     ax.tick_params(labelsize=7)
 
     fig.suptitle("Fig 2.17 stand-in (the thesis shows photographs): the three lighting effects of eq. 2.31, one "
@@ -155,6 +166,15 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     fig.savefig(out)
     plt.close(fig)
     return [out]
+
+
+def _energy_octaves(d: np.ndarray, a: float, octaves: int) -> np.ndarray:
+    """The renderer's energy (ccl_cloudscape_energy, C) at cos(theta) = 0 with one HG lobe, g = 0.2 and ``octaves``
+    multiple-scattering octaves of the default factors."""
+    from pywarp.core.binding import lib
+
+    p = c_params(param_values(CloudscapeSettings(ms_octaves=octaves, silver_weight=0.0, g=0.2)))
+    return np.array([lib().ccl_cloudscape_energy(p, float(x), a, 0.0) for x in d])
 
 
 if __name__ == "__main__":
