@@ -37,7 +37,7 @@ ccl_status ccl_particles_params_check(const ccl_particles_params *p, const char 
     else if (!isfinite(p->size_mean_mm) || !(p->size_mean_mm - 0.5f * p->size_spread_mm >= 0.1f)
              || !(p->size_mean_mm + 0.5f * p->size_spread_mm <= 4.5f)) bad = "size_mean_mm";
     else if (p->size_samples < 1 || p->size_samples > CCL_PARTICLES_MAX_SIZE_SAMPLES) bad = "size_samples";
-    else if (!isfinite(p->slowdown) || !(p->slowdown > 0.0f)) bad = "slowdown";
+    else if (!isfinite(p->slowdown) || !(p->slowdown >= 0.015625f && p->slowdown <= 1000.0f)) bad = "slowdown";
     else if (!isfinite(p->metres_per_unit) || !(p->metres_per_unit > 0.0f)) bad = "metres_per_unit";
     else if (!finite3(p->wind) || p->wind.y != 0.0f) bad = "wind";
     if (field) *field = bad;

@@ -26,7 +26,7 @@ import warp as wp
 
 from ..core.registry import VARIANT, Arg, Option, declare
 from .hash import hash_pcg, hash_unit
-from .rain import rain_light_colour, rain_terminal_speed
+from .rain import MIN_SLOWDOWN, rain_light_colour, rain_terminal_speed
 
 MAX_SIZE_SAMPLES = 64  # CCL_PARTICLES_MAX_SIZE_SAMPLES
 STREAK_TAPS = 7  # CCL_PARTICLES_STREAK_TAPS
@@ -84,9 +84,10 @@ def check_params(values: dict) -> dict:
     n = v["size_samples"]
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= MAX_SIZE_SAMPLES:
         raise ValueError(f"size_samples must be an integer in [1, {MAX_SIZE_SAMPLES}], got {n!r}")
-    for name in ("slowdown", "metres_per_unit"):
-        if not (math.isfinite(v[name]) and v[name] > 0.0):
-            raise ValueError(f"{name} must be > 0, got {v[name]!r}")
+    if not (math.isfinite(v["slowdown"]) and MIN_SLOWDOWN <= v["slowdown"] <= 1000.0):
+        raise ValueError(f"slowdown must be in [{MIN_SLOWDOWN:g}, 1000] (rr-tab-2.2), got {v['slowdown']!r}")
+    if not (math.isfinite(v["metres_per_unit"]) and v["metres_per_unit"] > 0.0):
+        raise ValueError(f"metres_per_unit must be > 0, got {v['metres_per_unit']!r}")
     if v["wind"][1] != 0.0:
         raise ValueError(f"wind must be horizontal (y = 0), got {tuple(v['wind'])!r}")
     seed = v["seed"]

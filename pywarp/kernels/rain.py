@@ -273,10 +273,16 @@ def rain_drop_extent(a: float, interp: int) -> float:
 
 # --- terminal speed ----------------------------------------------------------------------------------------------------
 
+#: Smallest slowdown (divisor of the terminal speed) accepted, 1/64 (exact in float32): speeds up to 64 times the
+#: physical ones; a tiny divisor (1e-45) overflowed the speed to inf (ccl_rain_terminal_speed and
+#: ccl_particles_params_check alike).
+MIN_SLOWDOWN = 0.015625
+
+
 @declare("rr-tab-2.2", c="ccl_rain_terminal_speed",
          args=(Arg("radius_mm", "drop radius [mm] (Table 2.2 is indexed by radius)", lo=0.0, hi=10.0, unit_name="mm"),
-               Arg("slowdown", "divisor of the speed: 1 physical, 4 the application's (rr §5.2.2)", lo=0.0,
-                   hi=1000.0, lo_open=True, default=1.0)),
+               Arg("slowdown", "divisor of the speed: 1 physical, 4 the application's (rr §5.2.2)", lo=MIN_SLOWDOWN,
+                   hi=1000.0, default=1.0)),
          outputs=("speed",),
          summary="Terminal speed [m/s] / slowdown from Table 2.2 (23 rows): linear between rows, Stokes "
                  "0.72 (r/0.1)^2 below 0.1 mm, plateau 9.23 m/s from 4 mm (reached at 2.75 mm).",
@@ -470,14 +476,20 @@ def _billboard_frame(f: wp.vec3) -> tuple[wp.vec3, wp.vec3]:
     return rt, wp.cross(rt, f)
 
 
-_TAN = Arg("tan_half_fov", "tan(fov_y / 2) of the capture camera (150 deg: 3.7321)", lo=0.0, hi=100.0, lo_open=True)
-_ASPECT = Arg("aspect", "capture width / height", lo=0.0, hi=100.0, lo_open=True, default=1.0)
+#: Smallest tan_half_fov and aspect of rr-alg-3.1.3, 1/64 (exact in float32; a 1.8 deg capture, a 1:64 frame): the uv
+#: scales s_x = 0.5 / (tan_half_fov aspect) <= 2048, s_y <= 32 stay finite (1e-45 overflowed P_o and P_c to +-inf).
+MIN_PROJECTION = 0.015625
+_TAN = Arg("tan_half_fov", "tan(fov_y / 2) of the capture camera (150 deg: 3.7321)", lo=MIN_PROJECTION, hi=100.0)
+_ASPECT = Arg("aspect", "capture width / height", lo=MIN_PROJECTION, hi=100.0, default=1.0)
 
 
 @declare("rr-alg-3.1.3", c="ccl_rain_refracted_uv",
          args=(Arg("view_dir", "unit direction eye -> P_i (camera space, OpenGL: looking down -z)", unit=True),
                Arg("exit_dir", "mask texel: exit direction in the mask frame", lo=-1.0, hi=1.0), _TAN, _ASPECT),
          options=(MAPPING,), outputs=("P_c", "P_o", "valid"),
+         nonfinite="a direction at 90 deg to the view axis projects to infinity: where exit_dir.z > 0 (or -view_dir.z "
+                   "> 0, or w.z < 0 for 'project') is below ~1e-38 of its other components, e.x / e.z overflows and "
+                   "P_c (P_o) is +-inf, NaN where two such infinities cancel (the capture sampler clamps to the border)",
          summary="P_i -> P_o -> P_c: P_o = capture uv of the undeviated view direction, (0.5 + s_x c.x/(-c.z), "
                  "0.5 - s_y c.y/(-c.z)), s_x = 0.5/(tan_half_fov aspect), s_y = 0.5/tan_half_fov; 'offset': P_c = "
                  "P_o + (s_x e.x/e.z, -s_y e.y/e.z) (the shader); 'project': the exit direction in camera space "

@@ -84,7 +84,7 @@ class RainSettings(Settings):
     size_samples: int = param(8, kind="int", lo=1, hi=64, group=_G_RAIN,
                               doc="Gauss(1, 1.3, 8)'s 8, read as the number of uniforms averaged (Irwin-Hall)",
                               reason="8: the printed argument")
-    slowdown: float = param(4.0, lo=0.0, lo_open=True, hi=1000.0, group=_G_RAIN,
+    slowdown: float = param(4.0, lo=0.015625, hi=1000.0, group=_G_RAIN,
                             doc="terminal speeds of Table 2.2 divided by this", reason="4: the application's")
     metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, group=_G_RAIN,
                                    doc="one scene unit in metres (speeds in m/s become units/s)",

@@ -16,10 +16,13 @@ from pywarp.core.registry import get, warp_parameters
 from pywarp.kernels import camera as CAM
 from pywarp.kernels import flight as F
 from pywarp.kernels import noise
+from pywarp.kernels import particles as PT
+from pywarp.kernels import rain as R
 from pywarp.kernels import sky as sky_mod
 from pywarp.kernels import terrain as K
 from pywarp.kernels import volume as V
 from pywarp.kernels.noise import perm_array
+from pywarp.rain.settings import RainSettings
 from pywarp.terrain.settings import TerrainSettings
 from pywarp.terrain.technique import render_pixels_c, render_pixels_warp
 
@@ -369,3 +372,51 @@ def test_terrain_min_scale_is_the_c_check_limit():
         K.c_params({field: K.MIN_SCALE})
         with pytest.raises(ValueError, match=field):
             K.c_params({field: below})
+
+
+# --- property-test findings: rr-tab-2.2 slowdown, rr-alg-3.1.3 tan_half_fov / aspect ----------------------------------
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_terminal_speed_refuses_a_tiny_slowdown(impl):
+    """Before: slowdown was accepted down to 1e-45 and the speed overflowed to inf."""
+    speed = pywarp.equation("rr-tab-2.2", impl=impl)
+    for bad in (1e-45, 1e-38, 0.015):
+        with pytest.raises(ValueError, match=r"^slowdown must be in \[0\.015625, 1000\]"):
+            speed(5.0, bad)
+    v = np.asarray(speed(np.linspace(0.0, 10.0, 41), R.MIN_SLOWDOWN))
+    assert np.all(np.isfinite(v)) and v.max() == pytest.approx(9.23 * 64, rel=1e-6)
+
+
+def test_particles_refuse_a_tiny_slowdown_in_c_python_and_settings():
+    p = ffi().new("ccl_particles_params *")
+    lib().ccl_particles_params_default(p)
+    p.slowdown = 1e-45
+    fld = ffi().new("const char **")
+    assert lib().ccl_particles_params_check(p, fld) != 0 and ffi().string(fld[0]) == b"slowdown"
+    p.slowdown = 0.015625
+    assert lib().ccl_particles_params_check(p, fld) == 0
+    with pytest.raises(ValueError, match=r"^slowdown must be in"):
+        PT.params(slowdown=1e-45)
+    with pytest.raises(ValueError, match="slowdown"):
+        RainSettings(slowdown=1e-45)
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_refracted_uv_refuses_tiny_projections_and_is_finite_at_the_limit(impl):
+    """Before: tan_half_fov and aspect were accepted down to 1e-45 and P_o, P_c overflowed to +-inf (NaN)."""
+    uv = pywarp.equation("rr-alg-3.1.3", impl=impl)
+    view, exit_ = (0.6, 0.0, -0.8), (0.5, 0.5, 0.5)
+    with pytest.raises(ValueError, match=r"^tan_half_fov must be in \[0\.015625, 100\]"):
+        uv(view, exit_, 1e-45, 1.0)
+    with pytest.raises(ValueError, match=r"^aspect must be in \[0\.015625, 100\]"):
+        uv(view, exit_, 3.7, 1e-45)
+    rng = np.random.default_rng(11)
+    v = rng.normal(size=(200, 3))
+    v[:, 2] = -np.abs(v[:, 2]) - 0.05
+    v /= np.linalg.norm(v, axis=1, keepdims=True)
+    e = rng.uniform(-1.0, 1.0, (200, 3))
+    e[:, 2] = np.abs(e[:, 2]) + 1e-3
+    for mapping in ("offset", "project"):
+        pc, po, valid = uv(v.astype(np.float32), e.astype(np.float32), R.MIN_PROJECTION, R.MIN_PROJECTION,
+                           mapping=mapping)
+        assert np.all(np.isfinite(pc)) and np.all(np.isfinite(po)), mapping

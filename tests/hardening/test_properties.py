@@ -147,10 +147,7 @@ def _nonfinite_ok(eq) -> bool:
 
 #: entries of texts still being written whose accepted inputs give non-finite outputs today: shrink the domain or
 #: declare nonfinite=reason, then remove them here (xfail, not strict: the draw may miss the bad corner)
-PENDING = {
-    "rr-alg-3.1.3": "tan_half_fov and aspect are accepted down to 1e-45 and P_c overflows to +-inf",
-    "rr-tab-2.2": "slowdown is accepted down to 1e-45 and the speed overflows to inf",
-}
+PENDING: dict[str, str] = {}
 
 
 def _marked(eqs):

@@ -55,7 +55,8 @@ CCL_API void ccl_particles_params_default(ccl_particles_params *out);
 
 /* Check the parameters: box_min < box_max per axis, respawn_y < box_min.y, size_mean_mm - size_spread_mm / 2 >= 0.1
  * and size_mean_mm + size_spread_mm / 2 <= 4.5 (the radii of Tables 2.1/2.2), size_spread_mm >= 0, size_samples in
- * [1, 64], slowdown > 0, metres_per_unit > 0, wind.y == 0, every value finite. Returns CCL_EINVAL and the name of the
+ * [1, 64], slowdown in [1/64, 1000] (the domain of ccl_rain_terminal_speed), metres_per_unit > 0, wind.y == 0, every
+ * value finite. Returns CCL_EINVAL and the name of the
  * first bad field in *field (may be NULL), else CCL_OK. */
 CCL_API ccl_status ccl_particles_params_check(const ccl_particles_params *p, const char **field);
 

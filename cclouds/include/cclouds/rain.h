@@ -114,7 +114,8 @@ CCL_API float ccl_rain_drop_extent(float a, ccl_rain_interp interp);
  * divided by slowdown: linear between rows, Stokes v = 0.72 (r/0.1)^2 below r = 0.1 mm, the plateau 9.23 m/s from
  * r = 4 mm (the table reaches it at 2.75 mm).
  * Ref: rr-tab-2.2 (Gunn & Kinzer 1949 via Rousseau et al. 2006). radius_mm -> drop radius [mm] in [0, 10];
- * slowdown -> divisor in (0, 1000] (1 = physical, CCL_RAIN_APP_SLOWDOWN = 4 the application's).
+ * slowdown -> divisor in [1/64, 1000] (1 = physical, CCL_RAIN_APP_SLOWDOWN = 4 the application's; the lower bound
+ * keeps the speed finite).
  * Output: speed [m/s] / slowdown, in [0, 9.23 / slowdown], non-decreasing in the radius. */
 CCL_API float ccl_rain_terminal_speed(float radius_mm, float slowdown);
 
@@ -151,8 +152,10 @@ CCL_API ccl_status ccl_rain_mask(int size, float a, float deform, float n_water,
  * The two agree for a drop at the centre of the view. valid = 0 when c or w points backwards (c.z >= 0, w.z >= 0) or
  * e.z <= 0 (the shader's test); P_c = P_o = (0, 0) then.
  * Ref: rr-alg-3.1.3 (rr §3.1.3, Obrazek 3.5). view_dir -> c, unit, from the eye through P_i (camera space, OpenGL);
- * exit_dir -> e, the mask texel (mask frame); tan_half_fov in (0, 100]; aspect in (0, 100].
- * Returns P_c (uv, may leave [0, 1]^2: the capture is clamped); writes *out_p_o and *out_valid. */
+ * exit_dir -> e, the mask texel (mask frame); tan_half_fov in [1/64, 100]; aspect in [1/64, 100] (s_x <= 2048).
+ * Returns P_c (uv, may leave [0, 1]^2: the capture is clamped); writes *out_p_o and *out_valid. A direction at 90 deg
+ * to the view axis projects to infinity: where e.z > 0 (or -c.z > 0, w.z < 0) is below ~1e-38 of the other
+ * components, P_c (P_o) overflows to +-Inf, NaN where two such infinities cancel. */
 CCL_API ccl_vec2 ccl_rain_refracted_uv(ccl_vec3 view_dir, ccl_vec3 exit_dir, float tan_half_fov, float aspect,
                                        ccl_rain_mapping mapping, ccl_vec2 *out_p_o, int *out_valid);
 
