@@ -194,8 +194,8 @@ static void test_light_hemisphere_means_of_a_gradient_sky(void)
         CCL_CHECK(fabs(m1 - 0.5) < 2.5e-3 && fabs(m2 - 2.0 / 3.0) < 1.1e-3);
         for (c = 0; c < 3; ++c) {
             /* float32 sums of 128 terms: a few 1e-7 relative */
-            CCL_CHECK_REL(out.ambient_top[c], h[c] + (z[c] - h[c]) * m1, 2e-6);
-            CCL_CHECK_REL(out.ambient_ground[c], h[c] + (z[c] - h[c]) * m2, 2e-6);
+            CCL_CHECK_REL(out.ambient_top[c], (double)h[c] + (double)(z[c] - h[c]) * m1, 2e-6);
+            CCL_CHECK_REL(out.ambient_ground[c], (double)h[c] + (double)(z[c] - h[c]) * m2, 2e-6);
             CCL_CHECK(out.ambient_bottom[c] == p.ambient_bottom_ratio * out.ambient_top[c]);
         }
     }
@@ -265,7 +265,8 @@ static void test_ground_clear_and_under_an_opaque_layer(void)
     ccl_cloudscape_ground(&p, &t, point, sun, rgb, &shadow);
     CCL_CHECK(shadow == 1.0f);
     for (c = 0; c < 3; ++c)
-        CCL_CHECK_REL(rgb[c], p.ground_albedo[c] * (p.sun_colour[c] * 0.8 / PI_D + p.ambient_ground[c]), 1e-6);
+        CCL_CHECK_REL(rgb[c], (double)p.ground_albedo[c] * ((double)p.sun_colour[c] * 0.8 / PI_D +
+                                                            (double)p.ambient_ground[c]), 1e-6);
     /* a layer covered everywhere: the sun is blocked, the sky light remains */
     t = constant_textures(1.0f);
     ccl_cloudscape_ground(&p, &t, point, sun, rgb, &shadow);
