@@ -440,11 +440,12 @@ class CloudscapeSettings(Settings):
                                         "bright sun that exposes the dim clouds of vc-2.31, so the sunlit ground stays "
                                         "darker than the sky (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
     aerial_km: float = param(30.0, unit="km", lo=0.0, hi=1e6, group="lighting", cli="--aerial",
-                             doc="sky lighting: aerial-perspective e-folding distance (0 = off): colour = C e^(-t/L) "
-                                 "+ horizon sky (1 - e^(-t/L))",
+                             doc="sky lighting: aerial-perspective e-folding distance L at the ground (0 = off): "
+                                 "colour = C e^(-t/L) + horizon sky (1 - e^(-t/L)), t the path's length of "
+                                 "ground-level air (see aerial_height_km)",
                              reason="30: a visual range of ~117 km (Koschmieder 3.912 x 30), a clear day; the "
                                     "horizon band of clouds fades into the sky (ccl_cloudscape_params_default)")
-    aerial_height_km: float = param(2.0, unit="km", lo=0.0, hi=1e6, group="lighting",
+    aerial_height_km: float = param(2.0, unit="km", lo=0.0, hi=1e6, group="lighting", cli="--aerial-height",
                                     doc="sky lighting: scale height of the haze (its density falls as e^(-altitude "
                                         "/ H)); 0 = a homogeneous fog",
                                     reason="2: the haze is mostly aerosol in the lowest kilometres (scale heights "

@@ -4,7 +4,9 @@
 :func:`cloudscape_pixel` mirror the C functions of the same names. The image kernels follow the
 :class:`pywarp.core.runtime.TileLauncher` convention (first parameter ``row0``) so a frame runs on every core:
 
-* :func:`sky_kernel` writes the sky model's colour into the frame buffer (the first stage of the render chain);
+* :func:`sky_kernel` writes the sky model's colour into the frame buffer (the first stage of the render chain; with
+  sky lighting the sky lifted to the horizon everywhere: the haze colour, which the cloud pass turns into the lit
+  ground where the ray meets the Earth);
 * :func:`clouds_kernel` marches the clouds of every pixel, or, with reprojection, of one pixel per 4 x 4 block
   (vc-4.1), composites them over the frame buffer (vc-4.8) and fills the reduced buffer (vc-A22);
 * :func:`encode_kernel` clamps to [0, 1] and applies the sRGB encoding.
