@@ -61,35 +61,109 @@ void ccl_reproj_reduced_coord(int x, int y, int frame, int width, int height, fl
 
 /* --- vc-A26: reprojection ---------------------------------------------------------------------------------------- */
 
-int ccl_reproj_uv(const float inv_view_proj_rot[16], ccl_vec3 eye, const float prev_view_proj[16],
-                        ccl_vec3 centre, float r_inner, int x, int y, int width, int height, float *out_u, float *out_v)
+/* nearest hit of the ray (eye, d) on the inner sphere in front of the camera (the far root from inside); NaN or <= 0:
+ * none */
+static float inner_sphere_t(ccl_vec3 eye, ccl_vec3 d, ccl_vec3 centre, float r_inner)
 {
-    const float *m = prev_view_proj;
-    ccl_vec3 d = ccl_camera_ray(inv_view_proj_rot, x, y, width, height);
-    float t0, t1, t, px, py, pz, cx, cy, cw, u, v;
+    float t0, t1;
     ccl_raymarch_ray_sphere(eye, d, centre, r_inner, &t0, &t1);
-    t = (t0 > 0.0f) ? t0 : t1;
-    if (!(t > 0.0f)) {
-        *out_u = NAN;
-        *out_v = NAN;
-        return 0;
-    }
-    px = eye.x + d.x * t;
-    py = eye.y + d.y * t;
-    pz = eye.z + d.z * t;
-    cx = m[0] * px + m[4] * py + m[8] * pz + m[12];
-    cy = m[1] * px + m[5] * py + m[9] * pz + m[13];
-    cw = m[3] * px + m[7] * py + m[11] * pz + m[15];
+    return (t0 > 0.0f) ? t0 : t1;
+}
+
+/* uv of the point eye + d t in the camera m (clip = m (P, 1)); 0 and NaN uv when clip w <= 0 (or NaN) */
+static int project(const float *m, ccl_vec3 eye, ccl_vec3 d, float t, float *out_u, float *out_v)
+{
+    float px = eye.x + d.x * t, py = eye.y + d.y * t, pz = eye.z + d.z * t;
+    float cx = m[0] * px + m[4] * py + m[8] * pz + m[12];
+    float cy = m[1] * px + m[5] * py + m[9] * pz + m[13];
+    float cw = m[3] * px + m[7] * py + m[11] * pz + m[15];
     if (!(cw > 0.0f)) {
         *out_u = NAN;
         *out_v = NAN;
         return 0;
     }
-    u = (cx / cw) * 0.5f + 0.5f;
-    v = 0.5f - (cy / cw) * 0.5f;
-    *out_u = u;
-    *out_v = v;
+    *out_u = (cx / cw) * 0.5f + 0.5f;
+    *out_v = 0.5f - (cy / cw) * 0.5f;
+    return 1;
+}
+
+static int inside_unit(float u, float v)
+{
     return u >= 0.0f && u <= 1.0f && v >= 0.0f && v <= 1.0f;
+}
+
+int ccl_reproj_uv(const float inv_view_proj_rot[16], ccl_vec3 eye, const float prev_view_proj[16],
+                        ccl_vec3 centre, float r_inner, int x, int y, int width, int height, float *out_u, float *out_v)
+{
+    ccl_vec3 d = ccl_camera_ray(inv_view_proj_rot, x, y, width, height);
+    float t = inner_sphere_t(eye, d, centre, r_inner);
+    if (!(t > 0.0f)) {
+        *out_u = NAN;
+        *out_v = NAN;
+        return 0;
+    }
+    return project(prev_view_proj, eye, d, t, out_u, out_v) && inside_unit(*out_u, *out_v);
+}
+
+/* --- depth-aware reprojection (not in the thesis; see reproj.h) ------------------------------------------------- */
+
+float ccl_reproj_surface_depth(float march_depth, ccl_vec3 eye, ccl_vec3 d, ccl_vec3 centre, float r_earth)
+{
+    float e0, e1;
+    if (isnan(march_depth) || isnan(eye.x + eye.y + eye.z) || isnan(d.x + d.y + d.z)) return NAN;
+    if (march_depth > 0.0f) return march_depth;
+    ccl_raymarch_ray_sphere(eye, d, centre, r_earth, &e0, &e1);
+    if (e0 > 0.0f) return e0; /* the ground ahead */
+    return CCL_REPROJ_SKY_DEPTH_KM;
+}
+
+/* nearest pixel index along one axis of the continuous position p (pixel i centred at i), clamped to [0, n - 1]
+ * in float before the conversion (p may be huge or NaN: NaN -> 0) */
+static int nearest_index(float p, int n)
+{
+    float f = floorf(p + 0.5f);
+    if (!(f >= 0.0f)) f = 0.0f;
+    if (f > (float)(n - 1)) f = (float)(n - 1);
+    return (int)f;
+}
+
+int ccl_reproj_uv_depth(const float inv_view_proj_rot[16], ccl_vec3 eye, const float prev_view_proj[16],
+                        ccl_vec3 prev_eye, const float *prev_depth, ccl_vec3 centre, float r_inner, int iterations,
+                        int x, int y, int width, int height, float *out_u, float *out_v, float *out_t)
+{
+    ccl_vec3 d = ccl_camera_ray(inv_view_proj_rot, x, y, width, height);
+    float t = inner_sphere_t(eye, d, centre, r_inner), u, v;
+    int k;
+    CCL_REQUIRE(iterations >= 0 && iterations <= CCL_REPROJ_MAX_DEPTH_ITERATIONS && prev_depth);
+    if (!(t > 0.0f)) {
+        *out_u = NAN;
+        *out_v = NAN;
+        *out_t = NAN;
+        return 0;
+    }
+    for (k = 0; k < iterations; ++k) {
+        float dp, qx, qy, qz, lq, s, yx, yy, yz, tn;
+        if (!project(prev_view_proj, eye, d, t, &u, &v)) break;
+        /* the depth the previous frame stored at the nearest pixel of uv (clamped to the image) */
+        dp = prev_depth[(size_t)nearest_index(v * (float)height - 0.5f, height) * (size_t)width +
+                        (size_t)nearest_index(u * (float)width - 0.5f, width)];
+        if (!(dp > 0.0f)) break; /* unknown (or NaN) */
+        /* Y = prev_eye + dp (X - prev_eye) / |X - prev_eye|, t = |Y - eye| */
+        qx = (eye.x + d.x * t) - prev_eye.x;
+        qy = (eye.y + d.y * t) - prev_eye.y;
+        qz = (eye.z + d.z * t) - prev_eye.z;
+        lq = sqrtf(qx * qx + qy * qy + qz * qz);
+        if (!(lq > 0.0f)) break;
+        s = dp / lq;
+        yx = (prev_eye.x + qx * s) - eye.x;
+        yy = (prev_eye.y + qy * s) - eye.y;
+        yz = (prev_eye.z + qz * s) - eye.z;
+        tn = sqrtf(yx * yx + yy * yy + yz * yz);
+        if (!(tn > 0.0f) || isinf(tn)) break;
+        t = tn;
+    }
+    *out_t = t;
+    return project(prev_view_proj, eye, d, t, out_u, out_v) && inside_unit(*out_u, *out_v);
 }
 
 static int clampi(int v, int lo, int hi)
@@ -118,27 +192,56 @@ static float bilinear(const float *img, int w, int xmax, int ymax, int channels,
     return (p00 * (1.0f - fx) + p10 * fx) * (1.0f - fy) + (p01 * (1.0f - fx) + p11 * fx) * fy;
 }
 
+/* Catmull-Rom weights of the 4 taps at offsets -1, 0, 1, 2 for the fraction t in [0, 1) */
+static void catmull_rom_weights(float t, float w[4])
+{
+    float t2 = t * t, t3 = t2 * t;
+    w[0] = -0.5f * t3 + t2 - 0.5f * t;
+    w[1] = 1.5f * t3 - 2.5f * t2 + 1.0f;
+    w[2] = -1.5f * t3 + 2.0f * t2 + 0.5f * t;
+    w[3] = 0.5f * t3 - 0.5f * t2;
+}
+
+/* Catmull-Rom lookup of channel ch at (xs, ys) (clamp-to-edge as bilinear), clamped to the range of the 2 x 2 pixels
+ * the bilinear lookup reads (the filter sharpens, it never overshoots) */
+static float catmull_rom(const float *img, int w, int xmax, int ymax, int channels, int ch, float xs, float ys)
+{
+    float x0f = floorf(xs), y0f = floorf(ys), wx[4], wy[4], sum = 0.0f, lo = INFINITY, hi = -INFINITY;
+    int x0 = (int)x0f, y0 = (int)y0f, i, j;
+    catmull_rom_weights(xs - x0f, wx);
+    catmull_rom_weights(ys - y0f, wy);
+    for (j = 0; j < 4; ++j) {
+        int yy = clampi(y0 - 1 + j, 0, ymax);
+        float row = 0.0f;
+        for (i = 0; i < 4; ++i) {
+            float val = img[at(clampi(x0 - 1 + i, 0, xmax), yy, w, channels, ch)];
+            row = row + wx[i] * val;
+            if ((i == 1 || i == 2) && (j == 1 || j == 2)) {
+                if (val < lo) lo = val;
+                if (val > hi) hi = val;
+            }
+        }
+        sum = sum + wy[j] * row;
+    }
+    if (sum < lo) sum = lo;
+    if (sum > hi) sum = hi;
+    return sum;
+}
+
 static float snap(float p)
 {
     float n = floorf(p + 0.5f);
     return (fabsf(p - n) <= SNAP_PX) ? n : p;
 }
 
-static void reproject_pixel(const float *current, const float *previous, const float *reduced, int width, int height,
-                            int channels, int frame, const float inv_view_proj_rot[16], ccl_vec3 eye,
-                            const float prev_view_proj[16], ccl_vec3 centre, float r_inner, int neighbourhood,
-                            int history, int x, int y, float *out)
+/* the colour of a pixel not rendered this frame: the previous frame at (u, v) when valid (n x n bilinear samples),
+ * else the reduced buffer (vc-A26 step 3), else (no rendered pixel in that direction) previous / current as is */
+static void fill_pixel(const float *current, const float *previous, const float *reduced, int width, int height,
+                       int channels, int frame, int neighbourhood, int filter, int history, int valid, float u, float v,
+                       int x, int y, float *out)
 {
     size_t base = at(x, y, width, channels, 0);
-    int ch, i, j, valid = 0, half = neighbourhood / 2;
-    float u = 0.0f, v = 0.0f;
-    if (ccl_reproj_updated(x, y, frame)) {
-        for (ch = 0; ch < channels; ++ch) out[base + (size_t)ch] = current[base + (size_t)ch];
-        return;
-    }
-    if (history)
-        valid = ccl_reproj_uv(inv_view_proj_rot, eye, prev_view_proj, centre, r_inner, x, y, width, height, &u,
-                                    &v);
+    int ch, i, j, half = neighbourhood / 2;
     if (valid) {
         float xs = snap(u * (float)width - 0.5f), ys = snap(v * (float)height - 0.5f);
         float inv_n = 1.0f / (float)(neighbourhood * neighbourhood);
@@ -146,8 +249,11 @@ static void reproject_pixel(const float *current, const float *previous, const f
             float sum = 0.0f;
             for (j = -half; j <= half; ++j)
                 for (i = -half; i <= half; ++i)
-                    sum = sum + bilinear(previous, width, width - 1, height - 1, channels, ch, xs + (float)i,
-                                         ys + (float)j);
+                    sum = sum + (filter == CCL_REPROJ_FILTER_CATMULL_ROM
+                                     ? catmull_rom(previous, width, width - 1, height - 1, channels, ch,
+                                                   xs + (float)i, ys + (float)j)
+                                     : bilinear(previous, width, width - 1, height - 1, channels, ch, xs + (float)i,
+                                                ys + (float)j));
             out[base + (size_t)ch] = sum * inv_n;
         }
     } else {
@@ -167,6 +273,25 @@ static void reproject_pixel(const float *current, const float *previous, const f
     }
 }
 
+static void reproject_pixel(const float *current, const float *previous, const float *reduced, int width, int height,
+                            int channels, int frame, const float inv_view_proj_rot[16], ccl_vec3 eye,
+                            const float prev_view_proj[16], ccl_vec3 centre, float r_inner, int neighbourhood,
+                            int history, int x, int y, float *out)
+{
+    size_t base = at(x, y, width, channels, 0);
+    int ch, valid = 0;
+    float u = 0.0f, v = 0.0f;
+    if (ccl_reproj_updated(x, y, frame)) {
+        for (ch = 0; ch < channels; ++ch) out[base + (size_t)ch] = current[base + (size_t)ch];
+        return;
+    }
+    if (history)
+        valid = ccl_reproj_uv(inv_view_proj_rot, eye, prev_view_proj, centre, r_inner, x, y, width, height, &u,
+                                    &v);
+    fill_pixel(current, previous, reduced, width, height, channels, frame, neighbourhood, CCL_REPROJ_FILTER_BILINEAR,
+               history, valid, u, v, x, y, out);
+}
+
 ccl_status ccl_reproj_frame(const float *current, const float *previous, const float *reduced, int width,
                                int height, int channels, int frame, const float inv_view_proj_rot[16], ccl_vec3 eye,
                                const float prev_view_proj[16], ccl_vec3 centre, float r_inner, int neighbourhood,
@@ -182,5 +307,76 @@ ccl_status ccl_reproj_frame(const float *current, const float *previous, const f
         for (x = 0; x < width; ++x)
             reproject_pixel(current, previous, reduced, width, height, channels, frame, inv_view_proj_rot, eye,
                             prev_view_proj, centre, r_inner, neighbourhood, history, x, y, out);
+    return CCL_OK;
+}
+
+/* the depth of a fallback pixel: the bilinear interpolation of this frame's rendered depths (pixel (4i + a, 4j + b)
+ * of current_depth holds reduced texel (i, j)) at the reduced-buffer position, as the colour; no rendered pixel in
+ * that direction: previous_depth (history) or current_depth at the same pixel */
+static float fallback_depth(const float *current_depth, const float *previous_depth, int width, int height, int frame,
+                            int history, int x, int y)
+{
+    float rx, ry, x0f, y0f, fx, fy, p00, p10, p01, p11;
+    int f = mod16(frame), a = f / 4, b = f % 4, x0, x1, y0, y1, xmax, ymax;
+    ccl_reproj_reduced_coord(x, y, frame, width, height, &rx, &ry);
+    if (isnan(rx) || isnan(ry)) return (history ? previous_depth : current_depth)[at(x, y, width, 1, 0)];
+    xmax = (width - 1 - a) / CCL_REPROJ_BLOCK;
+    ymax = (height - 1 - b) / CCL_REPROJ_BLOCK;
+    x0f = floorf(rx);
+    y0f = floorf(ry);
+    fx = rx - x0f;
+    fy = ry - y0f;
+    x0 = clampi((int)x0f, 0, xmax);
+    x1 = clampi((int)x0f + 1, 0, xmax);
+    y0 = clampi((int)y0f, 0, ymax);
+    y1 = clampi((int)y0f + 1, 0, ymax);
+    p00 = current_depth[at(CCL_REPROJ_BLOCK * x0 + a, CCL_REPROJ_BLOCK * y0 + b, width, 1, 0)];
+    p10 = current_depth[at(CCL_REPROJ_BLOCK * x1 + a, CCL_REPROJ_BLOCK * y0 + b, width, 1, 0)];
+    p01 = current_depth[at(CCL_REPROJ_BLOCK * x0 + a, CCL_REPROJ_BLOCK * y1 + b, width, 1, 0)];
+    p11 = current_depth[at(CCL_REPROJ_BLOCK * x1 + a, CCL_REPROJ_BLOCK * y1 + b, width, 1, 0)];
+    return (p00 * (1.0f - fx) + p10 * fx) * (1.0f - fy) + (p01 * (1.0f - fx) + p11 * fx) * fy;
+}
+
+ccl_status ccl_reproj_frame_depth(const float *current, const float *current_depth, const float *previous,
+                                  const float *previous_depth, const float *reduced, int width, int height,
+                                  int channels, int frame, const float inv_view_proj_rot[16], ccl_vec3 eye,
+                                  const float prev_view_proj[16], ccl_vec3 prev_eye, ccl_vec3 centre, float r_inner,
+                                  int neighbourhood, int filter, int iterations, int history, float *out,
+                                  float *out_depth)
+{
+    int x, y;
+    if (!current || !current_depth || !previous || !previous_depth || !reduced || !inv_view_proj_rot ||
+        !prev_view_proj || !out || !out_depth)
+        return CCL_EINVAL;
+    /* written buffers: out may be current, out_depth may be current_depth (a rendered pixel keeps its value and the
+     * fallback reads only rendered pixels); nothing else written may be read */
+    if (out == previous || out == previous_depth || out == current_depth || out == reduced || out == out_depth ||
+        out_depth == previous || out_depth == previous_depth || out_depth == current || out_depth == reduced)
+        return CCL_EINVAL;
+    if (width < 1 || height < 1 || channels < 1 || neighbourhood < 1 || neighbourhood % 2 == 0 ||
+        neighbourhood > CCL_REPROJ_MAX_NEIGHBOURHOOD || !(r_inner > 0.0f) || iterations < 0 ||
+        iterations > CCL_REPROJ_MAX_DEPTH_ITERATIONS ||
+        (filter != CCL_REPROJ_FILTER_BILINEAR && filter != CCL_REPROJ_FILTER_CATMULL_ROM))
+        return CCL_EINVAL;
+    for (y = 0; y < height; ++y)
+        for (x = 0; x < width; ++x) {
+            size_t k = at(x, y, width, 1, 0);
+            int valid = 0;
+            float u = 0.0f, v = 0.0f, t = 0.0f;
+            if (ccl_reproj_updated(x, y, frame)) {
+                size_t base = at(x, y, width, channels, 0);
+                int ch;
+                for (ch = 0; ch < channels; ++ch) out[base + (size_t)ch] = current[base + (size_t)ch];
+                out_depth[k] = current_depth[k];
+                continue;
+            }
+            if (history)
+                valid = ccl_reproj_uv_depth(inv_view_proj_rot, eye, prev_view_proj, prev_eye, previous_depth, centre,
+                                            r_inner, iterations, x, y, width, height, &u, &v, &t);
+            fill_pixel(current, previous, reduced, width, height, channels, frame, neighbourhood, filter, history,
+                       valid, u, v, x, y, out);
+            out_depth[k] = valid ? t : fallback_depth(current_depth, previous_depth, width, height, frame, history, x,
+                                                      y);
+        }
     return CCL_OK;
 }

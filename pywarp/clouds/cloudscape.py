@@ -8,8 +8,10 @@ and vc-A33 (visualization technique: init / update / render, plus resize).
 One frame (``CloudscapeTechnique.render``):
   1. the sky model writes the background of every pixel (or, with reprojection, of one pixel per 4 x 4 block);
   2. the cloud kernel marches the cloud layer for the same pixels and composites over the background (vc-4.8);
-  3. with reprojection, the other 15/16 of the pixels come from the previous frame through the inner-sphere hit
-     point (vc-A26), or from the reduced buffer;
+  3. with reprojection, the other 15/16 of the pixels come from the previous frame (vc-A26) at the position found
+     through the depth of what each pixel shows (the clouds' mean distance, kept in a depth buffer; the setting
+     ``reprojection_depth``: "clouds", or the thesis's "inner_sphere" hit point) and sampled with the filter of
+     ``reprojection_filter``, or from the reduced buffer;
   4. sRGB encoding, uint8.
 Every stage is a Warp kernel launched as row bands on every core (:class:`pywarp.core.runtime.TileLauncher`). The same
 pixel computation exists in C (``ccl_cloudscape_pixel``): :func:`render_pixels_c` runs it at chosen pixels.
@@ -307,6 +309,11 @@ class CloudscapeTechnique:
             "out": wp.zeros((height, width, 3), dtype=float, device=dev),
             "reduced": wp.zeros((gh, gw, 3), dtype=float, device=dev),
             "samples": wp.zeros((height, width), dtype=wp.int32, device=dev),
+            # distances (km) of what each pixel shows, for the depth-aware reprojection: this frame's marched pixels,
+            # the previous frame's and this frame's final depths (ping-pong like the colour)
+            "depth": wp.zeros((height, width), dtype=float, device=dev),
+            "prev_depth": wp.zeros((height, width), dtype=float, device=dev),
+            "out_depth": wp.zeros((height, width), dtype=float, device=dev),
             "encoded": wp.zeros((height, width, 3), dtype=float, device=dev),
         }
         self._prev_camera = None
@@ -333,23 +340,31 @@ class CloudscapeTechnique:
         tex = self.textures.warp()
         sun = wp.vec3(*self.sky.sun.tolist())
         target = b["current"] if reproj else b["out"]
+        depth_target = b["depth"] if reproj else b["out_depth"]
         self.sky.render(target, cam, self.frame, reproj, self.params, self.launcher)
         rows, cols = (RP.reproj_grid(w, h)[::-1]) if reproj else (h, w)
         band_done = None if progress is None else (lambda n, total=rows: progress(n / total))
         self.launcher.launch(K.clouds_kernel, rows, cols,
                              [self.params, tex, sun, cam.mat44("inv_view_proj_rot"),
-                              cam.eye_vec3(), self.frame, int(reproj)], [target, b["reduced"], b["samples"]],
-                             progress=band_done)
+                              cam.eye_vec3(), self.frame, int(reproj)],
+                             [target, b["reduced"], b["samples"], depth_target], progress=band_done)
         if reproj:
             history = int(self._prev_camera is not None)
             prev = self._prev_camera or cam
-            self.launcher.launch(RP.reproject_frame_kernel, h, w,
-                                 [b["current"], b["previous"], b["reduced"], self.frame,
+            # depth-aware (cclouds/reproj.h): the fixed-point iteration on the depth; 0 iterations and the bilinear
+            # filter = the thesis's inner-sphere point and sampling (the colours of RP.reproject_frame_kernel), the
+            # depths still carried
+            iterations = RP.DEPTH_ITERATIONS if s.reprojection_depth == "clouds" else 0
+            flt = RP.FILTERS[s.reprojection_filter]
+            self.launcher.launch(RP.reproject_frame_depth_kernel, h, w,
+                                 [b["current"], b["depth"], b["previous"], b["prev_depth"], b["reduced"], self.frame,
                                   cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), prev.mat44("view_proj"),
-                                  layer.centre_vec3(), layer.r_inner, int(s.reprojection_neighbourhood), history],
-                                 [b["out"]])
+                                  prev.eye_vec3(), layer.centre_vec3(), layer.r_inner,
+                                  int(s.reprojection_neighbourhood), flt, iterations, history],
+                                 [b["out"], b["out_depth"]])
         # the final frame becomes the previous one (ping-pong)
         b["previous"], b["out"] = b["out"], b["previous"]
+        b["prev_depth"], b["out_depth"] = b["out_depth"], b["prev_depth"]
         final = b["previous"]
         self._prev_camera = cam if reproj or s.reprojection else None
         self.frame += 1

@@ -51,6 +51,7 @@ JITTER_NAMES = ("tilt", "offset", "none")  # ccl_jitter_mode order
 COVERAGE_THRESHOLD_NAMES = ("coverage", "one_minus_coverage")  # ccl_coverage_threshold order
 LIGHTING_NAMES = ("thesis", "sky")  # ccl_lighting order
 REPROJECTION_DEPTHS = ("clouds", "inner_sphere")  # pywarp.kernels.reproj: depth iterations 3 / 0
+REPROJECTION_FILTERS = ("catmull_rom", "bilinear")  # pywarp.kernels.reproj.FILTERS (ccl_reproj_filter)
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
 
 
@@ -386,11 +387,11 @@ class CloudscapeSettings(Settings):
     reprojection_depth: str = param("clouds", choices=REPROJECTION_DEPTHS, group="quality",
                                     doc="where a reprojected pixel's point is looked for in the previous frame: "
                                         "'clouds' (at the distance of what the pixel shows -- the clouds' mean "
-                                        "distance from the march, kept in a depth buffer -- found by "
-                                        "3 fixed-point steps along the ray, pywarp.kernels.reproj."
-                                        "reproj_uv_depth) or 'inner_sphere' (the thesis, vc-A26: every cloud as if "
-                                        "on the layer base)",
-                                    reason="'clouds': with the thesis's inner-sphere point, clouds at other distances "
+                                        "distance from the march, else the ground, else the sky far away -- kept in "
+                                        "a depth buffer and found by 3 fixed-point steps along the ray, "
+                                        "pywarp.kernels.reproj.reproj_uv_depth) or 'inner_sphere' (the thesis, "
+                                        "vc-A26: everything as if on the layer base)",
+                                    reason="'clouds': through the inner sphere, clouds at other distances and the sky "
                                            "are fetched from the wrong place while the camera translates (parallax) "
                                            "and the freshly marched pixel of every 4x4 block shows as a dot grid")
     jitter: str = param("offset", choices=JITTER_NAMES, group="quality",
@@ -398,6 +399,13 @@ class CloudscapeSettings(Settings):
                             "ray), tilt (the thesis: the ray's direction) or none",
                         reason="'offset': the thesis' tilt of up to 0.002 rad per axis moves the ray by more than a "
                                "pixel (0.0019 rad at 960x540), so far clouds changed from frame to frame (the "
+    reprojection_filter: str = param("catmull_rom", choices=REPROJECTION_FILTERS, group="quality",
+                                     doc="how the previous frame is sampled at a reprojected position: "
+                                         "'catmull_rom' (cubic over 4x4 pixels, clamped to the range of the 2x2 "
+                                         "the bilinear filter reads) or 'bilinear' (the thesis, vc-A26)",
+                                     reason="'catmull_rom': a pixel is resampled up to 15 times before it is marched "
+                                            "again; bilinear resampling blurs it every time, and the sharp fresh "
+                                            "pixel of each 4x4 block then stands out as a dot grid")
                                "flickering horizon: 6.2 grey levels between frames against 0.77 with offset) and "
                                "near ones looked out of focus (ccl_cloudscape_params_default)")
     light_detail: bool = param(True, group="quality",

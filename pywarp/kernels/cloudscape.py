@@ -695,8 +695,8 @@ def clouds_kernel(row0: int, p: CloudscapeParams, tex: CloudTextures, sun: wp.ve
     """Stage 2 (vc-A14..A22): clouds over the sky already in ``frame_buffer`` (vc-4.8); with reprojection the thread
     grid is the 4 x 4 block grid and the reduced buffer receives this frame's pixels (vc-A22). ``depth_buffer``
     receives the distance (km) of what each marched pixel shows, for the depth-aware reprojection
-    (:func:`pywarp.kernels.reproj.reproj_surface_depth`: the clouds' mean distance, else the ground, else the inner
-    sphere)."""
+    (:func:`pywarp.kernels.reproj.reproj_surface_depth`: the clouds' mean distance, else the ground, else the sky far
+    away)."""
     i, j = wp.tid()
     height = frame_buffer.shape[0]
     width = frame_buffer.shape[1]
@@ -724,7 +724,7 @@ def clouds_kernel(row0: int, p: CloudscapeParams, tex: CloudTextures, sun: wp.ve
                 if reprojection != 0:
                     reduced[row0 + i, j, ch] = v
         samples[y, x] = taken
-        depth_buffer[y, x] = reproj_surface_depth(depth, eye, d, p.centre, p.r_earth, p.r_inner)
+        depth_buffer[y, x] = reproj_surface_depth(depth, eye, d, p.centre, p.r_earth)
 
 
 @wp.kernel

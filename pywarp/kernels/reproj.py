@@ -16,6 +16,16 @@ Choices where the thesis is silent (the header comment of ``cclouds/reproj.h`` h
   * ``history=False`` (first frame, camera cut, camera inside/above the layer) -> fallback for every pixel not
     rendered this frame.
 
+Depth-aware reprojection (not in the thesis; the renderer's default, setting ``reprojection_depth="clouds"``): the
+thesis reprojects every pixel through the inner sphere, so a cloud at another distance is fetched from the wrong place
+of the previous frame (parallax) and the freshly marched pixel of each 4 x 4 block stands out as a dot grid while the
+camera translates. :func:`reproj_uv_depth` finds the previous position through the depth of what the pixel shows
+(:func:`reproj_surface_depth`, kept in a depth buffer; the sky far away) by a fixed-point iteration along the
+current ray, and samples the previous frame with a clamped Catmull-Rom filter (repeated bilinear resampling blurs the
+pixels carried for up to 15 frames); :func:`reproj_frame_depth` is the pass. The choices (nearest previous depth, the
+direction of the iterate from the previous eye, ``iterations=0`` = the thesis's point, the filter) and their reasons
+are in ``cclouds/reproj.h``.
+
 Image-level kernels follow :class:`pywarp.core.runtime.TileLauncher`'s convention (first parameter ``row0: int``, launched
 with ``dim=(rows, width)``).
 """
@@ -36,6 +46,18 @@ SNAP_PX = 1.0 / 256.0
 _SNAP = wp.constant(SNAP_PX)
 #: vc-A27 default neighbourhood (n x n box of bilinear samples one pixel apart).
 AVERAGE_NEIGHBOURHOOD = 3
+#: Fixed-point refinements of the depth-aware reprojection (CCL_REPROJ_DEPTH_ITERATIONS; the reason is in
+#: cclouds/reproj.h) and the largest accepted number (CCL_REPROJ_MAX_DEPTH_ITERATIONS: bounds the work per pixel).
+DEPTH_ITERATIONS = 3
+MAX_DEPTH_ITERATIONS = 16
+#: Depth of the sky in the depth buffer (CCL_REPROJ_SKY_DEPTH_KM): a 1 km camera step moves it by 1e-5 rad (0.02 px at
+#: 1920 px over 60 deg), and float32 positions there keep 1e-7 rad of direction.
+SKY_DEPTH_KM = 1.0e5
+_SKY_DEPTH = wp.constant(SKY_DEPTH_KM)
+#: Samplers of the previous frame (ccl_reproj_filter): the thesis's bilinear, or Catmull-Rom over 4 x 4 pixels clamped
+#: to the 2 x 2 bilinear footprint (keeps the detail of pixels carried for up to 15 frames; reasons in reproj.h).
+FILTERS = {"bilinear": 0, "catmull_rom": 1}
+_CATMULL_ROM = wp.constant(1)
 
 
 # --- vc-4.1 -----------------------------------------------------------------------------------------------------------
@@ -140,31 +162,122 @@ def reproj_reduced_coord(x: int, y: int, frame: int, width: int, height: int) ->
 # --- vc-A26 / vc-A27 --------------------------------------------------------------------------------------------------
 
 @wp.func
-def reproj_uv(inv_view_proj_rot: wp.mat44, eye: wp.vec3, prev_view_proj: wp.mat44, centre: wp.vec3, r_inner: float,
-              x: int, y: int, width: int, height: int) -> tuple[int, float, float]:
-    """vc-A26 step 2: (visible, u, v) of pixel (x, y) in the previous frame via the inner-sphere hit point."""
-    m = prev_view_proj
-    d = camera_ray(inv_view_proj_rot, x, y, width, height)
+def _inner_sphere_t(eye: wp.vec3, d: wp.vec3, centre: wp.vec3, r_inner: float) -> float:
+    """Nearest inner-sphere hit in front of the camera (the far root from inside); NaN or <= 0: none."""
     t0, t1 = raymarch_ray_sphere(eye, d, centre, r_inner)
     t = t1
     if t0 > 0.0:
         t = t0
+    return t
+
+
+@wp.func
+def _project(m: wp.mat44, eye: wp.vec3, d: wp.vec3, t: float) -> tuple[int, float, float]:
+    """(1, u, v) of the point eye + d t in the camera m; (0, NaN, NaN) when clip w <= 0 (or NaN)."""
+    px = eye[0] + d[0] * t
+    py = eye[1] + d[1] * t
+    pz = eye[2] + d[2] * t
+    cx = m[0][0] * px + m[0][1] * py + m[0][2] * pz + m[0][3]
+    cy = m[1][0] * px + m[1][1] * py + m[1][2] * pz + m[1][3]
+    cw = m[3][0] * px + m[3][1] * py + m[3][2] * pz + m[3][3]
+    ok = int(0)
     u = wp.nan
     v = wp.nan
-    ok = 0
-    if t > 0.0:
-        px = eye[0] + d[0] * t
-        py = eye[1] + d[1] * t
-        pz = eye[2] + d[2] * t
-        cx = m[0][0] * px + m[0][1] * py + m[0][2] * pz + m[0][3]
-        cy = m[1][0] * px + m[1][1] * py + m[1][2] * pz + m[1][3]
-        cw = m[3][0] * px + m[3][1] * py + m[3][2] * pz + m[3][3]
-        if cw > 0.0:
-            u = (cx / cw) * 0.5 + 0.5
-            v = 0.5 - (cy / cw) * 0.5
-            if u >= 0.0 and u <= 1.0 and v >= 0.0 and v <= 1.0:
-                ok = 1
+    if cw > 0.0:
+        ok = 1
+        u = (cx / cw) * 0.5 + 0.5
+        v = 0.5 - (cy / cw) * 0.5
     return ok, u, v
+
+
+@wp.func
+def _inside_unit(u: float, v: float) -> int:
+    r = int(0)
+    if u >= 0.0 and u <= 1.0 and v >= 0.0 and v <= 1.0:
+        r = 1
+    return r
+
+
+@wp.func
+def reproj_uv(inv_view_proj_rot: wp.mat44, eye: wp.vec3, prev_view_proj: wp.mat44, centre: wp.vec3, r_inner: float,
+              x: int, y: int, width: int, height: int) -> tuple[int, float, float]:
+    """vc-A26 step 2: (visible, u, v) of pixel (x, y) in the previous frame via the inner-sphere hit point."""
+    d = camera_ray(inv_view_proj_rot, x, y, width, height)
+    t = _inner_sphere_t(eye, d, centre, r_inner)
+    u = wp.nan
+    v = wp.nan
+    ok = int(0)
+    if t > 0.0:
+        front, u, v = _project(prev_view_proj, eye, d, t)
+        if front == 1:
+            ok = _inside_unit(u, v)
+    return ok, u, v
+
+
+# --- depth-aware reprojection (not in the thesis; choices in cclouds/reproj.h) ----------------------------------------
+
+@wp.func
+def reproj_surface_depth(march_depth: float, eye: wp.vec3, d: wp.vec3, centre: wp.vec3, r_earth: float) -> float:
+    """Twin of ``ccl_reproj_surface_depth``: the distance (km) along the unit ray d of what a pixel shows -- the
+    march's mean cloud distance when > 0, else the ground ahead, else the sky (``SKY_DEPTH_KM``); NaN for NaN input."""
+    if wp.isnan(march_depth) or wp.isnan(eye[0] + eye[1] + eye[2]) or wp.isnan(d[0] + d[1] + d[2]):
+        return wp.nan
+    if march_depth > 0.0:
+        return march_depth
+    e0, e1 = raymarch_ray_sphere(eye, d, centre, r_earth)
+    if e0 > 0.0:
+        return e0
+    return _SKY_DEPTH
+
+
+@wp.func
+def _nearest_index(p: float, n: int) -> int:
+    f = wp.floor(p + 0.5)
+    if not (f >= 0.0):
+        f = 0.0
+    if f > float(n - 1):
+        f = float(n - 1)
+    return int(f)
+
+
+@wp.func
+def reproj_uv_depth(inv_view_proj_rot: wp.mat44, eye: wp.vec3, prev_view_proj: wp.mat44, prev_eye: wp.vec3,
+                    prev_depth: wp.array2d(dtype=float), centre: wp.vec3, r_inner: float, iterations: int, x: int,
+                    y: int, width: int, height: int) -> tuple[int, float, float, float]:
+    """Twin of ``ccl_reproj_uv_depth``: (visible, u, v, t) of pixel (x, y) in the previous frame through the depth
+    of what it shows -- t from the inner sphere, then ``iterations`` times: X = eye + d t, uv = prev_view_proj X,
+    Y = prev_eye + D (X - prev_eye)/|X - prev_eye| with D the previous depth at the nearest pixel of uv, t = |Y - eye|;
+    uv of the final t. ``iterations = 0``: :func:`reproj_uv`'s point."""
+    d = camera_ray(inv_view_proj_rot, x, y, width, height)
+    t = _inner_sphere_t(eye, d, centre, r_inner)
+    if not (t > 0.0):
+        return int(0), wp.nan, wp.nan, wp.nan
+    for k in range(iterations):
+        front, u, v = _project(prev_view_proj, eye, d, t)
+        if front == 0:
+            break
+        dp = prev_depth[_nearest_index(v * float(height) - 0.5, height), _nearest_index(u * float(width) - 0.5, width)]
+        if not (dp > 0.0):
+            break
+        qx = (eye[0] + d[0] * t) - prev_eye[0]
+        qy = (eye[1] + d[1] * t) - prev_eye[1]
+        qz = (eye[2] + d[2] * t) - prev_eye[2]
+        lq = wp.sqrt(qx * qx + qy * qy + qz * qz)
+        if not (lq > 0.0):
+            break
+        s = dp / lq
+        yx = (prev_eye[0] + qx * s) - eye[0]
+        yy = (prev_eye[1] + qy * s) - eye[1]
+        yz = (prev_eye[2] + qz * s) - eye[2]
+        tn = wp.sqrt(yx * yx + yy * yy + yz * yz)
+        if not (tn > 0.0) or wp.isinf(tn):
+            break
+        t = tn
+    front, u, v = _project(prev_view_proj, eye, d, t)
+    ok = int(0)
+    if front == 1:
+        ok = _inside_unit(u, v)
+    return ok, u, v, t
 
 
 @wp.func
@@ -194,24 +307,55 @@ def _snap(p: float) -> float:
 
 
 @wp.func
-def reproject_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype=float),
-                    reduced: wp.array3d(dtype=float), frame: int, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
-                    prev_view_proj: wp.mat44, centre: wp.vec3, r_inner: float, neighbourhood: int, history: int,
-                    x: int, y: int, out: wp.array3d(dtype=float)):
-    """vc-A26 / vc-A27 for one pixel: keep a pixel rendered this frame, else reproject it (n x n average) from the
-    previous frame, else interpolate the reduced buffer."""
+def _catmull_rom_weights(t: float) -> wp.vec4:
+    t2 = t * t
+    t3 = t2 * t
+    return wp.vec4(-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t,
+                   0.5 * t3 - 0.5 * t2)
+
+
+@wp.func
+def _catmull_rom(img: wp.array3d(dtype=float), xmax: int, ymax: int, ch: int, xs: float, ys: float) -> float:
+    """Catmull-Rom lookup at (xs, ys) (clamp-to-edge), clamped to the range of the 2 x 2 pixels the bilinear lookup
+    reads (``catmull_rom`` in C)."""
+    x0f = wp.floor(xs)
+    y0f = wp.floor(ys)
+    wx = _catmull_rom_weights(xs - x0f)
+    wy = _catmull_rom_weights(ys - y0f)
+    x0 = int(x0f)
+    y0 = int(y0f)
+    s = float(0.0)
+    lo = float(wp.inf)
+    hi = float(-wp.inf)
+    for j in range(4):
+        yy = wp.clamp(y0 - 1 + j, 0, ymax)
+        row = float(0.0)
+        for i in range(4):
+            val = img[yy, wp.clamp(x0 - 1 + i, 0, xmax), ch]
+            row = row + wx[i] * val
+            if (i == 1 or i == 2) and (j == 1 or j == 2):
+                if val < lo:
+                    lo = val
+                if val > hi:
+                    hi = val
+        s = s + wy[j] * row
+    if s < lo:
+        s = lo
+    if s > hi:
+        s = hi
+    return s
+
+
+@wp.func
+def _fill_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype=float), reduced: wp.array3d(dtype=float),
+                frame: int, neighbourhood: int, filter: int, history: int, valid: int, u: float, v: float, x: int,
+                y: int, out: wp.array3d(dtype=float)):
+    """The colour of a pixel not rendered this frame: previous at (u, v) when valid (n x n samples of the filter),
+    else the reduced buffer, else (no rendered pixel in that direction) previous / current as is (``fill_pixel`` in
+    C)."""
     height = current.shape[0]
     width = current.shape[1]
     channels = current.shape[2]
-    if reproj_updated(x, y, frame) == 1:
-        for ch in range(channels):
-            out[y, x, ch] = current[y, x, ch]
-        return
-    valid = int(0)
-    u = float(0.0)
-    v = float(0.0)
-    if history != 0:
-        valid, u, v = reproj_uv(inv_view_proj_rot, eye, prev_view_proj, centre, r_inner, x, y, width, height)
     if valid == 1:
         xs = _snap(u * float(width) - 0.5)
         ys = _snap(v * float(height) - 0.5)
@@ -221,7 +365,10 @@ def reproject_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype
             s = float(0.0)
             for j in range(-half, half + 1):
                 for i in range(-half, half + 1):
-                    s = s + _bilinear(previous, width - 1, height - 1, ch, xs + float(i), ys + float(j))
+                    if filter == _CATMULL_ROM:
+                        s = s + _catmull_rom(previous, width - 1, height - 1, ch, xs + float(i), ys + float(j))
+                    else:
+                        s = s + _bilinear(previous, width - 1, height - 1, ch, xs + float(i), ys + float(j))
             out[y, x, ch] = s * inv_n
     else:
         rx, ry = reproj_reduced_coord(x, y, frame, width, height)
@@ -239,6 +386,86 @@ def reproject_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype
                 out[y, x, ch] = _bilinear(reduced, xmax, ymax, ch, rx, ry)
 
 
+@wp.func
+def reproject_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype=float),
+                    reduced: wp.array3d(dtype=float), frame: int, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
+                    prev_view_proj: wp.mat44, centre: wp.vec3, r_inner: float, neighbourhood: int, history: int,
+                    x: int, y: int, out: wp.array3d(dtype=float)):
+    """vc-A26 / vc-A27 for one pixel: keep a pixel rendered this frame, else reproject it (n x n average) from the
+    previous frame, else interpolate the reduced buffer."""
+    if reproj_updated(x, y, frame) == 1:
+        for ch in range(current.shape[2]):
+            out[y, x, ch] = current[y, x, ch]
+        return
+    valid = int(0)
+    u = float(0.0)
+    v = float(0.0)
+    if history != 0:
+        valid, u, v = reproj_uv(inv_view_proj_rot, eye, prev_view_proj, centre, r_inner, x, y, current.shape[1],
+                                current.shape[0])
+    _fill_pixel(current, previous, reduced, frame, neighbourhood, 0, history, valid, u, v, x, y, out)
+
+
+@wp.func
+def _fallback_depth(current_depth: wp.array2d(dtype=float), previous_depth: wp.array2d(dtype=float), frame: int,
+                    history: int, x: int, y: int) -> float:
+    """The depth of a fallback pixel (``fallback_depth`` in C): this frame's rendered depths (pixel (4i + a, 4j + b)
+    holds reduced texel (i, j)) interpolated bilinearly at the reduced-buffer position."""
+    height = current_depth.shape[0]
+    width = current_depth.shape[1]
+    rx, ry = reproj_reduced_coord(x, y, frame, width, height)
+    if wp.isnan(rx) or wp.isnan(ry):
+        if history != 0:
+            return previous_depth[y, x]
+        return current_depth[y, x]
+    f = _mod16(frame)
+    a = f / 4
+    b = f % 4
+    xmax = (width - 1 - a) / 4
+    ymax = (height - 1 - b) / 4
+    x0f = wp.floor(rx)
+    y0f = wp.floor(ry)
+    fx = rx - x0f
+    fy = ry - y0f
+    x0 = wp.clamp(int(x0f), 0, xmax)
+    x1 = wp.clamp(int(x0f) + 1, 0, xmax)
+    y0 = wp.clamp(int(y0f), 0, ymax)
+    y1 = wp.clamp(int(y0f) + 1, 0, ymax)
+    p00 = current_depth[4 * y0 + b, 4 * x0 + a]
+    p10 = current_depth[4 * y0 + b, 4 * x1 + a]
+    p01 = current_depth[4 * y1 + b, 4 * x0 + a]
+    p11 = current_depth[4 * y1 + b, 4 * x1 + a]
+    return (p00 * (1.0 - fx) + p10 * fx) * (1.0 - fy) + (p01 * (1.0 - fx) + p11 * fx) * fy
+
+
+@wp.func
+def reproject_pixel_depth(current: wp.array3d(dtype=float), current_depth: wp.array2d(dtype=float),
+                          previous: wp.array3d(dtype=float), previous_depth: wp.array2d(dtype=float),
+                          reduced: wp.array3d(dtype=float), frame: int, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
+                          prev_view_proj: wp.mat44, prev_eye: wp.vec3, centre: wp.vec3, r_inner: float,
+                          neighbourhood: int, filter: int, iterations: int, history: int, x: int, y: int,
+                          out: wp.array3d(dtype=float), out_depth: wp.array2d(dtype=float)):
+    """One pixel of ``ccl_reproj_frame_depth``: keep a pixel rendered this frame (colour and depth), else reproject
+    it through its depth (:func:`reproj_uv_depth`), else the reduced-buffer fallback; its depth relative to eye."""
+    if reproj_updated(x, y, frame) == 1:
+        for ch in range(current.shape[2]):
+            out[y, x, ch] = current[y, x, ch]
+        out_depth[y, x] = current_depth[y, x]
+        return
+    valid = int(0)
+    u = float(0.0)
+    v = float(0.0)
+    t = float(0.0)
+    if history != 0:
+        valid, u, v, t = reproj_uv_depth(inv_view_proj_rot, eye, prev_view_proj, prev_eye, previous_depth, centre,
+                                         r_inner, iterations, x, y, current.shape[1], current.shape[0])
+    _fill_pixel(current, previous, reduced, frame, neighbourhood, filter, history, valid, u, v, x, y, out)
+    if valid == 1:
+        out_depth[y, x] = t
+    else:
+        out_depth[y, x] = _fallback_depth(current_depth, previous_depth, frame, history, x, y)
+
+
 @wp.kernel
 def reproject_frame_kernel(row0: int, current: wp.array3d(dtype=float), previous: wp.array3d(dtype=float),
                            reduced: wp.array3d(dtype=float), frame: int, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
@@ -248,6 +475,21 @@ def reproject_frame_kernel(row0: int, current: wp.array3d(dtype=float), previous
     i, j = wp.tid()
     reproject_pixel(current, previous, reduced, frame, inv_view_proj_rot, eye, prev_view_proj, centre, r_inner,
                     neighbourhood, history, j, row0 + i, out)
+
+
+@wp.kernel
+def reproject_frame_depth_kernel(row0: int, current: wp.array3d(dtype=float), current_depth: wp.array2d(dtype=float),
+                                 previous: wp.array3d(dtype=float), previous_depth: wp.array2d(dtype=float),
+                                 reduced: wp.array3d(dtype=float), frame: int, inv_view_proj_rot: wp.mat44,
+                                 eye: wp.vec3, prev_view_proj: wp.mat44, prev_eye: wp.vec3, centre: wp.vec3,
+                                 r_inner: float, neighbourhood: int, filter: int, iterations: int, history: int,
+                                 # outputs
+                                 out: wp.array3d(dtype=float), out_depth: wp.array2d(dtype=float)):
+    """The depth-aware pass over a frame (``ccl_reproj_frame_depth``; TileLauncher convention)."""
+    i, j = wp.tid()
+    reproject_pixel_depth(current, current_depth, previous, previous_depth, reduced, frame, inv_view_proj_rot, eye,
+                          prev_view_proj, prev_eye, centre, r_inner, neighbourhood, filter, iterations, history, j,
+                          row0 + i, out, out_depth)
 
 
 # --- the frame pass: custom evaluator -------------------------------------------------------------------------------
@@ -359,5 +601,193 @@ declare("vc-A26", "vc-A27", c="ccl_reproj_frame", name="reproj_frame",
                     "Barvir, Volumetric clouds, FIT BUT 2020, §4.4, fig. 4.14"))(reproject_pixel)
 
 
+# --- the depth-aware pass (no catalogue ID: not in the thesis) --------------------------------------------------------
+
+def _depth(value, name: str, shape: tuple) -> np.ndarray:
+    if isinstance(value, (str, bytes)) or value is None:
+        raise TypeError(f"{name} must be a float array (height, width), got {value!r}")
+    a = np.asarray(value)
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must be numeric, got dtype {a.dtype}")
+    if a.shape != shape:
+        raise ValueError(f"{name} must have shape (height, width) = {shape}, got {a.shape}")
+    return np.ascontiguousarray(a, dtype=np.float32)
+
+
+def _iterations(value) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"iterations must be an integer in [0, {MAX_DEPTH_ITERATIONS}], got {value!r}")
+    if not 0 <= value <= MAX_DEPTH_ITERATIONS:
+        raise ValueError(f"iterations must be in [0, {MAX_DEPTH_ITERATIONS}], got {value}")
+    return int(value)
+
+
+def reproj_frame_depth(current, depth, previous, previous_depth, reduced, frame, camera, prev_camera, layer=None,
+                       neighbourhood: int = 1, filter: str = "catmull_rom", iterations: int = DEPTH_ITERATIONS,
+                       history: bool = True, impl: str = "warp", device=None):
+    """The depth-aware reprojection pass (twin of ``ccl_reproj_frame_depth``): pixels not rendered this frame come
+    from the previous frame at the position found through the depth of what they show (:func:`reproj_uv_depth`), else
+    from the reduced buffer, as :func:`pywarp.reproj_frame` (vc-A26/A27) otherwise.
+
+    current (H, W[, C]), previous, reduced, frame, camera, prev_camera, layer, neighbourhood, history: as
+    ``reproj_frame``; depth (H, W): this frame's depths (km from camera.eye; :func:`reproj_surface_depth`) of the
+    pixels rendered this frame; previous_depth (H, W): the previous frame's final depths (km from prev_camera.eye; a
+    value not > 0 is unknown); filter: the sampler of the previous frame, "catmull_rom" or "bilinear" (the thesis's,
+    :data:`FILTERS`); iterations: fixed-point refinements in [0, MAX_DEPTH_ITERATIONS] (0 with "bilinear": the
+    thesis's inner-sphere point, the colours of ``reproj_frame`` bit for bit); impl: "warp" or "c".
+    Returns (frame, depth): float32, the shapes of current and depth (the depth of every pixel, km from camera.eye).
+    Everything is checked before any kernel runs.
+    """
+    if impl not in ("warp", "c"):
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    lay = CloudLayer() if layer is None else layer
+    cur, prev, red, f, n, hist, squeeze = _frame_args(current, previous, reduced, frame, camera, prev_camera, lay,
+                                                      neighbourhood, history)
+    h, w, c = cur.shape
+    dep = _depth(depth, "depth", (h, w))
+    pdep = _depth(previous_depth, "previous_depth", (h, w))
+    its = _iterations(iterations)
+    if not isinstance(filter, str) or filter not in FILTERS:
+        raise ValueError(f"filter must be one of {', '.join(map(repr, FILTERS))}, got {filter!r}")
+    flt = FILTERS[filter]
+    for cam, name in ((camera, "camera"), (prev_camera, "prev_camera")):
+        if not np.all(np.isfinite(cam.eye)):
+            raise ValueError(f"{name}.eye must be finite")
+    if impl == "warp":
+        from ..core.runtime import launcher
+
+        tl = launcher(device)
+        dev = tl.device
+        out = wp.empty((h, w, c), dtype=float, device=dev)
+        out_d = wp.empty((h, w), dtype=float, device=dev)
+        tl.launch(reproject_frame_depth_kernel, h, w,
+                  inputs=[wp.array(cur, dtype=float, device=dev), wp.array(dep, dtype=float, device=dev),
+                          wp.array(prev, dtype=float, device=dev), wp.array(pdep, dtype=float, device=dev),
+                          wp.array(red, dtype=float, device=dev), f, camera.mat44("inv_view_proj_rot"),
+                          camera.eye_vec3(), prev_camera.mat44("view_proj"), prev_camera.eye_vec3(),
+                          lay.centre_vec3(), lay.r_inner, n, flt, its, hist],
+                  outputs=[out, out_d])
+        res, res_d = out.numpy(), out_d.numpy()
+    else:
+        from ..core.binding import ffi, lib, status_error
+
+        F = ffi()
+        res = np.empty_like(cur)
+        res_d = np.empty_like(dep)
+        st = lib().ccl_reproj_frame_depth(
+            F.from_buffer("float[]", cur), F.from_buffer("float[]", dep), F.from_buffer("float[]", prev),
+            F.from_buffer("float[]", pdep), F.from_buffer("float[]", red), w, h, c, f,
+            F.new("float[16]", camera.column_major("inv_view_proj_rot").tolist()), tuple(camera.eye.tolist()),
+            F.new("float[16]", prev_camera.column_major("view_proj").tolist()), tuple(prev_camera.eye.tolist()),
+            lay.centre, lay.r_inner, n, flt, its, hist, F.from_buffer("float[]", res), F.from_buffer("float[]", res_d))
+        status_error(st, "ccl_reproj_frame_depth")
+    return (res[:, :, 0] if squeeze else res), res_d
+
+
+@wp.kernel
+def _uv_depth_kernel(xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32), width: int, height: int,
+                     inv_view_proj_rot: wp.mat44, eye: wp.vec3, prev_view_proj: wp.mat44, prev_eye: wp.vec3,
+                     prev_depth: wp.array2d(dtype=float), centre: wp.vec3, r_inner: float, iterations: int,
+                     # outputs
+                     ok: wp.array(dtype=wp.int32), u: wp.array(dtype=float), v: wp.array(dtype=float),
+                     t: wp.array(dtype=float)):
+    k = wp.tid()
+    a, b, c, e = reproj_uv_depth(inv_view_proj_rot, eye, prev_view_proj, prev_eye, prev_depth, centre, r_inner,
+                                 iterations, xs[k], ys[k], width, height)
+    ok[k] = a
+    u[k] = b
+    v[k] = c
+    t[k] = e
+
+
+def reproj_uv_depth_at(x, y, camera, prev_camera, previous_depth, layer=None, iterations: int = DEPTH_ITERATIONS,
+                       impl: str = "warp"):
+    """:func:`reproj_uv_depth` (``ccl_reproj_uv_depth``) at pixels (x, y) of a frame the size of ``previous_depth``
+    (H, W): (visible int32, u, v, t float32), arrays of the shape of x and y (for tests and figures)."""
+    if impl not in ("warp", "c"):
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    lay = CloudLayer() if layer is None else layer
+    _check_camera(camera, "camera")
+    _check_camera(prev_camera, "prev_camera")
+    pd = np.asarray(previous_depth)
+    if pd.ndim != 2 or pd.shape[0] < 1 or pd.shape[1] < 1:
+        raise ValueError(f"previous_depth must have shape (height, width), got {pd.shape}")
+    h, w = pd.shape
+    pdep = _depth(pd, "previous_depth", (h, w))
+    its = _iterations(iterations)
+    xs, ys = np.broadcast_arrays(np.asarray(x), np.asarray(y))
+    shape = xs.shape
+    xs, ys = xs.astype(np.int32).ravel(), ys.astype(np.int32).ravel()
+    if np.any((xs < 0) | (xs >= w) | (ys < 0) | (ys >= h)):
+        raise ValueError(f"x, y must be pixels of the {w}x{h} frame of previous_depth")
+    if impl == "warp":
+        n = xs.size
+        outs = [wp.empty(n, dtype=wp.int32), wp.empty(n, dtype=float), wp.empty(n, dtype=float),
+                wp.empty(n, dtype=float)]
+        if n:
+            wp.launch(_uv_depth_kernel, dim=n,
+                      inputs=[wp.array(xs, dtype=wp.int32), wp.array(ys, dtype=wp.int32), w, h,
+                              camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), prev_camera.mat44("view_proj"),
+                              prev_camera.eye_vec3(), wp.array(pdep, dtype=float), lay.centre_vec3(), lay.r_inner,
+                              its], outputs=outs)
+        res = [o.numpy() for o in outs]
+    else:
+        from ..core.binding import ffi, lib
+
+        F = ffi()
+        ivp = F.new("float[16]", camera.column_major("inv_view_proj_rot").tolist())
+        pvp = F.new("float[16]", prev_camera.column_major("view_proj").tolist())
+        pbuf = F.from_buffer("float[]", pdep)
+        pu, pv, pt = F.new("float[1]"), F.new("float[1]"), F.new("float[1]")
+        res = [np.empty(xs.size, np.int32)] + [np.empty(xs.size, np.float32) for _ in range(3)]
+        fn = lib().ccl_reproj_uv_depth
+        eye, peye = tuple(camera.eye.tolist()), tuple(prev_camera.eye.tolist())
+        for k in range(xs.size):
+            res[0][k] = fn(ivp, eye, pvp, peye, pbuf, lay.centre, lay.r_inner, its, int(xs[k]), int(ys[k]), w, h,
+                           pu, pv, pt)
+            res[1][k], res[2][k], res[3][k] = pu[0], pv[0], pt[0]
+    return tuple(r.reshape(shape) for r in res)
+
+
+@wp.kernel
+def _surface_depth_kernel(march_depth: wp.array(dtype=float), eye: wp.vec3, d: wp.array(dtype=wp.vec3),
+                          centre: wp.vec3, r_earth: float,
+                          # outputs
+                          out: wp.array(dtype=float)):
+    k = wp.tid()
+    out[k] = reproj_surface_depth(march_depth[k], eye, d[k], centre, r_earth)
+
+
+def surface_depth(march_depth, eye, d, layer=None, impl: str = "warp") -> np.ndarray:
+    """:func:`reproj_surface_depth` (``ccl_reproj_surface_depth``) element-wise: march depths (...,) and unit rays d
+    (..., 3) from one eye (3,); float32 (...,)."""
+    if impl not in ("warp", "c"):
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    lay = CloudLayer() if layer is None else layer
+    md = np.asarray(march_depth, np.float32)
+    dd = np.asarray(d, np.float32)
+    if dd.shape[-1:] != (3,):
+        raise ValueError(f"d must have shape (..., 3), got {dd.shape}")
+    md, _ = np.broadcast_arrays(md, dd[..., 0])
+    shape = md.shape
+    md, dd = np.ascontiguousarray(md.ravel()), np.ascontiguousarray(dd.reshape(-1, 3))
+    e = np.asarray(eye, np.float32).reshape(3)
+    if impl == "warp":
+        out = wp.empty(md.size, dtype=float)
+        if md.size:
+            wp.launch(_surface_depth_kernel, dim=md.size,
+                      inputs=[wp.array(md, dtype=float), wp.vec3(*e.tolist()), wp.array(dd, dtype=wp.vec3),
+                              lay.centre_vec3(), lay.r_earth], outputs=[out])
+        return out.numpy().reshape(shape)
+    from ..core.binding import lib
+
+    fn = lib().ccl_reproj_surface_depth
+    ev = tuple(e.tolist())
+    return np.array([fn(float(md[k]), ev, tuple(dd[k].tolist()), lay.centre, lay.r_earth)
+                     for k in range(md.size)], np.float32).reshape(shape)
+
+
 __all__ = ["Camera", "CloudLayer", "reproj_grid", "REPROJ_BLOCK", "REPROJ_CYCLE", "SNAP_PX",
-           "AVERAGE_NEIGHBOURHOOD"]
+           "AVERAGE_NEIGHBOURHOOD", "DEPTH_ITERATIONS", "MAX_DEPTH_ITERATIONS", "SKY_DEPTH_KM", "FILTERS",
+           "reproj_frame_depth",
+           "reproj_uv_depth_at", "surface_depth"]
