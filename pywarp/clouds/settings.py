@@ -394,11 +394,6 @@ class CloudscapeSettings(Settings):
                                     reason="'clouds': through the inner sphere, clouds at other distances and the sky "
                                            "are fetched from the wrong place while the camera translates (parallax) "
                                            "and the freshly marched pixel of every 4x4 block shows as a dot grid")
-    jitter: str = param("offset", choices=JITTER_NAMES, group="quality",
-                        doc="ray jitter against banding (vc-A23): offset (the first sample's position along the "
-                            "ray), tilt (the thesis: the ray's direction) or none",
-                        reason="'offset': the thesis' tilt of up to 0.002 rad per axis moves the ray by more than a "
-                               "pixel (0.0019 rad at 960x540), so far clouds changed from frame to frame (the "
     reprojection_filter: str = param("catmull_rom", choices=REPROJECTION_FILTERS, group="quality",
                                      doc="how the previous frame is sampled at a reprojected position: "
                                          "'catmull_rom' (cubic over 4x4 pixels, clamped to the range of the 2x2 "
@@ -406,6 +401,11 @@ class CloudscapeSettings(Settings):
                                      reason="'catmull_rom': a pixel is resampled up to 15 times before it is marched "
                                             "again; bilinear resampling blurs it every time, and the sharp fresh "
                                             "pixel of each 4x4 block then stands out as a dot grid")
+    jitter: str = param("offset", choices=JITTER_NAMES, group="quality",
+                        doc="ray jitter against banding (vc-A23): offset (the first sample's position along the "
+                            "ray), tilt (the thesis: the ray's direction) or none",
+                        reason="'offset': the thesis' tilt of up to 0.002 rad per axis moves the ray by more than a "
+                               "pixel (0.0019 rad at 960x540), so far clouds changed from frame to frame (the "
                                "flickering horizon: 6.2 grey levels between frames against 0.77 with offset) and "
                                "near ones looked out of focus (ccl_cloudscape_params_default)")
     light_detail: bool = param(True, group="quality",
