@@ -121,7 +121,8 @@ class _KernelTimer:
 
 #: The passes of a reprojected frame (fig 4.17 splits its bar into raymarch + reprojection, as the thesis does): the
 #: kernels of each, by name; everything else in the frame (sRGB encoding, copies to the host) is ``other``
-REPROJECTION_SPLIT = {"raymarch": ("sky_kernel", "clouds_kernel"), "reprojection": ("reproject_frame_kernel",)}
+REPROJECTION_SPLIT = {"raymarch": ("sky_kernel", "clouds_kernel"),
+                      "reprojection": ("reproject_frame_kernel", "reproject_frame_depth_kernel")}
 
 
 def _reprojected_path_ms(t, n_frames: int = 16) -> tuple[float, dict]:
