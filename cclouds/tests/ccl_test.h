@@ -10,6 +10,8 @@
 #ifndef CCLOUDS_TEST_H
 #define CCLOUDS_TEST_H
 
+#include "cclouds/common.h"
+
 #include <math.h>
 #include <stdio.h>
 
@@ -27,6 +29,29 @@ static int ccl_test_close(double a, double b, double tol_abs, double tol_rel)
 {
     if (isnan(a) || isnan(b)) return isnan(a) && isnan(b);
     return fabs(a - b) <= tol_abs + tol_rel * fabs(b);
+}
+
+/* Vector literals and the float64 length of a vector, shared by the tests (static inline: no warning where unused). */
+static inline ccl_vec2 V2(float x, float y)
+{
+    ccl_vec2 v;
+    v.x = x;
+    v.y = y;
+    return v;
+}
+
+static inline ccl_vec3 V(float x, float y, float z)
+{
+    ccl_vec3 v;
+    v.x = x;
+    v.y = y;
+    v.z = z;
+    return v;
+}
+
+static inline double len3(ccl_vec3 a)
+{
+    return sqrt((double)a.x * (double)a.x + (double)a.y * (double)a.y + (double)a.z * (double)a.z);
 }
 
 #define CCL_CHECK(cond) \

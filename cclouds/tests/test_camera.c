@@ -5,17 +5,6 @@
 
 #include <string.h>
 
-static ccl_vec3 V(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
-static double len(ccl_vec3 a) { return sqrt((double)a.x * a.x + (double)a.y * a.y + (double)a.z * a.z); }
-
 static void test_camera_look_at_and_rays(void)
 {
     ccl_camera cam;
@@ -34,7 +23,7 @@ static void test_camera_look_at_and_rays(void)
     for (r = 0; r < 4; ++r)
         for (c = 0; c < 4; ++c) {
             double s = 0.0;
-            for (k = 0; k < 4; ++k) s += (double)cam.inv_view_proj[k * 4 + r] * cam.view_proj[c * 4 + k];
+            for (k = 0; k < 4; ++k) s += (double)cam.inv_view_proj[k * 4 + r] * (double)cam.view_proj[c * 4 + k];
             CCL_CHECK_CLOSE(s, r == c ? 1.0 : 0.0, 2e-4);
         }
     /* the centre pixel of an odd-size image looks along target - eye; its neighbours are one pixel angle away */
@@ -44,7 +33,7 @@ static void test_camera_look_at_and_rays(void)
         CCL_CHECK_CLOSE(d.x, fx, 2e-7);
         CCL_CHECK_CLOSE(d.y, fy, 2e-7);
         CCL_CHECK_CLOSE(d.z, fz, 2e-7);
-        CCL_CHECK_CLOSE(len(d), 1.0, 2e-7);
+        CCL_CHECK_CLOSE(len3(d), 1.0, 2e-7);
     }
     /* the top-left corner of the image plane: angle to the axis atan(tan(fov/2) * hypot(aspect, 1)) at the corner */
     CCL_CHECK(ccl_camera_look_at(V(0, 0, 0), V(0, 0, -1), V(0, 1, 0), fov, 1.0f, 0.01f, 1000.0f, &cam) == CCL_OK);

@@ -14,9 +14,9 @@ static void gradient_peak(float cloud_type, int clamp, double *peak, double *whe
     for (i = 0; i <= 100000; ++i) {
         float h = (float)(i / 100000.0);
         float v = ccl_clouds_height_gradient(h, cloud_type, clamp);
-        if (v > *peak) {
-            *peak = v;
-            *where = h;
+        if ((double)v > *peak) {
+            *peak = (double)v;
+            *where = (double)h;
         }
     }
 }
@@ -26,7 +26,7 @@ static void test_base_shape_closed_form(void)
     float l = -1.0f, b = -1.0f;
     ccl_clouds_base_shape(0.5f, 0.3f, 0.2f, 0.1f, &l, &b);
     CCL_CHECK_REL(l, 0.625 * 0.3 + 0.25 * 0.2 + 0.125 * 0.1, 1e-6);
-    CCL_CHECK_REL(b, (0.5 - l + 1.0) / (2.0 - l), 1e-6);
+    CCL_CHECK_REL(b, (0.5 - (double)l + 1.0) / (2.0 - (double)l), 1e-6);
     ccl_clouds_base_shape(1.0f, 1.0f, 1.0f, 1.0f, &l, &b); /* weights sum to 1 */
     CCL_CHECK_CLOSE(l, 1.0, 0.0);
     CCL_CHECK_CLOSE(b, 1.0, 0.0);
@@ -78,12 +78,12 @@ static void test_cloud_energy(void)
     CCL_CHECK_CLOSE(ccl_clouds_energy(0.0f, 1.0f, 0.3f, 0.2f), 0.0, 0.0); /* E = 0 at d = 0 */
     {
         /* the closed form in double: e^{-d a} HG(mu, g) (1 - e^{-2d}) at the float32 inputs mu = 0.3f, g = 0.2f */
-        const double mu = 0.3f, g = 0.2f;
+        const double mu = (double)0.3f, g = (double)0.2f;
         const double hg = (1.0 - g * g) / (4.0 * 3.14159265358979323846 * pow(1.0 + g * g - 2.0 * g * mu, 1.5));
         CCL_CHECK_REL(ccl_clouds_energy(1.0f, 0.5f, 0.3f, 0.2f), exp(-0.5) * hg * (1.0 - exp(-2.0)), 1e-6);
     }
     for (i = 1; i <= 4000; ++i) {
-        double e = ccl_clouds_energy((float)(i * 0.001), (float)a, 1.0f, 0.5f);
+        double e = (double)ccl_clouds_energy((float)(i * 0.001), (float)a, 1.0f, 0.5f);
         if (e > best) {
             best = e;
             best_d = i * 0.001;
@@ -118,7 +118,7 @@ static void test_height_gradient_spec_values(void)
     /* type 0.25: the mean of stratus and stratocumulus */
     CCL_CHECK_REL(ccl_clouds_height_gradient(0.1f, 0.25f, 0),
                   0.5 * ((double)ccl_clouds_height_gradient(0.1f, 0.0f, 0) +
-                         ccl_clouds_height_gradient(0.1f, 0.5f, 0)),
+                         (double)ccl_clouds_height_gradient(0.1f, 0.5f, 0)),
                   1e-6);
 }
 
@@ -164,7 +164,7 @@ static void test_density_pipeline_and_light(void)
     CCL_CHECK_CLOSE(ccl_clouds_sample_light(0.0f, 1.0f, 0.5f, 1.0f, 0.2f, 1.0f, 0.006f, 0.012f), 0.012f, 0.0);
     CCL_CHECK_CLOSE(ccl_clouds_sample_light(0.0f, 1.0f, 0.5f, 0.5f, 0.2f, 1.0f, 0.006f, 0.012f), 0.009, 1e-9);
     CCL_CHECK_REL(ccl_clouds_sample_light(0.7f, 1.0f, 0.5f, 0.5f, 0.2f, 3.0f, 0.0f, 0.0f),
-                  3.0 * ccl_clouds_energy(0.7f, 1.0f, 0.5f, 0.2f), 1e-6);
+                  3.0 * (double)ccl_clouds_energy(0.7f, 1.0f, 0.5f, 0.2f), 1e-6);
 }
 
 static void test_clouds_nan_propagates(void)

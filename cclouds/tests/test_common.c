@@ -5,15 +5,6 @@
 
 #include <string.h>
 
-static ccl_vec3 V(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
 static int eq3(ccl_vec3 a, float x, float y, float z) { return a.x == x && a.y == y && a.z == z; }
 
 static void test_vec3_arithmetic_exact(void)
@@ -44,10 +35,9 @@ static void test_vec3_cross_is_right_handed(void)
     CCL_CHECK(eq3(ccl_vec3_cross(a, a), 0, 0, 0));
     /* |a x b|^2 = |a|^2 |b|^2 - (a.b)^2 (Lagrange) in double */
     {
-        double ab = (double)a.x * b.x + (double)a.y * b.y + (double)a.z * b.z;
-        double aa = (double)a.x * a.x + (double)a.y * a.y + (double)a.z * a.z;
-        double bb = (double)b.x * b.x + (double)b.y * b.y + (double)b.z * b.z;
-        CCL_CHECK_REL((double)ccl_vec3_length(c) * ccl_vec3_length(c), aa * bb - ab * ab, 1e-6);
+        double ab = (double)a.x * (double)b.x + (double)a.y * (double)b.y + (double)a.z * (double)b.z;
+        double aa = len3(a) * len3(a), bb = len3(b) * len3(b);
+        CCL_CHECK_REL((double)ccl_vec3_length(c) * (double)ccl_vec3_length(c), aa * bb - ab * ab, 1e-6);
     }
 }
 

@@ -5,13 +5,6 @@
 
 #define PI_D 3.14159265358979323846
 
-static ccl_vec3 V(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x; v.y = y; v.z = z;
-    return v;
-}
-
 static ccl_flight_state level(float altitude, float speed)
 {
     ccl_flight_state s;
@@ -75,7 +68,7 @@ static void test_flight_speed_limits(void)
     ccl_flight_state s;
     ccl_flight_params_default(&p);
     s = run(&p, level(500.0f, 0.0f), CCL_FLIGHT_KEY_W, 2.0f, 0.01f);
-    CCL_CHECK_REL(s.speed, 2.0 * p.acceleration, 1e-4);
+    CCL_CHECK_REL(s.speed, 2.0 * (double)p.acceleration, 1e-4);
     s = run(&p, s, CCL_FLIGHT_KEY_W, 60.0f, 0.01f);
     CCL_CHECK(s.speed == p.max_speed);
     s = run(&p, s, CCL_FLIGHT_KEY_S, 60.0f, 0.01f);
@@ -104,7 +97,7 @@ static void test_flight_climbing_needs_speed(void)
     /* the climb rate is speed * sin(pitch) */
     {
         float pitch = ccl_flight_attitude(s.nose_offset, -s.nose_offset, 0.0f, 0.0f, p.length, p.span, NULL);
-        CCL_CHECK_REL(s.position.y - 500.0f, 30.0 * sin(pitch) * 1.0, 1e-3);
+        CCL_CHECK_REL(s.position.y - 500.0f, 30.0 * sin((double)pitch) * 1.0, 1e-3);
     }
     /* the ground stops a dive */
     s = run(&p, level(10.0f, 60.0f), CCL_FLIGHT_KEY_UP, 10.0f, 0.01f);
@@ -118,11 +111,11 @@ static void test_flight_attitude_grows_with_key_time(void)
     ccl_flight_params_default(&p);
     s1 = run(&p, level(500.0f, 40.0f), CCL_FLIGHT_KEY_RIGHT, 0.5f, 0.01f);
     s2 = run(&p, level(500.0f, 40.0f), CCL_FLIGHT_KEY_RIGHT, 1.0f, 0.01f);
-    CCL_CHECK_REL(s1.wing_offset, 0.5 * p.point_rate, 1e-4);
-    CCL_CHECK_REL(s2.wing_offset, 1.0 * p.point_rate, 1e-4);
+    CCL_CHECK_REL(s1.wing_offset, 0.5 * (double)p.point_rate, 1e-4);
+    CCL_CHECK_REL(s2.wing_offset, 1.0 * (double)p.point_rate, 1e-4);
     /* clamped at max_roll */
     s3 = run(&p, level(500.0f, 40.0f), CCL_FLIGHT_KEY_RIGHT, 30.0f, 0.01f);
-    CCL_CHECK_REL(atan2(2.0 * s3.wing_offset, p.span), p.max_roll, 1e-5);
+    CCL_CHECK_REL(atan2(2.0 * (double)s3.wing_offset, (double)p.span), p.max_roll, 1e-5);
     /* a right bank turns right (heading grows) only with speed */
     s1 = run(&p, s2, 0, 2.0f, 0.01f);
     CCL_CHECK(s1.heading > 0.0f && s1.position.x > 0.0f);
@@ -177,8 +170,8 @@ static void test_flight_aircraft_model(void)
     CCL_CHECK(ccl_flight_aircraft(V(0.0f, 1.2f, 3.35f), &part) < 0.0f && part == 2);
     CCL_CHECK(ccl_flight_aircraft(V(0.0f, 0.75f, -1.4f), &part) < 0.0f && part == 3);
     /* the nose and the tail at the height points A and B, the wing tips at C and D (within the skins) */
-    CCL_CHECK(fabs(ccl_flight_aircraft(V(0.0f, 0.0f, -3.8f), NULL)) < 0.06f);
-    CCL_CHECK(fabs(ccl_flight_aircraft(V(6.0f, -0.25f, -0.9f), NULL)) < 0.01f);
+    CCL_CHECK(fabsf(ccl_flight_aircraft(V(0.0f, 0.0f, -3.8f), NULL)) < 0.06f);
+    CCL_CHECK(fabsf(ccl_flight_aircraft(V(6.0f, -0.25f, -0.9f), NULL)) < 0.01f);
     /* far away: the distance to the model is within its bounding radius of the distance to the origin */
     d = ccl_flight_aircraft(V(0.0f, 100.0f, 0.0f), NULL);
     CCL_CHECK(d > 100.0f - 2.0f && d < 100.0f);

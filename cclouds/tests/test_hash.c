@@ -58,7 +58,7 @@ static void test_hash_unit(void)
     for (i = 0; i < 100000u; ++i) {
         float u = ccl_hash_unit(ccl_hash_pcg(i));
         CCL_CHECK(u >= 0.0f && u < 1.0f);
-        mean += u;
+        mean += (double)u;
     }
     /* uniform on [0, 1): mean 1/2, standard error 1 / sqrt(12 * 1e5) ~ 9e-4 */
     CCL_CHECK_CLOSE(mean / 100000.0, 0.5, 5e-3);

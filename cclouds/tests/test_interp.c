@@ -13,21 +13,21 @@ static void test_fades_closed_form(void)
     CCL_CHECK(ccl_interp_fade_quintic(0.0f) == 0.0f && ccl_interp_fade_quintic(1.0f) == 1.0f);
     CCL_CHECK(ccl_interp_fade_quintic(0.5f) == 0.5f);
     for (t = 0.0f; t <= 1.0f; t += 0.0625f) {
-        double td = t;
+        double td = (double)t;
         CCL_CHECK_CLOSE(ccl_interp_fade_cubic(t), 3 * td * td - 2 * td * td * td, 4e-7);
         CCL_CHECK_CLOSE(ccl_interp_fade_quintic(t),
                         6 * td * td * td * td * td - 15 * td * td * td * td + 10 * td * td * td, 2e-6);
         /* symmetry f(1 - t) = 1 - f(t) */
-        CCL_CHECK_CLOSE(ccl_interp_fade_cubic(1.0f - t), 1.0 - ccl_interp_fade_cubic(t), 4e-7);
-        CCL_CHECK_CLOSE(ccl_interp_fade_quintic(1.0f - t), 1.0 - ccl_interp_fade_quintic(t), 2e-6);
+        CCL_CHECK_CLOSE(ccl_interp_fade_cubic(1.0f - t), 1.0 - (double)ccl_interp_fade_cubic(t), 4e-7);
+        CCL_CHECK_CLOSE(ccl_interp_fade_quintic(1.0f - t), 1.0 - (double)ccl_interp_fade_quintic(t), 2e-6);
     }
     /* cubic: f = 3 t^2 - 2 t^3 near 0 (f' = 0, f'' = 6); quintic: f = 10 t^3 - 15 t^4 + 6 t^5 (f' = f'' = 0); near 0
      * the Horner forms keep a relative error of <= 3 (cubic) and <= 7 (quintic) roundings of FLT_EPSILON / 2 */
     {
-        const double d = 1e-3f;
-        CCL_CHECK_REL(ccl_interp_fade_cubic(1e-3f), 3 * d * d - 2 * d * d * d, 2.0 * FLT_EPSILON);
+        const double d = (double)1e-3f;
+        CCL_CHECK_REL(ccl_interp_fade_cubic(1e-3f), 3 * d * d - 2 * d * d * d, 2.0 * (double)FLT_EPSILON);
         CCL_CHECK_REL(ccl_interp_fade_quintic(1e-3f), 10 * d * d * d - 15 * d * d * d * d + 6 * d * d * d * d * d,
-                      4.0 * FLT_EPSILON);
+                      4.0 * (double)FLT_EPSILON);
     }
 }
 

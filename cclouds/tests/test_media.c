@@ -16,10 +16,10 @@ static double rk4(float (*f)(float, float), float coef, double y0, double s, int
     double h = s / steps, y = y0;
     int i;
     for (i = 0; i < steps; ++i) {
-        double k1 = f(coef, (float)y);
-        double k2 = f(coef, (float)(y + 0.5 * h * k1));
-        double k3 = f(coef, (float)(y + 0.5 * h * k2));
-        double k4 = f(coef, (float)(y + h * k3));
+        double k1 = (double)f(coef, (float)y);
+        double k2 = (double)f(coef, (float)(y + 0.5 * h * k1));
+        double k3 = (double)f(coef, (float)(y + 0.5 * h * k2));
+        double k4 = (double)f(coef, (float)(y + h * k3));
         y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     }
     return y;
@@ -33,12 +33,13 @@ static void test_loss_derivatives_values_and_decay(void)
     CCL_CHECK_CLOSE(ccl_media_flux_derivative(3.0f, 0.5f), -1.5, 0.0);
     CCL_CHECK_CLOSE(ccl_media_absorption_derivative(0.0f, 7.0f), 0.0, 0.0);
     /* closed form of the ODE: L(s) = L(0) exp(-sigma s) */
-    CCL_CHECK_REL(rk4(ccl_media_absorption_derivative, 0.7f, 2.0, 3.0, 200), 2.0 * exp(-0.7f * 3.0), 2e-6);
-    CCL_CHECK_REL(rk4(ccl_media_outscattering_derivative, 1.3f, 1.0, 2.0, 200), exp(-1.3f * 2.0), 2e-6);
-    CCL_CHECK_REL(rk4(ccl_media_flux_derivative, 0.05f, 10.0, 20.0, 200), 10.0 * exp(-0.05f * 20.0), 2e-6);
+    CCL_CHECK_REL(rk4(ccl_media_absorption_derivative, 0.7f, 2.0, 3.0, 200), 2.0 * exp(-(double)0.7f * 3.0), 2e-6);
+    CCL_CHECK_REL(rk4(ccl_media_outscattering_derivative, 1.3f, 1.0, 2.0, 200), exp(-(double)1.3f * 2.0), 2e-6);
+    CCL_CHECK_REL(rk4(ccl_media_flux_derivative, 0.05f, 10.0, 20.0, 200), 10.0 * exp(-(double)0.05f * 20.0), 2e-6);
     /* extinction = absorption + out-scattering */
     CCL_CHECK_REL(ccl_media_extinction_derivative(0.3f, 0.6f, 1.5f),
-                  (double)ccl_media_absorption_derivative(0.3f, 1.5f) + ccl_media_outscattering_derivative(0.6f, 1.5f),
+                  (double)ccl_media_absorption_derivative(0.3f, 1.5f) +
+                      (double)ccl_media_outscattering_derivative(0.6f, 1.5f),
                   1e-6);
 }
 
@@ -169,11 +170,11 @@ static void test_raymarch_constant_medium_converges_first_order(void)
                                                   CCL_VARIANT_CORRECTED, &out2) == CCL_OK);
                 /* the same left-to-right sum; only sigma_t = sigma_a + sigma_s takes one more float32 rounding
                  * (<= eps/2, moving each e^{-sigma_t dt} by <= tau eps/2, tau = 2.4): 4 eps relative */
-                CCL_CHECK_REL(out2, out, 4.0 * FLT_EPSILON);
+                CCL_CHECK_REL(out2, out, 4.0 * (double)FLT_EPSILON);
                 free(le);
             }
         }
-        err = out - exact;
+        err = (double)out - exact;
         CCL_CHECK(err > 0.0); /* the left sum over-weights the near, brighter samples */
         if (err_prev > 0.0) CCL_CHECK(fabs(err_prev / err - 2.0) < 0.1); /* halving dt halves the error */
         err_prev = err;
@@ -190,8 +191,8 @@ static void test_raymarch_variants_and_edge_cases(void)
     CCL_CHECK(ccl_media_raymarch(st, ss, li, 4, 0.25f, 0.0f, CCL_VARIANT_CORRECTED, &out) == CCL_OK);
     CCL_CHECK(ccl_media_raymarch(st, ss, li, 4, 0.25f, 0.0f, CCL_VARIANT_THESIS, &thesis) == CCL_OK);
     for (k = 0; k < 4; ++k) {
-        sum += T * 1.0 * li[k] * 0.25;
-        sum_thesis += T * 1.0 * li[0] * 0.25;
+        sum += T * 1.0 * (double)li[k] * 0.25;
+        sum_thesis += T * 1.0 * (double)li[0] * 0.25;
         T *= exp(-0.25);
     }
     CCL_CHECK_REL(out, sum, 1e-6);
@@ -236,12 +237,12 @@ static void test_volume_render_emission(void)
               == CCL_OK);
     /* the left sum's first-order error dt/2 (f(0) - f(s)), f = sigma L_e e^{-sigma t}: 1.6e-3 here; allowed 2 % of it
      * (the next term, sigma dt / 6 = 2e-4 relative, and the float32 accumulation of 2000 terms) */
-    CCL_CHECK_REL(out - (lbg * exp(-sigma * s) + 3.0 * (1.0 - exp(-sigma * s))),
+    CCL_CHECK_REL((double)out - (lbg * exp(-sigma * s) + 3.0 * (1.0 - exp(-sigma * s))),
                   0.5 * (s / N) * sigma * 3.0 * (1.0 - exp(-sigma * s)), 0.02);
     le[0] = 6.0f; /* the printed form sees only L_e(x) = 6: the same sum with L_e = 6 everywhere */
     CCL_CHECK(ccl_media_volume_render(sa, ss, le, li, N, (float)(s / N), (float)lbg, CCL_VARIANT_THESIS, &thesis)
               == CCL_OK);
-    CCL_CHECK_REL(thesis - (lbg * exp(-sigma * s) + 6.0 * (1.0 - exp(-sigma * s))),
+    CCL_CHECK_REL((double)thesis - (lbg * exp(-sigma * s) + 6.0 * (1.0 - exp(-sigma * s))),
                   0.5 * (s / N) * sigma * 6.0 * (1.0 - exp(-sigma * s)), 0.02);
 }
 
@@ -258,7 +259,7 @@ static void test_optical_thickness(void)
     /* exponential sigma(t) = a e^{-bt}: tau = a / b (1 - e^{-bs}); left sum error ~ dt (sigma(0) - sigma(s)) / 2 */
     for (k = 0; k < N; ++k) sigma[k] = (float)(a * exp(-b * k * s / N));
     CCL_CHECK(ccl_media_optical_thickness(sigma, N, (float)(s / N), &tau) == CCL_OK);
-    CCL_CHECK_CLOSE(tau - a / b * (1.0 - exp(-b * s)), 0.5 * (s / N) * (a - a * exp(-b * s)), 1e-5);
+    CCL_CHECK_CLOSE((double)tau - a / b * (1.0 - exp(-b * s)), 0.5 * (s / N) * (a - a * exp(-b * s)), 1e-5);
     /* additivity: tau(x, x'') = tau(x, x') + tau(x', x'') */
     CCL_CHECK(ccl_media_optical_thickness(sigma, N / 2, (float)(s / N), &tau_half) == CCL_OK);
     CCL_CHECK(ccl_media_optical_thickness(sigma + N / 2, N / 2, (float)(s / N), &tau_rm) == CCL_OK);

@@ -119,14 +119,14 @@ static void test_fbm(void)
         float n2 = ccl_noise_perlin3(x * 16.0f, y * 16.0f, z * 16.0f, 0u, 16);
         float f = ccl_noise_fbm_perlin3(x, y, z, 3, 4.0f, 0u, 4);
         CCL_CHECK(ccl_noise_fbm_perlin3(x, y, z, 1, 4.0f, 0u, 4) == n0);
-        CCL_CHECK_CLOSE(f, (n0 + 0.5 * n1 + 0.25 * n2) / 1.75, 3e-7);
+        CCL_CHECK_CLOSE(f, ((double)n0 + 0.5 * (double)n1 + 0.25 * (double)n2) / 1.75, 3e-7);
         /* frequency 4, period 4: period 1 in x */
         CCL_CHECK(f == ccl_noise_fbm_perlin3(x + 1.0f, y, z - 1.0f, 3, 4.0f, 0u, 4));
         {
             float w0 = ccl_noise_worley3(x, y, z, 2, 5u, CCL_WORLEY_EUCLIDEAN, 1);
             float w1 = ccl_noise_worley3(x, y, z, 4, 6u, CCL_WORLEY_EUCLIDEAN, 1);
             float w = ccl_noise_fbm_worley3(x, y, z, 2, 2, 5u, CCL_WORLEY_EUCLIDEAN, 1);
-            CCL_CHECK_CLOSE(w, (w0 + 0.5 * w1) / 1.5, 2e-7);
+            CCL_CHECK_CLOSE(w, ((double)w0 + 0.5 * (double)w1) / 1.5, 2e-7);
             CCL_CHECK(w == ccl_noise_fbm_worley3(x, y + 1.0f, z, 2, 2, 5u, CCL_WORLEY_EUCLIDEAN, 1));
         }
     }
@@ -143,8 +143,8 @@ static void test_curl_identities(void)
         ccl_vec2 c;
         float div = ccl_noise_curl_property(x, y, z, 0u, 0, h, CCL_VARIANT_CORRECTED);
         float cc = ccl_noise_curl_property(x, y, z, 0u, 0, h, CCL_VARIANT_THESIS);
-        if (fabs(div) > max_div) max_div = fabs(div);
-        if (cc > max_curlcurl) max_curlcurl = cc;
+        if (fabs((double)div) > max_div) max_div = fabs((double)div);
+        if ((double)cc > max_curlcurl) max_curlcurl = (double)cc;
         /* 2.24 = z component of 2.23 at z = 0 */
         v = ccl_noise_curl3(x, y, 0.0f, 0u, 0, h);
         CCL_CHECK(ccl_noise_rot2(x, y, 0u, 0, h) == v.z);

@@ -5,20 +5,11 @@
 
 #define PI_D 3.14159265358979323846
 
-static ccl_vec3 vec(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
 static void test_optics_snell_angles_and_round_trip(void)
 {
     /* incidence 40 deg onto the plane z = 0 (normal +z), air -> water */
     const double ti = 40.0 * PI_D / 180.0, tt = asin(sin(ti) / 1.33);
-    ccl_vec3 d = vec((float)sin(ti), 0.0f, (float)-cos(ti)), n = vec(0.0f, 0.0f, 1.0f), r, t, back, r2;
+    ccl_vec3 d = V((float)sin(ti), 0.0f, (float)-cos(ti)), n = V(0.0f, 0.0f, 1.0f), r, t, back, r2;
     int tir;
     t = ccl_optics_snell(d, n, 1.0f, 1.33f, &r, &tir);
     CCL_CHECK(tir == 0);
@@ -27,7 +18,7 @@ static void test_optics_snell_angles_and_round_trip(void)
     CCL_CHECK_CLOSE(r.x, sin(ti), 1e-6); /* law of reflection */
     CCL_CHECK_CLOSE(r.z, cos(ti), 1e-6);
     /* reverse the refracted ray: it leaves along -d (the normal's side does not matter) */
-    back = ccl_optics_snell(vec(-t.x, -t.y, -t.z), n, 1.33f, 1.0f, &r2, &tir);
+    back = ccl_optics_snell(V(-t.x, -t.y, -t.z), n, 1.33f, 1.0f, &r2, &tir);
     CCL_CHECK(tir == 0);
     CCL_CHECK_CLOSE(back.x, -d.x, 1e-6);
     CCL_CHECK_CLOSE(back.z, -d.z, 1e-6);
@@ -37,7 +28,7 @@ static void test_optics_snell_total_internal_reflection(void)
 {
     /* water -> air at 60 deg > critical 48.75 deg */
     const double ti = 60.0 * PI_D / 180.0;
-    ccl_vec3 d = vec((float)sin(ti), 0.0f, (float)cos(ti)), n = vec(0.0f, 0.0f, 1.0f), r, t;
+    ccl_vec3 d = V((float)sin(ti), 0.0f, (float)cos(ti)), n = V(0.0f, 0.0f, 1.0f), r, t;
     int tir = 0;
     t = ccl_optics_snell(d, n, 1.33f, 1.0f, &r, &tir);
     CCL_CHECK(tir == 1);

@@ -40,8 +40,8 @@ static void test_spawn_in_box_and_sizes_bounded(void)
         CCL_CHECK(pos.x >= -1.0f && pos.x < 1.0f && pos.y >= 1.0f && pos.y < 1.25f && pos.z >= -1.5f && pos.z < 1.5f);
         CCL_CHECK(r >= 0.8f && r < 1.8f);
         CCL_CHECK(v > 0.0f && v <= 9.23f / 4.0f);
-        sum += r;
-        sum2 += (double)r * r;
+        sum += (double)r;
+        sum2 += (double)r * (double)r;
     }
     sum /= 4000.0;
     CCL_CHECK_CLOSE(sum, 1.3, 0.01);                                    /* mean */

@@ -13,7 +13,7 @@ static double sphere_integral(float (*p)(float, float), float param, int moment)
     for (i = 0; i <= n; ++i) {
         double mu = -1.0 + i * h;
         double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-        double f = p((float)mu, param);
+        double f = (double)p((float)mu, param);
         if (moment) f *= mu;
         sum += w * f;
     }

@@ -15,9 +15,10 @@ static void test_rain_drop_radius_catalogue_values(void)
     static const double r180[4] = {0.496850, 0.968300, 2.397300, 3.030300};
     int k;
     for (k = 0; k < 4; ++k) {
-        CCL_CHECK_CLOSE(ccl_rain_drop_radius(0.0f, a[k], CCL_RAIN_INTERP_TABLE), r0[k], 2e-6 * a[k]);
-        CCL_CHECK_CLOSE(ccl_rain_drop_radius((float)(PI_D / 2), a[k], CCL_RAIN_INTERP_TABLE), r90[k], 4e-6 * a[k]);
-        CCL_CHECK_CLOSE(ccl_rain_drop_radius((float)PI_D, a[k], CCL_RAIN_INTERP_TABLE), r180[k], 4e-6 * a[k]);
+        CCL_CHECK_CLOSE(ccl_rain_drop_radius(0.0f, a[k], CCL_RAIN_INTERP_TABLE), r0[k], 2e-6 * (double)a[k]);
+        CCL_CHECK_CLOSE(ccl_rain_drop_radius((float)(PI_D / 2), a[k], CCL_RAIN_INTERP_TABLE), r90[k],
+                        4e-6 * (double)a[k]);
+        CCL_CHECK_CLOSE(ccl_rain_drop_radius((float)PI_D, a[k], CCL_RAIN_INTERP_TABLE), r180[k], 4e-6 * (double)a[k]);
         /* the linear option reproduces the rows */
         CCL_CHECK(ccl_rain_drop_coefficient(2, a[k], CCL_RAIN_INTERP_LINEAR) ==
                   ccl_rain_drop_coefficient(2, a[k], CCL_RAIN_INTERP_TABLE));
@@ -66,15 +67,15 @@ static void test_rain_mask_sphere_against_analytic(void)
     static const float us[4] = {0.0f, 0.3f, -0.6f, 0.2f}, vs[4] = {0.0f, 0.4f, 0.1f, -0.95f};
     int k, inside;
     for (k = 0; k < 4; ++k) {
-        double b = sqrt((double)us[k] * us[k] + (double)vs[k] * vs[k]);
+        double b = sqrt((double)us[k] * (double)us[k] + (double)vs[k] * (double)vs[k]);
         double ti = asin(b), tt = asin(b / 1.33), dev = 2.0 * (ti - tt);
         ccl_vec3 n, e = ccl_rain_mask_texel(us[k], vs[k], 1.0f, 1.0f, 1.33f, CCL_RAIN_INTERP_TABLE,
                                             CCL_RAIN_MASK_SPHERE, &n, &inside);
         CCL_CHECK(inside == 1);
         CCL_CHECK_CLOSE(e.z, cos(dev), 2e-6);
         if (b > 0) {
-            CCL_CHECK_CLOSE(e.x, -sin(dev) * us[k] / b, 2e-6);
-            CCL_CHECK_CLOSE(e.y, -sin(dev) * vs[k] / b, 2e-6);
+            CCL_CHECK_CLOSE(e.x, -sin(dev) * (double)us[k] / b, 2e-6);
+            CCL_CHECK_CLOSE(e.y, -sin(dev) * (double)vs[k] / b, 2e-6);
         }
     }
     {

@@ -6,17 +6,6 @@
 #define PI_D 3.14159265358979323846
 #define R_E 6371.0
 
-static ccl_vec3 V(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
-static double len(ccl_vec3 a) { return sqrt((double)a.x * a.x + (double)a.y * a.y + (double)a.z * a.z); }
-
 static void test_ray_sphere_closed_forms(void)
 {
     float t0, t1;
@@ -159,13 +148,14 @@ static void test_light_cone_positions(void)
         ccl_vec3 k = ccl_raymarch_light_cone_kernel(i);
         ccl_vec3 q = ccl_raymarch_light_sample_position(p, sun, i, step, angle, far, k);
         double s = (i < 5) ? (i + 1) * 0.1 : 3.0 * 0.5;
-        ccl_vec3 off = V((float)(q.x - p.x - s * sun.x), (float)(q.y - p.y - s * sun.y),
-                         (float)(q.z - p.z - s * sun.z));
-        CCL_CHECK_CLOSE(len(k), 1.0, 1e-6);
+        ccl_vec3 off = V((float)((double)(q.x - p.x) - s * (double)sun.x),
+                         (float)((double)(q.y - p.y) - s * (double)sun.y),
+                         (float)((double)(q.z - p.z) - s * (double)sun.z));
+        CCL_CHECK_CLOSE(len3(k), 1.0, 1e-6);
         /* sideways offset s_i tan(angle): increases with i */
-        CCL_CHECK_REL(len(off), s * tan(0.2617994), 1e-4);
-        CCL_CHECK(len(off) > prev);
-        prev = len(off);
+        CCL_CHECK_REL(len3(off), s * tan(0.2617994), 1e-4);
+        CCL_CHECK(len3(off) > prev);
+        prev = len3(off);
     }
     /* the far sample lies at 3x the near cone's length */
     {
@@ -218,8 +208,8 @@ static void test_ray_jitter(void)
     CCL_CHECK(a.x == b.x && a.y == b.y && a.z == b.z); /* deterministic */
     CCL_CHECK(a.x != e.x || a.y != e.y);               /* depends on the pixel */
     CCL_CHECK(a.x != g.x || a.y != g.y);               /* and on the frame */
-    CCL_CHECK_CLOSE(len(a), 1.0, 2e-7);
-    cosang = a.x * d.x + a.y * d.y + a.z * d.z;
+    CCL_CHECK_CLOSE(len3(a), 1.0, 2e-7);
+    cosang = (double)(a.x * d.x + a.y * d.y + a.z * d.z);
     CCL_CHECK(acos(cosang > 1.0 ? 1.0 : cosang) <= sqrt(3.0) * 0.002 + 1e-6);
     /* zero amount: the direction itself */
     a = ccl_raymarch_jitter_tilt(d, 1, 2, 3, 0.0f);

@@ -7,15 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static ccl_vec3 V(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
 static void test_reprojection_pixel_order_and_wrap(void)
 {
     int x, y;
@@ -37,7 +28,7 @@ static void test_reprojection_pixel_order_and_wrap(void)
 static int coverage_ok(int w, int h, int first_frame)
 {
     int gw, gh, f, i, j, x, y, ok = 1;
-    int *count = (int *)calloc((size_t)w * h, sizeof(int));
+    int *count = (int *)calloc((size_t)w * (size_t)h, sizeof(int));
     if (!count || ccl_reproj_grid(w, h, &gw, &gh) != CCL_OK) {
         free(count);
         return 0;
@@ -222,8 +213,8 @@ static void test_reprojection_uv_static_is_pixel_centre(void)
             CCL_CHECK(ccl_reproj_uv(cam.inv_view_proj_rot, cam.eye, cam.view_proj, L.centre, L.r_inner, x, y,
                                           1920, 1080, &u, &v) == 1);
             /* float32 round trip: <= 4.5e-4 px measured; u has 24-bit resolution (1.1e-4 px per ulp here) */
-            CCL_CHECK_CLOSE(u * 1920.0 - 0.5, x, 1e-3);
-            CCL_CHECK_CLOSE(v * 1080.0 - 0.5, y, 1e-3);
+            CCL_CHECK_CLOSE((double)u * 1920.0 - 0.5, x, 1e-3);
+            CCL_CHECK_CLOSE((double)v * 1080.0 - 0.5, y, 1e-3);
         }
 }
 

@@ -4,15 +4,6 @@
 
 #include <math.h>
 
-static ccl_vec3 v3(float x, float y, float z)
-{
-    ccl_vec3 r;
-    r.x = x;
-    r.y = y;
-    r.z = z;
-    return r;
-}
-
 static void test_terrain_pixel_position_ranges(void)
 {
     ccl_vec2 p = ccl_terrain_pixel_position(320.0f, 240.0f, 640.0f, 480.0f);
@@ -42,7 +33,7 @@ static void test_terrain_fbm_bound(void)
         double bound = 2.0 * (1.0 - pow(0.5, oct));
         for (i = 0; i < 2000; ++i) {
             float x = -50.0f + 0.0731f * (float)i, z = 13.0f - 0.0419f * (float)i;
-            CCL_CHECK(fabs(fbm79(x, z, oct)) <= bound);
+            CCL_CHECK(fabs((double)fbm79(x, z, oct)) <= bound);
         }
     }
     /* one octave at frequency 0.5 is the noise: 0 on the lattice (even coordinates) */
@@ -58,7 +49,7 @@ static void test_terrain_test_heightmap(void)
 static void test_terrain_marches_find_the_same_surface(void)
 {
     /* a ray from above down onto the test heightmap: fixed and dynamic marches agree within the fixed step */
-    ccl_vec3 ro = v3(3.0f, 20.0f, 5.0f), rd = ccl_vec3_normalize(v3(0.3f, -0.5f, 0.8f));
+    ccl_vec3 ro = V(3.0f, 20.0f, 5.0f), rd = ccl_vec3_normalize(V(0.3f, -0.5f, 0.8f));
     float tf, td, tb;
     int sf, sd, sb;
     int32_t hf = ccl_terrain_march_fixed(ro, rd, 200.0f, 0.05f, 0.01f, 1, 1.0f, 1.0f, 0u, CCL_TERRAIN_TEST, &tf, &sf);
@@ -71,7 +62,7 @@ static void test_terrain_marches_find_the_same_surface(void)
     CCL_CHECK_CLOSE(tb, td, 0.05);
     CCL_CHECK(sd < sf);
     /* a ray pointing up misses */
-    rd = ccl_vec3_normalize(v3(0.3f, 0.5f, 0.8f));
+    rd = ccl_vec3_normalize(V(0.3f, 0.5f, 0.8f));
     CCL_CHECK(ccl_terrain_march_dynamic(ro, rd, 200.0f, 0.01f, 1000, 1.0f, 1, 1.0f, 1.0f, 0u, CCL_TERRAIN_TEST, &td,
                                         &sd) == 0);
     CCL_CHECK(td > 200.0f);
@@ -80,15 +71,15 @@ static void test_terrain_marches_find_the_same_surface(void)
 static void test_terrain_shadows(void)
 {
     /* a point in the trough behind a crest of the test heightmap, the light grazing over the crest */
-    ccl_vec3 ro = v3(-15.707963f, -9.9f, 15.707963f), up = v3(0.0f, 1.0f, 0.0f);
-    ccl_vec3 low = ccl_vec3_normalize(v3(1.0f, 0.05f, 0.0f));
+    ccl_vec3 ro = V(-15.707963f, -9.9f, 15.707963f), up = V(0.0f, 1.0f, 0.0f);
+    ccl_vec3 low = ccl_vec3_normalize(V(1.0f, 0.05f, 0.0f));
     float k, prev = -1.0f;
     CCL_CHECK_CLOSE(ccl_terrain_shadow_hard(ro, up, 0.2f, 100.0f, 0.01f, 1000, 1, 1.0f, 1.0f, 0u, CCL_TERRAIN_TEST),
                     1.0, 0.0);
     CCL_CHECK_CLOSE(ccl_terrain_shadow_hard(ro, low, 0.2f, 100.0f, 0.01f, 1000, 1, 1.0f, 1.0f, 0u, CCL_TERRAIN_TEST),
                     0.0, 0.0);
     for (k = 0.5f; k <= 64.0f; k *= 2.0f) {
-        ccl_vec3 mid = ccl_vec3_normalize(v3(1.0f, 0.9f, 0.0f));
+        ccl_vec3 mid = ccl_vec3_normalize(V(1.0f, 0.9f, 0.0f));
         float s = ccl_terrain_shadow_soft(ro, mid, 0.02f, k, 100.0f, 0.01f, 1000, 1, 1.0f, 1.0f, 0u, CCL_TERRAIN_TEST);
         CCL_CHECK(s >= 0.0f && s <= 1.0f);
         CCL_CHECK(s >= prev);
@@ -99,14 +90,14 @@ static void test_terrain_shadows(void)
 static void test_terrain_normal_y_is_2h(void)
 {
     ccl_vec3 g;
-    ccl_vec3 n = ccl_terrain_normal(v3(0.5f, 0.0f, 0.25f), 0.002f, 6, 12.0f, 24.0f, 0u, CCL_TERRAIN_FBM, &g);
+    ccl_vec3 n = ccl_terrain_normal(V(0.5f, 0.0f, 0.25f), 0.002f, 6, 12.0f, 24.0f, 0u, CCL_TERRAIN_FBM, &g);
     float hgt = 12.0f * fbm79(0.5f / 24.0f, 0.25f / 24.0f, 6);
     /* (y + h - H) - (y - h - H) = 2h exactly in real arithmetic; each of the two differences rounds once at the
      * magnitude of |H| + h, so the float32 result is within 2 ulp of that magnitude */
-    CCL_CHECK_CLOSE(g.y, 0.004, 2.0 * ldexp(1.0, ilogb(fabs(hgt) + 0.002) - 23));
+    CCL_CHECK_CLOSE(g.y, 0.004, 2.0 * ldexp(1.0, ilogb(fabs((double)hgt) + 0.002) - 23));
     CCL_CHECK_CLOSE(ccl_vec3_length(n), 1.0, 1e-6);
     /* flat test heightmap at a crest: normal up */
-    n = ccl_terrain_normal(v3(15.707963f, 10.0f, 15.707963f), 0.002f, 1, 1.0f, 1.0f, 0u, CCL_TERRAIN_TEST, &g);
+    n = ccl_terrain_normal(V(15.707963f, 10.0f, 15.707963f), 0.002f, 1, 1.0f, 1.0f, 0u, CCL_TERRAIN_TEST, &g);
     CCL_CHECK_CLOSE(n.y, 1.0, 1e-5);
 }
 
@@ -131,8 +122,8 @@ static void test_terrain_fog_variants(void)
 static void test_terrain_sky_glow_halves_at_7_53_deg(void)
 {
     double a = acos(pow(0.5, 1.0 / 80.0));
-    ccl_vec3 sun = v3(0.0f, 0.0f, -1.0f), black = v3(0.0f, 0.0f, 0.0f), white = v3(1.0f, 1.0f, 1.0f);
-    ccl_vec3 c = ccl_terrain_sky(v3((float)sin(a), 0.0f, -(float)cos(a)), sun, black, white, 80.0f);
+    ccl_vec3 sun = V(0.0f, 0.0f, -1.0f), black = V(0.0f, 0.0f, 0.0f), white = V(1.0f, 1.0f, 1.0f);
+    ccl_vec3 c = ccl_terrain_sky(V((float)sin(a), 0.0f, -(float)cos(a)), sun, black, white, 80.0f);
     CCL_CHECK_REL(a * 180.0 / 3.14159265358979, 7.53, 1e-3);
     CCL_CHECK_CLOSE(c.x, 0.5, 1e-4);
     c = ccl_terrain_sky(sun, sun, black, white, 80.0f);
@@ -141,13 +132,13 @@ static void test_terrain_sky_glow_halves_at_7_53_deg(void)
 
 static void test_terrain_clouds_variants_below_the_horizon(void)
 {
-    ccl_vec3 sky = v3(0.4f, 0.6f, 0.9f), white = v3(1.0f, 1.0f, 1.0f), ro = v3(0.0f, 0.0f, 0.0f);
+    ccl_vec3 sky = V(0.4f, 0.6f, 0.9f), white = V(1.0f, 1.0f, 1.0f), ro = V(0.0f, 0.0f, 0.0f);
     ccl_vec2 wind;
     int i, spurious = 0;
     wind.x = 1.0f;
     wind.y = 0.0f;
     for (i = 0; i < 200; ++i) {
-        ccl_vec3 rd = ccl_vec3_normalize(v3(0.01f * (float)i, -0.5f, 1.0f));
+        ccl_vec3 rd = ccl_vec3_normalize(V(0.01f * (float)i, -0.5f, 1.0f));
         ccl_vec3 c = ccl_terrain_clouds(sky, ro, rd, 100.0f, wind, 3.0f, 10.0f, white, 0u, CCL_VARIANT_CORRECTED);
         ccl_vec3 t = ccl_terrain_clouds(sky, ro, rd, 100.0f, wind, 3.0f, 10.0f, white, 0u, CCL_VARIANT_THESIS);
         CCL_CHECK(c.x == sky.x && c.y == sky.y && c.z == sky.z);
@@ -158,10 +149,10 @@ static void test_terrain_clouds_variants_below_the_horizon(void)
 
 static void test_terrain_water_weight_normal_incidence(void)
 {
-    ccl_vec3 n = v3(0.0f, 1.0f, 0.0f), down = v3(0.0f, -1.0f, 0.0f);
+    ccl_vec3 n = V(0.0f, 1.0f, 0.0f), down = V(0.0f, -1.0f, 0.0f);
     CCL_CHECK_CLOSE(ccl_terrain_water_weight(down, n, 1.0f), 1.0, 0.0);
     CCL_CHECK_CLOSE(ccl_terrain_water_weight(down, n, 6.0f), 1.0, 0.0);
-    CCL_CHECK_REL(ccl_terrain_water_weight(ccl_vec3_normalize(v3(1.0f, -1.0f, 0.0f)), n, 3.0f),
+    CCL_CHECK_REL(ccl_terrain_water_weight(ccl_vec3_normalize(V(1.0f, -1.0f, 0.0f)), n, 3.0f),
                   pow(sqrt(0.5), 3.0), 1e-6);
 }
 
@@ -186,7 +177,7 @@ static void test_terrain_params_and_pixel(void)
     m[5] = 1.0f;
     m[10] = 0.0f;
     m[14] = -1.0f; /* h.z = -1 for every pixel (m[c * 4 + r]) */
-    ccl_terrain_pixel(&p, m, v3(0.0f, 30.0f, 0.0f), 0, 7, 8, 8, rgb, &steps);
+    ccl_terrain_pixel(&p, m, V(0.0f, 30.0f, 0.0f), 0, 7, 8, 8, rgb, &steps);
     CCL_CHECK(rgb[0] >= 0.0f && rgb[0] <= 1.0f && steps >= 1);
 }
 

@@ -117,26 +117,26 @@ static void test_texgen_base_shape_matches_noise_composition(void)
     s.worley_cells = 1;
     CCL_CHECK(tex != NULL);
     if (!tex) return;
-    CCL_CHECK(ccl_texgen_base_shape(&s, tex, (size_t)n * n * n * 4) == CCL_OK);
+    CCL_CHECK(ccl_texgen_base_shape(&s, tex, (size_t)n * (size_t)n * (size_t)n * 4) == CCL_OK);
     for (iz = 0; iz < n; ++iz)
         for (iy = 0; iy < n; ++iy)
             for (ix = 0; ix < n; ++ix) {
-                const float *t = tex + (((size_t)iz * n + iy) * n + ix) * 4;
+                const float *t = tex + (((size_t)iz * (size_t)n + (size_t)iy) * (size_t)n + (size_t)ix) * 4;
                 double u = (ix + 0.5) / n, v = (iy + 0.5) / n, w = (iz + 0.5) / n, W[4], g, b, a, p, r;
                 int j, c;
                 for (j = 0; j < 4; ++j)
-                    W[j] = ccl_noise_worley3((float)u, (float)v, (float)w, 1 << j, 7u + (uint32_t)j,
-                                             CCL_WORLEY_EUCLIDEAN, 1);
+                    W[j] = (double)ccl_noise_worley3((float)u, (float)v, (float)w, 1 << j, 7u + (uint32_t)j,
+                                                     CCL_WORLEY_EUCLIDEAN, 1);
                 g = 0.625 * W[0] + 0.25 * W[1] + 0.125 * W[2];
                 b = 0.625 * W[1] + 0.25 * W[2] + 0.125 * W[3];
                 a = (0.625 * W[2] + 0.25 * W[3]) / 0.875;
-                p = 0.5 * ccl_noise_fbm_perlin3((float)u, (float)v, (float)w, 3, 2.0f, 7u, 2) + 0.5;
+                p = 0.5 * (double)ccl_noise_fbm_perlin3((float)u, (float)v, (float)w, 3, 2.0f, 7u, 2) + 0.5;
                 p = p < 0 ? 0 : (p > 1 ? 1 : p);
                 r = (g + p * (1.0 - g)) * (g + p * (1.0 - g)); /* remap(P, 0, 1, W, 1)^2 */
-                max_err = fmax(max_err, fabs(t[0] - r));
-                max_err = fmax(max_err, fabs(t[1] - g));
-                max_err = fmax(max_err, fabs(t[2] - b));
-                max_err = fmax(max_err, fabs(t[3] - a));
+                max_err = fmax(max_err, fabs((double)t[0] - r));
+                max_err = fmax(max_err, fabs((double)t[1] - g));
+                max_err = fmax(max_err, fabs((double)t[2] - b));
+                max_err = fmax(max_err, fabs((double)t[3] - a));
                 for (c = 0; c < 4; ++c)
                     if (!(t[c] >= 0.0f && t[c] <= 1.0f)) ++bad_range;
             }
@@ -194,10 +194,12 @@ static void test_texgen_detail_channel_is_worley_fbm_for_halving_weights(void)
         for (iy = 0; iy < 4; ++iy)
             for (ix = 0; ix < 4; ++ix) {
                 float r, g, b;
-                float u = (ix + 0.5f) / 4.0f, v = (iy + 0.5f) / 4.0f, w = (iz + 0.5f) / 4.0f;
+                float u = ((float)ix + 0.5f) / 4.0f, v = ((float)iy + 0.5f) / 4.0f, w = ((float)iz + 0.5f) / 4.0f;
                 ccl_texgen_detail_shape_texel(ix, iy, iz, 4, 3u, 2, 1.0f, 0.5f, 0.25f, 1.0f, &r, &g, &b);
-                max_err = fmax(max_err, fabs(r - ccl_noise_fbm_worley3(u, v, w, 3, 2, 3u, CCL_WORLEY_EUCLIDEAN, 1)));
-                max_err = fmax(max_err, fabs(g - ccl_noise_fbm_worley3(u, v, w, 3, 4, 4u, CCL_WORLEY_EUCLIDEAN, 1)));
+                float wr = ccl_noise_fbm_worley3(u, v, w, 3, 2, 3u, CCL_WORLEY_EUCLIDEAN, 1);
+                float wg = ccl_noise_fbm_worley3(u, v, w, 3, 4, 4u, CCL_WORLEY_EUCLIDEAN, 1);
+                max_err = fmax(max_err, fabs((double)(r - wr)));
+                max_err = fmax(max_err, fabs((double)(g - wg)));
             }
     CCL_CHECK(max_err <= 2.4e-7); /* same float32 sum, possibly a different rounding of the final division */
 }
@@ -213,17 +215,17 @@ static void test_texgen_curl_noise_is_divergence_free_and_tileable(void)
     s.frequency = 2;
     CCL_CHECK(t != NULL);
     if (!t) return;
-    CCL_CHECK(ccl_texgen_curl_noise(&s, t, (size_t)n * n * 2) == CCL_OK);
+    CCL_CHECK(ccl_texgen_curl_noise(&s, t, (size_t)n * (size_t)n * 2) == CCL_OK);
     for (iy = 0; iy < n; ++iy)
         for (ix = 0; ix < n; ++ix) {
             int xp = (ix + 1) % n, xm = (ix + n - 1) % n, yp = (iy + 1) % n, ym = (iy + n - 1) % n;
-            double dvx = t[(iy * n + xp) * 2] - t[(iy * n + xm) * 2];
-            double dvy = t[(yp * n + ix) * 2 + 1] - t[(ym * n + ix) * 2 + 1];
-            double dvx_dy = t[(yp * n + ix) * 2] - t[(ym * n + ix) * 2];
+            double dvx = (double)(t[(iy * n + xp) * 2] - t[(iy * n + xm) * 2]);
+            double dvy = (double)(t[(yp * n + ix) * 2 + 1] - t[(ym * n + ix) * 2 + 1]);
+            double dvx_dy = (double)(t[(yp * n + ix) * 2] - t[(ym * n + ix) * 2]);
             div_sum += fabs(dvx + dvy);
             grad_sum += fabs(dvx) + fabs(dvx_dy);
-            if (ix == n - 1) seam = fmax(seam, fabs(t[(iy * n) * 2] - t[(iy * n + ix) * 2]));
-            else interior = fmax(interior, fabs(t[(iy * n + ix + 1) * 2] - t[(iy * n + ix) * 2]));
+            if (ix == n - 1) seam = fmax(seam, fabs((double)(t[(iy * n) * 2] - t[(iy * n + ix) * 2])));
+            else interior = fmax(interior, fabs((double)(t[(iy * n + ix + 1) * 2] - t[(iy * n + ix) * 2])));
         }
     /* discrete divergence (texel central differences of a smooth divergence-free field): O(h^2), far below the
      * derivatives themselves */
@@ -243,21 +245,21 @@ static void test_texgen_weather_map_channels(void)
     if (!t || !t2) { free(t); free(t2); return; }
     s.size = n;
     s.coverage = 0.0f;
-    CCL_CHECK(ccl_texgen_weather_map(&s, t, (size_t)n * n * 4) == CCL_OK);
+    CCL_CHECK(ccl_texgen_weather_map(&s, t, (size_t)n * (size_t)n * 4) == CCL_OK);
     for (i = 0; i < n * n; ++i)
         if (t[i * 4] != 0.0f || t[i * 4 + 3] != 0.0f) ++bad; /* coverage 0 = clear sky; alpha free (0) */
     CCL_CHECK(bad == 0);
     s.coverage = 0.4f;
-    CCL_CHECK(ccl_texgen_weather_map(&s, t, (size_t)n * n * 4) == CCL_OK);
+    CCL_CHECK(ccl_texgen_weather_map(&s, t, (size_t)n * (size_t)n * 4) == CCL_OK);
     s.coverage = 0.7f;
-    CCL_CHECK(ccl_texgen_weather_map(&s, t2, (size_t)n * n * 4) == CCL_OK);
+    CCL_CHECK(ccl_texgen_weather_map(&s, t2, (size_t)n * (size_t)n * 4) == CCL_OK);
     for (i = 0; i < n * n; ++i) {
         int c;
         for (c = 0; c < 4; ++c)
             if (!(t2[i * 4 + c] >= 0.0f && t2[i * 4 + c] <= 1.0f)) ++bad;
         if (t2[i * 4] < t[i * 4]) ++monotone_fail;
-        mean_lo += t[i * 4];
-        mean_hi += t2[i * 4];
+        mean_lo += (double)t[i * 4];
+        mean_hi += (double)t2[i * 4];
         /* B in [cloud_type - variation, cloud_type + variation] */
         if (t2[i * 4 + 2] < 0.5f || t2[i * 4 + 2] > 1.0f) ++bad;
         if (t2[i * 4 + 1] != t[i * 4 + 1] || t2[i * 4 + 2] != t[i * 4 + 2]) ++bad; /* coverage touches R only */
@@ -281,7 +283,8 @@ static double ref_trilinear(const float *tex, int n, double px, double py, doubl
                 int ix = (((int)fx + dx) % n + n) % n, iy = (((int)fy + dy) % n + n) % n;
                 int iz = (((int)fz + dz) % n + n) % n;
                 double wgt = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
-                acc += wgt * tex[(((size_t)iz * n + iy) * n + ix) * 4 + c];
+                size_t at = (((size_t)iz * (size_t)n + (size_t)iy) * (size_t)n + (size_t)ix) * 4 + (size_t)c;
+                acc += wgt * (double)tex[at];
             }
     return acc;
 }
@@ -301,8 +304,8 @@ static void test_texgen_sample_trilinear_wrap(void)
     for (i = 0; i < n * n * n; i += 5) {
         int ix = i % n, iy = (i / n) % n, iz = i / (n * n);
         float r, g, b, a;
-        ccl_texgen_sample_trilinear_wrap(tex, n - 1, (ix + 0.5f) / n, (iy + 0.5f) / n, (iz + 0.5f) / n, &r, &g, &b,
-                                         &a);
+        ccl_texgen_sample_trilinear_wrap(tex, n - 1, ((float)ix + 0.5f) / (float)n, ((float)iy + 0.5f) / (float)n,
+                                         ((float)iz + 0.5f) / (float)n, &r, &g, &b, &a);
         if (r != tex[i * 4] || g != tex[i * 4 + 1] || b != tex[i * 4 + 2] || a != tex[i * 4 + 3]) ++exact_fail;
     }
     CCL_CHECK(exact_fail == 0);
@@ -318,7 +321,8 @@ static void test_texgen_sample_trilinear_wrap(void)
                                          &o2[3]);
         for (k = 0; k < 4; ++k) {
             if (o[k] != o2[k]) ++shift_fail;
-            max_err = fmax(max_err, fabs(o[k] - ref_trilinear(tex, n, p[0], p[1], p[2], k)));
+            double ref = ref_trilinear(tex, n, (double)p[0], (double)p[1], (double)p[2], k);
+            max_err = fmax(max_err, fabs((double)o[k] - ref));
         }
     }
     CCL_CHECK(shift_fail == 0);

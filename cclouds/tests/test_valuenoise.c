@@ -16,7 +16,7 @@ static void test_lattice(void)
         CCL_CHECK(u >= 0.0f && u < 1.0f);
         CCL_CHECK(s == 2.0f * u - 1.0f && s >= -1.0f && s < 1.0f);
         CCL_CHECK(u == ccl_valuenoise_lattice(x, 7, 3, 42u, CCL_VALUENOISE_UNIT)); /* deterministic */
-        sum += u;
+        sum += (double)u;
     }
     CCL_CHECK_CLOSE(sum / 4096.0, 0.5, 0.02);
     /* the formula of the header */
@@ -27,7 +27,7 @@ static void test_lattice(void)
 
 static double lat2(int32_t x, int32_t y)
 {
-    return ccl_valuenoise_lattice(x, y, 0, 11u, CCL_VALUENOISE_UNIT);
+    return (double)ccl_valuenoise_lattice(x, y, 0, 11u, CCL_VALUENOISE_UNIT);
 }
 
 static void test_smoothing_weights(void)
@@ -62,22 +62,24 @@ static void test_interpolants(void)
     CCL_CHECK(ccl_valuenoise_cubic(0.3f, a, b, 0.2f, 0.0f) == a);
     CCL_CHECK_CLOSE(ccl_valuenoise_cubic(0.3f, a, b, 0.2f, 1.0f), b, 4e-7);
     /* cosine: (a + b)/2 at 1/2, the catalogue's check value */
-    CCL_CHECK_CLOSE(ccl_valuenoise_cosine(a, b, 0.5f), 0.5 * (a + b), 6e-8);
+    CCL_CHECK_CLOSE(ccl_valuenoise_cosine(a, b, 0.5f), 0.5 * ((double)a + (double)b), 6e-8);
     CCL_CHECK_CLOSE(ccl_valuenoise_cosine(0.0f, 1.0f, 0.25f), 0.1464466, 1e-7);
     for (x = 0.0f; x <= 1.0f; x += 0.125f)
-        CCL_CHECK_CLOSE(ccl_valuenoise_cosine(0.0f, 1.0f, x), (1.0 - cos(3.1415927 * x)) / 2.0, 2e-7);
+        CCL_CHECK_CLOSE(ccl_valuenoise_cosine(0.0f, 1.0f, x), (1.0 - cos(3.1415927 * (double)x)) / 2.0, 2e-7);
     /* cubic: check values of the catalogue */
     CCL_CHECK_CLOSE(ccl_valuenoise_cubic(0.0f, 0.0f, 1.0f, 1.0f, 0.5f), 0.5, 0.0);
     for (x = 0.0f; x <= 1.0f; x += 0.125f)
-        CCL_CHECK_CLOSE(ccl_valuenoise_cubic(0.0f, 1.0f, 0.0f, 1.0f, x), 2.0 * x * x * x - 3.0 * x * x + 1.0, 3e-7);
+        CCL_CHECK_CLOSE(ccl_valuenoise_cubic(0.0f, 1.0f, 0.0f, 1.0f, x),
+                        (2.0 * (double)x - 3.0) * (double)x * (double)x + 1.0, 3e-7);
     /* the printed slope: v2 - v0 at 0, v3 - v1 at 1 (Catmull-Rom: half of that) */
     {
         const float v0 = 0.2f, v1 = 0.5f, v2 = 0.9f, v3 = 0.4f, h = 1.0f / 1024.0f;
-        double s0 = (ccl_valuenoise_cubic(v0, v1, v2, v3, h) - ccl_valuenoise_cubic(v0, v1, v2, v3, 0.0f)) / h;
-        double s1 = (ccl_valuenoise_cubic(v0, v1, v2, v3, 1.0f) - ccl_valuenoise_cubic(v0, v1, v2, v3, 1.0f - h)) / h;
+        float c0 = ccl_valuenoise_cubic(v0, v1, v2, v3, 0.0f), ch = ccl_valuenoise_cubic(v0, v1, v2, v3, h);
+        float c1 = ccl_valuenoise_cubic(v0, v1, v2, v3, 1.0f), c1h = ccl_valuenoise_cubic(v0, v1, v2, v3, 1.0f - h);
+        double s0 = (double)((ch - c0) / h), s1 = (double)((c1 - c1h) / h);
         CCL_CHECK_CLOSE(s0, v2 - v0, 0.01);
         CCL_CHECK_CLOSE(s1, v3 - v1, 0.01);
-        CCL_CHECK(fabs(s0 - 0.5 * (v2 - v0)) > 0.3); /* not Catmull-Rom */
+        CCL_CHECK(fabs(s0 - 0.5 * (double)(v2 - v0)) > 0.3); /* not Catmull-Rom */
     }
 }
 
@@ -97,7 +99,8 @@ static void test_interpolated(void)
     /* 1-D linear between two nodes, written out */
     {
         float v1 = ccl_valuenoise_smooth(4, 0, 0, 5u, 1, 0, 0), v2 = ccl_valuenoise_smooth(5, 0, 0, 5u, 1, 0, 0);
-        CCL_CHECK_CLOSE(ccl_valuenoise_interpolated(4.25f, 9.0f, 9.0f, 5u, 1, 0, 0, 0), 0.75 * v1 + 0.25 * v2, 1e-7);
+        CCL_CHECK_CLOSE(ccl_valuenoise_interpolated(4.25f, 9.0f, 9.0f, 5u, 1, 0, 0, 0),
+                        0.75 * (double)v1 + 0.25 * (double)v2, 1e-7);
     }
 }
 

@@ -7,13 +7,6 @@
 
 #include <stdlib.h>
 
-static ccl_vec3 V(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x; v.y = y; v.z = z;
-    return v;
-}
-
 #define N 16
 #define M (N / CCL_VOLUME_BRICK) /* bricks per axis */
 static unsigned char ball[N * N * N];
@@ -30,7 +23,7 @@ static void make_ball(void)
     for (z = 0; z < N; ++z)
         for (y = 0; y < N; ++y)
             for (x = 0; x < N; ++x) {
-                float dx = x + 0.5f - N / 2.0f, dy = y + 0.5f - N / 2.0f, dz = z + 0.5f - N / 2.0f;
+                float dx = (float)x + 0.5f - N / 2.0f, dy = (float)y + 0.5f - N / 2.0f, dz = (float)z + 0.5f - N / 2.0f;
                 ball[(z * N + y) * N + x] = (dx * dx + dy * dy + dz * dz < 36.0f) ? 255 : 0;
                 empty[(z * N + y) * N + x] = 0;
             }
@@ -127,7 +120,7 @@ static void test_volume_pixel(void)
     CCL_CHECK(t > 1e30f);
     /* the ball straight ahead: a dense cloud hides the sky, its colour is the cloud's */
     ccl_volume_pixel(&p, &g, 1, &cam, 20, 20, 41, 41, rgb);
-    CCL_CHECK(fabs(rgb[0] - bg.x) + fabs(rgb[2] - bg.z) > 0.05);
+    CCL_CHECK(fabsf(rgb[0] - bg.x) + fabsf(rgb[2] - bg.z) > 0.05f);
     /* a corner pixel misses the ball: the background */
     ccl_volume_pixel(&p, &g, 1, &cam, 0, 0, 41, 41, rgb2);
     bg = ccl_volume_background(&p, cam.eye, ccl_camera_ray(cam.inv_view_proj_rot, 0, 0, 41, 41), &t);

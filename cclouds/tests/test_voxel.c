@@ -67,7 +67,7 @@ static int faces_nonzero(const uint8_t *v, int32_t n)
         for (y = 0; y < n; ++y)
             for (x = 0; x < n; ++x)
                 if ((x == 0 || y == 0 || z == 0 || x == n - 1 || y == n - 1 || z == n - 1)
-                    && v[((size_t)z * n + y) * n + x] != 0)
+                    && v[((size_t)z * (size_t)n + (size_t)y) * (size_t)n + (size_t)x] != 0)
                     ++count;
     return count;
 }
@@ -131,7 +131,7 @@ static void test_scale(void)
     for (z = 0; z < 16; ++z)
         for (y = 0; y < 40; ++y)
             for (x = 0; x < 48; ++x) {
-                uint8_t v = c[((size_t)z * 40 + y) * 48 + x];
+                uint8_t v = c[((size_t)z * 40 + (size_t)y) * 48 + (size_t)x];
                 if (x == 0 || y == 0 || z == 0 || x == 47 || y == 39 || z == 15) CCL_CHECK(v == 0);
                 nonzero += v != 0;
             }

@@ -1,9 +1,11 @@
-"""Issue 14, build hygiene: the library builds warning-free with -Werror, -Wconversion and -Wdouble-promotion under
-GCC and clang (the flags are in CCLOUDS_LIB_WARNINGS of cclouds/CMakeLists.txt), and the example programs build
-with the same flags and free what they allocate on their error paths."""
+"""Issue 14, build hygiene: the library and its C unit tests build warning-free with -Werror, -Wconversion and
+-Wdouble-promotion under GCC and clang (the flags are in CCLOUDS_LIB_WARNINGS of cclouds/CMakeLists.txt), the tests
+share one set of vector helpers (cclouds/tests/ccl_test.h), and the example programs build with the same flags and
+free what they allocate on their error paths."""
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -38,6 +40,38 @@ def test_library_builds_clean_with_werror(tmp_path, cc):
     build = subprocess.run(["cmake", "--build", str(tmp_path), "-j2"], env=env, capture_output=True, text=True)
     assert build.returncode == 0, build.stdout[-4000:] + build.stderr[-4000:]
     assert "warning:" not in build.stdout + build.stderr
+
+
+def test_c_unit_tests_use_the_library_warnings():
+    text = (ROOT / "cclouds" / "CMakeLists.txt").read_text()
+    loop = text[text.index("foreach(test_src ${CCLOUDS_TEST_SOURCES})"):text.index("endforeach()")]
+    assert "${CCLOUDS_LIB_WARNINGS}" in loop
+
+
+def test_c_unit_tests_define_no_vector_helpers_of_their_own():
+    """V(), V2() and len3() live in ccl_test.h; a test file defining its own vector constructor or length copies
+    them."""
+    own = re.compile(r"^static (?:inline )?(?:ccl_vec[234] \w+\(float \w+(?:, float \w+)*\)"
+                     r"|(?:double|float) \w+\(ccl_vec[234] \w+\))", re.M)
+    offenders = {p.name: own.findall(p.read_text()) for p in (ROOT / "cclouds" / "tests").glob("test_*.c")}
+    assert not {k: v for k, v in offenders.items() if v}
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_c_unit_tests_build_clean_with_werror_and_pass(tmp_path, cc):
+    path = _compiler(cc)
+    if shutil.which("cmake") is None:
+        pytest.skip("cmake is not installed")
+    env = dict(os.environ, CC=path)
+    cfg = subprocess.run(["cmake", "-S", str(ROOT / "cclouds"), "-B", str(tmp_path), "-DCMAKE_BUILD_TYPE=Release",
+                          "-DCCLOUDS_WERROR=ON", "-DCCLOUDS_BUILD_TESTS=ON", "-DCCLOUDS_BUILD_STATIC=OFF",
+                          "-DCCLOUDS_INSTALL=OFF"], env=env, capture_output=True, text=True)
+    assert cfg.returncode == 0, cfg.stdout + cfg.stderr
+    build = subprocess.run(["cmake", "--build", str(tmp_path), "-j2"], env=env, capture_output=True, text=True)
+    assert build.returncode == 0, build.stdout[-4000:] + build.stderr[-4000:]
+    assert "warning:" not in build.stdout + build.stderr
+    res = subprocess.run(["ctest", "--test-dir", str(tmp_path), "--output-on-failure"], capture_output=True, text=True)
+    assert res.returncode == 0 and "100% tests passed" in res.stdout, res.stdout[-4000:]
 
 
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
