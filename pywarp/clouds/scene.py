@@ -83,7 +83,8 @@ SCENE = register(Scene(
     outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360, "reprojection": True}},
     # --accumulate averages the frames of one still (render only)
-    command_exclude={"render": ("reprojection", "reprojection_neighbourhood", "reprojection_depth"),
+    command_exclude={"render": ("reprojection", "reprojection_neighbourhood", "reprojection_depth",
+                                "reprojection_filter"),
                      "animate": ("accumulate",) + _REFERENCE_FIELDS, "view": ("accumulate",) + _REFERENCE_FIELDS},
     time_field="time_s",
 ))
