@@ -412,7 +412,8 @@ def add_scene_commands(sub) -> None:
     lines = []
     for sc in all_scenes().values():
         for bname, bm in sc.benchmarks.items():
-            opts = ", ".join(f"{k} {v if v is not None else 'auto'}" for k, v in bm.defaults.items())
+            opts = ", ".join(f"{k} {v if v is not None else 'none' if k == 'baseline' else 'auto'}"
+                             for k, v in bm.defaults.items())
             lines.append(f"  {sc.name} {bname}: {bm.description} (defaults: {opts or '-'})")
     b = sub.add_parser("bench", help="run a benchmark and print ratios measured in one run",
                        formatter_class=fmt,

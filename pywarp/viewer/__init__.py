@@ -48,7 +48,9 @@ def view(scene, settings, *, window: bool = True, script: Script | None = None, 
     counts, screenshots) as JSON; ``seconds``: quit after this long (wall time)."""
     if window:
         check_window()
-    session = Session(scene, settings, script=script, screenshot_dir=screenshot_dir)
+    # the panel shows the settings `pywarp view` takes (e.g. not the clouds' accumulate, which only render uses)
+    session = Session(scene, settings, script=script, screenshot_dir=screenshot_dir,
+                      exclude=scene.command_exclude.get("view", ()))
     result = None
     try:
         if window:

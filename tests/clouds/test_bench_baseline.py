@@ -248,6 +248,34 @@ def test_the_probe_keeps_other_output_off_the_protocol(this_python):
     assert "noise on stdout" in proc.stderr
 
 
+# --- the fig 4.17 ladder ----------------------------------------------------------------------------------------------
+
+def test_measure_ladder_keeps_every_repetition_and_splits_the_reprojected_frame():
+    detail = {}
+    sizes = {k: v for k, v in SMALL_SCENE.items() if k.endswith("_size")}
+    _, ladder = bench.measure_ladder(48, 27, 2, detail=detail, **sizes)
+    assert set(detail["samples"]) == {"unoptimised", "adaptive_samples", "early_exit", "reprojection"}
+    for k, v in detail["samples"].items():
+        assert len(v) == 2 and all(x > 0.0 for x in v)
+        if k != "reprojection":
+            assert ladder[k] == min(v)  # the ladder (bench cloudscape) keeps the best repetition
+    split = detail["reprojection_split"]
+    assert set(split) == {"raymarch", "reprojection", "other"}
+    for r in range(2):
+        # every pass found by its kernels' names; the parts never exceed the frame
+        assert split["raymarch"][r] > 0.0 and split["reprojection"][r] > 0.0 and split["other"][r] >= 0.0
+        parts = split["raymarch"][r] + split["reprojection"][r] + split["other"][r]
+        assert parts >= detail["samples"]["reprojection"][r] * (1.0 - 1e-9)
+    assert len(detail["dense_samples"]["unoptimised"]) == 2 and 0.0 < ladder["dense_clouds_cut_percent"] < 100.0
+
+
+def test_a_renamed_reprojection_kernel_is_an_error_not_zero(monkeypatch):
+    monkeypatch.setattr(bench, "REPROJECTION_SPLIT", {"raymarch": ("sky_kernel", "clouds_kernel"),
+                                                      "reprojection": ("no_such_kernel",)})
+    with pytest.raises(RuntimeError, match="no kernel of the reprojection pass"):
+        bench.measure_ladder(32, 18, 1, detail={}, **{k: v for k, v in SMALL_SCENE.items() if k.endswith("_size")})
+
+
 # --- the command line -----------------------------------------------------------------------------------------------
 
 @pytest.fixture
