@@ -131,8 +131,18 @@ int ccl_reproj_uv_depth(const float inv_view_proj_rot[16], ccl_vec3 eye, const f
                         ccl_vec3 prev_eye, const float *prev_depth, ccl_vec3 centre, float r_inner, int iterations,
                         int x, int y, int width, int height, float *out_u, float *out_v, float *out_t)
 {
+    const float *m = prev_view_proj;
     ccl_vec3 d = ccl_camera_ray(inv_view_proj_rot, x, y, width, height);
-    float t = inner_sphere_t(eye, d, centre, r_inner), u, v;
+    float t = inner_sphere_t(eye, d, centre, r_inner);
+    /* the iterate in the previous camera's clip space, linear in t: clip(eye + d t) = a + t b with a = M (eye, 1),
+     * b = M (d, 0); the camera's step e = eye - prev_eye */
+    float ax = m[0] * eye.x + m[4] * eye.y + m[8] * eye.z + m[12];
+    float ay = m[1] * eye.x + m[5] * eye.y + m[9] * eye.z + m[13];
+    float aw = m[3] * eye.x + m[7] * eye.y + m[11] * eye.z + m[15];
+    float bx = m[0] * d.x + m[4] * d.y + m[8] * d.z;
+    float by = m[1] * d.x + m[5] * d.y + m[9] * d.z;
+    float bw = m[3] * d.x + m[7] * d.y + m[11] * d.z;
+    float ex = eye.x - prev_eye.x, ey = eye.y - prev_eye.y, ez = eye.z - prev_eye.z;
     int k;
     CCL_REQUIRE(iterations >= 0 && iterations <= CCL_REPROJ_MAX_DEPTH_ITERATIONS && prev_depth);
     if (!(t > 0.0f)) {
@@ -142,27 +152,30 @@ int ccl_reproj_uv_depth(const float inv_view_proj_rot[16], ccl_vec3 eye, const f
         return 0;
     }
     for (k = 0; k < iterations; ++k) {
-        float dp, qx, qy, qz, lq, s, yx, yy, yz, tn;
-        if (!project(prev_view_proj, eye, d, t, &u, &v)) break;
+        float cw = aw + t * bw, u, v, dp, qx, qy, qz, lq, s, yx, yy, yz, tn;
+        if (!(cw > 0.0f)) break; /* behind the previous camera */
+        u = ((ax + t * bx) / cw) * 0.5f + 0.5f;
+        v = 0.5f - ((ay + t * by) / cw) * 0.5f;
         /* the depth the previous frame stored at the nearest pixel of uv (clamped to the image) */
         dp = prev_depth[(size_t)nearest_index(v * (float)height - 0.5f, height) * (size_t)width +
                         (size_t)nearest_index(u * (float)width - 0.5f, width)];
         if (!(dp > 0.0f)) break; /* unknown (or NaN) */
-        /* Y = prev_eye + dp (X - prev_eye) / |X - prev_eye|, t = |Y - eye| */
-        qx = (eye.x + d.x * t) - prev_eye.x;
-        qy = (eye.y + d.y * t) - prev_eye.y;
-        qz = (eye.z + d.z * t) - prev_eye.z;
+        /* q = X - prev_eye = d t + e; Y - eye = prev_eye + dp q / |q| - eye = q dp / |q| - e; t = |Y - eye| */
+        qx = d.x * t + ex;
+        qy = d.y * t + ey;
+        qz = d.z * t + ez;
         lq = sqrtf(qx * qx + qy * qy + qz * qz);
         if (!(lq > 0.0f)) break;
         s = dp / lq;
-        yx = (prev_eye.x + qx * s) - eye.x;
-        yy = (prev_eye.y + qy * s) - eye.y;
-        yz = (prev_eye.z + qz * s) - eye.z;
+        yx = qx * s - ex;
+        yy = qy * s - ey;
+        yz = qz * s - ez;
         tn = sqrtf(yx * yx + yy * yy + yz * yz);
         if (!(tn > 0.0f) || isinf(tn)) break;
         t = tn;
     }
     *out_t = t;
+    /* the final point as ccl_reproj_uv projects it (iterations = 0: its uv bit for bit) */
     return project(prev_view_proj, eye, d, t, out_u, out_v) && inside_unit(*out_u, *out_v);
 }
 
@@ -202,30 +215,36 @@ static void catmull_rom_weights(float t, float w[4])
     w[3] = 0.5f * t3 - 0.5f * t2;
 }
 
-/* Catmull-Rom lookup of channel ch at (xs, ys) (clamp-to-edge as bilinear), clamped to the range of the 2 x 2 pixels
- * the bilinear lookup reads (the filter sharpens, it never overshoots) */
-static float catmull_rom(const float *img, int w, int xmax, int ymax, int channels, int ch, float xs, float ys)
+/* Catmull-Rom lookup of every channel at (xs, ys) (clamp-to-edge as bilinear), each clamped to the range of the 2 x 2
+ * pixels the bilinear lookup reads (the filter sharpens, it never overshoots), added to acc[0 .. channels - 1] */
+static void catmull_rom_add(const float *img, int w, int xmax, int ymax, int channels, float xs, float ys, float *acc)
 {
-    float x0f = floorf(xs), y0f = floorf(ys), wx[4], wy[4], sum = 0.0f, lo = INFINITY, hi = -INFINITY;
-    int x0 = (int)x0f, y0 = (int)y0f, i, j;
+    float x0f = floorf(xs), y0f = floorf(ys), wx[4], wy[4];
+    int x0 = (int)x0f, y0 = (int)y0f, xi[4], yi[4], i, j, ch;
     catmull_rom_weights(xs - x0f, wx);
     catmull_rom_weights(ys - y0f, wy);
-    for (j = 0; j < 4; ++j) {
-        int yy = clampi(y0 - 1 + j, 0, ymax);
-        float row = 0.0f;
-        for (i = 0; i < 4; ++i) {
-            float val = img[at(clampi(x0 - 1 + i, 0, xmax), yy, w, channels, ch)];
-            row = row + wx[i] * val;
-            if ((i == 1 || i == 2) && (j == 1 || j == 2)) {
-                if (val < lo) lo = val;
-                if (val > hi) hi = val;
-            }
-        }
-        sum = sum + wy[j] * row;
+    for (i = 0; i < 4; ++i) {
+        xi[i] = clampi(x0 - 1 + i, 0, xmax);
+        yi[i] = clampi(y0 - 1 + i, 0, ymax);
     }
-    if (sum < lo) sum = lo;
-    if (sum > hi) sum = hi;
-    return sum;
+    for (ch = 0; ch < channels; ++ch) {
+        float sum = 0.0f, lo = INFINITY, hi = -INFINITY;
+        for (j = 0; j < 4; ++j) {
+            float row = 0.0f;
+            for (i = 0; i < 4; ++i) {
+                float val = img[at(xi[i], yi[j], w, channels, ch)];
+                row = row + wx[i] * val;
+                if ((i == 1 || i == 2) && (j == 1 || j == 2)) {
+                    if (val < lo) lo = val;
+                    if (val > hi) hi = val;
+                }
+            }
+            sum = sum + wy[j] * row;
+        }
+        if (sum < lo) sum = lo;
+        if (sum > hi) sum = hi;
+        acc[ch] = acc[ch] + sum;
+    }
 }
 
 static float snap(float p)
@@ -245,16 +264,23 @@ static void fill_pixel(const float *current, const float *previous, const float 
     if (valid) {
         float xs = snap(u * (float)width - 0.5f), ys = snap(v * (float)height - 0.5f);
         float inv_n = 1.0f / (float)(neighbourhood * neighbourhood);
-        for (ch = 0; ch < channels; ++ch) {
-            float sum = 0.0f;
+        if (filter == CCL_REPROJ_FILTER_CATMULL_ROM) {
+            /* the weights and indices once per sample, every channel summed in out */
+            for (ch = 0; ch < channels; ++ch) out[base + (size_t)ch] = 0.0f;
             for (j = -half; j <= half; ++j)
                 for (i = -half; i <= half; ++i)
-                    sum = sum + (filter == CCL_REPROJ_FILTER_CATMULL_ROM
-                                     ? catmull_rom(previous, width, width - 1, height - 1, channels, ch,
-                                                   xs + (float)i, ys + (float)j)
-                                     : bilinear(previous, width, width - 1, height - 1, channels, ch, xs + (float)i,
-                                                ys + (float)j));
-            out[base + (size_t)ch] = sum * inv_n;
+                    catmull_rom_add(previous, width, width - 1, height - 1, channels, xs + (float)i, ys + (float)j,
+                                    out + base);
+            for (ch = 0; ch < channels; ++ch) out[base + (size_t)ch] = out[base + (size_t)ch] * inv_n;
+        } else {
+            for (ch = 0; ch < channels; ++ch) {
+                float sum = 0.0f;
+                for (j = -half; j <= half; ++j)
+                    for (i = -half; i <= half; ++i)
+                        sum = sum + bilinear(previous, width, width - 1, height - 1, channels, ch, xs + (float)i,
+                                             ys + (float)j);
+                out[base + (size_t)ch] = sum * inv_n;
+            }
         }
     } else {
         float rx, ry;

@@ -388,7 +388,7 @@ class CloudscapeSettings(Settings):
                                     doc="where a reprojected pixel's point is looked for in the previous frame: "
                                         "'clouds' (at the distance of what the pixel shows -- the clouds' mean "
                                         "distance from the march, else the ground, else the sky far away -- kept in "
-                                        "a depth buffer and found by 3 fixed-point steps along the ray, "
+                                        "a depth buffer and found by 2 fixed-point steps along the ray, "
                                         "pywarp.kernels.reproj.reproj_uv_depth) or 'inner_sphere' (the thesis, "
                                         "vc-A26: everything as if on the layer base)",
                                     reason="'clouds': through the inner sphere, clouds at other distances and the sky "

@@ -48,7 +48,7 @@ _SNAP = wp.constant(SNAP_PX)
 AVERAGE_NEIGHBOURHOOD = 3
 #: Fixed-point refinements of the depth-aware reprojection (CCL_REPROJ_DEPTH_ITERATIONS; the reason is in
 #: cclouds/reproj.h) and the largest accepted number (CCL_REPROJ_MAX_DEPTH_ITERATIONS: bounds the work per pixel).
-DEPTH_ITERATIONS = 3
+DEPTH_ITERATIONS = 2
 MAX_DEPTH_ITERATIONS = 16
 #: Depth of the sky in the depth buffer (CCL_REPROJ_SKY_DEPTH_KM): a 1 km camera step moves it by 1e-5 rad (0.02 px at
 #: 1920 px over 60 deg), and float32 positions there keep 1e-7 rad of direction.
@@ -248,31 +248,47 @@ def reproj_uv_depth(inv_view_proj_rot: wp.mat44, eye: wp.vec3, prev_view_proj: w
     of what it shows -- t from the inner sphere, then ``iterations`` times: X = eye + d t, uv = prev_view_proj X,
     Y = prev_eye + D (X - prev_eye)/|X - prev_eye| with D the previous depth at the nearest pixel of uv, t = |Y - eye|;
     uv of the final t. ``iterations = 0``: :func:`reproj_uv`'s point."""
+    m = prev_view_proj
     d = camera_ray(inv_view_proj_rot, x, y, width, height)
     t = _inner_sphere_t(eye, d, centre, r_inner)
+    # the iterate in the previous camera's clip space, linear in t: clip(eye + d t) = a + t b with a = M (eye, 1),
+    # b = M (d, 0); the camera's step e = eye - prev_eye
+    ax = m[0][0] * eye[0] + m[0][1] * eye[1] + m[0][2] * eye[2] + m[0][3]
+    ay = m[1][0] * eye[0] + m[1][1] * eye[1] + m[1][2] * eye[2] + m[1][3]
+    aw = m[3][0] * eye[0] + m[3][1] * eye[1] + m[3][2] * eye[2] + m[3][3]
+    bx = m[0][0] * d[0] + m[0][1] * d[1] + m[0][2] * d[2]
+    by = m[1][0] * d[0] + m[1][1] * d[1] + m[1][2] * d[2]
+    bw = m[3][0] * d[0] + m[3][1] * d[1] + m[3][2] * d[2]
+    ex = eye[0] - prev_eye[0]
+    ey = eye[1] - prev_eye[1]
+    ez = eye[2] - prev_eye[2]
     if not (t > 0.0):
         return int(0), wp.nan, wp.nan, wp.nan
     for k in range(iterations):
-        front, u, v = _project(prev_view_proj, eye, d, t)
-        if front == 0:
+        cw = aw + t * bw
+        if not (cw > 0.0):
             break
+        u = ((ax + t * bx) / cw) * 0.5 + 0.5
+        v = 0.5 - ((ay + t * by) / cw) * 0.5
         dp = prev_depth[_nearest_index(v * float(height) - 0.5, height), _nearest_index(u * float(width) - 0.5, width)]
         if not (dp > 0.0):
             break
-        qx = (eye[0] + d[0] * t) - prev_eye[0]
-        qy = (eye[1] + d[1] * t) - prev_eye[1]
-        qz = (eye[2] + d[2] * t) - prev_eye[2]
+        # q = X - prev_eye = d t + e; Y - eye = q dp / |q| - e; t = |Y - eye|
+        qx = d[0] * t + ex
+        qy = d[1] * t + ey
+        qz = d[2] * t + ez
         lq = wp.sqrt(qx * qx + qy * qy + qz * qz)
         if not (lq > 0.0):
             break
         s = dp / lq
-        yx = (prev_eye[0] + qx * s) - eye[0]
-        yy = (prev_eye[1] + qy * s) - eye[1]
-        yz = (prev_eye[2] + qz * s) - eye[2]
+        yx = qx * s - ex
+        yy = qy * s - ey
+        yz = qz * s - ez
         tn = wp.sqrt(yx * yx + yy * yy + yz * yz)
         if not (tn > 0.0) or wp.isinf(tn):
             break
         t = tn
+    # the final point as reproj_uv projects it (iterations = 0: its uv bit for bit)
     front, u, v = _project(prev_view_proj, eye, d, t)
     ok = int(0)
     if front == 1:
@@ -315,35 +331,40 @@ def _catmull_rom_weights(t: float) -> wp.vec4:
 
 
 @wp.func
-def _catmull_rom(img: wp.array3d(dtype=float), xmax: int, ymax: int, ch: int, xs: float, ys: float) -> float:
-    """Catmull-Rom lookup at (xs, ys) (clamp-to-edge), clamped to the range of the 2 x 2 pixels the bilinear lookup
-    reads (``catmull_rom`` in C)."""
+def _catmull_rom_add(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: float, ys: float,
+                     out: wp.array3d(dtype=float), y: int, x: int):
+    """Catmull-Rom lookup of every channel at (xs, ys) (clamp-to-edge), each clamped to the range of the 2 x 2 pixels
+    the bilinear lookup reads, added to out[y, x, :] (``catmull_rom_add`` in C)."""
     x0f = wp.floor(xs)
     y0f = wp.floor(ys)
     wx = _catmull_rom_weights(xs - x0f)
     wy = _catmull_rom_weights(ys - y0f)
     x0 = int(x0f)
     y0 = int(y0f)
-    s = float(0.0)
-    lo = float(wp.inf)
-    hi = float(-wp.inf)
-    for j in range(4):
-        yy = wp.clamp(y0 - 1 + j, 0, ymax)
-        row = float(0.0)
-        for i in range(4):
-            val = img[yy, wp.clamp(x0 - 1 + i, 0, xmax), ch]
-            row = row + wx[i] * val
-            if (i == 1 or i == 2) and (j == 1 or j == 2):
-                if val < lo:
-                    lo = val
-                if val > hi:
-                    hi = val
-        s = s + wy[j] * row
-    if s < lo:
-        s = lo
-    if s > hi:
-        s = hi
-    return s
+    xi = wp.vec4i(wp.clamp(x0 - 1, 0, xmax), wp.clamp(x0, 0, xmax), wp.clamp(x0 + 1, 0, xmax),
+                  wp.clamp(x0 + 2, 0, xmax))
+    yi = wp.vec4i(wp.clamp(y0 - 1, 0, ymax), wp.clamp(y0, 0, ymax), wp.clamp(y0 + 1, 0, ymax),
+                  wp.clamp(y0 + 2, 0, ymax))
+    for ch in range(img.shape[2]):
+        s = float(0.0)
+        lo = float(wp.inf)
+        hi = float(-wp.inf)
+        for j in range(4):
+            row = float(0.0)
+            for i in range(4):
+                val = img[yi[j], xi[i], ch]
+                row = row + wx[i] * val
+                if (i == 1 or i == 2) and (j == 1 or j == 2):
+                    if val < lo:
+                        lo = val
+                    if val > hi:
+                        hi = val
+            s = s + wy[j] * row
+        if s < lo:
+            s = lo
+        if s > hi:
+            s = hi
+        out[y, x, ch] = out[y, x, ch] + s
 
 
 @wp.func
@@ -361,15 +382,22 @@ def _fill_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype=flo
         ys = _snap(v * float(height) - 0.5)
         half = neighbourhood / 2
         inv_n = 1.0 / float(neighbourhood * neighbourhood)
-        for ch in range(channels):
-            s = float(0.0)
+        if filter == _CATMULL_ROM:
+            # the weights and indices once per sample, every channel summed in out
+            for ch in range(channels):
+                out[y, x, ch] = 0.0
             for j in range(-half, half + 1):
                 for i in range(-half, half + 1):
-                    if filter == _CATMULL_ROM:
-                        s = s + _catmull_rom(previous, width - 1, height - 1, ch, xs + float(i), ys + float(j))
-                    else:
+                    _catmull_rom_add(previous, width - 1, height - 1, xs + float(i), ys + float(j), out, y, x)
+            for ch in range(channels):
+                out[y, x, ch] = out[y, x, ch] * inv_n
+        else:
+            for ch in range(channels):
+                s = float(0.0)
+                for j in range(-half, half + 1):
+                    for i in range(-half, half + 1):
                         s = s + _bilinear(previous, width - 1, height - 1, ch, xs + float(i), ys + float(j))
-            out[y, x, ch] = s * inv_n
+                out[y, x, ch] = s * inv_n
     else:
         rx, ry = reproj_reduced_coord(x, y, frame, width, height)
         if wp.isnan(rx) or wp.isnan(ry):
