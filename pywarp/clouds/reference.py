@@ -37,8 +37,8 @@ Light
   :func:`pywarp.kernels.cloudscape.sky_colour` in its direction (the background the real-time model composites
   over). The air itself does not scatter: there is no aerial perspective in the reference (the sky model is a
   radiance at infinity, as for the real-time thesis model).
-* **Ground**: the Earth sphere (radius ``r_earth``) is Lambertian with albedo ``ground_albedo`` (the settings'
-  value where the settings have one, else :data:`GROUND_ALBEDO`): next-event estimation to the sun
+* **Ground**: the Earth sphere (radius ``r_earth``) is Lambertian with the settings' ``ground_albedo`` (the
+  real-time renderer's sky lighting uses the same): next-event estimation to the sun
   ``beta * albedo / pi * E_sun * max(n . s, 0) * T`` and the path continues (cosine-weighted), so the sky and the
   clouds light the ground through the path.
 
@@ -47,9 +47,10 @@ The path
 Free-flight sampling by delta tracking (Woodcock) over the (up to two) intervals of the ray inside the spherical shell
 of the layer, ending at the ground, with a piecewise-constant majorant: the ray is cut into chunks of
 :data:`FINE_CHUNK_KM` (grouped by :data:`COARSE_CHUNKS`), and each chunk's majorant is ``sigma`` times a bound of the
-density over the chunk's bounding box, from max/min pyramids of the weather map's coverage and of the base texture
-(:func:`chunk_bound`: ``rho <= B_max + D_h,max - 1`` with the derivation above); chunks of clear air (bound 0) are
-skipped. ``majorant=False`` tracks with the constant ``sigma * DENSITY_BOUND`` instead (same expectation, tested).
+density over the chunk's bounding box, from max pyramids of the weather map's coverage (both lookups of the de-tiled
+map) and of the per-texel base shape (:func:`chunk_bound`: ``rho <= B_max + D_h,max - 1`` with the derivation above
+and in :func:`majorant_grids`); chunks of clear air (bound 0) are skipped. Every density sample is checked against
+its chunk's bound; a violation (a future change of the density function) redoes the render with the constant bound. ``majorant=False`` tracks with the constant ``sigma * DENSITY_BOUND`` instead (same expectation, tested).
 At most ``bounces`` scattering vertices (medium or ground) per path: every light contribution (sun by NEE at a
 vertex, sky by escape after it) has been scattered at most ``bounces`` times; the path ends at vertex
 ``bounces + 1`` (the truncation is measured: :data:`DEFAULT_BOUNCES`). Transmittance estimates end with Russian
@@ -105,9 +106,6 @@ DEFAULT_BOUNCES = 1024
 DEFAULT_ALBEDO = 1.0
 #: The density bound of the majorant (derivation in the module docstring).
 DENSITY_BOUND = 1.0
-#: Ground albedo until the settings carry one: the real-time renderer's ground colour (0.09, 0.10, 0.08) read as a
-#: reflectance -- vegetation and soil reflect ~0.1 of visible light (the reason of that colour in cloudscape.c).
-GROUND_ALBEDO = (0.09, 0.10, 0.08)
 #: Transmittance below which ratio tracking plays Russian roulette (survive with probability T / 0.1 at T = 0.1):
 #: unbiased; the light left below 10 % costs most of the steps of long grazing shadow rays.
 RR_TRANSMITTANCE = 0.1
@@ -120,6 +118,9 @@ MAX_STEPS_LIMIT = 1 << 22
 FINE_CHUNK_KM = 0.25
 #: Fine chunks per coarse chunk (2 km): a coarse chunk with a zero bound (clear air) is skipped with one lookup.
 COARSE_CHUNKS = 8
+#: Added to the per-texel base shape of the majorant pyramid: the kernel interpolates and remaps in float32, a few
+#: ulp (~1e-7) from the exact convex combination; 1e-5 is far above that and far below any density that matters.
+B_MARGIN = 1e-5
 #: Samples per pixel per launch: the unit of progress (and of Ctrl-C latency); the image does not depend on it.
 PASS_SPP = 4
 
@@ -130,6 +131,13 @@ PIXEL_FILTERS = ("box", "centre")
 
 _INF = wp.constant(1.0e30)
 _PI = wp.constant(3.14159265358979323846)
+
+# the de-tiled weather lookup's second copy (pywarp.kernels.cloudscape.cloudscape_weather)
+_WD_COS = wp.constant(float(K.WEATHER_DETILE["cos"]))
+_WD_SIN = wp.constant(float(K.WEATHER_DETILE["sin"]))
+_WD_SCALE_B = wp.constant(float(K.WEATHER_DETILE["scale_b"]))
+_WD_SHIFT_U = wp.constant(float(K.WEATHER_DETILE["shift_u"]))
+_WD_SHIFT_V = wp.constant(float(K.WEATHER_DETILE["shift_v"]))
 
 # status of a traced segment
 _ESCAPED = wp.constant(0)
@@ -158,7 +166,7 @@ class ReferenceParams:
     rr_threshold: float
 
 
-# --- medium -------------------------------------------------------------------------------------------------------------
+# --- medium -----------------------------------------------------------------------------------------------------------
 
 @wp.struct
 class MajorantGrids:
@@ -168,7 +176,7 @@ class MajorantGrids:
     weather_max: wp.array(dtype=float)    # max of the weather map's coverage (R) over each cell
     weather_size: int
     weather_levels: int
-    base_maxmin: wp.array(dtype=wp.vec2)  # (max of R, min of L_FBM = 0.625 G + 0.25 B + 0.125 A) of the base texture
+    base_max: wp.array(dtype=float)       # max of the per-texel base shape B (vc-2.28) of the base texture
     base_size: int
     base_levels: int
     fine_km: float                        # chunk lengths along the ray
@@ -189,11 +197,12 @@ def _level_fitting(lo0: int, hi0: int, lo1: int, hi1: int, lo2: int, hi2: int, l
 
 
 @wp.func
-def _texel_range(lo: float, hi: float, scale_km: float, size: int):
-    """Texels whose (bi/tri)linear footprint meets [lo, hi] (km) of a texture of ``size`` texels per ``scale_km``
-    (texel centres at i + 0.5): [floor(lo' - 0.5), floor(hi' - 0.5) + 1]."""
+def _texel_range(lo: float, hi: float, size: int):
+    """Texels whose (bi/tri)linear footprint meets the texture coordinates [lo, hi] (in texture periods) of a texture
+    of ``size`` texels (texel centres at i + 0.5): [floor(lo n - 0.5), floor(hi n - 0.5) + 1], widened by one texel
+    on each side against the float32 rounding of the kernels' own coordinates."""
     n = float(size)
-    return int(wp.floor(lo / scale_km * n - 0.5)), int(wp.floor(hi / scale_km * n - 0.5)) + 1
+    return int(wp.floor(lo * n - 0.5)) - 1, int(wp.floor(hi * n - 0.5)) + 2
 
 
 @wp.func
@@ -215,8 +224,8 @@ def weather_max_over(mj: MajorantGrids, x0: int, x1: int, z0: int, z1: int) -> f
 
 
 @wp.func
-def base_maxmin_over(mj: MajorantGrids, x0: int, x1: int, y0: int, y1: int, z0: int, z1: int) -> wp.vec2:
-    """(max R, min L_FBM) of the base texture over texels [x0, x1] x [y0, y1] x [z0, z1] (wrapped)."""
+def base_max_over(mj: MajorantGrids, x0: int, x1: int, y0: int, y1: int, z0: int, z1: int) -> float:
+    """Max of the per-texel base shape B over texels [x0, x1] x [y0, y1] x [z0, z1] (wrapped)."""
     k = _level_fitting(x0, x1, y0, y1, z0, z1, mj.base_levels)
     off = int(0)
     n = mj.base_size
@@ -224,8 +233,7 @@ def base_maxmin_over(mj: MajorantGrids, x0: int, x1: int, y0: int, y1: int, z0: 
         off = off + n * n * n
         n = n / 2
     m = n - 1
-    rmax = float(0.0)
-    lmin = float(1.0)
+    b = float(0.0)
     for c in range(8):
         ix = (x0 >> k) & m
         if (c & 1) != 0:
@@ -236,32 +244,61 @@ def base_maxmin_over(mj: MajorantGrids, x0: int, x1: int, y0: int, y1: int, z0: 
         iz = (z0 >> k) & m
         if (c & 4) != 0:
             iz = (z1 >> k) & m
-        v = mj.base_maxmin[off + (iz * n + iy) * n + ix]
-        rmax = wp.max(rmax, v[0])
-        lmin = wp.min(lmin, v[1])
-    return wp.vec2(rmax, lmin)
+        b = wp.max(b, mj.base_max[off + (iz * n + iy) * n + ix])
+    return b
+
+
+@wp.func
+def weather_bound(p: K.CloudscapeParams, mj: MajorantGrids, lo: wp.vec3, hi: wp.vec3) -> float:
+    """The largest weather coverage D_h in the box [lo, hi] (km) as :func:`pywarp.kernels.cloudscape.cloudscape_weather`
+    reads it: the map's lookup a, and with de-tiling the blend a + (b - a) k with k in [0, 1], at most max(a, b), so
+    also the rotated, scaled copy b over the bounding box of the box's corners in its coordinates."""
+    u0 = (lo[0] + p.weather_offset[0]) / p.weather_scale_km
+    u1 = (hi[0] + p.weather_offset[0]) / p.weather_scale_km
+    v0 = (lo[2] + p.weather_offset[1]) / p.weather_scale_km
+    v1 = (hi[2] + p.weather_offset[1]) / p.weather_scale_km
+    x0, x1 = _texel_range(u0, u1, mj.weather_size)
+    z0, z1 = _texel_range(v0, v1, mj.weather_size)
+    dh = weather_max_over(mj, x0, x1, z0, z1)
+    if p.weather_detile != 0:
+        bu0 = float(1.0e30)
+        bu1 = float(-1.0e30)
+        bv0 = float(1.0e30)
+        bv1 = float(-1.0e30)
+        for corner in range(4):
+            u = u0
+            if (corner & 1) != 0:
+                u = u1
+            v = v0
+            if (corner & 2) != 0:
+                v = v1
+            bu = (_WD_COS * u - _WD_SIN * v) / _WD_SCALE_B + _WD_SHIFT_U
+            bv = (_WD_SIN * u + _WD_COS * v) / _WD_SCALE_B + _WD_SHIFT_V
+            bu0 = wp.min(bu0, bu)
+            bu1 = wp.max(bu1, bu)
+            bv0 = wp.min(bv0, bv)
+            bv1 = wp.max(bv1, bv)
+        x0, x1 = _texel_range(bu0, bu1, mj.weather_size)
+        z0, z1 = _texel_range(bv0, bv1, mj.weather_size)
+        dh = wp.max(dh, weather_max_over(mj, x0, x1, z0, z1))
+    return dh
 
 
 @wp.func
 def chunk_bound(p: K.CloudscapeParams, r: ReferenceParams, mj: MajorantGrids, a: wp.vec3, b: wp.vec3) -> float:
     """An upper bound of the cloudscape density on the segment [a, b] (module docstring): with D_v <= 1 and the
     monotonic steps of vc-A17, rho <= B_D <= B_max + D_h,max - 1 (threshold C = 1 - D_h) or min(B_max, D_h,max)
-    (C = D_h), where B_max = (R_max - L_min + 1) / (2 - L_min) bounds the base shape over the texels the trilinear
-    lookups of the segment's bounding box can read, and D_h,max the weather coverage over its bilinear texels."""
+    (C = D_h), where B_max is the largest per-texel base shape over the texels the trilinear lookups of the segment's
+    bounding box can read, and D_h,max the largest weather coverage over its bilinear texels."""
     lo = wp.vec3(wp.min(a[0], b[0]), wp.min(a[1], b[1]), wp.min(a[2], b[2]))
     hi = wp.vec3(wp.max(a[0], b[0]), wp.max(a[1], b[1]), wp.max(a[2], b[2]))
-    wx0, wx1 = _texel_range(lo[0] + p.weather_offset[0], hi[0] + p.weather_offset[0], p.weather_scale_km,
-                            mj.weather_size)
-    wz0, wz1 = _texel_range(lo[2] + p.weather_offset[1], hi[2] + p.weather_offset[1], p.weather_scale_km,
-                            mj.weather_size)
-    dh = weather_max_over(mj, wx0, wx1, wz0, wz1)
+    dh = weather_bound(p, mj, lo, hi)
     bound = float(0.0)
     if dh > 0.0:
-        bx0, bx1 = _texel_range(lo[0], hi[0], p.base_scale_km, mj.base_size)
-        by0, by1 = _texel_range(lo[1], hi[1], p.base_scale_km, mj.base_size)
-        bz0, bz1 = _texel_range(lo[2], hi[2], p.base_scale_km, mj.base_size)
-        rl = base_maxmin_over(mj, bx0, bx1, by0, by1, bz0, bz1)
-        b_max = wp.min((rl[0] - rl[1] + 1.0) / (2.0 - rl[1]), 1.0)
+        bx0, bx1 = _texel_range(lo[0] / p.base_scale_km, hi[0] / p.base_scale_km, mj.base_size)
+        by0, by1 = _texel_range(lo[1] / p.base_scale_km, hi[1] / p.base_scale_km, mj.base_size)
+        bz0, bz1 = _texel_range(lo[2] / p.base_scale_km, hi[2] / p.base_scale_km, mj.base_size)
+        b_max = base_max_over(mj, bx0, bx1, by0, by1, bz0, bz1)
         if p.coverage_threshold == 0:
             bound = wp.min(b_max, dh)
         else:
@@ -411,7 +448,7 @@ def track(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, mj: M
     return status, t_out, T, state
 
 
-# --- sampling -----------------------------------------------------------------------------------------------------------
+# --- sampling ---------------------------------------------------------------------------------------------------------
 
 @wp.func
 def _basis(n: wp.vec3):
@@ -478,10 +515,11 @@ def pixel_direction(m: wp.mat44, fx: float, fy: float, width: int, height: int) 
     return wp.normalize(wp.vec3(hx, hy, hz))
 
 
-# --- one path -------------------------------------------------------------------------------------------------------------
+# --- one path ---------------------------------------------------------------------------------------------------------
 
 @wp.func
-def trace_path(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, mj: MajorantGrids, sky_kind: int, sun: wp.vec3, preetham: Preetham,
+def trace_path(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, mj: MajorantGrids, sky_kind: int,
+               sun: wp.vec3, preetham: Preetham,
                gradient: SkyGradient, eye: wp.vec3, d0: wp.vec3, state: wp.uint32,
                flags: wp.array(dtype=wp.int32)):
     """Radiance along the camera ray (eye, d0): (L, state). See the module docstring."""
@@ -559,7 +597,7 @@ def hg_samples_kernel(g: float, seed: wp.uint32, out: wp.array(dtype=float)):
     out[i] = d[2]
 
 
-# --- host side ------------------------------------------------------------------------------------------------------------
+# --- host side --------------------------------------------------------------------------------------------------------
 
 def _int_in(name: str, value, lo: int, hi: int) -> int:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
@@ -609,35 +647,32 @@ def _pyramid(level0: np.ndarray, reduce) -> np.ndarray:
 
 def majorant_grids(textures: RenderTextures, enabled: bool = True, fine_km: float = None,
                    coarse_km: float = None, device: str = "cpu") -> MajorantGrids:
-    """The :class:`MajorantGrids` of ``textures`` (max of the weather coverage, max of the base R and min of its
-    L_FBM, as periodic max/min pyramids)."""
+    """The :class:`MajorantGrids` of ``textures``: periodic max pyramids of the weather coverage and of the per-texel
+    base shape B = (R - L + 1) / (2 - L), L = 0.625 G + 0.25 B + 0.125 A (vc-2.28).
+
+    Why the per-texel B bounds B at any point: the trilinear lookup interpolates the channels, so (R, L) at a point
+    is a convex combination of the 8 texels' (R, L); B is a linear-fractional function of (R, L) with a positive
+    denominator (L <= 1), hence quasilinear (Boyd & Vandenberghe 2004, 3.4.1), and its value at a convex combination
+    is at most the largest value at the texels. :data:`B_MARGIN` covers the float32 rounding of the kernel's
+    interpolation and remap."""
     w = np.asarray(textures.weather[..., 0], dtype=np.float32)
-    base = np.asarray(textures.base, dtype=np.float32)
-    lfbm = (np.float32(0.625) * base[..., 1] + np.float32(0.25) * base[..., 2] + np.float32(0.125) * base[..., 3])
+    base = np.asarray(textures.base, dtype=np.float64)
+    lfbm = 0.625 * base[..., 1] + 0.25 * base[..., 2] + 0.125 * base[..., 3]
+    b_texel = (base[..., 0] - lfbm + 1.0) / (2.0 - lfbm) + B_MARGIN
     wl = _pyramid(w, np.maximum)
-    rl = _pyramid(base[..., 0], np.maximum)
-    ll = _pyramid(lfbm, np.minimum)
+    bl = _pyramid(b_texel.astype(np.float32), np.maximum)
     mj = MajorantGrids()
     mj.weather_max = wp.array(np.concatenate([a.ravel() for a in wl]), dtype=float, device=device)
     mj.weather_size = int(w.shape[0])
     mj.weather_levels = len(wl)
-    mj.base_maxmin = wp.array(np.concatenate([np.stack([r.ravel(), l.ravel()], axis=1) for r, l in zip(rl, ll)]),
-                              dtype=wp.vec2, device=device)
+    mj.base_max = wp.array(np.concatenate([a.ravel() for a in bl]), dtype=float, device=device)
     mj.base_size = int(base.shape[0])
-    mj.base_levels = len(rl)
+    mj.base_levels = len(bl)
     fine = FINE_CHUNK_KM if fine_km is None else float(fine_km)
     mj.fine_km = fine
     mj.coarse_km = fine * COARSE_CHUNKS if coarse_km is None else float(coarse_km)
     mj.enabled = int(bool(enabled))
     return mj
-
-
-def ground_albedo_of(values: dict) -> tuple:
-    """The ground albedo of the parameter values: the settings' ``ground_albedo`` where ``CloudscapeParams`` has one,
-    else :data:`GROUND_ALBEDO`."""
-    if "ground_albedo" in values:
-        return tuple(float(v) for v in values["ground_albedo"])
-    return GROUND_ALBEDO
 
 
 class ReferenceRenderer:
@@ -650,8 +685,8 @@ class ReferenceRenderer:
     (default :func:`default_max_steps`). ``pixel_filter``: 'box' (the pixel's area, the image's ground truth) or
     'centre' (pixel centres, as the real-time renderer samples). ``density``: 'cloudscape' or 'slab' (a test medium:
     ``slab_density`` everywhere in the shell). ``sky``: False for a black sky (tests). ``ground_albedo``: RGB in
-    [0, 1] (default :func:`ground_albedo_of`). ``majorant``: local majorants from the texture pyramids (False: the
-    constant ``sigma * DENSITY_BOUND``; the same image in expectation, slower)."""
+    [0, 1] (default: the settings' ``ground_albedo``, the real-time renderer's). ``majorant``: local majorants from
+    the texture pyramids (False: the constant ``sigma * DENSITY_BOUND``; the same image in expectation, slower)."""
 
     technique_kind = "reference"
 
@@ -684,7 +719,7 @@ class ReferenceRenderer:
         if int(self.values["gradient_clamp"]) != 1:
             raise ValueError("gradient_clamp must be 1 for the reference (the density bound of the majorant needs "
                              f"clamped height gradients), got {self.values['gradient_clamp']!r}")
-        ga = ground_albedo_of(self.values) if ground_albedo is None else ground_albedo
+        ga = self.values["ground_albedo"] if ground_albedo is None else ground_albedo
         try:
             ga = tuple(ga)
         except TypeError:
@@ -746,31 +781,64 @@ class ReferenceRenderer:
 
     def render(self, pose: CameraPose | None = None, encode: bool = True, progress=None):
         """The path-traced frame: uint8 sRGB (height, width, 3), or display-linear float32 with ``encode=False``
-        (the mean of ``spp`` paths per pixel). ``progress(fraction)`` as passes of PASS_SPP samples finish. Sets
-        :attr:`stats`: spp, seconds, std_error (per-pixel Monte Carlo standard error of the linear image, mean over
-        pixels and channels; NaN at spp = 1), std_error_max, std_error_image."""
+        (the mean of ``spp`` paths per pixel). ``progress(fraction)`` as passes of PASS_SPP samples finish (the
+        fractions add up to 1). Sets :attr:`stats`: spp, seconds, std_error (per-pixel Monte Carlo standard error
+        of the linear image, mean over pixels and channels; NaN at spp = 1), std_error_max, std_error_image and
+        majorant ('local', or 'constant' with the reason).
+
+        The local majorant's bound is checked at every density sample; should a change of the density function
+        ever break it, the samples are redone with the constant bound (warned, ``stats['majorant']`` says why), so
+        the image stays unbiased."""
         s = self.settings
         pose = pose or CameraPose.from_settings(s)
         cam = pose.camera(s.width, s.height)
         h, w = s.height, s.width
-        dev = self.device
-        accum = wp.zeros((h, w, 3), dtype=wp.float64, device=dev)
-        accum_sq = wp.zeros((h, w, 3), dtype=wp.float64, device=dev)
-        flags = wp.zeros(2, dtype=wp.int32, device=dev)
         tex = self.textures.warp()
         sun = wp.vec3(*self.sky.sun.tolist())
+        inputs = [self.sky.kind, sun, self.sky.preetham, self.sky.gradient, cam.mat44("inv_view_proj_rot"),
+                  cam.eye_vec3()]
+        reported = [0.0]
+
+        def report(total: float) -> None:  # fractions of the frame, never more than 1 in all (also after a redo)
+            if progress is not None and total > reported[0]:
+                progress(total - reported[0])
+                reported[0] = total
+
         t0 = time.perf_counter()
-        done = 0
-        while done < self.spp:
-            n = min(PASS_SPP, self.spp - done)
-            band_done = None if progress is None else (
-                lambda rows, n=n: progress(rows / h * n / self.spp))
-            self.launcher.launch(reference_kernel, h, w,
-                                 [self.params, self._reference_params(done, n), tex, self.grids,
-                                  self.sky.kind, sun, self.sky.preetham, self.sky.gradient,
-                                  cam.mat44("inv_view_proj_rot"), cam.eye_vec3()],
-                                 [accum, accum_sq, flags], progress=band_done)
-            done += n
+        grids = self.grids
+        majorant = "local" if grids.enabled else "constant"
+        while True:
+            accum = wp.zeros((h, w, 3), dtype=wp.float64, device=self.device)
+            accum_sq = wp.zeros((h, w, 3), dtype=wp.float64, device=self.device)
+            flags = wp.zeros(2, dtype=wp.int32, device=self.device)
+            done = 0
+            violated = 0
+            while done < self.spp:
+                n = min(PASS_SPP, self.spp - done)
+                base_fraction = done / self.spp
+                rows_done = [0]
+
+                def band_done(rows, n=n, base_fraction=base_fraction, rows_done=rows_done):
+                    rows_done[0] += rows
+                    report(base_fraction + rows_done[0] / h * n / self.spp)
+
+                self.launcher.launch(reference_kernel, h, w,
+                                     [self.params, self._reference_params(done, n), tex, grids, *inputs],
+                                     [accum, accum_sq, flags], progress=band_done)
+                done += n
+                violated = int(flags.numpy()[0])
+                if violated:
+                    break
+            if violated and grids.enabled:
+                import warnings
+
+                majorant = (f"constant (the local bound was exceeded at {violated} density samples: the density "
+                            "function changed; update chunk_bound)")
+                warnings.warn(f"reference: {majorant}; redoing the samples with the constant majorant",
+                              RuntimeWarning, stacklevel=2)
+                grids = majorant_grids(self.textures, enabled=False, device=self.device)
+                continue
+            break
         seconds = time.perf_counter() - t0
         f = flags.numpy()
         if f[0] > 0:
@@ -784,7 +852,8 @@ class ReferenceRenderer:
         se = np.sqrt(var / n) if self.spp > 1 else np.full_like(mean, np.nan)  # one path: no variance estimate
         self.stats = {"spp": self.spp, "seed": self.seed, "bounces": self.bounces, "seconds": seconds,
                       "seconds_per_spp": seconds / n, "std_error": float(se.mean()),
-                      "std_error_max": float(se.max()), "std_error_image": se.astype(np.float32)}
+                      "std_error_max": float(se.max()), "std_error_image": se.astype(np.float32),
+                      "majorant": majorant}
         linear = mean.astype(np.float32)
         if not np.all(np.isfinite(linear)):
             raise RuntimeError("the reference produced non-finite pixels; nothing is written")

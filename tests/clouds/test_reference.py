@@ -30,7 +30,7 @@ def textures():
     return RenderTextures.generate(small())
 
 
-# --- sampling ----------------------------------------------------------------------------------------------------------
+# --- sampling ---------------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("g", [-0.6, 0.0, 0.2, 0.85])
 def test_hg_sampler_moments(g):
@@ -47,7 +47,7 @@ def test_hg_sampler_moments(g):
     assert abs((c * c).mean() - (1.0 + 2.0 * g * g) / 3.0) < 5 * se2
 
 
-# --- the homogeneous slab: closed forms ---------------------------------------------------------------------------------
+# --- the homogeneous slab: closed forms -------------------------------------------------------------------------------
 
 SLAB = dict(layer_base_km=1.5, layer_top_km=1.6, sigma_per_km=30.0, sun_elevation_deg=90.0, width=8, height=8,
             fov_y_deg=2.0)
@@ -109,7 +109,7 @@ def test_slab_single_scattering_closed_form(textures):
     assert np.all(se < 0.02 * expected)
 
 
-# --- convergence and determinism ----------------------------------------------------------------------------------------
+# --- convergence and determinism --------------------------------------------------------------------------------------
 
 def test_error_falls_as_one_over_sqrt_n(textures):
     """RMS error of 24x16 images of N = 4, 16, 64, 256 paths per pixel (independent seeds) against a 1024-path image
@@ -143,6 +143,40 @@ def test_local_majorant_gives_the_same_image_in_expectation(textures):
     ma, sa = _mean_and_se(a, ia)
     mb, sb = _mean_and_se(b, ib)
     assert np.all(np.abs(ma - mb) < 4 * np.sqrt(sa ** 2 + sb ** 2)), (ma, mb, sa, sb)
+    # the local bounds held at every density sample (no fallback to the constant bound)
+    assert a.stats["majorant"] == "local" and b.stats["majorant"] == "constant"
+
+
+@pytest.mark.parametrize("scene", ["noon", "low sun", "from above"])
+def test_local_majorant_bounds_the_density_of_the_benchmark_scenes(textures, scene):
+    """Every density sample of the benchmark's scenes (wind-shifted, de-tiled weather, both thresholds) stays under
+    its chunk's bound: the render keeps the local majorant."""
+    from dataclasses import replace
+
+    from pywarp.clouds.bench_reference import SCENES
+
+    for extra in ({}, dict(coverage_threshold="coverage", time_s=1800.0)):
+        s = replace(small(width=32, height=18), **SCENES[scene], **extra)
+        r = ReferenceRenderer(s, textures, spp=2, seed=9)
+        r.render(encode=False)
+        assert r.stats["majorant"] == "local"
+
+
+def test_a_broken_bound_falls_back_to_the_constant_majorant(monkeypatch, textures):
+    """Bounds made too small (the per-texel base shape lowered by 0.3) are caught by the per-sample check: the
+    samples are redone with the constant majorant, with a warning, and the image is the constant majorant's."""
+    from pywarp.clouds import reference
+
+    s = small(width=16, height=10)
+    expected = ReferenceRenderer(s, textures, spp=4, seed=6, majorant=False).render(encode=False)
+    monkeypatch.setattr(reference, "B_MARGIN", -0.3)
+    r = ReferenceRenderer(s, textures, spp=4, seed=6)
+    fractions = []
+    with pytest.warns(RuntimeWarning, match="constant majorant"):
+        img = r.render(encode=False, progress=fractions.append)
+    assert r.stats["majorant"].startswith("constant (the local bound was exceeded")
+    assert np.array_equal(img, expected)
+    assert sum(fractions) == pytest.approx(1.0)
 
 
 def test_same_seed_same_image_on_one_and_two_threads(textures):
@@ -182,7 +216,7 @@ def test_encoded_image_is_the_real_time_encoding(textures):
     assert np.max(np.abs(img.astype(int) - np.floor(srgb * 255 + 0.5).astype(int))) <= 1
 
 
-# --- bad input ----------------------------------------------------------------------------------------------------------
+# --- bad input --------------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("kwargs,message", [
     (dict(spp=0), "spp must be in [1, 65536], got 0"),
@@ -221,7 +255,7 @@ def test_settings_fields_are_validated():
         small(reference_bounces=5000)
 
 
-# --- the command line ---------------------------------------------------------------------------------------------------
+# --- the command line -------------------------------------------------------------------------------------------------
 
 def _cli(*args, cwd):
     return subprocess.run([sys.executable, "-m", "pywarp", *args], capture_output=True, text=True, cwd=cwd)
