@@ -8,7 +8,9 @@ real-time renderer with each lighting model of :data:`MODELS`:
 
 * ``thesis``                -- lighting=thesis: the thesis's constant sun and ambient, one octave, one HG lobe;
 * ``+sky light``            -- lighting=sky with ms_octaves=1, silver_weight=0: sun and ambient from the sky model;
-* ``+multiple scattering``  -- lighting=sky with the settings' octaves (> 1) and silver lobe (weight > 0).
+* ``+multiple scattering``  -- lighting=sky with the settings' octaves (> 1) and silver lobe (weight > 0);
+* ``+ms, haze off``         -- a diagnostic: the last with aerial_km = 0. The reference's air does not scatter (no
+  aerial perspective), so the difference of the two rows is the part of the error that is the haze.
 
 The error of a model, after the best single exposure scale:
 
@@ -49,7 +51,12 @@ MODELS = {
     "thesis": dict(lighting="thesis", ms_octaves=1, silver_weight=0.0),
     "+sky light": dict(lighting="sky", ms_octaves=1, silver_weight=0.0),
     "+multiple scattering": dict(lighting="sky", ms_octaves=None, silver_weight=None),
+    # a diagnostic, not a model: the reference has no aerial perspective (its air does not scatter), so this row
+    # shows how much of the last model's error is the haze
+    "+ms, haze off": dict(lighting="sky", ms_octaves=None, silver_weight=None, aerial_km=0.0),
 }
+#: The three models of the comparison (the rest of MODELS are diagnostics).
+MAIN_MODELS = ("thesis", "+sky light", "+multiple scattering")
 #: Percentile of the reference's largest channel mapped to display white (step 1 above): 99.5, so that the
 #: brightest 0.5 % (the sunlit cloud edges) may clip, as a photograph exposed for the clouds would.
 WHITE_PERCENTILE = 99.5
@@ -72,7 +79,8 @@ def model_settings(base, name: str):
         if key not in fields:
             return None, f"needs the setting {key!r}, which this installation does not have"
         changes[key] = fields[key].default if value is None else value
-    if name == "+multiple scattering" and not (changes["ms_octaves"] > 1 and changes["silver_weight"] > 0):
+    if "ms_octaves" in changes and MODELS[name]["ms_octaves"] is None and not (
+            changes["ms_octaves"] > 1 and changes["silver_weight"] > 0):
         changes["ms_octaves"] = max(changes["ms_octaves"], 3)
         changes["silver_weight"] = changes["silver_weight"] or 0.3
     return replace(base, **changes), None
