@@ -695,6 +695,10 @@ class ReferenceRenderer:
                  albedo: float = DEFAULT_ALBEDO, phase_g: float | None = None, max_steps: int | None = None,
                  pixel_filter: str = "box", density: str = "cloudscape", slab_density: float = 0.5,
                  sky: bool = True, ground_albedo=None, majorant: bool = True, threads: int | None = None):
+        self._arguments = dict(spp=spp, seed=seed, bounces=bounces, albedo=albedo, phase_g=phase_g,
+                               max_steps=max_steps, pixel_filter=pixel_filter, density=density,
+                               slab_density=slab_density, sky=sky, ground_albedo=ground_albedo, majorant=majorant,
+                               threads=threads)
         self.settings = (settings or CloudscapeSettings()).validate()
         s = self.settings
         if getattr(s, "accumulate", 1) != 1:
@@ -753,10 +757,11 @@ class ReferenceRenderer:
 
     # the scene technique protocol (pywarp.core.scenes): update / render / resize
     def update(self, **changes) -> None:
+        """Change settings (validated); the textures are kept unless a texture setting changed. The constructor's
+        own arguments stay (those left at None follow the new settings)."""
         new = replace(self.settings, **changes)
-        keep = {k: getattr(self, k) for k in ("albedo", "pixel_filter", "density", "slab_density", "majorant")}
         textures = self.textures if "textures" not in new.invalidated(self.settings) else None
-        self.__init__(new, textures, phase_g=None, ground_albedo=None, sky=self.sky_on, **keep)
+        self.__init__(new, textures, **self._arguments)
 
     def resize(self, width: int, height: int) -> None:
         self.update(width=width, height=height)

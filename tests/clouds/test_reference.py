@@ -202,6 +202,24 @@ def test_passes_do_not_change_the_image(monkeypatch, textures):
     assert np.array_equal(a, b)
 
 
+def test_the_scene_technique_protocol(textures):
+    """make_technique gives the reference with settings.reference; update keeps the constructor's arguments and
+    follows the settings; resize changes the frame."""
+    from pywarp.clouds.scene import make_technique
+
+    t = make_technique(small(width=12, height=8, reference=True, spp=2, reference_seed=3))
+    assert isinstance(t, ReferenceRenderer) and t.spp == 2 and t.seed == 3
+    a = t.render(encode=False)
+    t.update(sun_elevation_deg=60.0)
+    b = t.render(encode=False)
+    assert t.spp == 2 and a.shape == b.shape == (8, 12, 3) and not np.array_equal(a, b)
+    t.resize(10, 6)
+    assert t.render().shape == (6, 10, 3)
+    r = ReferenceRenderer(small(width=8, height=6), textures, spp=3, bounces=5)
+    r.update(spp=9)  # the settings' spp does not override an explicit argument
+    assert r.spp == 3 and r.bounces == 5
+
+
 def test_encoded_image_is_the_real_time_encoding(textures):
     from pywarp.clouds.reference import encode_srgb
 
