@@ -109,6 +109,28 @@ def test_slab_single_scattering_closed_form(textures):
     assert np.all(se < 0.02 * expected)
 
 
+def test_clear_sky_ground_is_lit_by_sun_and_sky_closed_form(textures):
+    """No clouds (coverage 0), the gradient sky, the sun overhead, a Lambertian ground seen from 0.5 km looking
+    down: L = A / pi (E_sun + E_sky) with the sky's irradiance in closed form, E_sky = int L_sky cos dw over the
+    hemisphere = pi H + 2 pi (Z - H) / 3 + 2 pi S / (n + 2) (horizon H, zenith Z, sun glow S max(cos, 0)^n about
+    the zenith). One bounce: the ground's sky light comes from the path escaping after it. Tolerance: 4 standard
+    errors."""
+    from pywarp.kernels.sky import GRADIENT_DEFAULTS as G
+
+    s = small(**{**SLAB, "sigma_per_km": 30.0}, sky="gradient", coverage=0.0, camera_altitude_km=0.5,
+              camera_pitch_deg=-89.0)
+    a = (0.2, 0.5, 0.35)
+    r = ReferenceRenderer(s, spp=256, seed=12, bounces=1, ground_albedo=a, pixel_filter="centre")
+    img = r.render(encode=False)
+    mean, se = _mean_and_se(r, img)
+    e_sun = np.array([r.params.sun_colour[i] for i in range(3)], dtype=np.float64)
+    h, z, sun = (np.array(G[k], dtype=np.float64) for k in ("horizon_colour", "zenith_colour", "sun_colour"))
+    e_sky = math.pi * h + 2 * math.pi * (z - h) / 3 + 2 * math.pi * sun / (G["sun_exponent"] + 2)
+    expected = np.array(a) / math.pi * (e_sun + e_sky)
+    assert np.all(np.abs(mean - expected) < 4 * se), (mean, expected, se)
+    assert np.all(se < 0.01 * expected)
+
+
 # --- convergence and determinism --------------------------------------------------------------------------------------
 
 def test_error_falls_as_one_over_sqrt_n(textures):
