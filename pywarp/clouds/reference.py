@@ -20,12 +20,13 @@ follows), or pass ``phase_g`` to :class:`ReferenceRenderer`. Reason: the error t
 transport approximations with a change of the medium; with the scene's HG, "thesis" and "+sky light" (single lobe)
 are compared against exactly the medium they claim to light.
 
-*The density bound* (the delta-tracking majorant is ``sigma * DENSITY_BOUND``): with textures in [0, 1] (checked
-on the host) and clamped height gradients (``gradient_clamp = 1``, the default; required here), ``rho <= 1``:
-the base shape ``B = remap(C_R, L - 1, 1, 0, 1) = (C_R - L + 1) / (2 - L) <= 1`` for ``C_R <= 1``; ``D_v <= 1``;
-the coverage ``remap(B D_v, C, 1, 0, 1) D_h <= D_h <= 1`` for any threshold ``C < 1``; the detail erosion
-``(B_D - a) / (1 - a)`` with ``a = 0.2 M in [0, 0.2]`` is ``<= B_D`` for ``B_D <= 1``. The kernel checks the bound
-at every density it evaluates (:func:`reference_density`) and counts violations; a render with any is refused.
+*The density bound* (the constant majorant is ``sigma * DENSITY_BOUND``): with textures in [0, 1] (checked on the
+host) and clamped height gradients (``gradient_clamp = 1``, the default; required here), ``rho <= 1``: the base
+shape ``B = remap(C_R, L - 1, 1, 0, 1) = (C_R - L + 1) / (2 - L) <= 1`` for ``C_R <= 1``; ``D_v <= 1``; the
+coverage ``D_h <= 1`` (the de-tiled lookup blends two lookups of the map); ``remap(B D_v, C, 1, 0, 1) D_h <= D_h``
+for any threshold ``C < 1``; the detail erosion ``(B_D - a) / (1 - a)`` with ``a = 0.2 M in [0, 0.2]`` is
+``<= B_D`` for ``B_D <= 1``. The kernel checks every density it evaluates against the majorant in use
+(:func:`reference_density`) and counts violations: a render that exceeds the constant bound is refused.
 
 Light
 -----
@@ -50,7 +51,8 @@ of the layer, ending at the ground, with a piecewise-constant majorant: the ray 
 density over the chunk's bounding box, from max pyramids of the weather map's coverage (both lookups of the de-tiled
 map) and of the per-texel base shape (:func:`chunk_bound`: ``rho <= B_max + D_h,max - 1`` with the derivation above
 and in :func:`majorant_grids`); chunks of clear air (bound 0) are skipped. Every density sample is checked against
-its chunk's bound; a violation (a future change of the density function) redoes the render with the constant bound. ``majorant=False`` tracks with the constant ``sigma * DENSITY_BOUND`` instead (same expectation, tested).
+its chunk's bound; a violation (a future change of the density function) redoes the render with the constant bound.
+``majorant=False`` tracks with the constant ``sigma * DENSITY_BOUND`` throughout (same expectation, tested).
 At most ``bounces`` scattering vertices (medium or ground) per path: every light contribution (sun by NEE at a
 vertex, sky by escape after it) has been scattered at most ``bounces`` times; the path ends at vertex
 ``bounces + 1`` (the truncation is measured: :data:`DEFAULT_BOUNCES`). Transmittance estimates end with Russian
