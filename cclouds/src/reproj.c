@@ -401,8 +401,11 @@ ccl_status ccl_reproj_frame_depth(const float *current, const float *current_dep
                                             r_inner, iterations, x, y, width, height, &u, &v, &t);
             fill_pixel(current, previous, reduced, width, height, channels, frame, neighbourhood, filter, history,
                        valid, u, v, x, y, out);
-            out_depth[k] = valid ? t : fallback_depth(current_depth, previous_depth, width, height, frame, history, x,
-                                                      y);
+            /* a reprojected point at an infinite distance (only through a degenerate previous projection) keeps the
+             * fallback's depth: the depth buffer stays finite */
+            out_depth[k] = (valid && !isinf(t)) ? t
+                                                : fallback_depth(current_depth, previous_depth, width, height, frame,
+                                                                 history, x, y);
         }
     return CCL_OK;
 }

@@ -1,6 +1,8 @@
 /* C unit tests of cclouds/reproj.h: eq 4.1 coverage (exactly once per 16 frames, also for sizes not divisible by 4),
  * the reduced-buffer mapping, and the reprojection pass (static camera returns the previous frame exactly, fallback
- * paths, bad input). */
+ * paths, bad input); the depth-aware pass (the thesis's settings give ccl_reproj_frame's colours, a plane of known
+ * depth and a sideways step of whole pixels give the exact previous position, static camera with Catmull-Rom, bad
+ * input). */
 #include "cclouds/reproj.h"
 #include "ccl_test.h"
 
@@ -218,6 +220,108 @@ static void test_reprojection_uv_static_is_pixel_centre(void)
         }
 }
 
+static void test_reproject_depth_thesis_settings_equal_frame(void)
+{
+    static float cur[H * W * C], prev[H * W * C], red[4 * 6 * C], out[H * W * C], ref[H * W * C];
+    static float dep[H * W], pdep[H * W], od[H * W];
+    ccl_camera cam, pcam;
+    ccl_cloud_layer L;
+    int i, f;
+    fill(cur, H * W * C, 4u);
+    fill(prev, H * W * C, 5u);
+    fill(red, 4 * 6 * C, 6u);
+    fill(dep, H * W, 7u);
+    fill(pdep, H * W, 8u);
+    for (i = 0; i < H * W; ++i) pdep[i] = 0.5f + 4.0f * pdep[i];
+    ccl_raymarch_cloud_layer_default(&L);
+    ccl_camera_look_at(V(0.2f, 0.3f, 0.1f), V(0.5f, 0.7f, -0.9f), V(0, 1, 0), 1.2f, 1.5f, 0.01f, 1000.0f, &cam);
+    ccl_camera_look_at(V(0.23f, 0.3f, 0.13f), V(0.53f, 0.71f, -0.87f), V(0, 1, 0), 1.2f, 1.5f, 0.01f, 1000.0f,
+                       &pcam);
+    for (f = 0; f < 16; f += 7) {
+        CCL_CHECK(ccl_reproj_frame(cur, prev, red, W, H, C, f, cam.inv_view_proj_rot, cam.eye, pcam.view_proj,
+                                   L.centre, L.r_inner, 1, 1, ref) == CCL_OK);
+        CCL_CHECK(ccl_reproj_frame_depth(cur, dep, prev, pdep, red, W, H, C, f, cam.inv_view_proj_rot, cam.eye,
+                                         pcam.view_proj, pcam.eye, L.centre, L.r_inner, 1, CCL_REPROJ_FILTER_BILINEAR,
+                                         0, 1, out, od) == CCL_OK);
+        CCL_CHECK(memcmp(out, ref, sizeof out) == 0);
+    }
+    /* a static camera with the Catmull-Rom filter: the previous frame exactly, its depths to rounding */
+    CCL_CHECK(ccl_reproj_frame_depth(cur, dep, prev, pdep, red, W, H, C, 3, cam.inv_view_proj_rot, cam.eye,
+                                     cam.view_proj, cam.eye, L.centre, L.r_inner, 1, CCL_REPROJ_FILTER_CATMULL_ROM,
+                                     CCL_REPROJ_DEPTH_ITERATIONS, 1, out, od) == CCL_OK);
+    for (i = 0; i < H * W; ++i) {
+        int x = i % W, y = i / W;
+        if (ccl_reproj_updated(x, y, 3)) {
+            CCL_CHECK(od[i] == dep[i] && out[i * C] == cur[i * C]);
+        } else {
+            CCL_CHECK(out[i * C] == prev[i * C] && out[i * C + 1] == prev[i * C + 1]);
+            CCL_CHECK_REL(od[i], pdep[i], 1e-6);
+        }
+    }
+}
+
+/* a plane facing the camera 2 km away, the previous depth buffer its exact distance along each pixel's ray, and a
+ * sideways step of exactly k pixels at that distance: pixel (x, y) was at (x + k, y) in the previous frame */
+static void test_reproject_depth_plane_sideways_step_is_exact(void)
+{
+    enum { PW = 64, PH = 36 };
+    static float pdep[PH * PW];
+    const float fov = 1.0f, z_plane = 2.0f;
+    const int k = 3;
+    ccl_camera cam, pcam;
+    ccl_cloud_layer L;
+    double px_km = 2.0 * (double)z_plane * tan(0.5 * (double)fov) * ((double)PW / (double)PH) / (double)PW;
+    float step = (float)((double)k * px_km), u, v, t;
+    int x, y, n = 0;
+    ccl_raymarch_cloud_layer_default(&L);
+    ccl_camera_look_at(V(0, 0.3f, 0), V(0, 0.3f, -1), V(0, 1, 0), fov, (float)PW / (float)PH, 0.01f, 1000.0f, &pcam);
+    ccl_camera_look_at(V(step, 0.3f, 0), V(step, 0.3f, -1), V(0, 1, 0), fov, (float)PW / (float)PH, 0.01f, 1000.0f,
+                       &cam);
+    for (y = 0; y < PH; ++y)
+        for (x = 0; x < PW; ++x) {
+            ccl_vec3 d = ccl_camera_ray(pcam.inv_view_proj_rot, x, y, PW, PH);
+            pdep[y * PW + x] = (float)((double)z_plane / -(double)d.z);
+        }
+    for (y = 0; y < PH; ++y)
+        for (x = 0; x + k < PW; ++x) {
+            CCL_CHECK(ccl_reproj_uv_depth(cam.inv_view_proj_rot, cam.eye, pcam.view_proj, pcam.eye, pdep, L.centre,
+                                          L.r_inner, CCL_REPROJ_DEPTH_ITERATIONS, x, y, PW, PH, &u, &v, &t) == 1);
+            /* float32 round-off of the camera constants and the projection: ~1e-4 px */
+            CCL_CHECK_CLOSE((double)u * PW - 0.5, x + k, 1e-3);
+            CCL_CHECK_CLOSE((double)v * PH - 0.5, y, 1e-3);
+            /* the thesis's point (the layer base, 100+ km along these rays) is off by nearly k pixels */
+            CCL_CHECK(ccl_reproj_uv_depth(cam.inv_view_proj_rot, cam.eye, pcam.view_proj, pcam.eye, pdep, L.centre,
+                                          L.r_inner, 0, x, y, PW, PH, &u, &v, &t) == 1);
+            if (fabs((double)u * PW - 0.5 - (x + k)) > 0.9 * k) ++n;
+        }
+    CCL_CHECK(n > PH * (PW - k) / 2);
+}
+
+static void test_reproject_depth_rejects_bad_input(void)
+{
+    static float cur[H * W * C], prev[H * W * C], red[4 * 6 * C], out[H * W * C], dep[H * W], pdep[H * W],
+        od[H * W];
+    ccl_camera cam;
+    ccl_vec3 c = V(0, -6371, 0);
+    ccl_camera_look_at(V(0, 0, 0), V(0, 0, -1), V(0, 1, 0), 1.0f, 1.0f, 0.01f, 100.0f, &cam);
+    out[0] = 42.0f;
+    od[0] = 43.0f;
+    CCL_CHECK(ccl_reproj_frame_depth(cur, dep, prev, pdep, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye,
+                                     cam.view_proj, cam.eye, c, 6372.5f, 1, 2, 2, 1, out, od) == CCL_EINVAL);
+    CCL_CHECK(ccl_reproj_frame_depth(cur, dep, prev, pdep, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye,
+                                     cam.view_proj, cam.eye, c, 6372.5f, 1, 1, CCL_REPROJ_MAX_DEPTH_ITERATIONS + 1, 1,
+                                     out, od) == CCL_EINVAL);
+    CCL_CHECK(ccl_reproj_frame_depth(cur, dep, prev, pdep, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye,
+                                     cam.view_proj, cam.eye, c, 6372.5f, 1, 1, -1, 1, out, od) == CCL_EINVAL);
+    CCL_CHECK(ccl_reproj_frame_depth(cur, NULL, prev, pdep, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye,
+                                     cam.view_proj, cam.eye, c, 6372.5f, 1, 1, 2, 1, out, od) == CCL_EINVAL);
+    CCL_CHECK(ccl_reproj_frame_depth(cur, dep, prev, pdep, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye,
+                                     cam.view_proj, cam.eye, c, 6372.5f, 1, 1, 2, 1, out, pdep) == CCL_EINVAL);
+    CCL_CHECK(ccl_reproj_frame_depth(cur, dep, prev, pdep, red, W, H, C, 0, cam.inv_view_proj_rot, cam.eye,
+                                     cam.view_proj, cam.eye, c, 6372.5f, 1, 1, 2, 1, od, od) == CCL_EINVAL);
+    CCL_CHECK(out[0] == 42.0f && od[0] == 43.0f);
+}
+
 int main(void)
 {
     CCL_RUN(test_reprojection_pixel_order_and_wrap);
@@ -227,5 +331,8 @@ int main(void)
     CCL_RUN(test_reproject_fallback_and_history);
     CCL_RUN(test_reproject_rejects_bad_input);
     CCL_RUN(test_reprojection_uv_static_is_pixel_centre);
+    CCL_RUN(test_reproject_depth_thesis_settings_equal_frame);
+    CCL_RUN(test_reproject_depth_plane_sideways_step_is_exact);
+    CCL_RUN(test_reproject_depth_rejects_bad_input);
     return ccl_test_report();
 }

@@ -488,7 +488,7 @@ def reproject_pixel_depth(current: wp.array3d(dtype=float), current_depth: wp.ar
         valid, u, v, t = reproj_uv_depth(inv_view_proj_rot, eye, prev_view_proj, prev_eye, previous_depth, centre,
                                          r_inner, iterations, x, y, current.shape[1], current.shape[0])
     _fill_pixel(current, previous, reduced, frame, neighbourhood, filter, history, valid, u, v, x, y, out)
-    if valid == 1:
+    if valid == 1 and not wp.isinf(t):
         out_depth[y, x] = t
     else:
         out_depth[y, x] = _fallback_depth(current_depth, previous_depth, frame, history, x, y)

@@ -177,9 +177,10 @@ CCL_API int ccl_reproj_uv_depth(const float inv_view_proj_rot[16], ccl_vec3 eye,
  * prev_eye -> the previous camera's eye; filter -> a ccl_reproj_filter, the sampler of the previous frame (each of
  *             the n x n samples of the neighbourhood); iterations -> 0 .. CCL_REPROJ_MAX_DEPTH_ITERATIONS;
  * out_depth -> (height, width): the depth of every pixel relative to eye (rendered: current_depth; reprojected: the
- *              converged distance; fallback: the bilinear interpolation of this frame's rendered depths at the
- *              reduced-buffer position; no rendered pixel in that direction: previous_depth (history) or
- *              current_depth at the same pixel);
+ *              converged distance; fallback, or a reprojected point at an infinite distance (a degenerate previous
+ *              projection): the bilinear interpolation of this frame's rendered depths at the reduced-buffer
+ *              position; no rendered pixel in that direction: previous_depth (history) or current_depth at the
+ *              same pixel);
  * the other arguments as ccl_reproj_frame. out may be current and out_depth may be current_depth; no other buffer
  * written may be one that is read.
  * Returns CCL_EINVAL (out, out_depth untouched) for what ccl_reproj_frame rejects, a NULL depth buffer, an unknown
