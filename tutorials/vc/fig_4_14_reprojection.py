@@ -6,7 +6,10 @@ with the inner sphere of the cloud layer (vc-A14), the hit point is projected wi
 previous frame is read there, or, outside it, the reduced buffer is interpolated. The optional neighbourhood
 averaging (vc-A27) reads an n x n box around the reprojected position instead. The clouds themselves are the full
 pass of vc-A17, vc-A18, vc-A19, vc-A20, vc-A21 composited by vc-4.8 over the Preetham sky (vc-A29). Renderer:
-pywarp.clouds.cloudscape with reprojection=True and reprojection_neighbourhood = 1 (exact sampling) or 3 (3 x 3 average).
+pywarp.clouds.cloudscape with reprojection=True and reprojection_neighbourhood = 1 (exact sampling) or 3 (3 x 3 average),
+with the thesis's reprojection_depth="inner_sphere" and reprojection_filter="bilinear" (the renderer's default
+reprojects through the depth of what each pixel shows and samples with a clamped Catmull-Rom filter, which removes
+these artifacts instead of averaging them away: cclouds/reproj.h).
 
 Parameters (the thesis gives none): a camera 0.3 km up, 50° vertical field of view, looking 22° up, that turns by
 0.5° per frame (yaw -8° -> +7.5°) while flying forward by 20 m per frame along -z (32 frames: two full 16-frame
@@ -47,8 +50,11 @@ from matplotlib.patches import Rectangle  # noqa: E402
 
 from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
 
+# the thesis's reprojection (the inner-sphere point, bilinear sampling), not the renderer's depth-aware default: this
+# figure shows the thesis's artifacts
 SCENE = dict(coverage=0.45, cloud_type=0.75, sun_elevation_deg=25.0, sun_azimuth_deg=110.0, seed=0, jitter="none",
-             camera_altitude_km=0.3, fov_y_deg=50.0, camera_pitch_deg=22.0)
+             camera_altitude_km=0.3, fov_y_deg=50.0, camera_pitch_deg=22.0, reprojection_depth="inner_sphere",
+             reprojection_filter="bilinear")
 FULL = dict(width=384, height=216)
 QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
 YAW_STEP_DEG = 0.5
