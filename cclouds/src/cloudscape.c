@@ -5,6 +5,7 @@
 
 #include "cclouds/clouds.h"
 #include "cclouds/colour.h"
+#include "cclouds/interp.h"
 #include "cclouds/phase.h"
 #include "cclouds/texgen.h"
 #include "internal.h"
@@ -147,6 +148,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->lod_bias = 0.0f;
     out->refine_step_km = 0.1f;
     out->refine_max = 8;
+    out->weather_detile = 1;
 }
 
 static int finite_pos(float v) { return v > 0.0f && v < INFINITY; }
@@ -231,6 +233,7 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!(p->silver_g > -1.0f && p->silver_g < 1.0f)) return bad(out_field, "silver_g");
     if (!(p->silver_weight >= 0.0f && p->silver_weight <= 1.0f)) return bad(out_field, "silver_weight");
     if (!(p->lod == 0 || p->lod == 1)) return bad(out_field, "lod");
+    if (!(p->weather_detile == 0 || p->weather_detile == 1)) return bad(out_field, "weather_detile");
     if (!(p->lod_bias >= -4.0f && p->lod_bias <= 4.0f)) return bad(out_field, "lod_bias");
     if (!(p->refine_step_km >= 0.0f && p->refine_step_km < INFINITY)) return bad(out_field, "refine_step_km");
     if (!(p->refine_max >= 1 && p->refine_max <= 64)) return bad(out_field, "refine_max");
@@ -258,6 +261,11 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
             return bad(out_field, "weather_scale_km");
         if (!(texcoord_ok(ex, dabs(p->weather_offset[0]), p->weather_scale_km, t->weather_size) &&
               texcoord_ok(ez, dabs(p->weather_offset[1]), p->weather_scale_km, t->weather_size)))
+            return bad(out_field, "weather_offset");
+        /* the de-tiling's rotated lookups: |u'|, |v'| <= |u| + |v| + 1 (one period = weather_scale_km) */
+        if (p->weather_detile &&
+            !texcoord_ok(ex + ez, dabs(p->weather_offset[0]) + dabs(p->weather_offset[1]) + (double)p->weather_scale_km,
+                         p->weather_scale_km, t->weather_size))
             return bad(out_field, "weather_offset");
         if (!(texcoord_ok(ex, 0.0, p->detail_scale_km, t->detail_size) &&
               texcoord_ok(ey, 0.0, p->detail_scale_km, t->detail_size) &&
@@ -422,6 +430,28 @@ float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_tex
     return ccl_cloudscape_density_lod(p, t, pos, detail, 0.0f, 0.0f, out_precipitation);
 }
 
+void ccl_cloudscape_weather(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, float x_km, float z_km,
+                            float *out_rgba)
+{
+    const float u = (x_km + p->weather_offset[0]) / p->weather_scale_km;
+    const float v = (z_km + p->weather_offset[1]) / p->weather_scale_km;
+    const float c = CCL_WEATHER_DETILE_COS, s = CCL_WEATHER_DETILE_SIN;
+    float b[4], m[4], k;
+    int i;
+    ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1, u, v, out_rgba);
+    if (!p->weather_detile) return;
+    /* the map again, rotated, scaled and shifted, and a selector from the coverage of a much larger copy */
+    ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1,
+                                        (c * u - s * v) / CCL_WEATHER_DETILE_SCALE_B + CCL_WEATHER_DETILE_SHIFT_U,
+                                        (s * u + c * v) / CCL_WEATHER_DETILE_SCALE_B + CCL_WEATHER_DETILE_SHIFT_V, b);
+    ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1,
+                                        (c * u + s * v) / CCL_WEATHER_DETILE_SCALE_M + CCL_WEATHER_DETILE_SHIFT_V,
+                                        (c * v - s * u) / CCL_WEATHER_DETILE_SCALE_M + CCL_WEATHER_DETILE_SHIFT_U, m);
+    k = (m[0] - CCL_WEATHER_DETILE_EDGE0) / (CCL_WEATHER_DETILE_EDGE1 - CCL_WEATHER_DETILE_EDGE0);
+    k = ccl_interp_fade_cubic(k < 0.0f ? 0.0f : (k > 1.0f ? 1.0f : k));
+    for (i = 0; i < 4; ++i) out_rgba[i] = out_rgba[i] + (b[i] - out_rgba[i]) * k;
+}
+
 float ccl_cloudscape_density_lod(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos,
                                  int detail, float lod_base, float lod_detail, float *out_precipitation)
 {
@@ -433,10 +463,8 @@ float ccl_cloudscape_density_lod(const ccl_cloudscape_params *p, const ccl_cloud
     r = ccl_vec3_length(ccl_vec3_sub(pos, c));
     h = ccl_clouds_relative_height(r, p->layer.r_inner, p->layer.r_outer, CCL_VARIANT_CORRECTED);
     if (!(h >= 0.0f && h <= 1.0f)) return 0.0f;
-    /* vc-A12: weather map, planar projection with wind */
-    ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1,
-                                        (pos.x + p->weather_offset[0]) / p->weather_scale_km,
-                                        (pos.z + p->weather_offset[1]) / p->weather_scale_km, w);
+    /* vc-A12: weather map, planar projection with wind (and the de-tiling, ccl_cloudscape_weather) */
+    ccl_cloudscape_weather(p, t, pos.x, pos.z, w);
     *out_precipitation = w[1];
     if (!(w[0] > 0.0f)) return 0.0f;
     /* vc-4.7 / A16: vertical profile of the cloud type */

@@ -42,6 +42,7 @@ def param_values(settings) -> dict:
         "coverage_threshold": COVERAGE_THRESHOLDS[settings.coverage_threshold], "beer": int(settings.beer),
         "powder": int(settings.powder), "lod": int(settings.lod), "lod_bias": settings.lod_bias,
         "refine_step_km": settings.refine_step_km, "refine_max": settings.refine_max,
+        "weather_detile": int(settings.weather_detile),
     }
     # lighting: 'thesis' is the thesis's model entirely (its constants, one octave, one HG lobe); 'sky' takes the
     # multiple-scattering and silver-lining settings

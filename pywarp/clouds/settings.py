@@ -326,6 +326,11 @@ class CloudscapeSettings(Settings):
                                          "typical cloud; near the horizon the view steps reach ~0.8 km, one step "
                                          "crossed a whole cloud and the pixel took the light of one random depth "
                                          "(the horizon's salt-and-pepper noise)")
+    weather_detile: bool = param(True, group="clouds",
+                                 doc="the weather map does not tile visibly: blended with a rotated, scaled copy by "
+                                     "the coverage of a much larger copy (ccl_cloudscape_weather); off: one periodic "
+                                     "lookup, the thesis",
+                                 reason="on: one 32 km map repeats visibly from a few km up")
     refine_max: int = param(8, lo=1, hi=64, group="clouds",
                             doc="most sub-steps per view step of the refinement",
                             reason="8: 0.8 km horizon steps down to 0.1 km; bounds the work per ray")

@@ -28,6 +28,7 @@ from .clouds import (
     clouds_height_gradient,
 )
 from .colour import colour_srgb_encode
+from .interp import interp_fade_cubic
 from .phase import phase_hg
 from .camera import camera_ray
 from .raymarch import (
@@ -116,6 +117,7 @@ class CloudscapeParams:
     lod_bias: float
     refine_step_km: float
     refine_max: int
+    weather_detile: int
 
 
 @wp.func
@@ -271,6 +273,41 @@ def cloudscape_lod(footprint_km: float, texel_km: float, bias: float) -> float:
     return wp.log2(footprint_km / texel_km) + bias
 
 
+# the de-tiling of the weather map (CCL_WEATHER_DETILE_* in cclouds/cloudscape.h, where the reasons are)
+WEATHER_DETILE = dict(cos=0.79863551, sin=0.60181502, scale_b=1.37, scale_m=5.3, shift_u=0.31, shift_v=0.57,
+                      edge0=0.35, edge1=0.65)
+_WD_COS = wp.constant(WEATHER_DETILE["cos"])
+_WD_SIN = wp.constant(WEATHER_DETILE["sin"])
+_WD_SCALE_B = wp.constant(WEATHER_DETILE["scale_b"])
+_WD_SCALE_M = wp.constant(WEATHER_DETILE["scale_m"])
+_WD_SHIFT_U = wp.constant(WEATHER_DETILE["shift_u"])
+_WD_SHIFT_V = wp.constant(WEATHER_DETILE["shift_v"])
+_WD_EDGE0 = wp.constant(WEATHER_DETILE["edge0"])
+_WD_EDGE1 = wp.constant(WEATHER_DETILE["edge1"])
+
+
+@wp.func
+def cloudscape_weather(p: CloudscapeParams, weather: wp.array2d(dtype=wp.vec4), x: float, z: float) -> wp.vec4:
+    """Twin of ``ccl_cloudscape_weather``: the weather map at world (x, z) km with the wind, de-tiled when
+    ``p.weather_detile``: blended with a rotated, scaled, shifted copy by the smoothstep of a much larger copy's
+    coverage."""
+    mask = weather.shape[0] - 1
+    u = (x + p.weather_offset[0]) / p.weather_scale_km
+    v = (z + p.weather_offset[1]) / p.weather_scale_km
+    a = sample_bilinear_wrap(weather, mask, u, v)
+    if p.weather_detile == 0:
+        return a
+    c = _WD_COS
+    s = _WD_SIN
+    b = sample_bilinear_wrap(weather, mask, (c * u - s * v) / _WD_SCALE_B + _WD_SHIFT_U,
+                             (s * u + c * v) / _WD_SCALE_B + _WD_SHIFT_V)
+    m = sample_bilinear_wrap(weather, mask, (c * u + s * v) / _WD_SCALE_M + _WD_SHIFT_V,
+                             (c * v - s * u) / _WD_SCALE_M + _WD_SHIFT_U)
+    k = (m[0] - _WD_EDGE0) / (_WD_EDGE1 - _WD_EDGE0)
+    k = interp_fade_cubic(wp.clamp(k, 0.0, 1.0))
+    return a + (b - a) * k
+
+
 @wp.func
 def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, with_detail: int, lod_base: float,
                            lod_detail: float):
@@ -285,8 +322,7 @@ def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3
     density = float(0.0)
     precip = float(0.0)
     if h >= 0.0 and h <= 1.0:
-        w = sample_bilinear_wrap(weather, weather.shape[0] - 1, (pos[0] + p.weather_offset[0]) / p.weather_scale_km,
-                                 (pos[2] + p.weather_offset[1]) / p.weather_scale_km)
+        w = cloudscape_weather(p, weather, pos[0], pos[2])
         precip = w[1]
         if w[0] > 0.0:
             d_v = clouds_height_gradient(h, w[2], p.gradient_clamp)
@@ -759,3 +795,12 @@ def pixels_kernel(p: CloudscapeParams, tex: CloudTextures, sky_kind: int, sun: w
     out[k, 0] = c[0]
     out[k, 1] = c[1]
     out[k, 2] = c[2]
+
+
+@wp.kernel
+def weather_points_kernel(p: CloudscapeParams, tex: CloudTextures, points: wp.array(dtype=wp.vec3),
+                          # outputs
+                          out: wp.array(dtype=wp.vec4)):
+    """:func:`cloudscape_weather` at a list of world points (x, z used; for comparisons with the C reference)."""
+    k = wp.tid()
+    out[k] = cloudscape_weather(p, tex.weather, points[k][0], points[k][2])

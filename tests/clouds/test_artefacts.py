@@ -58,6 +58,69 @@ def test_horizon_band_is_as_steady_as_the_sky_above(settings):
     assert top <= 1.5 * top_thesis + 0.05, (top, top_thesis)
 
 
+# --- the weather map repeating ------------------------------------------------------------------------------------------
+
+def weather_c(settings: CloudscapeSettings, textures, xs, zs) -> np.ndarray:
+    """``ccl_cloudscape_weather`` (C) at world points (km): (n, 4)."""
+    from pywarp.clouds.cloudscape import c_textures
+    from pywarp.clouds.cparams import c_params, param_values
+    from pywarp.core.binding import ffi, lib
+
+    f, lb = ffi(), lib()
+    p, t = c_params(param_values(settings)), c_textures(textures)
+    out = np.empty((len(xs), 4), dtype=np.float32)
+    rgba = f.new("float[4]")
+    for i, (x, z) in enumerate(zip(xs, zs)):
+        lb.ccl_cloudscape_weather(p, t, float(x), float(z), rgba)
+        out[i] = list(rgba)
+    return out
+
+
+@pytest.fixture(scope="module")
+def small_textures():
+    from pywarp.clouds.cloudscape import RenderTextures
+    return RenderTextures.generate(CloudscapeSettings(base_size=32, detail_size=16, curl_size=32, weather_size=128))
+
+
+def test_the_weather_map_does_not_repeat_with_its_tile(small_textures):
+    """Coverage at points one tile (weather_scale_km) apart: the thesis's periodic lookup gives the same values
+    (correlation 1). The de-tiled map takes about half its area from each of two lattices of repeats that do not
+    align, switched by a selector 5.3 tiles large, so only about half the pairs still match (measured 0.6)."""
+    s = CloudscapeSettings(base_size=32, detail_size=16, curl_size=32, weather_size=128)
+    rng = np.random.default_rng(7)
+    x, z = rng.uniform(-60.0, 60.0, 400), rng.uniform(-60.0, 60.0, 400)
+    tile = 32.0  # ccl_cloudscape_params_default's weather_scale_km
+    for detile, lo, hi in ((False, 0.999, 1.0), (True, -0.7, 0.7)):
+        si = replace(s, weather_detile=detile)
+        a = weather_c(si, small_textures, x, z)[:, 0]
+        b = weather_c(si, small_textures, x + tile, z)[:, 0]
+        r = float(np.corrcoef(a, b)[0, 1])
+        assert lo <= r <= hi, (detile, r)
+    # the de-tiled coverage keeps the map's range and mean (no averaging into a uniform grey)
+    a = weather_c(s, small_textures, x, z)[:, 0]
+    ref = weather_c(replace(s, weather_detile=False), small_textures, x, z)[:, 0]
+    assert abs(a.mean() - ref.mean()) < 0.1 and a.std() > 0.7 * ref.std(), (a.mean(), ref.mean(), a.std(), ref.std())
+
+
+def test_weather_c_and_warp_agree(small_textures):
+    import warp as wp
+
+    from pywarp.clouds.cloudscape import warp_params
+    from pywarp.clouds.cparams import param_values
+    from pywarp.kernels import cloudscape as K
+
+    s = CloudscapeSettings(base_size=32, detail_size=16, curl_size=32, weather_size=128)
+    rng = np.random.default_rng(3)
+    x, z = rng.uniform(-300.0, 300.0, 256).astype(np.float32), rng.uniform(-300.0, 300.0, 256).astype(np.float32)
+    tex = small_textures.warp()
+    for detile in (False, True):
+        si = replace(s, weather_detile=detile)
+        pts = wp.array(np.stack([x, np.zeros_like(x), z], axis=1), dtype=wp.vec3)
+        out = wp.zeros(len(x), dtype=wp.vec4)
+        wp.launch(K.weather_points_kernel, dim=len(x), inputs=[warp_params(param_values(si)), tex, pts], outputs=[out])
+        np.testing.assert_allclose(out.numpy(), weather_c(si, small_textures, x, z), rtol=0, atol=2e-6)
+
+
 # --- the dot grid while reprojecting ------------------------------------------------------------------------------------
 
 def block_deviation(img: np.ndarray, a: int, b: int) -> float:

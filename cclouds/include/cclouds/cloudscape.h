@@ -152,6 +152,8 @@ typedef struct ccl_cloudscape_params {
     float refine_step_km;       /* refinement: a view step longer than this is split into sub-steps of at most this
                                    length where the coarse test finds cloud (default 0.1 km; 0 = off, the thesis) */
     int refine_max;             /* most sub-steps per view step, in [1, 64] (default 8) */
+    int weather_detile;         /* 1: the weather map does not tile visibly (ccl_cloudscape_weather; default);
+                                   0: one periodic lookup, the thesis */
     /* Lighting (see "Lighting" above; defaults and their reasons in cloudscape.c). */
     int lighting;               /* ccl_lighting: CCL_LIGHTING_SKY (default) or CCL_LIGHTING_THESIS */
     float sun_intensity;        /* sky mode: sun_colour = sun_intensity * ccl_sky_sun_attenuation (default 16) */
@@ -230,6 +232,27 @@ CCL_API void ccl_cloudscape_sample_bilinear_wrap(const float *tex, int size_mask
  * detail = 0 skips the detail erosion (returns B_D). Inputs must have passed ccl_cloudscape_check. */
 CCL_API float ccl_cloudscape_density(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos,
                                      int detail, float *out_precipitation);
+
+/* The de-tiling of the weather map (ccl_cloudscape_weather): a 32 km map repeats visibly from a few km up. The map
+ * is sampled a second time rotated by 37 degrees, scaled by 1 / 1.37 and shifted (an irrational-looking rotation and
+ * scale, so the two lattices of repeats do not align), and a third time, 5.3 times larger and rotated the other way,
+ * whose coverage (R) selects between the two through smoothstep(0.35, 0.65, R): large patches of one or the other,
+ * with short transitions, so that the blend seldom averages two coverages (which would thin the gaps between cloud
+ * fields). */
+#define CCL_WEATHER_DETILE_COS 0.79863551f  /* cos 37 deg */
+#define CCL_WEATHER_DETILE_SIN 0.60181502f  /* sin 37 deg */
+#define CCL_WEATHER_DETILE_SCALE_B 1.37f
+#define CCL_WEATHER_DETILE_SCALE_M 5.3f
+#define CCL_WEATHER_DETILE_SHIFT_U 0.31f
+#define CCL_WEATHER_DETILE_SHIFT_V 0.57f
+#define CCL_WEATHER_DETILE_EDGE0 0.35f
+#define CCL_WEATHER_DETILE_EDGE1 0.65f
+
+/* The weather map (RGBA: coverage, precipitation, cloud type, -) at world (x, z) km with the wind offset: one
+ * periodic bilinear lookup at ((x, z) + weather_offset) / weather_scale_km, and with p->weather_detile the blend
+ * described above. out_rgba[4]. */
+CCL_API void ccl_cloudscape_weather(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, float x_km,
+                                    float z_km, float *out_rgba);
 
 /* Density with a level of detail: base and detail textures sampled at mip levels lod_base / lod_detail (<= 0: full
  * resolution; fractional levels blend the two nearest levels; the last level is the texture's mean, and at the
