@@ -130,8 +130,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
                   neighbourhood <= CCL_REPROJ_MAX_NEIGHBOURHOOD && r_inner > 0.0f && (filter == 0 || filter == 1) &&
                   iterations >= 0 && iterations <= CCL_REPROJ_MAX_DEPTH_ITERATIONS && alias_d != 1 && alias_d != 2 &&
                   alias_d != 3;
-    if (!valid_d) FZ_CHECK(st == CCL_EINVAL, "depth pass: invalid arguments accepted (filter %d iterations %d alias %d)",
-                           filter, iterations, alias_d);
+    if (!valid_d)
+        FZ_CHECK(st == CCL_EINVAL, "depth pass: invalid arguments accepted (filter %d iterations %d alias %d)", filter,
+                 iterations, alias_d);
     if (st != CCL_OK) {
         FZ_CHECK(memcmp(before_c, dst_c, sizeof before_c) == 0, "depth pass: out written on an error");
         FZ_CHECK(memcmp(before_d, dst_d, sizeof before_d) == 0, "depth pass: out_depth written on an error");

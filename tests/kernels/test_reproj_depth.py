@@ -109,7 +109,7 @@ def test_surface_depth_c_and_warp_agree(rng):
         assert max_ulp_diff(a[~np.isnan(a)], b[~np.isnan(b)]) == 0
 
 
-# --- the fixed-point iteration: closed forms ----------------------------------------------------------------------------
+# --- the fixed-point iteration: closed forms --------------------------------------------------------------------------
 
 @pytest.mark.parametrize("impl", IMPLS)
 @pytest.mark.parametrize("k", [1, 3])
@@ -223,7 +223,7 @@ def test_uv_depth_without_iterations_or_depth_is_the_inner_sphere_point(impl, rn
     assert np.all(t0 < 0)
 
 
-# --- the frame pass -----------------------------------------------------------------------------------------------------
+# --- the frame pass ---------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("impl", IMPLS)
 def test_frame_depth_thesis_settings_equal_reproj_frame(impl, rng):
@@ -422,7 +422,7 @@ def test_frame_depth_kernel_tile_parallel_equals_single_band(rng):
             np.testing.assert_array_equal(out_d.numpy(), ref_d)
 
 
-# --- bad input ----------------------------------------------------------------------------------------------------------
+# --- bad input --------------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("impl", IMPLS)
 def test_frame_depth_bad_input_raises_naming_parameter(impl):
