@@ -681,8 +681,10 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     const float fl = fmaxf(fp, p->light_step_km);
                     lod_b = ccl_cloudscape_lod(fp, tb, p->lod_bias);
                     lod_d = ccl_cloudscape_lod(fp, td, p->lod_bias);
-                    lod_lb = ccl_cloudscape_lod(fl, tb, p->lod_bias);
-                    lod_ld = ccl_cloudscape_lod(fl, td, p->lod_bias);
+                    /* the light samples at the nearest whole level: one lookup each instead of a blend of two (the
+                     * optical depth towards the sun is a sum of six samples, smooth where the view's colour is not) */
+                    lod_lb = floorf(ccl_cloudscape_lod(fl, tb, p->lod_bias) + 0.5f);
+                    lod_ld = floorf(ccl_cloudscape_lod(fl, td, p->lod_bias) + 0.5f);
                 }
                 rho = ccl_cloudscape_density_lod(p, t, pos, 1, lod_b, lod_d, &precip);
                 if (!(rho > 0.0f)) continue;

@@ -431,8 +431,10 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                     lod_b = cloudscape_lod(fp, tb, p.lod_bias)
                     lod_d = cloudscape_lod(fp, td, p.lod_bias)
                     fl = wp.max(fp, p.light_step_km)
-                    lod_lb = cloudscape_lod(fl, tb, p.lod_bias)
-                    lod_ld = cloudscape_lod(fl, td, p.lod_bias)
+                    # the light samples at the nearest whole level: one lookup each instead of a blend of two (the
+                    # optical depth towards the sun is a sum of six samples, smooth where the view's colour is not)
+                    lod_lb = wp.floor(cloudscape_lod(fl, tb, p.lod_bias) + 0.5)
+                    lod_ld = wp.floor(cloudscape_lod(fl, td, p.lod_bias) + 0.5)
                 rho, precip = cloudscape_density_lod(p, tex, pos, 1, lod_b, lod_d)
                 if rho > 0.0:
                     # vc-A19: optical depth towards the sun from 6 cone samples
