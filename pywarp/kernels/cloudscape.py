@@ -44,7 +44,7 @@ from .raymarch import (
 )
 from .reproj import reproj_pixel, reproj_surface_depth
 from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb, sky_sun_attenuation
-from .texgen import _axis_lo, _axis_t
+from .texgen import trilinear_axis, trilinear_lerp
 
 #: CCL_CLOUDSCAPE_LIGHT_DETAIL_SAMPLES: with the level of detail, the light-cone samples that use the detail erosion
 LIGHT_DETAIL_SAMPLES = 2
@@ -221,33 +221,16 @@ def sample_mip_level(tex: wp.array(dtype=wp.vec4), size: int, level: int, p: wp.
     z = p[2] * fsize
     if not (wp.abs(x) < 8388608.0 and wp.abs(y) < 8388608.0 and wp.abs(z) < 8388608.0):
         return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
-    ix = _axis_lo(x)
-    iy = _axis_lo(y)
-    iz = _axis_lo(z)
-    tx = _axis_t(x)
-    ty = _axis_t(y)
-    tz = _axis_t(z)
-    x0 = ix & mask
-    x1 = (ix + 1) & mask
-    y0 = (iy & mask) * n
-    y1 = ((iy + 1) & mask) * n
-    z0 = (iz & mask) * n * n
-    z1 = ((iz + 1) & mask) * n * n
-    c000 = tex[base + z0 + y0 + x0]
-    c100 = tex[base + z0 + y0 + x1]
-    c010 = tex[base + z0 + y1 + x0]
-    c110 = tex[base + z0 + y1 + x1]
-    c001 = tex[base + z1 + y0 + x0]
-    c101 = tex[base + z1 + y0 + x1]
-    c011 = tex[base + z1 + y1 + x0]
-    c111 = tex[base + z1 + y1 + x1]
-    c00 = c000 + (c100 - c000) * tx
-    c10 = c010 + (c110 - c010) * tx
-    c01 = c001 + (c101 - c001) * tx
-    c11 = c011 + (c111 - c011) * tx
-    c0 = c00 + (c10 - c00) * ty
-    c1 = c01 + (c11 - c01) * ty
-    return c0 + (c1 - c0) * tz
+    x0, x1, tx = trilinear_axis(x, mask)
+    y0, y1, ty = trilinear_axis(y, mask)
+    z0, z1, tz = trilinear_axis(z, mask)
+    y0 = y0 * n
+    y1 = y1 * n
+    z0 = z0 * n * n
+    z1 = z1 * n * n
+    return trilinear_lerp(tex[base + z0 + y0 + x0], tex[base + z0 + y0 + x1], tex[base + z0 + y1 + x0],
+                          tex[base + z0 + y1 + x1], tex[base + z1 + y0 + x0], tex[base + z1 + y0 + x1],
+                          tex[base + z1 + y1 + x0], tex[base + z1 + y1 + x1], tx, ty, tz)
 
 
 @wp.func

@@ -538,6 +538,26 @@ def _axis_t(x: float) -> float:
 
 
 @wp.func
+def trilinear_axis(x: float, size_mask: int):
+    """One axis of the wrapped trilinear sampler: (lower index, upper index, weight of the upper) of x = p * size."""
+    i = _axis_lo(x)
+    return i & size_mask, (i + 1) & size_mask, _axis_t(x)
+
+
+@wp.func
+def trilinear_lerp(c000: wp.vec4, c100: wp.vec4, c010: wp.vec4, c110: wp.vec4, c001: wp.vec4, c101: wp.vec4,
+                   c011: wp.vec4, c111: wp.vec4, tx: float, ty: float, tz: float) -> wp.vec4:
+    """The eight corners lerped along x, then y, then z (the order of ``ccl_texgen_sample_trilinear_wrap``)."""
+    c00 = c000 + (c100 - c000) * tx
+    c10 = c010 + (c110 - c010) * tx
+    c01 = c001 + (c101 - c001) * tx
+    c11 = c011 + (c111 - c011) * tx
+    c0 = c00 + (c10 - c00) * ty
+    c1 = c01 + (c11 - c01) * ty
+    return c0 + (c1 - c0) * tz
+
+
+@wp.func
 def texgen_sample_trilinear_wrap(tex: wp.array3d(dtype=wp.vec4), size_mask: int, p: wp.vec3) -> wp.vec4:
     """Trilinear sample of the periodic RGBA volume ``tex[z, y, x]`` (edge size_mask + 1, a power of two) at texture
     coordinates p (1 = one period, texel centres at (i + 0.5) / size); indices wrap with ``& size_mask``. Like
@@ -549,33 +569,11 @@ def texgen_sample_trilinear_wrap(tex: wp.array3d(dtype=wp.vec4), size_mask: int,
     if not (wp.abs(x) < 8388608.0 and wp.abs(y) < 8388608.0 and wp.abs(z) < 8388608.0):
         # outside the domain |p * size| < 2^23 (or NaN): NaN, never an int() of such a value (as the C sampler)
         return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
-    ix = _axis_lo(x)
-    iy = _axis_lo(y)
-    iz = _axis_lo(z)
-    tx = _axis_t(x)
-    ty = _axis_t(y)
-    tz = _axis_t(z)
-    x0 = ix & size_mask
-    x1 = (ix + 1) & size_mask
-    y0 = iy & size_mask
-    y1 = (iy + 1) & size_mask
-    z0 = iz & size_mask
-    z1 = (iz + 1) & size_mask
-    c000 = tex[z0, y0, x0]
-    c100 = tex[z0, y0, x1]
-    c010 = tex[z0, y1, x0]
-    c110 = tex[z0, y1, x1]
-    c001 = tex[z1, y0, x0]
-    c101 = tex[z1, y0, x1]
-    c011 = tex[z1, y1, x0]
-    c111 = tex[z1, y1, x1]
-    c00 = c000 + (c100 - c000) * tx
-    c10 = c010 + (c110 - c010) * tx
-    c01 = c001 + (c101 - c001) * tx
-    c11 = c011 + (c111 - c011) * tx
-    c0 = c00 + (c10 - c00) * ty
-    c1 = c01 + (c11 - c01) * ty
-    return c0 + (c1 - c0) * tz
+    x0, x1, tx = trilinear_axis(x, size_mask)
+    y0, y1, ty = trilinear_axis(y, size_mask)
+    z0, z1, tz = trilinear_axis(z, size_mask)
+    return trilinear_lerp(tex[z0, y0, x0], tex[z0, y0, x1], tex[z0, y1, x0], tex[z0, y1, x1], tex[z1, y0, x0],
+                          tex[z1, y0, x1], tex[z1, y1, x0], tex[z1, y1, x1], tx, ty, tz)
 
 
 # --- tile kernels (row0 first; TileLauncher) ------------------------------------------------------------------------
