@@ -694,10 +694,7 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     ccl_vec3 q = ccl_raymarch_light_sample_position(pos, to_sun, j, p->light_step_km,
                                                                     p->light_cone_angle, p->light_far_factor,
                                                                     ccl_raymarch_light_cone_kernel(j));
-                    /* with the level of detail, the detail erosion only for the nearest cone samples (the detail's
-                     * 25-50 m features do not change the optical depth of the far ones) */
-                    const int wd = (p->lod && j >= CCL_CLOUDSCAPE_LIGHT_DETAIL_SAMPLES) ? 0 : p->light_detail;
-                    d_light += w * ccl_cloudscape_density_lod(p, t, q, wd, lod_lb, lod_ld, &pj);
+                    d_light += w * ccl_cloudscape_density_lod(p, t, q, p->light_detail, lod_lb, lod_ld, &pj);
                 }
                 d_light *= p->sigma_light;
                 /* vc-2.31 + vc-A20: sun energy and ambient by relative height, per channel */

@@ -46,9 +46,6 @@ from .reproj import reproj_pixel, reproj_surface_depth
 from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb, sky_sun_attenuation
 from .texgen import trilinear_axis, trilinear_lerp
 
-#: CCL_CLOUDSCAPE_LIGHT_DETAIL_SAMPLES: with the level of detail, the light-cone samples that use the detail erosion
-LIGHT_DETAIL_SAMPLES = 2
-_LIGHT_DETAIL_SAMPLES = wp.constant(LIGHT_DETAIL_SAMPLES)
 SKY_GRADIENT = 0
 SKY_PREETHAM = 1
 JITTER_TILT = 0
@@ -431,12 +428,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                             w = p.light_step_km
                         q = raymarch_light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
                                                            p.light_far_factor, raymarch_light_cone_kernel(j))
-                        # with the level of detail, the detail erosion only for the two nearest cone samples (the
-                        # detail's 25-50 m features do not change the optical depth of the far ones)
-                        wd = p.light_detail
-                        if p.lod != 0 and j >= _LIGHT_DETAIL_SAMPLES:
-                            wd = 0
-                        rj, pj = cloudscape_density_lod(p, tex, q, wd, lod_lb, lod_ld)
+                        rj, pj = cloudscape_density_lod(p, tex, q, p.light_detail, lod_lb, lod_ld)
                         d_light = d_light + w * rj
                     d_light = d_light * p.sigma_light
                     # vc-2.31 + vc-A20

@@ -84,7 +84,6 @@ def test_constants_mirror_the_c_headers_and_the_kernels():
     assert (S.EARTH_RADIUS_KM, S.LAYER_BASE_KM, S.LAYER_TOP_KM) == (
         raymarch.EARTH_RADIUS_KM, raymarch.LAYER_BASE_KM, raymarch.LAYER_TOP_KM)
     assert S.CurlNoiseSettings().fd_step == 1.0 / lib().CCL_NOISE_FD_STEP_INV
-    assert K.LIGHT_DETAIL_SAMPLES == lib().CCL_CLOUDSCAPE_LIGHT_DETAIL_SAMPLES
 
 
 @pytest.mark.parametrize("cls", [S.CloudscapeSettings, *S.TEXTURE_SETTINGS.values()])

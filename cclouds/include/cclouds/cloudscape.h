@@ -92,10 +92,6 @@ extern "C" {
  * texture's are below 2.5 lattice units, vc-A11). */
 #define CCL_CLOUDSCAPE_MAX_TEXCOORD 8388608
 #define CCL_CLOUDSCAPE_MAX_CURL 16
-/* With the level of detail (params.lod), only the first CCL_CLOUDSCAPE_LIGHT_DETAIL_SAMPLES of the 6 light-cone
- * samples (0.1 and 0.2 km from the view sample at the default light step) use the detail erosion; the farther ones,
- * whose optical depth the 25-50 m detail features barely change, use the base shape (a cheaper light estimate). */
-#define CCL_CLOUDSCAPE_LIGHT_DETAIL_SAMPLES 2
 
 /* The four textures of the cloudscape (not owned). */
 typedef struct ccl_cloud_textures {
