@@ -52,3 +52,14 @@ def assert_twins_agree(cid: str, *args, ulp: int | None = None, atol: float = 0.
             raise AssertionError(f"{cid} {name}: Warp and C differ by {int(d[k])} ulp > {bound} "
                                  f"(Warp {x[ok][k]!r}, C {y[ok][k]!r}); max {int(d.max())} ulp")
     return w, c
+
+
+def look_at64(eye, target):
+    """Right-handed look-at basis (e, s, u, f) with up = +y, from float32-rounded inputs, in float64: camera maths
+    written independently of the kernels, for the reprojection tests."""
+    e = np.asarray(eye, np.float32).astype(float)
+    f = np.asarray(target, np.float32).astype(float) - e
+    f /= np.linalg.norm(f)
+    s = np.cross(f, [0.0, 1.0, 0.0])
+    s /= np.linalg.norm(s)
+    return e, s, np.cross(s, f), f

@@ -44,7 +44,7 @@ from .raymarch import (
 )
 from .reproj import reproj_pixel, reproj_surface_depth
 from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb, sky_sun_attenuation
-from .texgen import trilinear_axis, trilinear_lerp
+from .texgen import trilinear_axis, trilinear_lerp, trilinear_scale
 
 SKY_GRADIENT = 0
 SKY_PREETHAM = 1
@@ -212,11 +212,8 @@ def sample_mip_level(tex: wp.array(dtype=wp.vec4), size: int, level: int, p: wp.
     n = size >> level
     mask = n - 1
     base = mip_offset(size, level)
-    fsize = float(n)
-    x = p[0] * fsize
-    y = p[1] * fsize
-    z = p[2] * fsize
-    if not (wp.abs(x) < 8388608.0 and wp.abs(y) < 8388608.0 and wp.abs(z) < 8388608.0):
+    x, y, z, ok = trilinear_scale(p, n)
+    if not ok:
         return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
     x0, x1, tx = trilinear_axis(x, mask)
     y0, y1, ty = trilinear_axis(y, mask)

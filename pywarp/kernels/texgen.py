@@ -545,6 +545,18 @@ def trilinear_axis(x: float, size_mask: int):
 
 
 @wp.func
+def trilinear_scale(p: wp.vec3, size: int):
+    """p * size per axis and whether all three lie in the sampler's domain |p * size| < 2^23 (False for NaN too):
+    outside it the samplers return NaN, never an int() of such a value (as the C sampler)."""
+    fsize = float(size)
+    x = p[0] * fsize
+    y = p[1] * fsize
+    z = p[2] * fsize
+    ok = wp.abs(x) < 8388608.0 and wp.abs(y) < 8388608.0 and wp.abs(z) < 8388608.0
+    return x, y, z, ok
+
+
+@wp.func
 def trilinear_lerp(c000: wp.vec4, c100: wp.vec4, c010: wp.vec4, c110: wp.vec4, c001: wp.vec4, c101: wp.vec4,
                    c011: wp.vec4, c111: wp.vec4, tx: float, ty: float, tz: float) -> wp.vec4:
     """The eight corners lerped along x, then y, then z (the order of ``ccl_texgen_sample_trilinear_wrap``)."""
@@ -562,12 +574,8 @@ def texgen_sample_trilinear_wrap(tex: wp.array3d(dtype=wp.vec4), size_mask: int,
     """Trilinear sample of the periodic RGBA volume ``tex[z, y, x]`` (edge size_mask + 1, a power of two) at texture
     coordinates p (1 = one period, texel centres at (i + 0.5) / size); indices wrap with ``& size_mask``. Like
     GL_REPEAT + GL_LINEAR; sampling p and p + 1 gives identical results (weights depend on frac(p * size) only)."""
-    fsize = float(size_mask + 1)
-    x = p[0] * fsize
-    y = p[1] * fsize
-    z = p[2] * fsize
-    if not (wp.abs(x) < 8388608.0 and wp.abs(y) < 8388608.0 and wp.abs(z) < 8388608.0):
-        # outside the domain |p * size| < 2^23 (or NaN): NaN, never an int() of such a value (as the C sampler)
+    x, y, z, ok = trilinear_scale(p, size_mask + 1)
+    if not ok:
         return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
     x0, x1, tx = trilinear_axis(x, size_mask)
     y0, y1, ty = trilinear_axis(y, size_mask)

@@ -9,7 +9,7 @@ import pytest
 import warp as wp
 
 import pywarp
-from helpers import assert_twins_agree
+from helpers import assert_twins_agree, look_at64
 
 from pywarp.kernels import camera as cm
 from pywarp.kernels import raymarch as rm
@@ -122,15 +122,6 @@ def test_reduced_coord_maps_rendered_pixels_to_their_texel(impl):
 
 
 # --- vc-A26 / vc-A27 helpers: float64 camera math written independently -----------------------------------------------
-
-def look_at64(eye, target):
-    """Camera basis (s, u, f) of a right-handed look-at with up = +y, from float32-rounded inputs, in float64."""
-    e = np.asarray(eye, np.float32).astype(float)
-    f = np.asarray(target, np.float32).astype(float) - e
-    f /= np.linalg.norm(f)
-    s = np.cross(f, [0.0, 1.0, 0.0])
-    s /= np.linalg.norm(s)
-    return e, s, np.cross(s, f), f
 
 
 def expected_previous_pixel(cur, prev, fov, w, h):

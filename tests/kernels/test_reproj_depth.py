@@ -12,7 +12,7 @@ import pytest
 import warp as wp
 
 import pywarp
-from helpers import max_ulp_diff
+from helpers import look_at64, max_ulp_diff
 
 from pywarp.core.runtime import TileLauncher
 from pywarp.kernels import camera as cm
@@ -25,19 +25,10 @@ R_E = 6371.0
 
 # --- float64 camera math written here ---------------------------------------------------------------------------------
 
-def basis64(eye, target):
-    """Right-handed look-at basis (e, s, u, f) with up = +y, from float32-rounded inputs, in float64."""
-    e = np.asarray(eye, np.float32).astype(float)
-    f = np.asarray(target, np.float32).astype(float) - e
-    f /= np.linalg.norm(f)
-    s = np.cross(f, [0.0, 1.0, 0.0])
-    s /= np.linalg.norm(s)
-    return e, s, np.cross(s, f), f
-
 
 def rays64(view, fov, w, h, x, y):
     """Unit rays (..., 3) through pixel centres (x, y) of the camera (eye, target)."""
-    e, s, u, f = basis64(*view)
+    e, s, u, f = look_at64(*view)
     t = math.tan(float(np.float32(fov)) / 2)
     a = float(np.float32(w / h))
     nx, ny = 2 * (np.asarray(x) + 0.5) / w - 1, 1 - 2 * (np.asarray(y) + 0.5) / h
@@ -47,7 +38,7 @@ def rays64(view, fov, w, h, x, y):
 
 def project64(view, fov, w, h, p):
     """Pixel coordinates (pixel (i, j) centred at (i, j)) of world points p (..., 3) in the camera (eye, target)."""
-    e, s, u, f = basis64(*view)
+    e, s, u, f = look_at64(*view)
     t = math.tan(float(np.float32(fov)) / 2)
     a = float(np.float32(w / h))
     q = p - e
