@@ -4,8 +4,9 @@
 The density at a sample point (vc-A17), step by step on a vertical slice through the cloud layer: the weather map's
 coverage D_h (red channel, vc-A12) times the height gradient D_v of the local cloud type (vc-4.7 with the type blend
 vc-A16, at the relative height vc-A15) restricts where clouds may exist; the base-shape texture gives B (vc-2.28);
-coverage and profile are applied with B_D = remap(B D_v, C, 1, 0, 1) D_h (vc-2.29, remap vc-2.27, C := D_h as in the
-renderer); the curl-displaced detail texture erodes the edges into the final density (vc-2.30). Each step is computed
+coverage and profile are applied with B_D = remap(B D_v, C, 1, 0, 1) D_h (vc-2.29, remap vc-2.27, C := 1 - D_h as in
+the renderer; panel (g) shows the literal reading C := D_h); the curl-displaced detail texture erodes the edges into
+the final density (vc-2.30). Each step is computed
 with the public registry functions (pywarp.clouds_relative_height, pywarp.clouds_height_gradient, pywarp.clouds_base_shape,
 pywarp.clouds_coverage, pywarp.clouds_detail_erosion) on texture values read from the renderer's own textures
 (pywarp.clouds.cloudscape.RenderTextures) with the renderer's world scales (pywarp.clouds.cloudscape.param_values), so the slice is
@@ -51,7 +52,10 @@ import numpy as np  # noqa: E402
 import pywarp  # noqa: E402
 from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
 
-SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, sun_elevation_deg=30.0, sun_azimuth_deg=120.0)
+# the weather map's one periodic lookup (weather_detile off), so that the top view (a), the slices and the render
+# (b) show the same clouds; the threshold C of vc-2.29 is the renderer's default reading, C := 1 - D_h
+SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, sun_elevation_deg=30.0, sun_azimuth_deg=120.0,
+             weather_detile=False, coverage_threshold="one_minus_coverage")
 FULL = dict(width=640, height=360)
 QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
 SLICE_Z_KM = -22.0
@@ -118,9 +122,9 @@ def density_slice(tex, p: dict, nx: int, ny: int) -> dict:
     s = p["base_scale_km"]
     bs = trilinear_wrap(tex.base, X / s, Y / s, Z / s)
     _, b = pywarp.clouds_base_shape(*(f32(bs[..., k]) for k in range(4)))
-    # coverage and profile (vc-2.29): the renderer's C := D_h, and the other reading C := 1 - D_h for contrast
-    b_d = pywarp.clouds_coverage(b, d_v, d_h, d_h, clamp=True)
-    b_d_alt = pywarp.clouds_coverage(b, d_v, d_h, 1.0 - d_h, clamp=True)
+    # coverage and profile (vc-2.29): the renderer's C := 1 - D_h, and the literal reading C := D_h for contrast
+    b_d = pywarp.clouds_coverage(b, d_v, d_h, 1.0 - d_h, clamp=True)
+    b_d_alt = pywarp.clouds_coverage(b, d_v, d_h, d_h, clamp=True)
     # detail erosion (vc-2.30) at curl-displaced coordinates, h_rel of the displaced point
     cv = bilinear_wrap(tex.curl, X / p["curl_scale_km"], Z / p["curl_scale_km"])
     qx = X + cv[..., 0] * p["curl_strength_km"] + p["detail_offset"][0]
@@ -203,9 +207,9 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     rows = (("(c) envelope D_h·D_v: coverage × height gradient (4.7) — where clouds may exist", "envelope", 1.0),
             ("(d) base shape B (2.28) from the 128³ base texture", "B", 1.0),
-            ("(e) B_D = remap(B·D_v, D_h, 1, 0, 1)·D_h (2.29, C := D_h as in the renderer)", "B_D", None),
+            ("(e) B_D = remap(B·D_v, 1 − D_h, 1, 0, 1)·D_h (2.29, C := 1 − D_h as in the renderer)", "B_D", None),
             ("(f) final density: detail erosion of B_D (2.30) — what the renderer marches", "C", None),
-            ("(g) for contrast, not in the renderer: B_D with C := 1 − D_h", "B_D_alt", None))
+            ("(g) for contrast, not in the renderer: B_D with the literal reading C := D_h", "B_D_alt", None))
     extent = (SLICE_X_KM[0], SLICE_X_KM[1], SLICE_Y_KM[0], SLICE_Y_KM[1])
     for k, (title, key, vmax) in enumerate(rows):
         ax = fig.add_subplot(gs[1 + k, :])
