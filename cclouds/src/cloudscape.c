@@ -438,17 +438,27 @@ void ccl_cloudscape_weather(const ccl_cloudscape_params *p, const ccl_cloud_text
     const float c = CCL_WEATHER_DETILE_COS, s = CCL_WEATHER_DETILE_SIN;
     float b[4], m[4], k;
     int i;
-    ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1, u, v, out_rgba);
-    if (!p->weather_detile) return;
-    /* the map again, rotated, scaled and shifted, and a selector from the coverage of a much larger copy */
-    ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1,
-                                        (c * u - s * v) / CCL_WEATHER_DETILE_SCALE_B + CCL_WEATHER_DETILE_SHIFT_U,
-                                        (s * u + c * v) / CCL_WEATHER_DETILE_SCALE_B + CCL_WEATHER_DETILE_SHIFT_V, b);
+    if (!p->weather_detile) {
+        ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1, u, v, out_rgba);
+        return;
+    }
+    /* the selector from the coverage of a much larger copy first: where it is 0 or 1 only one of the two maps is
+     * read (the blend's value there: the map itself, or the rotated copy) */
     ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1,
                                         (c * u + s * v) / CCL_WEATHER_DETILE_SCALE_M + CCL_WEATHER_DETILE_SHIFT_V,
                                         (c * v - s * u) / CCL_WEATHER_DETILE_SCALE_M + CCL_WEATHER_DETILE_SHIFT_U, m);
     k = (m[0] - CCL_WEATHER_DETILE_EDGE0) / (CCL_WEATHER_DETILE_EDGE1 - CCL_WEATHER_DETILE_EDGE0);
     k = ccl_interp_fade_cubic(k < 0.0f ? 0.0f : (k > 1.0f ? 1.0f : k));
+    if (!(k >= 1.0f)) ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1, u, v, out_rgba);
+    if (k == 0.0f) return; /* (a NaN selector reads both and blends them: NaN, as the sampler outside its domain) */
+    /* the map again, rotated, scaled and shifted */
+    ccl_cloudscape_sample_bilinear_wrap(t->weather, t->weather_size - 1,
+                                        (c * u - s * v) / CCL_WEATHER_DETILE_SCALE_B + CCL_WEATHER_DETILE_SHIFT_U,
+                                        (s * u + c * v) / CCL_WEATHER_DETILE_SCALE_B + CCL_WEATHER_DETILE_SHIFT_V, b);
+    if (k >= 1.0f) {
+        for (i = 0; i < 4; ++i) out_rgba[i] = b[i];
+        return;
+    }
     for (i = 0; i < 4; ++i) out_rgba[i] = out_rgba[i] + (b[i] - out_rgba[i]) * k;
 }
 

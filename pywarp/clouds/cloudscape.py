@@ -196,6 +196,8 @@ class RenderTextures:
                 t.__setattr__(name + "_levels", K.mip_levels(getattr(self, name).shape[0]))
             t.curl = wp.array(self.curl, dtype=wp.vec4, device=self.device)
             t.weather = wp.array(self.weather, dtype=wp.vec4, device=self.device)
+            t.weather_empty = wp.array(K.weather_empty_distance(self.weather), dtype=wp.int32, device=self.device)
+            t.empty_skip = 1
             self._wp["struct"] = t
         return self._wp["struct"]
 

@@ -179,6 +179,32 @@ def mip_chain(tex: np.ndarray) -> np.ndarray:
     return np.concatenate(levels, axis=0)
 
 
+#: Largest distance :func:`weather_empty_distance` records (texels): a skip of at most EMPTY_CAP - 3 weather texels
+#: (2.3 km for the default 32 km map of 512 texels) -- longer skips would save little, the map costs EMPTY_CAP passes.
+EMPTY_CAP = 40
+#: Texels of margin: the bilinear footprint reaches 1 texel beyond the sample's texel, a step of at most delta texels
+#: moves the texel by at most delta, and one texel more absorbs the rounding of the positions.
+EMPTY_MARGIN = wp.constant(3)
+
+
+def weather_empty_distance(weather: np.ndarray, cap: int = EMPTY_CAP) -> np.ndarray:
+    """Empty-space map of a periodic weather map ``weather[y, x, 4]``: per texel the Chebyshev distance (texels, at
+    most ``cap``) to the nearest texel whose coverage (R) is not <= 0, on the torus. A sample in texel T with distance
+    D >= EMPTY_MARGIN has coverage exactly 0 (bilinear weights of four zero texels), and so has every point within
+    D - EMPTY_MARGIN texels of it: the march skips those samples (their density is 0 in any case)."""
+    cov = np.asarray(weather, dtype=np.float32)[..., 0]
+    occupied = ~(cov <= 0.0)  # a NaN counts as occupied
+    dist = np.zeros(cov.shape, dtype=np.int32)
+    reach = occupied.copy()
+    for _ in range(int(cap)):
+        if reach.all():
+            break
+        dist += ~reach
+        reach = reach | np.roll(reach, 1, 0) | np.roll(reach, -1, 0)
+        reach = reach | np.roll(reach, 1, 1) | np.roll(reach, -1, 1)
+    return dist
+
+
 @wp.struct
 class CloudTextures:
     """Twin of ``ccl_cloud_textures``: base and detail as flat mip chains (level 0 first, then each half-size level
@@ -192,6 +218,11 @@ class CloudTextures:
     detail_levels: int
     curl: wp.array2d(dtype=wp.vec4)
     weather: wp.array2d(dtype=wp.vec4)
+    # Warp only (an acceleration structure, no C twin: it changes no result): per weather texel, the Chebyshev
+    # distance in texels to the nearest texel of coverage > 0 (:func:`weather_empty_distance`); 0 everywhere or
+    # empty_skip = 0: no empty-space skipping
+    weather_empty: wp.array2d(dtype=wp.int32)
+    empty_skip: int
 
 
 @wp.func
@@ -274,18 +305,63 @@ def cloudscape_weather(p: CloudscapeParams, weather: wp.array2d(dtype=wp.vec4), 
     mask = weather.shape[0] - 1
     u = (x + p.weather_offset[0]) / p.weather_scale_km
     v = (z + p.weather_offset[1]) / p.weather_scale_km
-    a = sample_bilinear_wrap(weather, mask, u, v)
     if p.weather_detile == 0:
-        return a
+        return sample_bilinear_wrap(weather, mask, u, v)
     c = _WD_COS
     s = _WD_SIN
-    b = sample_bilinear_wrap(weather, mask, (c * u - s * v) / _WD_SCALE_B + _WD_SHIFT_U,
-                             (s * u + c * v) / _WD_SCALE_B + _WD_SHIFT_V)
+    # the selector first: where it is 0 or 1 only one of the two maps is read
     m = sample_bilinear_wrap(weather, mask, (c * u + s * v) / _WD_SCALE_M + _WD_SHIFT_V,
                              (c * v - s * u) / _WD_SCALE_M + _WD_SHIFT_U)
     k = (m[0] - _WD_EDGE0) / (_WD_EDGE1 - _WD_EDGE0)
     k = interp_fade_cubic(wp.clamp(k, 0.0, 1.0))
+    a = wp.vec4(0.0, 0.0, 0.0, 0.0)
+    if not (k >= 1.0):
+        a = sample_bilinear_wrap(weather, mask, u, v)
+    if k == 0.0:  # (a NaN selector reads both and blends them: NaN, as the sampler outside its domain)
+        return a
+    b = sample_bilinear_wrap(weather, mask, (c * u - s * v) / _WD_SCALE_B + _WD_SHIFT_U,
+                             (s * u + c * v) / _WD_SCALE_B + _WD_SHIFT_V)
+    if k >= 1.0:
+        return b
     return a + (b - a) * k
+
+
+@wp.func
+def _empty_texels(p: CloudscapeParams, tex: CloudTextures, u: float, v: float) -> int:
+    """Distance of the weather texel of (u, v) in the empty-space map (0 outside the sampler's domain)."""
+    size = tex.weather.shape[0]
+    fsize = float(size)
+    x = u * fsize
+    y = v * fsize
+    if not (wp.abs(x) < 8388608.0 and wp.abs(y) < 8388608.0):
+        return 0
+    return tex.weather_empty[int(wp.floor(y)) & (size - 1), int(wp.floor(x)) & (size - 1)]
+
+
+@wp.func
+def empty_until(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, t: float, speed_h: float) -> float:
+    """The ray distance up to which the density is certainly 0 (the weather map's coverage is 0 within the
+    empty-space map's radius around ``pos``, horizontally: the ray moves ``speed_h`` km sideways per km), or -1 when
+    ``pos`` itself is not certainly empty. Both maps of the de-tiling must be empty (the blend of two zeros is 0 for
+    any selector). Warp only: it changes no result, only skips samples whose density is 0."""
+    if tex.empty_skip == 0:
+        return -1.0
+    u = (pos[0] + p.weather_offset[0]) / p.weather_scale_km
+    v = (pos[2] + p.weather_offset[1]) / p.weather_scale_km
+    texel_km = p.weather_scale_km / float(tex.weather.shape[0])
+    da = _empty_texels(p, tex, u, v) - EMPTY_MARGIN
+    if da < 0:
+        return -1.0
+    r = float(da) * texel_km
+    if p.weather_detile != 0:
+        db = _empty_texels(p, tex, (_WD_COS * u - _WD_SIN * v) / _WD_SCALE_B + _WD_SHIFT_U,
+                           (_WD_SIN * u + _WD_COS * v) / _WD_SCALE_B + _WD_SHIFT_V) - EMPTY_MARGIN
+        if db < 0:
+            return -1.0
+        r = wp.min(r, float(db) * texel_km * _WD_SCALE_B)
+    if speed_h * 1.0e6 <= r:
+        return 1.0e30  # a (nearly) vertical ray stays in the empty column
+    return t + r / speed_h
 
 
 @wp.func
@@ -375,21 +451,28 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                     k = int(kf)
             dt = dt_view / float(k)
             prev_cloud = int(0)
+            # empty-space skipping (Warp only, no change of any result): samples before skip_end have density 0
+            skip_end = float(-1.0)
+            speed_h = wp.sqrt(d[0] * d[0] + d[2] * d[2])
             m = int(0)
             while m < n * k:
                 i = m / k
                 sub = m - i * k
                 if k > 1 and sub == 0:
                     t_c = t_start + (float(i) + offset) * dt_view
-                    fp_c = wp.max(t_c * pixel_angle, dt_view)
-                    lod_c = float(0.0)
-                    if p.lod != 0:
-                        lod_c = cloudscape_lod(fp_c, p.base_scale_km / float(tex.base_size), p.lod_bias)
-                    r_c, p_c = cloudscape_density_lod(p, tex, eye + d * t_c, 0, lod_c, 0.0)
                     taken = taken + 1
                     cloud = int(0)
-                    if r_c > 0.0:
-                        cloud = 1
+                    if t_c >= skip_end:
+                        q_c = eye + d * t_c
+                        skip_end = empty_until(p, tex, q_c, t_c, speed_h)
+                        if t_c >= skip_end:
+                            fp_c = wp.max(t_c * pixel_angle, dt_view)
+                            lod_c = float(0.0)
+                            if p.lod != 0:
+                                lod_c = cloudscape_lod(fp_c, p.base_scale_km / float(tex.base_size), p.lod_bias)
+                            r_c, p_c = cloudscape_density_lod(p, tex, q_c, 0, lod_c, 0.0)
+                            if r_c > 0.0:
+                                cloud = 1
                     if cloud == 0 and prev_cloud == 0:
                         m = m + k
                         continue
@@ -398,6 +481,11 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 pos = eye + d * t_i
                 m = m + 1
                 taken = taken + 1
+                if t_i < skip_end:
+                    continue
+                skip_end = empty_until(p, tex, pos, t_i, speed_h)
+                if t_i < skip_end:
+                    continue
                 lod_b = float(0.0)
                 lod_d = float(0.0)
                 lod_lb = float(0.0)

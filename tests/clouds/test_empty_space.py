@@ -1,0 +1,119 @@
+"""The empty-space skipping of the cloudscape march (Warp only): the map it reads, and frames that are bit for bit
+those of the march without it; and the de-tiled weather's short cuts (one map read where the selector is 0 or 1)."""
+import numpy as np
+import pytest
+
+from pywarp.clouds import cloudscape as C
+from pywarp.clouds.settings import CloudscapeSettings
+from pywarp.kernels import cloudscape as K
+from tests.clouds.test_artefacts import small_textures, weather_c  # noqa: F401 (a fixture)
+
+
+def _brute_distance(cov, cap):
+    """Chebyshev distance on the torus to the nearest texel with coverage not <= 0, by brute force."""
+    n = cov.shape[0]
+    occ = np.argwhere(~(cov <= 0.0))
+    out = np.zeros(cov.shape, dtype=np.int64)
+    for y in range(n):
+        for x in range(n):
+            dy = np.abs(occ[:, 0] - y)
+            dx = np.abs(occ[:, 1] - x)
+            dy = np.minimum(dy, n - dy)
+            dx = np.minimum(dx, n - dx)
+            out[y, x] = min(cap, int(np.min(np.maximum(dx, dy)))) if len(occ) else cap
+    return out
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_empty_distance_equals_brute_force(seed):
+    rng = np.random.default_rng(seed)
+    n = 32
+    w = np.zeros((n, n, 4), dtype=np.float32)
+    # a few occupied blobs near the edges (the torus wraps) and a NaN, which counts as occupied
+    for _ in range(4):
+        y, x = rng.integers(0, n, 2)
+        w[y, x, 0] = rng.uniform(0.01, 1.0)
+    w[rng.integers(0, n), rng.integers(0, n), 0] = np.nan
+    w[..., 1:] = rng.uniform(0, 1, (n, n, 3))  # other channels do not matter
+    got = K.weather_empty_distance(w, cap=9)
+    np.testing.assert_array_equal(got, _brute_distance(w[..., 0], 9))
+
+
+def test_empty_distance_all_empty_is_capped_and_all_occupied_is_zero():
+    z = np.zeros((16, 16, 4), dtype=np.float32)
+    assert (K.weather_empty_distance(z, cap=5) == 5).all()
+    z[..., 0] = 0.5
+    assert (K.weather_empty_distance(z, cap=5) == 0).all()
+
+
+def _pair(**kw):
+    s = CloudscapeSettings(width=96, height=54, threads=2, **kw)
+    t = C.CloudscapeTechnique(s)
+    pose = C.CameraPose.from_settings(s)
+    tex = t.textures.warp()
+    out = []
+    for skip in (1, 0):
+        tex.empty_skip = skip
+        t.frame = 0
+        out.append((t.render(pose, reprojection=False, encode=False), t.samples_taken()))
+    tex.empty_skip = 1
+    return out
+
+
+@pytest.mark.parametrize("kw", [dict(), dict(camera_pitch_deg=-30.0, camera_altitude_km=8.0),
+                                dict(weather_detile=False, camera_pitch_deg=60.0),
+                                dict(camera_pitch_deg=2.0, coverage=0.3)],
+                         ids=["default", "above", "no-detile-up", "horizon"])
+def test_skipping_changes_no_pixel(kw):
+    (a, sa), (b, sb) = _pair(**kw)
+    np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(sa, sb)
+
+
+def test_skipping_has_work_to_skip():
+    # the map of the default textures has wide empty regions: without them the skipping would test nothing
+    s = CloudscapeSettings(width=8, height=8)
+    w = C.RenderTextures.generate(s).weather
+    d = K.weather_empty_distance(w)
+    assert (d >= K.EMPTY_MARGIN + 4).mean() > 0.2
+
+
+def _bilinear_np(tex, u, v):
+    """Periodic bilinear lookup, texel centres at (i + 0.5) / n, in float64 (independent of the samplers)."""
+    n = tex.shape[0]
+    x, y = u * n - 0.5, v * n - 0.5
+    x0, y0 = np.floor(x), np.floor(y)
+    tx, ty = (x - x0)[:, None], (y - y0)[:, None]
+    x0, y0 = x0.astype(np.int64) % n, y0.astype(np.int64) % n
+    x1, y1 = (x0 + 1) % n, (y0 + 1) % n
+    t = tex.astype(np.float64)
+    c0 = t[y0, x0] + (t[y0, x1] - t[y0, x0]) * tx
+    c1 = t[y1, x0] + (t[y1, x1] - t[y1, x0]) * tx
+    return c0 + (c1 - c0) * ty
+
+
+def test_detiled_weather_equals_the_blend_everywhere(small_textures):
+    """The de-tiled weather (C, which reads one map where the selector is 0 or 1) against the full blend
+    a + (b - a) smoothstep(k) written out in float64, at points with selectors 0, 1 and between."""
+    from dataclasses import replace
+
+    wd = K.WEATHER_DETILE
+    s = replace(CloudscapeSettings(base_size=32, detail_size=16, curl_size=32, weather_size=128), wind_speed_kmh=0.0)
+    rng = np.random.default_rng(11)
+    x, z = rng.uniform(-200.0, 200.0, 2000).astype(np.float32), rng.uniform(-200.0, 200.0, 2000).astype(np.float32)
+    got = weather_c(s, small_textures, x, z)
+    # texture coordinates in float32 as the sampler gets them (the lookups and the blend in float64)
+    f = np.float32
+    u, v = x / f(32.0), z / f(32.0)  # the default weather_scale_km, no wind
+    c, sn = f(wd["cos"]), f(wd["sin"])
+    w = small_textures.weather
+    a = _bilinear_np(w, u, v)
+    b = _bilinear_np(w, (c * u - sn * v) / f(wd["scale_b"]) + f(wd["shift_u"]),
+                     (sn * u + c * v) / f(wd["scale_b"]) + f(wd["shift_v"]))
+    m = _bilinear_np(w, (c * u + sn * v) / f(wd["scale_m"]) + f(wd["shift_v"]),
+                     (c * v - sn * u) / f(wd["scale_m"]) + f(wd["shift_u"]))
+    k = np.clip((m[:, 0] - wd["edge0"]) / (wd["edge1"] - wd["edge0"]), 0.0, 1.0)
+    k = (k * k * (3.0 - 2.0 * k))[:, None]
+    want = a + (b - a) * k
+    assert (k == 0).mean() > 0.1 and (k == 1).mean() > 0.02 and ((k > 0) & (k < 1)).mean() > 0.1
+    np.testing.assert_allclose(got, want, rtol=0, atol=2e-6)
