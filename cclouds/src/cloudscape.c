@@ -354,7 +354,8 @@ static const float *mip_level(const float *tex, const float *mips, int size, int
 }
 
 /* Trilinear wrap sample at a fractional mip level (twin of sample_mip in pywarp/kernels/cloudscape.py): level 0 for
- * lod <= 0 or without mips, the last level for lod >= levels - 1, else the blend of floor(lod) and floor(lod) + 1. */
+ * lod <= 0 or without mips, the last level for lod >= levels - 1, else the blend of floor(lod) and floor(lod) + 1
+ * (level lod alone for a whole lod). */
 static void sample_mip(const float *tex, const float *mips, int size, float lod, ccl_vec3 p, float out[4])
 {
     const int levels = mips != NULL ? mip_levels(size) : 1;
@@ -373,6 +374,10 @@ static void sample_mip(const float *tex, const float *mips, int size, float lod,
     k = (int)floorf(lod);
     ccl_texgen_sample_trilinear_wrap(mip_level(tex, mips, size, k), (size >> k) - 1, p.x, p.y, p.z, &a[0], &a[1],
                                      &a[2], &a[3]);
+    if (f == 0.0f) { /* a whole level (the light samples'): one lookup */
+        for (c = 0; c < 4; ++c) out[c] = a[c];
+        return;
+    }
     ccl_texgen_sample_trilinear_wrap(mip_level(tex, mips, size, k + 1), (size >> (k + 1)) - 1, p.x, p.y, p.z, &b[0],
                                      &b[1], &b[2], &b[3]);
     for (c = 0; c < 4; ++c) out[c] = a[c] + (b[c] - a[c]) * f;

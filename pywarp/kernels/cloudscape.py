@@ -261,7 +261,7 @@ def sample_mip_level(tex: wp.array(dtype=wp.vec4), size: int, level: int, p: wp.
 @wp.func
 def sample_mip(tex: wp.array(dtype=wp.vec4), size: int, levels: int, lod: float, p: wp.vec3) -> wp.vec4:
     """Twin of ``sample_mip`` in cloudscape.c: level 0 for lod <= 0, else the blend of levels floor(lod) and
-    floor(lod) + 1 by frac(lod) (the last level for lod >= levels - 1)."""
+    floor(lod) + 1 by frac(lod) (the last level for lod >= levels - 1; level lod alone for a whole lod)."""
     if lod <= 0.0 or levels <= 1:
         return sample_mip_level(tex, size, 0, p)
     top = float(levels - 1)
@@ -271,6 +271,8 @@ def sample_mip(tex: wp.array(dtype=wp.vec4), size: int, levels: int, lod: float,
     f = lod - l0
     k = int(l0)
     a = sample_mip_level(tex, size, k, p)
+    if f == 0.0:  # a whole level (the light samples'): one lookup
+        return a
     b = sample_mip_level(tex, size, k + 1, p)
     return a + (b - a) * f
 
