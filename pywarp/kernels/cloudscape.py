@@ -500,13 +500,16 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                     td = p.detail_scale_km / float(tex.detail_size)
                     lod_b = cloudscape_lod(fp, tb, p.lod_bias)
                     lod_d = cloudscape_lod(fp, td, p.lod_bias)
-                    fl = wp.max(fp, p.light_step_km)
-                    # the light samples at the nearest whole level: one lookup each instead of a blend of two (the
-                    # optical depth towards the sun is a sum of six samples, smooth where the view's colour is not)
-                    lod_lb = wp.floor(cloudscape_lod(fl, tb, p.lod_bias) + 0.5)
-                    lod_ld = wp.floor(cloudscape_lod(fl, td, p.lod_bias) + 0.5)
                 rho, precip = cloudscape_density_lod(p, tex, pos, 1, lod_b, lod_d)
                 if rho > 0.0:
+                    if p.lod != 0:
+                        fl = wp.max(t_i * pixel_angle, p.light_step_km)
+                        # the light samples at the nearest whole level: one lookup each instead of a blend of two
+                        # (the optical depth towards the sun is a sum of six samples, smooth where the view's colour
+                        # is not)
+                        lod_lb = wp.floor(cloudscape_lod(fl, p.base_scale_km / float(tex.base_size), p.lod_bias) + 0.5)
+                        lod_ld = wp.floor(cloudscape_lod(fl, p.detail_scale_km / float(tex.detail_size), p.lod_bias)
+                                          + 0.5)
                     # vc-A19: optical depth towards the sun from 6 cone samples
                     d_light = float(0.0)
                     for j in range(6):
@@ -515,8 +518,9 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                             w = p.light_step_km
                         q = raymarch_light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
                                                            p.light_far_factor, raymarch_light_cone_kernel(j))
-                        rj, pj = cloudscape_density_lod(p, tex, q, p.light_detail, lod_lb, lod_ld)
-                        d_light = d_light + w * rj
+                        if empty_until(p, tex, q, 0.0, 1.0) < 0.0:  # (else certainly 0: no lookup)
+                            rj, pj = cloudscape_density_lod(p, tex, q, p.light_detail, lod_lb, lod_ld)
+                            d_light = d_light + w * rj
                     d_light = d_light * p.sigma_light
                     # vc-2.31 + vc-A20
                     a = p.absorption_base + p.absorption_precip * precip
