@@ -8,7 +8,8 @@ real-time renderer with each lighting model of :data:`MODELS`:
 
 * ``thesis``                -- lighting=thesis: the thesis's constant sun and ambient, one octave, one HG lobe;
 * ``+sky light``            -- lighting=sky with ms_octaves=1, silver_weight=0: sun and ambient from the sky model;
-* ``+multiple scattering``  -- lighting=sky with the settings' octaves (> 1) and silver lobe (weight > 0);
+* ``+multiple scattering``  -- lighting=sky with the settings' octaves (> 1) and silver lobe (both defaults chosen by
+  this comparison, tools/tune_lighting.py: 3 octaves, no second lobe);
 * ``+ms, haze off``         -- a diagnostic: the last with aerial_km = 0. The reference's air does not scatter (no
   aerial perspective), so the difference of the two rows is the part of the error that is the haze.
 
@@ -79,10 +80,8 @@ def model_settings(base, name: str):
         if key not in fields:
             return None, f"needs the setting {key!r}, which this installation does not have"
         changes[key] = fields[key].default if value is None else value
-    if "ms_octaves" in changes and MODELS[name]["ms_octaves"] is None and not (
-            changes["ms_octaves"] > 1 and changes["silver_weight"] > 0):
-        changes["ms_octaves"] = max(changes["ms_octaves"], 3)
-        changes["silver_weight"] = changes["silver_weight"] or 0.3
+    if "ms_octaves" in changes and MODELS[name]["ms_octaves"] is None and not changes["ms_octaves"] > 1:
+        changes["ms_octaves"] = 3  # (an installation whose default is single scattering)
     return replace(base, **changes), None
 
 

@@ -5,7 +5,8 @@ vc-A20, composited by vc-4.8 over the Preetham sky vc-A29) against a Monte Carlo
 field (vc-A17 with detail), sun, sky and ground (pywarp.clouds.reference: delta tracking, multiple scattering,
 next-event estimation towards the sun). Three scenes -- noon, a low sun, from above -- each as the reference and as
 the real-time models "thesis" (constant sun and ambient), "+sky light" (sun and ambient from the sky model) and
-"+multiple scattering" (octaves and the silver-lining lobe); under each model its SSIM and mean CIEDE2000 against
+"+multiple scattering" (the octaves; the silver-lining lobe is off by default, as tools/tune_lighting.py measured
+it to raise the error); under each model its SSIM and mean CIEDE2000 against
 the reference after the best single exposure scale (pywarp.clouds.bench_reference, the same numbers as
 `pywarp bench clouds reference`). Output: figures/vc/extra-reference.png.
 """

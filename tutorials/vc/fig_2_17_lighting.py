@@ -63,7 +63,7 @@ QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, we
 BELOW_TO_SUN = CameraPose(0.0, 0.3, 0.0, 0.0, 15.0, 50.0)
 BELOW_AWAY = CameraPose(0.0, 0.3, 0.0, 0.0, 22.0, 50.0)
 CUMULUS = CameraPose(0.0, 1.0, 0.0, -8.0, 9.0, 40.0)
-SILVER = {"silver_g": 0.8, "silver_weight": 0.3}  # the sky lighting's defaults (ccl_cloudscape_params_default)
+SILVER = {"silver_g": 0.8, "silver_weight": 0.3}  # the option shown (the default is one lobe: silver_weight 0)
 AMBIENT_SCALE = 0.5  # row 3: the ambient constants x 1/2, so that the sun's term dominates
 
 

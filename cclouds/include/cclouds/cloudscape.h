@@ -170,8 +170,8 @@ typedef struct ccl_cloudscape_params {
     float ms_b;                 /* octave i: contribution x ms_b^i, in [0, 1] (default 0.5) */
     float ms_c;                 /* octave i: phase eccentricities x ms_c^i, in [0, 1] (default 0.5) */
     float silver_g;             /* second HG lobe: phase = (1 - w) HG(g) + w HG(silver_g), in (-1, 1) (default 0.8) */
-    float silver_weight;        /* w of the second lobe, in [0, 1]; 0 = the thesis's single HG (default 0.3,
-                                   provisional) */
+    float silver_weight;        /* w of the second lobe, in [0, 1]; 0 = the thesis's single HG (default 0: chosen
+                                   by measurement, see the .c) */
 } ccl_cloudscape_params;
 
 /* Where the light of the cloud pass comes from. */

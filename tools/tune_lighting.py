@@ -1,0 +1,94 @@
+"""Choose the multiple-scattering and silver-lining defaults by measurement: the error of each candidate against the
+path-traced reference of the three scenes of ``pywarp bench clouds reference``.
+
+    python tools/tune_lighting.py [--spp 256] [--width 160 --height 90] [--cache FILE.npz] [--json OUT.json]
+
+The references are rendered once (two independent halves, as the benchmark does; cached in ``--cache`` when given)
+and every candidate -- ``ms_octaves`` x ``silver_weight`` x ``silver_g``, the sky lighting and the other defaults --
+is a 16-frame accumulated still scored as the benchmark scores it (best exposure scale, SSIM and mean CIEDE2000,
+:func:`pywarp.clouds.bench_reference.errors`). The table is sorted by the mean CIEDE2000 over the scenes; the
+defaults in pywarp/clouds/settings.py and cclouds/src/cloudscape.c name the candidate this chose.
+"""
+from __future__ import annotations
+
+import argparse
+import itertools
+import json
+import os
+import sys
+from dataclasses import replace
+
+import numpy as np
+
+OCTAVES = (1, 2, 3, 4)
+SILVER_WEIGHTS = (0.0, 0.15, 0.3, 0.5)
+SILVER_GS = (0.6, 0.8)
+
+
+def references(base, textures, spp, seed=0, cache=None):
+    from pywarp.clouds.bench_reference import SCENES, exposure
+    from pywarp.clouds.reference import ReferenceRenderer
+
+    if cache and os.path.exists(cache):
+        z = np.load(cache)
+        if int(z["spp"]) == spp and tuple(z["size"]) == (base.width, base.height):
+            return {k: z["ref_" + k] for k in SCENES}
+    out = {}
+    for name, changes in SCENES.items():
+        s = replace(base, lighting="sky", **changes)
+        half = spp // 2
+        a = ReferenceRenderer(s, textures, spp=half, seed=seed).render(encode=False).astype(np.float64)
+        b = ReferenceRenderer(s, textures, spp=spp - half, seed=seed + 1).render(encode=False).astype(np.float64)
+        ref = (half * a + (spp - half) * b) / spp
+        out[name] = ref * exposure(ref)
+        print(f"reference {name}: done", file=sys.stderr, flush=True)
+    if cache:
+        np.savez(cache, spp=spp, size=(base.width, base.height), **{"ref_" + k: v for k, v in out.items()})
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--spp", type=int, default=256)
+    ap.add_argument("--width", type=int, default=160)
+    ap.add_argument("--height", type=int, default=90)
+    ap.add_argument("--cache", default=None)
+    ap.add_argument("--json", default=None)
+    a = ap.parse_args(argv)
+
+    from pywarp.clouds.bench_reference import ACCUMULATE, SCENES, errors
+    from pywarp.clouds.cloudscape import CloudscapeTechnique, RenderTextures
+    from pywarp.clouds.settings import CloudscapeSettings
+
+    base = CloudscapeSettings(width=a.width, height=a.height)
+    textures = RenderTextures.generate(base)
+    refs = references(base, textures, a.spp, cache=a.cache)
+    rows = []
+    for oct_, w, g in itertools.product(OCTAVES, SILVER_WEIGHTS, SILVER_GS):
+        if w == 0.0 and g != SILVER_GS[0]:
+            continue  # no second lobe: its g does not matter
+        per = {}
+        for name, changes in SCENES.items():
+            s = replace(base, lighting="sky", ms_octaves=oct_, silver_weight=w, silver_g=g, **changes)
+            lin = CloudscapeTechnique(s, textures=textures).render_accumulated(None, ACCUMULATE, encode=False)
+            e = errors(lin, refs[name])
+            per[name] = {"ssim": e["ssim"], "delta_e": e["delta_e"]}
+        row = {"ms_octaves": oct_, "silver_weight": w, "silver_g": g, "scenes": per,
+               "mean_delta_e": float(np.mean([v["delta_e"] for v in per.values()])),
+               "mean_ssim": float(np.mean([v["ssim"] for v in per.values()]))}
+        rows.append(row)
+        print(f"octaves {oct_} silver w {w:.2f} g {g:.2f}: mean dE {row['mean_delta_e']:.2f} "
+              f"SSIM {row['mean_ssim']:.3f}  " + "  ".join(f"{k} {v['ssim']:.3f}/{v['delta_e']:.2f}"
+                                                          for k, v in per.items()), flush=True)
+    rows.sort(key=lambda r: r["mean_delta_e"])
+    print("\nbest by mean CIEDE2000:")
+    for r in rows[:5]:
+        print(f"  octaves {r['ms_octaves']} silver_weight {r['silver_weight']} silver_g {r['silver_g']}: "
+              f"dE {r['mean_delta_e']:.2f}, SSIM {r['mean_ssim']:.3f}")
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump({"spp": a.spp, "size": [a.width, a.height], "rows": rows}, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
