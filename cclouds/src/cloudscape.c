@@ -783,21 +783,50 @@ static float aerial_air_km(const ccl_cloudscape_params *p, ccl_vec3 eye, ccl_vec
     return t_air < t ? t_air : t;
 }
 
+/* The pixel's coverage by the Earth (sky lighting's anti-aliased horizon): the ray's elevation above the horizon
+ * seen from the eye, a = asin(d . up) + acos(r_earth / |eye - centre|) (the horizon dips below the horizontal), in
+ * units of the pixel's angular size, box-filtered: clamp(0.5 - a / pixel_angle, 0, 1) -- 1 well below the horizon,
+ * 0 well above, the covered fraction of a pixel the horizon crosses. Twin of horizon_coverage in
+ * pywarp/kernels/cloudscape.py. */
+static float horizon_coverage(const ccl_cloudscape_params *p, ccl_vec3 eye, ccl_vec3 d, float pixel_angle)
+{
+    const ccl_vec3 r = ccl_vec3_sub(eye, p->layer.centre);
+    const float len = ccl_vec3_length(r);
+    float s = ccl_vec3_dot(d, r) / len, q = p->layer.r_earth / len, a, cov;
+    s = s > 1.0f ? 1.0f : (s < -1.0f ? -1.0f : s);
+    q = q > 1.0f ? 1.0f : q;
+    if (!(pixel_angle > 0.0f)) return s < 0.0f ? 1.0f : 0.0f;
+    a = asinf(s) + acosf(q);
+    cov = 0.5f - a / pixel_angle;
+    return cov < 0.0f ? 0.0f : (cov > 1.0f ? 1.0f : cov);
+}
+
 /* Sky lighting's ground and aerial perspective (see "Lighting" in cloudscape.h): out = B T + C' with B the lit ground
- * faded by distance (ground) or the haze colour (sky), C' the clouds faded by their mean distance. */
+ * faded by distance (ground) or the haze colour (sky), C' the clouds faded by their mean distance. B is anti-aliased
+ * at the horizon: the haze + (ground - haze) x the pixel's coverage by the Earth (horizon_coverage), the ground of a
+ * ray that passes above the Earth taken at the horizon's distance. */
 static void sky_lit_composite(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye, ccl_vec3 d,
                               ccl_vec3 sun, const float haze[3], int ground, float t_ground, const float cl[3],
-                              float trans, float depth_km, float *out_rgb)
+                              float trans, float depth_km, float pixel_angle, float *out_rgb)
 {
     float bg[3], f_g = 1.0f, f_c = 1.0f;
+    const float cov = horizon_coverage(p, eye, d, pixel_angle);
     int c;
+    if (!ground && cov > 0.0f) {
+        /* a ray just above the horizon, in a pixel the horizon crosses: the ground at the horizon's distance */
+        const float len = ccl_vec3_length(ccl_vec3_sub(eye, p->layer.centre));
+        const float h2 = (len - p->layer.r_earth) * (len + p->layer.r_earth);
+        t_ground = h2 > 0.0f ? sqrtf(h2) : 0.0f;
+    }
     if (p->aerial_km > 0.0f) {
         f_g = expf(-aerial_air_km(p, eye, d, t_ground) / p->aerial_km);
         f_c = expf(-aerial_air_km(p, eye, d, depth_km) / p->aerial_km);
     }
-    if (ground) {
+    if (ground || cov > 0.0f) {
         ccl_cloudscape_ground(p, t, ccl_vec3_add(eye, ccl_vec3_scale(d, t_ground)), sun, bg, NULL);
         for (c = 0; c < 3; ++c) bg[c] = bg[c] * f_g + haze[c] * (1.0f - f_g);
+        if (cov < 1.0f)
+            for (c = 0; c < 3; ++c) bg[c] = haze[c] + (bg[c] - haze[c]) * cov;
     } else {
         for (c = 0; c < 3; ++c) bg[c] = haze[c];
     }
@@ -841,7 +870,7 @@ void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textur
         /* the haze colour: the sky towards the horizon in the ray's azimuth */
         const ccl_vec3 h = sky_rgb(sky, lift_to_horizon(d), sun);
         const float haze[3] = {h.x, h.y, h.z};
-        sky_lit_composite(p, t, cam->eye, d, sun, haze, ground, t_ground, cl, trans, depth, out_rgb);
+        sky_lit_composite(p, t, cam->eye, d, sun, haze, ground, t_ground, cl, trans, depth, pixel_angle, out_rgb);
         return;
     }
     /* vc-4.8: C_f = B (1 - O_D) + C_clouds, O_D = 1 - T */

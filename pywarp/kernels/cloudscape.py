@@ -719,22 +719,61 @@ def aerial_air_km(p: CloudscapeParams, eye: wp.vec3, d: wp.vec3, t: float) -> fl
 
 
 @wp.func
+def horizon_coverage(p: CloudscapeParams, eye: wp.vec3, d: wp.vec3, pixel_angle: float) -> float:
+    """The pixel's coverage by the Earth (twin of ``horizon_coverage`` in cloudscape.c): the ray's elevation above the
+    horizon seen from the eye, a = asin(d . up) + acos(r_earth / |eye - centre|), over the pixel's angular size,
+    box-filtered: clamp(0.5 - a / pixel_angle, 0, 1)."""
+    r = eye - p.centre
+    ln = wp.length(r)
+    s = wp.dot(d, r) / ln
+    q = p.r_earth / ln
+    if s > 1.0:
+        s = 1.0
+    elif s < -1.0:
+        s = -1.0
+    if q > 1.0:
+        q = 1.0
+    if not (pixel_angle > 0.0):
+        if s < 0.0:
+            return 1.0
+        return 0.0
+    a = wp.asin(s) + wp.acos(q)
+    cov = 0.5 - a / pixel_angle
+    if cov < 0.0:
+        return 0.0
+    if cov > 1.0:
+        return 1.0
+    return cov
+
+
+@wp.func
 def sky_lit_composite(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, sun: wp.vec3,
-                      haze: wp.vec3, cl: wp.vec3, trans: float, depth: float) -> wp.vec3:
+                      haze: wp.vec3, cl: wp.vec3, trans: float, depth: float, pixel_angle: float) -> wp.vec3:
     """Sky lighting's ground and aerial perspective (twin of ``sky_lit_composite`` in cloudscape.c): B T + C' with B
     the lit ground faded by its distance (ground) or the haze colour (sky), C' the clouds faded by their mean
-    distance."""
+    distance. B is anti-aliased at the horizon: haze + (ground - haze) x the pixel's coverage by the Earth
+    (:func:`horizon_coverage`), the ground of a ray that passes above the Earth taken at the horizon's distance."""
     ground, t_ground = ground_hit(p, eye, d)
+    cov = horizon_coverage(p, eye, d, pixel_angle)
+    if ground == 0 and cov > 0.0:
+        ln = wp.length(eye - p.centre)
+        h2 = (ln - p.r_earth) * (ln + p.r_earth)
+        t_ground = float(0.0)
+        if h2 > 0.0:
+            t_ground = wp.sqrt(h2)
     f_g = float(1.0)
     f_c = float(1.0)
     if p.aerial_km > 0.0:
         f_g = wp.exp(-aerial_air_km(p, eye, d, t_ground) / p.aerial_km)
         f_c = wp.exp(-aerial_air_km(p, eye, d, depth) / p.aerial_km)
     bg = haze
-    if ground != 0:
+    if ground != 0 or cov > 0.0:
         g, shadow = cloudscape_ground(p, tex, eye + d * t_ground, sun)
         bg = wp.vec3(g[0] * f_g + haze[0] * (1.0 - f_g), g[1] * f_g + haze[1] * (1.0 - f_g),
                      g[2] * f_g + haze[2] * (1.0 - f_g))
+        if cov < 1.0:
+            bg = wp.vec3(haze[0] + (bg[0] - haze[0]) * cov, haze[1] + (bg[1] - haze[1]) * cov,
+                         haze[2] + (bg[2] - haze[2]) * cov)
     o_d = 1.0 - trans
     return wp.vec3(clouds_composite(bg[0], o_d, cl[0] * f_c + haze[0] * (o_d * (1.0 - f_c))),
                    clouds_composite(bg[1], o_d, cl[1] * f_c + haze[1] * (o_d * (1.0 - f_c))),
@@ -765,10 +804,10 @@ def cloudscape_pixel(p: CloudscapeParams, tex: CloudTextures, sky_kind: int,
     """Twin of ``ccl_cloudscape_pixel``: the display-linear colour of one pixel (sky, clouds, composite)."""
     d, offset = pixel_ray(p, inv_view_proj_rot, x, y, width, height, frame)
     bg = background(p, sky_kind, eye, d, sun, preetham, gradient)
-    cl, trans, taken, depth = cloudscape_march(p, tex, eye, d, sun, offset,
-                                               pixel_angle(inv_view_proj_rot, x, y, width, height))
+    pa = pixel_angle(inv_view_proj_rot, x, y, width, height)
+    cl, trans, taken, depth = cloudscape_march(p, tex, eye, d, sun, offset, pa)
     if p.lighting == LIGHTING_SKY:  # bg is the haze colour
-        return sky_lit_composite(p, tex, eye, d, sun, bg, cl, trans, depth)
+        return sky_lit_composite(p, tex, eye, d, sun, bg, cl, trans, depth, pa)
     o_d = 1.0 - trans
     return wp.vec3(clouds_composite(bg[0], o_d, cl[0]), clouds_composite(bg[1], o_d, cl[1]),
                    clouds_composite(bg[2], o_d, cl[2]))
@@ -818,13 +857,13 @@ def clouds_kernel(row0: int, p: CloudscapeParams, tex: CloudTextures, sun: wp.ve
         x, y = reproj_pixel(j, row0 + i, frame)
     if x < width and y < height:
         d, offset = pixel_ray(p, inv_view_proj_rot, x, y, width, height, frame)
-        cl, trans, taken, depth = cloudscape_march(p, tex, eye, d, sun, offset,
-                                                   pixel_angle(inv_view_proj_rot, x, y, width, height))
+        pa = pixel_angle(inv_view_proj_rot, x, y, width, height)
+        cl, trans, taken, depth = cloudscape_march(p, tex, eye, d, sun, offset, pa)
         o_d = 1.0 - trans
         if p.lighting == LIGHTING_SKY:
             # the sky pass wrote the haze colour (the sky lifted to the horizon): ground, aerial perspective
             haze = wp.vec3(frame_buffer[y, x, 0], frame_buffer[y, x, 1], frame_buffer[y, x, 2])
-            c = sky_lit_composite(p, tex, eye, d, sun, haze, cl, trans, depth)
+            c = sky_lit_composite(p, tex, eye, d, sun, haze, cl, trans, depth, pa)
             for ch in range(3):
                 frame_buffer[y, x, ch] = c[ch]
                 if reprojection != 0:
