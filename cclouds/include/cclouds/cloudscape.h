@@ -64,6 +64,10 @@
  *                    t_air = H / u (exp(-y_eye / H) - exp(-(y_eye + u t) / H)), at most t (the air is nowhere
  *                  denser than at the ground; t exp(-y_eye / H) (1 - x / 2) for |x| = |u t / H| < 1e-3);
  *                  aerial_height_km = 0: t_air = t, the homogeneous fog C exp(-t / aerial_km) + H (1 - exp(..)).
+ *       horizon  anti-aliased: B = H + (B_ground - H) c with c the pixel's coverage by the Earth, clamp(0.5 - a /
+ *                  pixel_angle, 0, 1), a = asin(d . up) + acos(r_earth / |eye - centre|) the ray's elevation above
+ *                  the horizon (a box filter one pixel high); a ray above the Earth with c > 0 takes the ground at
+ *                  the horizon's distance sqrt(|eye - centre|^2 - r_earth^2).
  *   In both modes the sun energy E of each sample is ccl_cloudscape_energy: the multiple-scattering octaves of
  *   Wrenninge et al. 2013 (as Hillaire 2016, "Physically based sky, atmosphere and cloud rendering in Frostbite"),
  *   E = sum_{i < ms_octaves} ms_b^i E_2.31(ms_a^i d, a, cos_theta, phase with eccentricities x ms_c^i), with the
