@@ -6,8 +6,10 @@ low clouds by a cloud type per ground position (0 stratus, 0.5 stratocumulus, 1 
 channel, vc-A12, with the height gradients of vc-4.7), so four of the genera have a stand-in: stratus (type 0,
 coverage 0.9), stratocumulus (type 0.5, coverage 0.7), cumulus (type 1, coverage 0.3) and a nimbostratus-like
 overcast (type 0.5, coverage 1, precipitation 1: the absorption of vc-2.31 grows with precipitation, so the layer is
-dark grey). The gradients are read as printed (advanced={'gradient_clamp': 0}, see tutorials/vc/fig_2_02_cloud_types.py),
-the weather map's type spread is 0. Camera 0.3 km up looking 18 deg up, 55 deg field of view; sun 30 deg high at
+dark grey). The height gradients are the renderer's (clamped to [0, 1], figs vc-2.15 / vc-4.9): read as printed
+(advanced={'gradient_clamp': 0}, as tutorials/vc/fig_2_02_cloud_types.py shows them) the cumulus profile does not
+fall to 0 below the layer top, and the heaps become flat-sided towers up to 4 km whose walls, seen edge-on, are
+speckled -- no photograph of a cumulus looks like that. The weather map's type spread is 0. Camera 0.3 km up looking 18 deg up, 55 deg field of view; sun 30 deg high at
 azimuth 120 deg; seed 0; 480 x 270. The other genera are high or middle clouds, outside the vc layer
 (pywarp/data/figure_status.json). Outputs: figures/oc/fig-2.6.png, fig-2.7.png, fig-2.8.png, fig-2.9.png.
 """
@@ -36,7 +38,7 @@ GENERA = (("fig-2.6.png", "nimbostratus-like overcast (type 0.5, coverage 1, pre
           ("fig-2.8.png", "stratus (type 0, coverage 0.9)", dict(cloud_type=0.0, coverage=0.9)),
           ("fig-2.9.png", "cumulus (type 1, coverage 0.3)", dict(cloud_type=1.0, coverage=0.3)))
 SCENE = dict(precipitation=0.2, seed=0, sun_elevation_deg=30.0, sun_azimuth_deg=120.0, camera_altitude_km=0.3,
-             camera_pitch_deg=18.0, fov_y_deg=55.0, advanced={"gradient_clamp": 0})
+             camera_pitch_deg=18.0, fov_y_deg=55.0)
 FULL = dict(width=480, height=270)
 QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
 
