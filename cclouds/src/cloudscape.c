@@ -54,7 +54,13 @@
  *                             0 < D_h < B D_v, as rings around the covered areas (figures/vc/fig-4.10.png shows it).
  *                             C := 1 - D_h (the form of many implementations) makes more coverage give more cloud.
  *                             The renderer defaults to 1 - D_h; CCL_COVERAGE_SAME renders the literal reading.
- *   beer 1, powder 1          both terms of vc-2.31 on (the formula as printed).
+ *   beer 1, powder 0          Beer's term of vc-2.31 on, its powder term off (replaced by 1). Measured against the
+ *                             path-traced reference (tools/tune_lighting.py, three scenes, 192 paths per pixel,
+ *                             sky lighting with 4 octaves): with the powder term the mean CIEDE2000 is 13.4 and the
+ *                             mean SSIM 0.646, without it 9.0 and 0.774. The term darkens every sample whose path
+ *                             towards the sun is short -- a dark rim along each cloud's sunward edge, which shows as
+ *                             thin dark crease lines where one cloud's edge lies over another. The thesis's renderer
+ *                             (the formula as printed) sets powder = 1.
  *   gradient_clamp 1          the height gradients are clamped to [0, 1] in the renderer: unclamped, D_v peaks at
  *                             2.18 and the coverage remap then amplifies density instead of thinning it
  *                             (pywarp.kernels.clouds documents the effect); clamped, coverage is monotonic.
@@ -83,16 +89,17 @@
  *   aerial_height_km 2        the haze that limits the visual range is mostly aerosol, held in the lowest kilometres
  *                             (aerosol scale heights 1-2 km; the air's own, Rayleigh, is 8 km): seen from 8 km up the
  *                             ground is then veiled, not lost in a homogeneous fog 8 km deep.
- *   ms_octaves 3, ms_a = ms_b = ms_c = 0.5   each octave halves the optical depth, the contribution and the phase
+ *   ms_octaves 4, ms_a = ms_b = ms_c = 0.5   each octave halves the optical depth, the contribution and the phase
  *                             eccentricity (the octave form of Wrenninge et al. 2013 as Hillaire 2016 uses it, which
- *                             needs a <= b to conserve energy); 0.5 for all three is our choice; three octaves bring
- *                             the sum of the contributions to 1.75 (of 2 for infinitely many). Chosen by measurement
+ *                             needs a <= b to conserve energy); 0.5 for all three is our choice; four octaves bring
+ *                             the sum of the contributions to 1.875 (of 2 for infinitely many). Chosen by measurement
  *                             (tools/tune_lighting.py: mean CIEDE2000 against the path-traced reference of three
- *                             scenes, 192 paths per pixel): 1 octave 14.73, 2: 13.87, 3: 13.50, 4: 13.37 -- the
- *                             fourth gains 0.13 for a fourth of the lighting's cost.
+ *                             scenes, 192 paths per pixel; powder off, no second lobe): 1 octave 12.16, 2: 10.26,
+ *                             3: 9.43, 4: 9.04, 5: 8.85, 6: 8.77, 8: 8.70 -- four is the fewest within 0.5 of the
+ *                             best (mean SSIM 0.774 against 0.776 for eight).
  *   silver_g 0.8, silver_weight 0   no second lobe: by the same measurement every weight raises the error in every
- *                             scene (3 octaves: w 0 13.50, 0.15 13.67, 0.3 13.83, 0.5 14.06) -- the medium's phase
- *                             function is the one HG lobe g; the lobe stays an option (fig 2.17 shows it). */
+ *                             scene (4 octaves: w 0 9.04, 0.15 9.25, 0.3 with silver_g 0.8 9.71) -- the medium's
+ *                             phase function is the one HG lobe g; the lobe stays an option (fig 2.17 shows it). */
 void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
 {
     static const float sun[3] = {12.0f, 11.52f, 10.56f};
@@ -132,7 +139,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     memcpy(out->ground_colour, ground, sizeof ground);
     out->coverage_threshold = CCL_COVERAGE_ONE_MINUS;
     out->beer = 1;
-    out->powder = 1;
+    out->powder = 0;
     out->lighting = CCL_LIGHTING_SKY;
     out->sun_intensity = 16.0f;
     out->turbidity = 2.5f;
@@ -141,7 +148,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     memcpy(out->ground_albedo, albedo, sizeof albedo);
     out->aerial_km = 30.0f;
     out->aerial_height_km = 2.0f;
-    out->ms_octaves = 3;
+    out->ms_octaves = 4;
     out->ms_a = 0.5f;
     out->ms_b = 0.5f;
     out->ms_c = 0.5f;

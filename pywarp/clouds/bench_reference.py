@@ -6,10 +6,13 @@ Three fixed scenes (:data:`SCENES`: noon; a low sun, 5 deg; from above, 8 km up 
 by :class:`pywarp.clouds.reference.ReferenceRenderer` (the same density field, sun, sky and ground) and by the
 real-time renderer with each lighting model of :data:`MODELS`:
 
-* ``thesis``                -- lighting=thesis: the thesis's constant sun and ambient, one octave, one HG lobe;
+* ``thesis``                -- lighting=thesis: the thesis's constant sun and ambient, one octave, one HG lobe, the
+  powder term (vc-2.31 as printed);
 * ``+sky light``            -- lighting=sky with ms_octaves=1, silver_weight=0: sun and ambient from the sky model;
 * ``+multiple scattering``  -- lighting=sky with the settings' octaves (> 1) and silver lobe (both defaults chosen by
-  this comparison, tools/tune_lighting.py: 3 octaves, no second lobe);
+  this comparison, tools/tune_lighting.py: 4 octaves, no second lobe), still with the powder term;
+* ``+powder off``           -- the renderer's defaults: the last without the powder term (off by default, chosen by
+  the same measurement);
 * ``+ms, haze off``         -- a diagnostic: the last with aerial_km = 0. The reference's air does not scatter (no
   aerial perspective), so the difference of the two rows is the part of the error that is the haze.
 
@@ -49,15 +52,16 @@ SCENES = {
 }
 #: The real-time lighting models: settings changes (None: the setting's default, which must satisfy the model).
 MODELS = {
-    "thesis": dict(lighting="thesis", ms_octaves=1, silver_weight=0.0),
-    "+sky light": dict(lighting="sky", ms_octaves=1, silver_weight=0.0),
-    "+multiple scattering": dict(lighting="sky", ms_octaves=None, silver_weight=None),
+    "thesis": dict(lighting="thesis", ms_octaves=1, silver_weight=0.0, powder=True),
+    "+sky light": dict(lighting="sky", ms_octaves=1, silver_weight=0.0, powder=True),
+    "+multiple scattering": dict(lighting="sky", ms_octaves=None, silver_weight=None, powder=True),
+    "+powder off": dict(lighting="sky", ms_octaves=None, silver_weight=None, powder=None),
     # a diagnostic, not a model: the reference has no aerial perspective (its air does not scatter), so this row
     # shows how much of the last model's error is the haze
-    "+ms, haze off": dict(lighting="sky", ms_octaves=None, silver_weight=None, aerial_km=0.0),
+    "+ms, haze off": dict(lighting="sky", ms_octaves=None, silver_weight=None, powder=None, aerial_km=0.0),
 }
-#: The three models of the comparison (the rest of MODELS are diagnostics).
-MAIN_MODELS = ("thesis", "+sky light", "+multiple scattering")
+#: The models of the comparison (the rest of MODELS are diagnostics).
+MAIN_MODELS = ("thesis", "+sky light", "+multiple scattering", "+powder off")
 #: Percentile of the reference's largest channel mapped to display white (step 1 above): 99.5, so that the
 #: brightest 0.5 % (the sunlit cloud edges) may clip, as a photograph exposed for the clouds would.
 WHITE_PERCENTILE = 99.5

@@ -427,7 +427,7 @@ def test_silver_lobe_brightens_clouds_towards_the_sun(tech):
 #: The thesis's renderer: its lighting, and every later change that alters pixels switched off (the level of detail,
 #: the step refinement, the ray jitter's default, the de-tiled weather map, the depth-aware reprojection and its
 #: history filter -- these two alter reprojected frames only; a future change of that kind must add its switch here).
-THESIS_RENDERER = {k: v for k, v in dict(lighting="thesis", lod=False, refine_step_km=0.0, jitter="tilt",
+THESIS_RENDERER = {k: v for k, v in dict(lighting="thesis", powder=True, lod=False, refine_step_km=0.0, jitter="tilt",
                                          weather_detile=False, reprojection_depth="inner_sphere",
                                          reprojection_filter="bilinear").items()
                    if k in {f.name for f in dataclasses.fields(CloudscapeSettings)}}

@@ -5,18 +5,20 @@ The thesis shows reference photographs of the three effects its lighting model t
 stand-in isolates each term of the cloud energy E = exp(-d a) HG(theta, g) (1 - exp(-2 d)) (vc-2.31; HG is vc-2.13,
 the optical depth d towards the sun comes from the six cone samples of vc-A19, a from the precipitation, plus the
 ambient term of vc-A20) in renders of the full cloud pass (vc-A17, vc-A21, vc-4.8; Preetham sky vc-A29), with the
-thesis's constant lighting (lighting='thesis') so that only the term under study changes, and compares the
-renderer's dual-lobe phase (the sky lighting's silver-lining lobe, cclouds/cloudscape.h "Lighting").
+thesis's constant lighting and powder term (lighting='thesis', powder=True) so that only the term under study
+changes, and compares the renderer's dual-lobe phase (the sky lighting's silver-lining lobe, cclouds/cloudscape.h
+"Lighting").
 Renderer: pywarp.clouds.cloudscape. The plots evaluate pywarp.phase_hg, pywarp.clouds_energy and the renderer's
 ccl_cloudscape_energy (multiple-scattering octaves).
 
 Rows (the thesis gives no parameters; coverage 0.45, cloud type 0.75, seed 0, 400x225 per panel):
 (1) silver lining -- camera 0.3 km up looking 15 deg up towards a sun 10 deg above the horizon (50 deg field of
 view): one HG lobe with g = 0 (isotropic), g = 0.2 (the thesis lighting's default), and the dual lobe
-0.7 HG(0.2) + 0.3 HG(0.8) of the sky lighting: the narrow forward lobe lights the cloud edges around the sun;
+0.7 HG(0.2) + 0.3 HG(0.8), the sky lighting's option (silver_weight; off by default): the narrow forward lobe
+lights the cloud edges around the sun;
 (2) powder darkening ("dark edges") -- sun 20 deg up behind the camera (azimuth 180 deg), camera looking 22 deg up:
-the default (Beer x powder), the powder term off (powder=False: 1 - exp(-2 d) replaced by 1) and the Beer term off
-(beer=False);
+vc-2.31 as printed (Beer x powder), the powder term off (powder=False: 1 - exp(-2 d) replaced by 1; the renderer's
+default, measured closer to the path-traced reference by tools/tune_lighting.py) and the Beer term off (beer=False);
 (3) directional light -- one cumulus seen from 1 km up (40 deg field of view), sun 15 deg up from the left (azimuth
 -98 deg, at right angles to the view), from the right (+82 deg) and from behind the camera (172 deg): the side
 facing the sun is bright, the far side is shadowed by the cloud itself (Beer's law on d). This row isolates Beer's
@@ -31,8 +33,9 @@ Output: figures/vc/fig-2.17.png.
 # * **silver lining** — the bright rim of a cloud seen against the sun. Droplets scatter mostly forward; the
 #   Henyey–Greenstein phase function HG(θ, g) with g > 0 has a peak at θ = 0 (looking towards the sun), so thin
 #   edges between the camera and the sun light up. With g = 0 (isotropic) the rim disappears; the thesis's mild
-#   g = 0.2 shows a faint one. Real droplets have a much narrower forward peak: the renderer's sky lighting adds a
-#   second lobe, (1 − w) HG(g) + w HG(0.8) with w = 0.3, and the rims glow.
+#   g = 0.2 shows a faint one. Real droplets have a much narrower forward peak: the renderer's sky lighting can add
+#   a second lobe, (1 − w) HG(g) + w HG(0.8), here with w = 0.3, and the rims glow (off by default: the path-traced
+#   reference, whose medium scatters by the one lobe g, is matched better without it).
 # * **dark edges (powder effect)** — with the sun behind the viewer, the outermost parts of a cumulus look darker
 #   than the parts just inside: a point at the very surface has little cloud around it to scatter light towards the
 #   viewer. The thesis models it with the factor 1 − exp(−2d), which is 0 at d = 0 and goes to 1 inside.
@@ -57,7 +60,7 @@ import pywarp  # noqa: E402
 from pywarp.clouds.cloudscape import (CameraPose, CloudscapeSettings, CloudscapeTechnique, c_params,  # noqa: E402
                                       param_values)
 
-SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, fov_y_deg=50.0, lighting="thesis")
+SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, fov_y_deg=50.0, lighting="thesis", powder=True)
 FULL = dict(width=400, height=225)
 QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
 BELOW_TO_SUN = CameraPose(0.0, 0.3, 0.0, 0.0, 15.0, 50.0)
@@ -76,9 +79,9 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     rows = (
         ("silver lining", BELOW_TO_SUN, dict(sun_elevation_deg=10.0, sun_azimuth_deg=0.0),
          (("one lobe, g = 0 (isotropic)", dict(g=0.0)), ("one lobe, g = 0.2 (thesis)", dict(g=0.2)),
-          ("0.7 HG(0.2) + 0.3 HG(0.8) (sky lighting)", dict(g=0.2, advanced=SILVER)))),
+          ("0.7 HG(0.2) + 0.3 HG(0.8) (option)", dict(g=0.2, advanced=SILVER)))),
         ("dark edges (powder)", BELOW_AWAY, dict(sun_elevation_deg=20.0, sun_azimuth_deg=180.0),
-         (("Beer × powder (default)", {}), ("powder off", dict(powder=False)),
+         (("Beer × powder (vc-2.31)", {}), ("powder off (renderer default)", dict(powder=False)),
           ("Beer off: powder only", dict(beer=False)))),
         ("directional light", CUMULUS, dict(sun_elevation_deg=15.0, advanced=dim, powder=False),
          (("sun from the left", dict(sun_azimuth_deg=-98.0)), ("sun from the right", dict(sun_azimuth_deg=82.0)),
@@ -153,7 +156,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax = fig.add_subplot(gp[2, 0])
     ax.plot(d, pywarp.clouds_energy(d, 1.0, 0.0, 0.2), label="E(d) of 2.31 (1 octave), a = 1")
     ax.plot(d, pywarp.clouds_energy(d, 3.0, 0.0, 0.2), label="E(d) of 2.31, a = 3 (rain)")
-    ax.plot(d, _energy_octaves(d, 1.0, 3), "--", label="3 octaves (sky lighting), a = 1")
+    ax.plot(d, _energy_octaves(d, 1.0, 4), "--", label="4 octaves (sky lighting), a = 1")
     ax.set_xlabel("optical depth towards the sun d", fontsize=8)
     ax.set_ylabel("E [sr⁻¹] (θ = 90°, g = 0.2)", fontsize=8)
     ax.legend(fontsize=7, frameon=False)
@@ -170,10 +173,10 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
 def _energy_octaves(d: np.ndarray, a: float, octaves: int) -> np.ndarray:
     """The renderer's energy (ccl_cloudscape_energy, C) at cos(theta) = 0 with one HG lobe, g = 0.2 and ``octaves``
-    multiple-scattering octaves of the default factors."""
+    multiple-scattering octaves of the default factors, the powder term on (vc-2.31 as printed)."""
     from pywarp.core.binding import lib
 
-    p = c_params(param_values(CloudscapeSettings(ms_octaves=octaves, silver_weight=0.0, g=0.2)))
+    p = c_params(param_values(CloudscapeSettings(ms_octaves=octaves, silver_weight=0.0, g=0.2, powder=True)))
     return np.array([lib().ccl_cloudscape_energy(p, float(x), a, 0.0) for x in d])
 
 

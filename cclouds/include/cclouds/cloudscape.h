@@ -149,7 +149,8 @@ typedef struct ccl_cloudscape_params {
     int coverage_threshold;     /* reading of the undefined C of vc-2.29: CCL_COVERAGE_ONE_MINUS (default) or
                                    CCL_COVERAGE_SAME (C := D_h, the spec's literal reading) -- see the .c */
     int beer;                   /* 1: Beer's term exp(-d a) of vc-2.31 on (default); 0: replaced by 1 */
-    int powder;                 /* 1: the powder term 1 - exp(-2 d) of vc-2.31 on (default); 0: replaced by 1 */
+    int powder;                 /* 1: the powder term 1 - exp(-2 d) of vc-2.31 on (the thesis); 0: replaced by 1
+                                   (default, chosen by measurement: see the .c) */
     int lod;                    /* 1: level of detail (default): base and detail sampled at the mip level of the
                                    sample's footprint, see ccl_cloudscape_lod; 0: full resolution everywhere (thesis) */
     float lod_bias;             /* added to every mip level (default 0; > 0 blurs, < 0 sharpens), in [-4, 4] */
@@ -169,7 +170,7 @@ typedef struct ccl_cloudscape_params {
     float aerial_km;            /* sky mode: aerial-perspective e-folding distance at the ground, km; 0 = off
                                    (default 30) */
     float aerial_height_km;     /* sky mode: scale height of the haze, km; 0 = homogeneous (default 2) */
-    int ms_octaves;             /* multiple-scattering octaves, 1 = single scattering, <= 8 (default 3, provisional) */
+    int ms_octaves;             /* multiple-scattering octaves, 1 = single scattering, <= 8 (default 4, measured) */
     float ms_a;                 /* octave i: optical depth towards the sun x ms_a^i, in [0, 1] (default 0.5) */
     float ms_b;                 /* octave i: contribution x ms_b^i, in [0, 1] (default 0.5) */
     float ms_c;                 /* octave i: phase eccentricities x ms_c^i, in [0, 1] (default 0.5) */
