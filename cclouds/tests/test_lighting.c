@@ -81,6 +81,7 @@ static void test_energy_one_octave_one_lobe_is_vc_2_31(void)
     ccl_cloudscape_params_default(&p);
     p.ms_octaves = 1;
     p.silver_weight = 0.0f;
+    p.powder = 1; /* vc-2.31 as printed (the default is off) */
     for (i = 0; i <= 20; ++i)
         for (j = 0; j <= 10; ++j)
             for (k = 0; k < 3; ++k) {
@@ -97,6 +98,7 @@ static void test_energy_octave_sum_closed_form(void)
     ccl_cloudscape_params p;
     int n, j;
     ccl_cloudscape_params_default(&p);
+    p.powder = 1; /* the closed form below has the powder term */
     p.g = 0.3f;
     p.silver_g = 0.85f;
     p.silver_weight = 0.25f;

@@ -264,9 +264,9 @@ def test_ground_below_the_horizon_sky_above(altitude):
 def test_lighting_terms_switches_only_brighten(tech):
     """Replacing the powder or the Beer term of vc-2.31 by 1 can only raise the light of every sample (both terms
     are <= 1) while the opacity is unchanged, so every pixel gets at least as bright; and some clouds change."""
-    s = small(sky="gradient", jitter="none", camera_pitch_deg=15.0)
+    s = small(sky="gradient", jitter="none", camera_pitch_deg=15.0, powder=True)  # both terms on: vc-2.31 as printed
     on = CloudscapeTechnique(s, textures=tech.textures).render(reprojection=False, encode=False)
-    for kw in (dict(powder=False), dict(beer=False)):
+    for kw in (dict(powder=False), dict(beer=False, powder=True)):
         off = CloudscapeTechnique(small(sky="gradient", jitter="none", camera_pitch_deg=15.0, **kw),
                                   textures=tech.textures).render(reprojection=False, encode=False)
         assert np.all(off >= on)
