@@ -57,9 +57,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             ccl_vec3 c = ccl_sky_preetham_rgb(d, sun, &p);
             ccl_vec3 h = ccl_sky_preetham_hdr(d, sun, &p);
             ccl_vec3 x = ccl_sky_preetham_xyY(d, sun, &p);
-            /* the thesis variant's tone map 1 - exp(+k C) is <= 0 and reaches -Inf for k C > 88 (documented) */
+            /* the thesis variant's tone map 1 - exp(+k C) is <= 0 and reaches -Inf for k C > 88 (documented) where
+             * the HDR colour C is >= 0; a channel of a colour outside the sRGB gamut (the xyY -> RGB matrix: e.g. the
+             * blue of the horizon under a sun on the horizon at T = 2) is negative, and there 1 - exp(k C) is in [0, 1]
+             * (0 or 1 where k C rounds to 0 or exp underflows) */
             if (variant == CCL_VARIANT_THESIS)
-                FZ_CHECK(c.x <= 0.0f && c.y <= 0.0f && c.z <= 0.0f, "thesis preetham_rgb not <= 0");
+                FZ_CHECK((h.x >= 0.0f ? c.x <= 0.0f : c.x >= 0.0f && c.x <= 1.0f) &&
+                         (h.y >= 0.0f ? c.y <= 0.0f : c.y >= 0.0f && c.y <= 1.0f) &&
+                         (h.z >= 0.0f ? c.z <= 0.0f : c.z >= 0.0f && c.z <= 1.0f),
+                         "thesis preetham_rgb not 1 - exp(k C) in sign (c %g %g %g, hdr %g %g %g)", (double)c.x,
+                         (double)c.y, (double)c.z, (double)h.x, (double)h.y, (double)h.z);
             else
             FZ_CHECK(isfinite(c.x) && isfinite(c.y) && isfinite(c.z), "preetham_rgb not finite (T %g, theta_s %.9g, "
                      "k %g, variant %d, d %g %g %g)", (double)turbidity, (double)theta_s, (double)exposure, variant,

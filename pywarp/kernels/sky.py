@@ -359,8 +359,12 @@ def sky_preetham_hdr(d: wp.vec3, sun: wp.vec3, p: Preetham) -> wp.vec3:
 @wp.func
 def sky_preetham_rgb(d: wp.vec3, sun: wp.vec3, p: Preetham) -> wp.vec3:
     """Preetham sky (vc-A29) as the thesis writes it to the frame buffer: HDR RGB, tone map 4.5 per channel.
-    Linear (apply colour_srgb_encode for display), not clamped."""
+    Linear (apply colour_srgb_encode for display), not clamped. The corrected variant first clips a negative channel
+    (a colour outside the sRGB gamut, e.g. the horizon's blue under a setting sun) to 0: 1 - exp(-k C) of a negative C
+    is negative and reaches -Inf for a large exposure k (twin of ``ccl_sky_preetham_rgb``)."""
     c = sky_preetham_hdr(d, sun, p)
+    if p.variant == 0:  # CCL_VARIANT_CORRECTED
+        c = wp.vec3(wp.max(c[0], 0.0), wp.max(c[1], 0.0), wp.max(c[2], 0.0))
     return wp.vec3(colour_tonemap_exp(c[0], p.exposure, p.variant), colour_tonemap_exp(c[1], p.exposure, p.variant),
                    colour_tonemap_exp(c[2], p.exposure, p.variant))
 
