@@ -258,9 +258,9 @@ ccl_vec3 ccl_sky_preetham_rgb(ccl_vec3 dir, ccl_vec3 sun, const ccl_preetham *p)
     /* corrected: a channel outside the sRGB gamut (negative: e.g. the horizon's blue under a setting sun) is clipped
      * to 0, as 1 - exp(-k C) of a negative C is negative and reaches -Inf for a large exposure k */
     if (p->variant == CCL_VARIANT_CORRECTED) {
-        c.x = c.x > 0.0f ? c.x : 0.0f;
-        c.y = c.y > 0.0f ? c.y : 0.0f;
-        c.z = c.z > 0.0f ? c.z : 0.0f;
+        c.x = c.x < 0.0f ? 0.0f : c.x; /* (a NaN stays NaN) */
+        c.y = c.y < 0.0f ? 0.0f : c.y;
+        c.z = c.z < 0.0f ? 0.0f : c.z;
     }
     /* 4.5 per channel */
     c.x = ccl_colour_tonemap_exp(c.x, p->exposure, (ccl_variant)p->variant);

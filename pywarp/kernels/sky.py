@@ -364,7 +364,8 @@ def sky_preetham_rgb(d: wp.vec3, sun: wp.vec3, p: Preetham) -> wp.vec3:
     is negative and reaches -Inf for a large exposure k (twin of ``ccl_sky_preetham_rgb``)."""
     c = sky_preetham_hdr(d, sun, p)
     if p.variant == 0:  # CCL_VARIANT_CORRECTED
-        c = wp.vec3(wp.max(c[0], 0.0), wp.max(c[1], 0.0), wp.max(c[2], 0.0))
+        c = wp.vec3(wp.where(c[0] < 0.0, 0.0, c[0]), wp.where(c[1] < 0.0, 0.0, c[1]),
+                    wp.where(c[2] < 0.0, 0.0, c[2]))  # (a NaN stays NaN)
     return wp.vec3(colour_tonemap_exp(c[0], p.exposure, p.variant), colour_tonemap_exp(c[1], p.exposure, p.variant),
                    colour_tonemap_exp(c[2], p.exposure, p.variant))
 
