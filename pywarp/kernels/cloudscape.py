@@ -205,6 +205,32 @@ def weather_empty_distance(weather: np.ndarray, cap: int = EMPTY_CAP) -> np.ndar
     return dist
 
 
+#: Relative and absolute margin of :func:`base_shape_bound` over the bound in exact arithmetic: the float32 trilinear
+#: blend of a convex combination and the float32 remap of vc-2.28 may exceed it by a few ulps (~1e-7); the margin is
+#: a hundred times that, and still skips nearly every sample the exact bound would (B_D > 0 needs B D_v > C).
+BASE_BOUND_MARGIN = 1.0e-5
+
+
+def base_shape_bound(chain: np.ndarray) -> float:
+    """An upper bound of the base shape B = remap(C_R, L_FBM - 1, 1, 0, 1) of vc-2.28 at any sample of a base mip
+    chain ``chain[texels, 4]`` (:func:`mip_chain`), or 0 (no bound) where none is proved.
+
+    Every sample is a convex combination of texels (trilinear weights, the blend of two levels, levels that are means
+    of level 0), so its C_R <= max C_R and its L_FBM (linear in the channels) >= min L_FBM. With C_R <= 1 and
+    L_FBM < 2, B = (C_R + 1 - L) / (2 - L) rises with C_R and falls with L (dB/dL = (C_R - 1) / (2 - L)^2 <= 0), so
+    B <= (max C_R + 1 - min L) / (2 - min L). Textures outside that domain (or with a NaN) get no bound."""
+    a = np.asarray(chain, dtype=np.float64).reshape(-1, 4)
+    if a.size == 0 or not np.isfinite(a).all():
+        return 0.0
+    r_max = float(a[:, 0].max())
+    l_min = float((0.625 * a[:, 1] + 0.25 * a[:, 2] + 0.125 * a[:, 3]).min())
+    l_max = float((0.625 * a[:, 1] + 0.25 * a[:, 2] + 0.125 * a[:, 3]).max())
+    if not (r_max <= 1.0 and l_max < 2.0):
+        return 0.0
+    b = (r_max + 1.0 - l_min) / (2.0 - l_min)
+    return float(max(b, 0.0) * (1.0 + BASE_BOUND_MARGIN) + BASE_BOUND_MARGIN)
+
+
 @wp.struct
 class CloudTextures:
     """Twin of ``ccl_cloud_textures``: base and detail as flat mip chains (level 0 first, then each half-size level
@@ -223,6 +249,10 @@ class CloudTextures:
     # empty_skip = 0: no empty-space skipping
     weather_empty: wp.array2d(dtype=wp.int32)
     empty_skip: int
+    # Warp only, used with empty_skip: an upper bound of the base shape B of vc-2.28 over every sample of the base
+    # chain (:func:`base_shape_bound`); a sample with D_v * bound <= C (the coverage threshold) has B_D = 0, whatever
+    # the base texture holds there, so its lookup is skipped. <= 0 (the default) or NaN: no bound
+    base_bound: float
 
 
 @wp.func
@@ -384,13 +414,17 @@ def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3
         precip = w[1]
         if w[0] > 0.0:
             d_v = clouds_height_gradient(h, w[2], p.gradient_clamp)
+            c_thr = 1.0 - w[0]
+            if p.coverage_threshold == 0:
+                c_thr = w[0]
+            # (Warp only) B <= base_bound everywhere: where D_v base_bound <= C, B D_v <= C and B_D = 0 (vc-2.29)
+            # without the base lookup -- the same density, bit for bit (a NaN bound or C compares false: looked up)
+            if tex.empty_skip != 0 and tex.base_bound > 0.0 and d_v * tex.base_bound <= c_thr:
+                d_v = 0.0
             if d_v > 0.0:
                 bs = sample_mip(tex.base, tex.base_size, tex.base_levels, lod_base,
                                 wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km, pos[2] / p.base_scale_km))
                 l_fbm, b = clouds_base_shape(bs[0], bs[1], bs[2], bs[3])
-                c_thr = 1.0 - w[0]
-                if p.coverage_threshold == 0:
-                    c_thr = w[0]
                 b_d = clouds_coverage(b, d_v, w[0], c_thr, 1)
                 if b_d > 0.0:
                     density = b_d

@@ -1,5 +1,6 @@
-"""The empty-space skipping of the cloudscape march (Warp only): the map it reads, and frames that are bit for bit
-those of the march without it; and the de-tiled weather's short cuts (one map read where the selector is 0 or 1)."""
+"""The empty-space skipping of the cloudscape march (Warp only): the map it reads, the bound of the base shape that
+skips base lookups whose coverage test must fail, and frames that are bit for bit those of the march without either;
+and the de-tiled weather's short cuts (one map read where the selector is 0 or 1)."""
 import numpy as np
 import pytest
 
@@ -52,6 +53,8 @@ def _pair(**kw):
     pose = C.CameraPose.from_settings(s)
     tex = t.textures.warp()
     out = []
+    bound = tex.base_bound
+    assert 0.5 < bound < 1.0  # the default base texture has a bound that skips lookups
     for skip in (1, 0):
         tex.empty_skip = skip
         t.frame = 0
@@ -68,6 +71,69 @@ def test_skipping_changes_no_pixel(kw):
     (a, sa), (b, sb) = _pair(**kw)
     np.testing.assert_array_equal(a, b)
     np.testing.assert_array_equal(sa, sb)
+
+
+def _base_shape_f64(c):
+    """vc-2.28's B written out in float64 (independent of the kernels)."""
+    c = np.asarray(c, dtype=np.float64)
+    lo = 0.625 * c[..., 1] + 0.25 * c[..., 2] + 0.125 * c[..., 3] - 1.0
+    return (c[..., 0] - lo) / (1.0 - lo)
+
+
+def _trilinear_f64(vol, p):
+    """Periodic trilinear lookup of vol[z, y, x, 4] at texture coordinates p (n, 3), texel centres at i + 0.5."""
+    n = vol.shape[0]
+    q = p * n - 0.5
+    i0 = np.floor(q)
+    t = q - i0
+    i0 = i0.astype(np.int64)
+    out = 0.0
+    for dz in (0, 1):
+        for dy in (0, 1):
+            for dx in (0, 1):
+                w = ((t[:, 0] if dx else 1 - t[:, 0]) * (t[:, 1] if dy else 1 - t[:, 1])
+                     * (t[:, 2] if dz else 1 - t[:, 2]))
+                out = out + w[:, None] * vol[(i0[:, 2] + dz) % n, (i0[:, 1] + dy) % n, (i0[:, 0] + dx) % n]
+    return out
+
+
+def test_base_bound_bounds_every_sample_of_the_chain(small_textures):
+    """B at random points of every mip level and of blends of two levels (the samples the march takes) never
+    exceeds the bound; the bound is not loose by more than the spread of the channels allows (within 0.1 of the
+    largest B of a texel for the default textures)."""
+    chain = small_textures.mips("base")
+    bound = K.base_shape_bound(chain)
+    n = small_textures.base.shape[0]
+    rng = np.random.default_rng(5)
+    p = rng.uniform(-3.0, 3.0, (4000, 3))
+    levels, off, size = [], 0, n
+    while size >= 1:
+        levels.append(chain[off:off + size ** 3].reshape(size, size, size, 4).astype(np.float64))
+        off += size ** 3
+        size //= 2
+    best = 0.0
+    for k, vol in enumerate(levels):
+        a = _trilinear_f64(vol, p)
+        b = _trilinear_f64(levels[min(k + 1, len(levels) - 1)], p)
+        for f in (0.0, 0.3, 1.0):
+            bs = _base_shape_f64(a + (b - a) * f)
+            assert bs.max() <= bound
+            best = max(best, bs.max())
+    texel_max = _base_shape_f64(chain).max()
+    assert texel_max <= bound < texel_max + 0.1
+    assert best > 0.5
+
+
+def test_base_bound_is_off_outside_its_proof():
+    """A channel R > 1 (B would rise with L), an L >= 2 or a NaN: no bound (0), so nothing is skipped."""
+    ok = np.full((9, 4), 0.5, dtype=np.float32)
+    assert K.base_shape_bound(ok) == pytest.approx(1.0 / 1.5, rel=1e-4)  # R = 0.5, L = 0.5: B = 1 / 1.5
+    for bad in ((0, 1.5), (1, 2.5), (2, np.nan)):
+        a = ok.copy()
+        a[3, bad[0]] = bad[1]
+        if bad[0] == 1:
+            a[3, 1:] = bad[1]
+        assert K.base_shape_bound(a) == 0.0
 
 
 def test_skipping_has_work_to_skip():
