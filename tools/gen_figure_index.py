@@ -58,7 +58,10 @@ def build() -> str:
             title = e["title"].replace("|", "\\|")
             if fid in tuts:
                 t = tuts[fid]
-                imgs = " ".join(f"[{o}]({seed}/{o})" for o in t["outputs"]) or "(no output named)"
+                # a tutorial of several figures: each figure links its own image where one has its name
+                stem = fid.split("-", 1)[1]  # fig-4.6: fig-4.6.png, fig-4.6-errata.png (not fig-4.60.png)
+                own = [o for o in t["outputs"] if o.startswith(stem) and o[len(stem):len(stem) + 1] in (".", "-")]
+                imgs = " ".join(f"[{o}]({seed}/{o})" for o in (own or t["outputs"])) or "(no output named)"
                 if t["stand_in"]:
                     imgs = "stand-in: " + imgs
                 lines.append(f"| {fid} | {title} | {imgs} | [{Path(t['script']).name}](../{t['script']}) | "

@@ -79,6 +79,27 @@ def test_figure_index_is_up_to_date():
     assert res.returncode == 0, res.stderr
 
 
+def test_figure_index_links_each_figure_to_its_own_image():
+    """A tutorial of several figures (oc figs 2.6-2.9, pt 4.1/4.2, ...): each row of figures/README.md links the
+    image of its own figure, and every image it links exists."""
+    import re
+
+    index = (ROOT / "figures" / "README.md").read_text(encoding="utf-8")
+    rows = [r for r in index.splitlines() if r.startswith("| ") and "-fig-" in r.split("|")[1]]
+    checked = 0
+    for row in rows:
+        fid = row.split("|")[1].strip()
+        seed, stem = fid.split("-", 1)
+        links = re.findall(r"\]\(([a-z]+/[\w.\-]+\.png)\)", row.split("|")[3])
+        for link in links:
+            assert (ROOT / "figures" / link).is_file(), (fid, link)
+        if (ROOT / "figures" / seed / f"{stem}.png").is_file() and links:
+            assert f"{seed}/{stem}.png" in links, (fid, links)
+            assert all(Path(k).name.startswith(stem) for k in links), (fid, links)
+            checked += 1
+    assert checked > 100, checked
+
+
 def test_a_failing_tutorial_is_reported_and_the_others_run(tmp_path):
     seed = tmp_path / "vc"
     seed.mkdir()

@@ -11,7 +11,8 @@ dark grey). The height gradients are the renderer's (clamped to [0, 1], figs vc-
 fall to 0 below the layer top, and the heaps become flat-sided towers up to 4 km whose walls, seen edge-on, are
 speckled -- no photograph of a cumulus looks like that. The weather map's type spread is 0. Camera 0.3 km up looking 18 deg up, 55 deg field of view; sun 30 deg high at
 azimuth 120 deg; seed 0; 480 x 270. The other genera are high or middle clouds, outside the vc layer
-(pywarp/data/figure_status.json). Outputs: figures/oc/fig-2.6.png, fig-2.7.png, fig-2.8.png, fig-2.9.png.
+(pywarp/data/figure_status.json). Outputs: figures/oc/fig-2.6.png, figures/oc/fig-2.7.png, figures/oc/fig-2.8.png,
+figures/oc/fig-2.9.png.
 """
 # %% [markdown]
 # The low genera differ in how much of the sky they cover and in their vertical profile: stratus is a thin uniform
