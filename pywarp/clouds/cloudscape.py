@@ -198,6 +198,7 @@ class RenderTextures:
             t.weather = wp.array(self.weather, dtype=wp.vec4, device=self.device)
             t.weather_empty = wp.array(K.weather_empty_distance(self.weather), dtype=wp.int32, device=self.device)
             t.empty_skip = 1
+            t.selector_class = wp.array(K.selector_class(self.weather), dtype=wp.uint8, device=self.device)
             t.base_bound = K.base_shape_bound(self.mips("base"))
             self._wp["struct"] = t
         return self._wp["struct"]

@@ -231,6 +231,26 @@ def base_shape_bound(chain: np.ndarray) -> float:
     return float(max(b, 0.0) * (1.0 + BASE_BOUND_MARGIN) + BASE_BOUND_MARGIN)
 
 
+#: Margin of :func:`selector_class` (coverage units): a float32 bilinear blend of four texels stays within this of
+#: their range (its error is a few ulps of values <= 1, ~1e-7).
+SELECTOR_MARGIN = 1.0e-6
+
+
+def selector_class(weather: np.ndarray) -> np.ndarray:
+    """Per cell (i, j) of a periodic weather map ``weather[y, x, 4]`` -- the square between the texel centres
+    (j, i), (j, i + 1), (j + 1, i), (j + 1, i + 1), wrapped, which a bilinear lookup whose lower texel is (i, j)
+    reads -- 0 where all four coverages (R) are <= edge0 - SELECTOR_MARGIN (the de-tiling's selector is certainly
+    below edge0: blend weight exactly 0), 1 where all are >= edge1 + SELECTOR_MARGIN (weight exactly 1), else 2
+    (NaN included)."""
+    r = np.asarray(weather, dtype=np.float64)[..., 0]
+    four = [r, np.roll(r, -1, 1), np.roll(r, -1, 0), np.roll(np.roll(r, -1, 0), -1, 1)]
+    lo = WEATHER_DETILE["edge0"] - SELECTOR_MARGIN
+    hi = WEATHER_DETILE["edge1"] + SELECTOR_MARGIN
+    below = np.logical_and.reduce([c <= lo for c in four])
+    above = np.logical_and.reduce([c >= hi for c in four])
+    return np.where(below, 0, np.where(above, 1, 2)).astype(np.uint8)
+
+
 @wp.struct
 class CloudTextures:
     """Twin of ``ccl_cloud_textures``: base and detail as flat mip chains (level 0 first, then each half-size level
@@ -249,6 +269,10 @@ class CloudTextures:
     # empty_skip = 0: no empty-space skipping
     weather_empty: wp.array2d(dtype=wp.int32)
     empty_skip: int
+    # Warp only, used with empty_skip: per cell of the weather map between texel centres (i, j)..(i + 1, j + 1),
+    # 0 / 1 where the de-tiling's selector is certainly 0 / 1 there (:func:`selector_class`), else 2; a map of
+    # another size than the weather's: none
+    selector_class: wp.array2d(dtype=wp.uint8)
     # Warp only, used with empty_skip: an upper bound of the base shape B of vc-2.28 over every sample of the base
     # chain (:func:`base_shape_bound`); a sample with D_v * bound <= C (the coverage threshold) has B_D = 0, whatever
     # the base texture holds there, so its lookup is skipped. <= 0 (the default) or NaN: no bound
@@ -330,10 +354,29 @@ _WD_EDGE1 = wp.constant(WEATHER_DETILE["edge1"])
 
 
 @wp.func
-def cloudscape_weather(p: CloudscapeParams, weather: wp.array2d(dtype=wp.vec4), x: float, z: float) -> wp.vec4:
-    """Twin of ``ccl_cloudscape_weather``: the weather map at world (x, z) km with the wind, de-tiled when
-    ``p.weather_detile``: blended with a rotated, scaled, shifted copy by the smoothstep of a much larger copy's
-    coverage."""
+def _selector_certain(tex: CloudTextures, mask: int, u: float, v: float) -> float:
+    """The de-tiling's blend weight at selector coordinates (u, v) where :func:`selector_class` proves it (0 or 1,
+    exactly what the lookup and smoothstep give there), else -1 (also outside the sampler's domain: the lookup
+    decides, NaN included)."""
+    fsize = float(mask + 1)
+    if not (wp.abs(u * fsize) < 8388608.0 and wp.abs(v * fsize) < 8388608.0):
+        return -1.0
+    x0, x1, tx = _axis2(u * fsize, mask)
+    y0, y1, ty = _axis2(v * fsize, mask)
+    cls = int(tex.selector_class[y0, x0])
+    if cls == 0:
+        return 0.0
+    if cls == 1:
+        return 1.0
+    return -1.0
+
+
+@wp.func
+def cloudscape_weather(p: CloudscapeParams, tex: CloudTextures, x: float, z: float) -> wp.vec4:
+    """Twin of ``ccl_cloudscape_weather``: the weather map ``tex.weather`` at world (x, z) km with the wind, de-tiled
+    when ``p.weather_detile``: blended with a rotated, scaled, shifted copy by the smoothstep of a much larger copy's
+    coverage (Warp only: that selector is not looked up where ``tex.selector_class`` proves it 0 or 1)."""
+    weather = tex.weather
     mask = weather.shape[0] - 1
     u = (x + p.weather_offset[0]) / p.weather_scale_km
     v = (z + p.weather_offset[1]) / p.weather_scale_km
@@ -342,10 +385,15 @@ def cloudscape_weather(p: CloudscapeParams, weather: wp.array2d(dtype=wp.vec4), 
     c = _WD_COS
     s = _WD_SIN
     # the selector first: where it is 0 or 1 only one of the two maps is read
-    m = sample_bilinear_wrap(weather, mask, (c * u + s * v) / _WD_SCALE_M + _WD_SHIFT_V,
-                             (c * v - s * u) / _WD_SCALE_M + _WD_SHIFT_U)
-    k = (m[0] - _WD_EDGE0) / (_WD_EDGE1 - _WD_EDGE0)
-    k = interp_fade_cubic(wp.clamp(k, 0.0, 1.0))
+    su = (c * u + s * v) / _WD_SCALE_M + _WD_SHIFT_V
+    sv = (c * v - s * u) / _WD_SCALE_M + _WD_SHIFT_U
+    k = float(-1.0)
+    if tex.empty_skip != 0 and tex.selector_class.shape[0] == mask + 1:
+        k = _selector_certain(tex, mask, su, sv)
+    if k < 0.0:
+        m = sample_bilinear_wrap(weather, mask, su, sv)
+        k = (m[0] - _WD_EDGE0) / (_WD_EDGE1 - _WD_EDGE0)
+        k = interp_fade_cubic(wp.clamp(k, 0.0, 1.0))
     a = wp.vec4(0.0, 0.0, 0.0, 0.0)
     if not (k >= 1.0):
         a = sample_bilinear_wrap(weather, mask, u, v)
@@ -403,14 +451,13 @@ def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3
     sampled at mip levels ``lod_base`` / ``lod_detail`` (0: full resolution, the thesis); twin of
     ``ccl_cloudscape_density_lod``. At the detail texture's last level (its mean) the curl lookup is skipped: the
     detail no longer depends on the position."""
-    weather = tex.weather
     c = p.centre
     r = wp.length(pos - c)
     h = clouds_relative_height(r, p.r_inner, p.r_outer, 0)
     density = float(0.0)
     precip = float(0.0)
     if h >= 0.0 and h <= 1.0:
-        w = cloudscape_weather(p, weather, pos[0], pos[2])
+        w = cloudscape_weather(p, tex, pos[0], pos[2])
         precip = w[1]
         if w[0] > 0.0:
             d_v = clouds_height_gradient(h, w[2], p.gradient_clamp)
@@ -952,4 +999,4 @@ def weather_points_kernel(p: CloudscapeParams, tex: CloudTextures, points: wp.ar
                           out: wp.array(dtype=wp.vec4)):
     """:func:`cloudscape_weather` at a list of world points (x, z used; for comparisons with the C reference)."""
     k = wp.tid()
-    out[k] = cloudscape_weather(p, tex.weather, points[k][0], points[k][2])
+    out[k] = cloudscape_weather(p, tex, points[k][0], points[k][2])

@@ -183,3 +183,50 @@ def test_detiled_weather_equals_the_blend_everywhere(small_textures):
     want = a + (b - a) * k
     assert (k == 0).mean() > 0.1 and (k == 1).mean() > 0.02 and ((k > 0) & (k < 1)).mean() > 0.1
     np.testing.assert_allclose(got, want, rtol=0, atol=2e-6)
+
+
+def test_selector_class_against_brute_force():
+    """Each cell's class from its four texels written out one by one (float64), with values on both sides of the
+    margins and a NaN (class 2)."""
+    rng = np.random.default_rng(4)
+    n = 16
+    w = rng.uniform(0.0, 1.0, (n, n, 4)).astype(np.float32)
+    w[rng.uniform(size=(n, n)) < 0.4, 0] = 0.1
+    w[rng.uniform(size=(n, n)) < 0.2, 0] = 0.9
+    w[2, 3, 0] = np.float32(K.WEATHER_DETILE["edge0"])  # on the edge: not certain
+    w[5, 5, 0] = np.nan
+    got = K.selector_class(w)
+    lo = K.WEATHER_DETILE["edge0"] - K.SELECTOR_MARGIN
+    hi = K.WEATHER_DETILE["edge1"] + K.SELECTOR_MARGIN
+    for i in range(n):
+        for j in range(n):
+            four = [float(w[i, j, 0]), float(w[i, (j + 1) % n, 0]), float(w[(i + 1) % n, j, 0]),
+                    float(w[(i + 1) % n, (j + 1) % n, 0])]
+            want = 0 if all(c <= lo for c in four) else 1 if all(c >= hi for c in four) else 2
+            assert got[i, j] == want, (i, j, four)
+    assert {0, 1, 2} <= set(np.unique(got).tolist())
+
+
+def test_weather_with_the_selector_classes_is_bit_for_bit_the_lookup(small_textures):
+    """The de-tiled weather (Warp) where the class map short-cuts the selector equals the full lookup everywhere,
+    at random points and on a fine line across cell edges; the map short-cuts most points of the default map."""
+    import warp as wp
+
+    from pywarp.clouds.cloudscape import warp_params
+    from pywarp.clouds.cparams import param_values
+
+    s = CloudscapeSettings(base_size=32, detail_size=16, curl_size=32, weather_size=128)
+    rng = np.random.default_rng(9)
+    x = np.concatenate([rng.uniform(-400.0, 400.0, 20000), np.linspace(-3.0, 3.0, 20000)]).astype(np.float32)
+    z = np.concatenate([rng.uniform(-400.0, 400.0, 20000), np.linspace(1.0, 1.7, 20000)]).astype(np.float32)
+    tex = small_textures.warp()
+    pts = wp.array(np.stack([x, np.zeros_like(x), z], axis=1), dtype=wp.vec3)
+    out = []
+    for skip in (1, 0):
+        tex.empty_skip = skip
+        o = wp.zeros(len(x), dtype=wp.vec4)
+        wp.launch(K.weather_points_kernel, dim=len(x), inputs=[warp_params(param_values(s)), tex, pts], outputs=[o])
+        out.append(o.numpy())
+    tex.empty_skip = 1
+    np.testing.assert_array_equal(out[0], out[1])
+    assert (K.selector_class(small_textures.weather) < 2).mean() > 0.5
