@@ -660,6 +660,20 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
          * argument in its domain [-1, 1] */
         cos_theta = cos_theta > 1.0f ? 1.0f : (cos_theta < -1.0f ? -1.0f : cos_theta);
         if (ccl_raymarch_interval(t0, t1, n, &t_start, &dt_view)) {
+            /* no view step longer than refine_step_km x refine_max where refinement is on (the coarse test would
+             * miss clouds between its points): more steps, at most CCL_CLOUDSCAPE_COARSE_MAX_FACTOR x samples_max */
+            if (p->refine_step_km > 0.0f) {
+                const float longest = p->refine_step_km * (float)p->refine_max;
+                if (dt_view > longest) {
+                    const float need = ceilf(dt_view * (float)n / longest);
+                    const int most = CCL_CLOUDSCAPE_COARSE_MAX_FACTOR * p->samples_max;
+                    const int n2 = need < (float)most ? (int)need : most;
+                    if (n2 > n) {
+                        n = n2;
+                        ccl_raymarch_interval(t0, t1, n, &t_start, &dt_view);
+                    }
+                }
+            }
             /* refinement: a view step longer than refine_step_km is split into k sub-steps where the coarse test
              * (base shape, no detail, at the step's own sample) finds cloud here or at the previous step; an empty
              * step costs that one lookup */

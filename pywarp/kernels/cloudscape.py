@@ -54,6 +54,7 @@ JITTER_NONE = 2
 LIGHTING_THESIS = 0  # ccl_lighting
 LIGHTING_SKY = 1
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
+COARSE_MAX_FACTOR = wp.constant(4)  # CCL_CLOUDSCAPE_COARSE_MAX_FACTOR (the reason is in cloudscape.h)
 GROUND_SHADOW_SAMPLES = wp.constant(12)  # CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES
 SKY_THETA_CELLS = wp.constant(8)  # CCL_CLOUDSCAPE_SKY_THETA_CELLS
 SKY_PHI_CELLS = wp.constant(16)  # CCL_CLOUDSCAPE_SKY_PHI_CELLS
@@ -523,6 +524,17 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
         elif cos_theta < -1.0:
             cos_theta = -1.0
         t_start, dt_view = raymarch_interval(t0, t1, n)
+        if p.refine_step_km > 0.0 and dt_view > p.refine_step_km * float(p.refine_max):
+            # no view step longer than refine_step_km x refine_max (the coarse test would miss clouds between its
+            # points): more steps, at most COARSE_MAX_FACTOR x samples_max (CCL_CLOUDSCAPE_COARSE_MAX_FACTOR)
+            need = wp.ceil(dt_view * float(n) / (p.refine_step_km * float(p.refine_max)))
+            most = COARSE_MAX_FACTOR * p.samples_max
+            n2 = most
+            if need < float(most):
+                n2 = int(need)
+            if n2 > n:
+                n = n2
+                t_start, dt_view = raymarch_interval(t0, t1, n)
         if dt_view == dt_view:  # not NaN
             # refinement: a view step longer than refine_step_km is split into k sub-steps where the coarse test
             # finds cloud (here or at the previous step); empty steps cost one base-shape lookup

@@ -191,6 +191,13 @@ typedef enum ccl_lighting {
  * 12 spaces them 0.2 km apart through the default 2.5 km layer under a high sun, finer than the cloud cells, and
  * costs 12 texture fetches per ground pixel (the clouds take up to 7 x 128). */
 #define CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES 12
+/* With refinement on, a view step is at most refine_step_km x refine_max long (0.8 km by default): the coarse test
+ * that decides where to refine is one point per view step, and with longer steps it misses whole clouds between two
+ * points -- from inside or above the layer, rays near the horizon cross up to 357 km of the default layer, and with
+ * samples_max = 128 steps of 2.8 km each pixel's coarse points land on different clouds: a speckled row (fig 4.13 a).
+ * A longer segment takes more view steps, at most CCL_CLOUDSCAPE_COARSE_MAX_FACTOR x samples_max (4 x 128 steps
+ * of 0.8 km cover those 357 km; the factor bounds the work per ray for any layer). */
+#define CCL_CLOUDSCAPE_COARSE_MAX_FACTOR 4
 /* Quadrature of the sky means of ccl_cloudscape_light: zenith-angle x azimuth cells over the upper hemisphere. 8 x 16
  * cells of 11.25 x 22.5 degrees: the Preetham and gradient skies vary slowly except within ~10 degrees of the sun,
  * which one cell averages; for a sky linear in d.y the means are off by 0.24 % (mean) and 0.11 % (cosine-weighted)
