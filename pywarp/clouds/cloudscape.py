@@ -318,7 +318,8 @@ class CloudscapeTechnique:
             "depth": wp.zeros((height, width), dtype=float, device=dev),
             "prev_depth": wp.zeros((height, width), dtype=float, device=dev),
             "out_depth": wp.zeros((height, width), dtype=float, device=dev),
-            "encoded": wp.zeros((height, width, 3), dtype=float, device=dev),
+            "encoded": wp.zeros((height, width, 3), dtype=wp.uint8, device=dev),
+            "non_finite": wp.zeros(1, dtype=wp.int32, device=dev),
         }
         self._prev_camera = None
 
@@ -372,20 +373,21 @@ class CloudscapeTechnique:
         final = b["previous"]
         self._prev_camera = cam if reproj or s.reprojection else None
         self.frame += 1
-        linear = final.numpy().copy()
-        # before the encoding, which clamps (a NaN would become a black pixel): never a NaN image, not even a black one
-        bad = ~np.all(np.isfinite(linear), axis=2)
-        if bad.any():
-            ys, xs = np.nonzero(bad)
-            raise RuntimeError(f"the render produced {len(ys)} non-finite pixels (first at x={xs[0]}, y={ys[0]}); "
-                               "nothing is written")
         if not encode:
-            return linear
-        self.launcher.launch(K.encode_kernel, h, w, [final], [b["encoded"]])
-        out = b["encoded"].numpy()
-        if not np.all(np.isfinite(out)):
-            raise RuntimeError("the render produced non-finite pixels")
-        return (out * 255.0 + 0.5).astype(np.uint8)
+            return _finite(final.numpy().copy())
+        return self._encode(final)
+
+    def _encode(self, linear: wp.array) -> np.ndarray:
+        """uint8 sRGB of a display-linear frame on the device (encode_kernel: clamp, encode, quantise); a frame with
+        a non-finite pixel raises instead (the encoding's clamp would make a NaN a black pixel: never a NaN image,
+        not even a black one)."""
+        b = self._buffers
+        b["non_finite"].zero_()
+        self.launcher.launch(K.encode_kernel, self.settings.height, self.settings.width, [linear],
+                             [b["encoded"], b["non_finite"]])
+        if int(b["non_finite"].numpy()[0]) != 0:
+            _finite(linear.numpy())  # raises, naming the first such pixel
+        return b["encoded"].numpy().copy()
 
     def render_linear(self, pose: CameraPose | None = None, progress=None) -> np.ndarray:
         """The linear-image hook (:mod:`pywarp.core.linear`): one frame exactly as :meth:`render` (same frame
@@ -422,15 +424,21 @@ class CloudscapeTechnique:
             return linear
         b = self._buffers
         b["previous"].assign(linear)
-        self.launcher.launch(K.encode_kernel, s.height, s.width, [b["previous"]], [b["encoded"]])
-        out = b["encoded"].numpy()
-        if not np.all(np.isfinite(out)):
-            raise RuntimeError("the render produced non-finite pixels")
-        return (out * 255.0 + 0.5).astype(np.uint8)
+        return self._encode(b["previous"])
 
     def samples_taken(self) -> np.ndarray:
         """View samples marched per pixel in the last frame (pixels not rendered keep older counts)."""
         return self._buffers["samples"].numpy().copy()
+
+
+def _finite(linear: np.ndarray) -> np.ndarray:
+    """``linear`` (height, width, 3) when every channel is finite; else a RuntimeError naming the first bad pixel."""
+    bad = ~np.all(np.isfinite(linear), axis=2)
+    if bad.any():
+        ys, xs = np.nonzero(bad)
+        raise RuntimeError(f"the render produced {len(ys)} non-finite pixels (first at x={xs[0]}, y={ys[0]}); "
+                           "nothing is written")
+    return linear
 
 
 def render_image(settings: CloudscapeSettings | None = None, pose: CameraPose | None = None) -> np.ndarray:

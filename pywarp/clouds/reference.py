@@ -877,9 +877,9 @@ def encode_srgb(linear: np.ndarray, launcher=None) -> np.ndarray:
     """The real-time renderer's display step (``encode_kernel``: clamp to [0, 1], sRGB) on a linear frame: uint8."""
     lau = launcher or shared_launcher()
     a = wp.array(np.ascontiguousarray(linear, dtype=np.float32), dtype=float, device=lau.device)
-    out = wp.zeros(a.shape, dtype=float, device=lau.device)
-    lau.launch(K.encode_kernel, a.shape[0], a.shape[1], [a], [out])
-    return (out.numpy() * 255.0 + 0.5).astype(np.uint8)
+    out = wp.zeros(a.shape, dtype=wp.uint8, device=lau.device)
+    lau.launch(K.encode_kernel, a.shape[0], a.shape[1], [a], [out, wp.zeros(1, dtype=wp.int32, device=lau.device)])
+    return out.numpy()
 
 
 def render_reference(settings: CloudscapeSettings | None = None, pose: CameraPose | None = None, encode: bool = True,

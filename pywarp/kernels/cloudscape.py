@@ -447,11 +447,14 @@ def empty_until(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, t: float,
 
 @wp.func
 def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, with_detail: int, lod_base: float,
-                           lod_detail: float):
+                           lod_detail: float, footprint_km: float):
     """vc-A17 with a level of detail: (density, precipitation) at a world position with the base and detail textures
     sampled at mip levels ``lod_base`` / ``lod_detail`` (0: full resolution, the thesis); twin of
     ``ccl_cloudscape_density_lod``. At the detail texture's last level (its mean) the curl lookup is skipped: the
-    detail no longer depends on the position."""
+    detail no longer depends on the position.
+    ``footprint_km`` > 0 (Warp only): the two levels are ``cloudscape_lod`` of that footprint, computed only where a
+    lookup needs them (most samples have density 0 before the base lookup), and ``lod_base`` / ``lod_detail`` are
+    not read -- the same levels the caller would compute, so the same density."""
     c = p.centre
     r = wp.length(pos - c)
     h = clouds_relative_height(r, p.r_inner, p.r_outer, 0)
@@ -470,24 +473,30 @@ def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3
             if tex.empty_skip != 0 and tex.base_bound > 0.0 and d_v * tex.base_bound <= c_thr:
                 d_v = 0.0
             if d_v > 0.0:
-                bs = sample_mip(tex.base, tex.base_size, tex.base_levels, lod_base,
+                lb = lod_base
+                if footprint_km > 0.0:
+                    lb = cloudscape_lod(footprint_km, p.base_scale_km / float(tex.base_size), p.lod_bias)
+                bs = sample_mip(tex.base, tex.base_size, tex.base_levels, lb,
                                 wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km, pos[2] / p.base_scale_km))
                 l_fbm, b = clouds_base_shape(bs[0], bs[1], bs[2], bs[3])
                 b_d = clouds_coverage(b, d_v, w[0], c_thr, 1)
                 if b_d > 0.0:
                     density = b_d
                     if with_detail != 0:
+                        ld = lod_detail
+                        if footprint_km > 0.0:
+                            ld = cloudscape_lod(footprint_km, p.detail_scale_km / float(tex.detail_size), p.lod_bias)
                         qx = pos[0] + p.detail_offset[0]
                         qy = pos[1] + p.detail_offset[1]
                         qz = pos[2] + p.detail_offset[2]
-                        if lod_detail < float(tex.detail_levels - 1):
+                        if ld < float(tex.detail_levels - 1):
                             cv = sample_bilinear_wrap(tex.curl, tex.curl.shape[0] - 1, pos[0] / p.curl_scale_km,
                                                       pos[2] / p.curl_scale_km)
                             qx = pos[0] + cv[0] * p.curl_strength_km + p.detail_offset[0]
                             qz = pos[2] + cv[1] * p.curl_strength_km + p.detail_offset[2]
                         h_d = clouds_relative_height(wp.length(wp.vec3(qx, qy, qz) - c), p.r_inner, p.r_outer, 0)
                         h_d = wp.clamp(h_d, 0.0, 1.0)
-                        dt = sample_mip(tex.detail, tex.detail_size, tex.detail_levels, lod_detail,
+                        dt = sample_mip(tex.detail, tex.detail_size, tex.detail_levels, ld,
                                         wp.vec3(qx / p.detail_scale_km, qy / p.detail_scale_km,
                                                 qz / p.detail_scale_km))
                         density = clouds_detail_erosion(b_d, dt[0], dt[1], dt[2], h_d, p.detail_direction, 1)
@@ -497,7 +506,7 @@ def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3
 @wp.func
 def cloudscape_density(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, with_detail: int):
     """vc-A17: (density, precipitation) at a world position at full resolution; twin of ``ccl_cloudscape_density``."""
-    return cloudscape_density_lod(p, tex, pos, with_detail, 0.0, 0.0)
+    return cloudscape_density_lod(p, tex, pos, with_detail, 0.0, 0.0, 0.0)
 
 
 @wp.func
@@ -565,7 +574,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                             lod_c = float(0.0)
                             if p.lod != 0:
                                 lod_c = cloudscape_lod(fp_c, p.base_scale_km / float(tex.base_size), p.lod_bias)
-                            r_c, p_c = cloudscape_density_lod(p, tex, q_c, 0, lod_c, 0.0)
+                            r_c, p_c = cloudscape_density_lod(p, tex, q_c, 0, lod_c, 0.0, 0.0)
                             if r_c > 0.0:
                                 cloud = 1
                     if cloud == 0 and prev_cloud == 0:
@@ -581,19 +590,15 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 skip_end = empty_until(p, tex, pos, t_i, speed_h)
                 if t_i < skip_end:
                     continue
-                lod_b = float(0.0)
-                lod_d = float(0.0)
                 lod_lb = float(0.0)
                 lod_ld = float(0.0)
+                fp = float(0.0)
                 if p.lod != 0:
                     # footprint of the sample: the pixel's width at its distance (the refinement keeps the steps
-                    # short where there is cloud, so they need no blur along the ray)
+                    # short where there is cloud, so they need no blur along the ray); its mip levels are computed
+                    # in the density only where it looks up a texture (cloudscape_lod(fp) is 0 for fp <= 0)
                     fp = t_i * pixel_angle
-                    tb = p.base_scale_km / float(tex.base_size)
-                    td = p.detail_scale_km / float(tex.detail_size)
-                    lod_b = cloudscape_lod(fp, tb, p.lod_bias)
-                    lod_d = cloudscape_lod(fp, td, p.lod_bias)
-                rho, precip = cloudscape_density_lod(p, tex, pos, 1, lod_b, lod_d)
+                rho, precip = cloudscape_density_lod(p, tex, pos, 1, 0.0, 0.0, fp)
                 if rho > 0.0:
                     if p.lod != 0:
                         fl = wp.max(t_i * pixel_angle, p.light_step_km)
@@ -612,7 +617,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                         q = raymarch_light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
                                                            p.light_far_factor, raymarch_light_cone_kernel(j))
                         if empty_until(p, tex, q, 0.0, 1.0) < 0.0:  # (else certainly 0: no lookup)
-                            rj, pj = cloudscape_density_lod(p, tex, q, p.light_detail, lod_lb, lod_ld)
+                            rj, pj = cloudscape_density_lod(p, tex, q, p.light_detail, lod_lb, lod_ld, 0.0)
                             d_light = d_light + w * rj
                     d_light = d_light * p.sigma_light
                     # vc-2.31 + vc-A20
@@ -716,7 +721,7 @@ def cloudscape_ground(p: CloudscapeParams, tex: CloudTextures, point: wp.vec3, t
             if dt > 0.0:
                 for i in range(GROUND_SHADOW_SAMPLES):
                     q = raymarch_point(point, to_sun, ts, dt, i, 0.5)
-                    rho, pr = cloudscape_density_lod(p, tex, q, 0, lod, 0.0)
+                    rho, pr = cloudscape_density_lod(p, tex, q, 0, lod, 0.0, 0.0)
                     od = od + rho
                 shadow = wp.exp(-p.sigma_light * (od * dt))
     k = cos_sun * shadow * 0.318309886  # 1 / pi
@@ -982,12 +987,22 @@ def light_kernel(p: CloudscapeParams, sky_kind: int, sun: wp.vec3, preetham: Pre
 @wp.kernel
 def encode_kernel(row0: int, frame_buffer: wp.array3d(dtype=float),
                   # outputs
-                  out: wp.array3d(dtype=float)):
-    """Clamp to [0, 1] and sRGB-encode (the display step of vc-A29)."""
+                  out: wp.array3d(dtype=wp.uint8), non_finite: wp.array(dtype=wp.int32)):
+    """Clamp to [0, 1], sRGB-encode (the display step of vc-A29) and quantise to 8 bits, int(v * 255 + 0.5) in
+    float32; counts the pixels with a non-finite channel in ``non_finite[0]`` (their bytes are meaningless: the
+    caller raises)."""
     i, j = wp.tid()
     y = row0 + i
+    ok = int(1)
     for ch in range(3):
-        out[y, j, ch] = colour_srgb_encode(wp.clamp(frame_buffer[y, j, ch], 0.0, 1.0))
+        c = frame_buffer[y, j, ch]
+        if not wp.isfinite(c):
+            ok = 0
+            c = 0.0
+        v = colour_srgb_encode(wp.clamp(c, 0.0, 1.0))
+        out[y, j, ch] = wp.uint8(int(v * 255.0 + 0.5))
+    if ok == 0:
+        wp.atomic_add(non_finite, 0, 1)
 
 
 @wp.kernel
