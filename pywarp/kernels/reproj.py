@@ -331,10 +331,8 @@ def _catmull_rom_weights(t: float) -> wp.vec4:
 
 
 @wp.func
-def _catmull_rom_add(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: float, ys: float,
-                     out: wp.array3d(dtype=float), y: int, x: int):
-    """Catmull-Rom lookup of every channel at (xs, ys) (clamp-to-edge), each clamped to the range of the 2 x 2 pixels
-    the bilinear lookup reads, added to out[y, x, :] (``catmull_rom_add`` in C)."""
+def _catmull_rom_taps(xmax: int, ymax: int, xs: float, ys: float):
+    """The weights and the clamped column / row indices of the 4 x 4 pixels of a Catmull-Rom lookup at (xs, ys)."""
     x0f = wp.floor(xs)
     y0f = wp.floor(ys)
     wx = _catmull_rom_weights(xs - x0f)
@@ -345,6 +343,15 @@ def _catmull_rom_add(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: flo
                   wp.clamp(x0 + 2, 0, xmax))
     yi = wp.vec4i(wp.clamp(y0 - 1, 0, ymax), wp.clamp(y0, 0, ymax), wp.clamp(y0 + 1, 0, ymax),
                   wp.clamp(y0 + 2, 0, ymax))
+    return wx, wy, xi, yi
+
+
+@wp.func
+def _catmull_rom_add(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: float, ys: float,
+                     out: wp.array3d(dtype=float), y: int, x: int):
+    """Catmull-Rom lookup of every channel at (xs, ys) (clamp-to-edge), each clamped to the range of the 2 x 2 pixels
+    the bilinear lookup reads, added to out[y, x, :] (``catmull_rom_add`` in C)."""
+    wx, wy, xi, yi = _catmull_rom_taps(xmax, ymax, xs, ys)
     for ch in range(img.shape[2]):
         s = float(0.0)
         lo = float(wp.inf)
@@ -371,16 +378,7 @@ def _catmull_rom_add(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: flo
 def _catmull_rom3(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: float, ys: float) -> wp.vec3:
     """:func:`_catmull_rom_add`'s sample of a three-channel image, every channel in one pass over the 4 x 4 pixels
     (the same operations per channel in the same order)."""
-    x0f = wp.floor(xs)
-    y0f = wp.floor(ys)
-    wx = _catmull_rom_weights(xs - x0f)
-    wy = _catmull_rom_weights(ys - y0f)
-    x0 = int(x0f)
-    y0 = int(y0f)
-    xi = wp.vec4i(wp.clamp(x0 - 1, 0, xmax), wp.clamp(x0, 0, xmax), wp.clamp(x0 + 1, 0, xmax),
-                  wp.clamp(x0 + 2, 0, xmax))
-    yi = wp.vec4i(wp.clamp(y0 - 1, 0, ymax), wp.clamp(y0, 0, ymax), wp.clamp(y0 + 1, 0, ymax),
-                  wp.clamp(y0 + 2, 0, ymax))
+    wx, wy, xi, yi = _catmull_rom_taps(xmax, ymax, xs, ys)
     s = wp.vec3(0.0, 0.0, 0.0)
     lo = wp.vec3(wp.inf, wp.inf, wp.inf)
     hi = wp.vec3(-wp.inf, -wp.inf, -wp.inf)
