@@ -335,7 +335,9 @@ class CloudscapeSettings(Settings):
                                      "lookup, the thesis",
                                  reason="on: one 32 km map repeats visibly from a few km up")
     refine_max: int = param(8, lo=1, hi=64, group="clouds",
-                            doc="most sub-steps per view step of the refinement",
+                            doc="most sub-steps per view step of the refinement; with refinement on, no view "
+                                "step is longer than refine_step_km x refine_max (a longer segment takes more steps, "
+                                "at most 4 x samples_max: the coarse test would miss clouds between its points)",
                             reason="8: 0.8 km horizon steps down to 0.1 km; bounds the work per ray")
     seed: int = inherit(BaseShapeSettings, "seed", group="clouds",
                         doc="seed of every texture (uint32); the same seed gives the same image",
