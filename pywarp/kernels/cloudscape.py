@@ -224,8 +224,8 @@ def base_shape_bound(chain: np.ndarray) -> float:
     if a.size == 0 or not np.isfinite(a).all():
         return 0.0
     r_max = float(a[:, 0].max())
-    l_min = float((0.625 * a[:, 1] + 0.25 * a[:, 2] + 0.125 * a[:, 3]).min())
-    l_max = float((0.625 * a[:, 1] + 0.25 * a[:, 2] + 0.125 * a[:, 3]).max())
+    l_fbm = 0.625 * a[:, 1] + 0.25 * a[:, 2] + 0.125 * a[:, 3]
+    l_min, l_max = float(l_fbm.min()), float(l_fbm.max())
     if not (r_max <= 1.0 and l_max < 2.0):
         return 0.0
     b = (r_max + 1.0 - l_min) / (2.0 - l_min)
@@ -266,8 +266,8 @@ class CloudTextures:
     curl: wp.array2d(dtype=wp.vec4)
     weather: wp.array2d(dtype=wp.vec4)
     # Warp only (an acceleration structure, no C twin: it changes no result): per weather texel, the Chebyshev
-    # distance in texels to the nearest texel of coverage > 0 (:func:`weather_empty_distance`); 0 everywhere or
-    # empty_skip = 0: no empty-space skipping
+    # distance in texels to the nearest texel of coverage > 0 (:func:`weather_empty_distance`); 0 everywhere: no
+    # empty-space skipping. empty_skip = 0 switches off this and the two short cuts below (the frames are the same)
     weather_empty: wp.array2d(dtype=wp.int32)
     empty_skip: int
     # Warp only, used with empty_skip: per cell of the weather map between texel centres (i, j)..(i + 1, j + 1),

@@ -331,8 +331,10 @@ def _catmull_rom_weights(t: float) -> wp.vec4:
 
 
 @wp.func
-def _catmull_rom_taps(xmax: int, ymax: int, xs: float, ys: float):
-    """The weights and the clamped column / row indices of the 4 x 4 pixels of a Catmull-Rom lookup at (xs, ys)."""
+def _catmull_rom_add(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: float, ys: float,
+                     out: wp.array3d(dtype=float), y: int, x: int):
+    """Catmull-Rom lookup of every channel at (xs, ys) (clamp-to-edge), each clamped to the range of the 2 x 2 pixels
+    the bilinear lookup reads, added to out[y, x, :] (``catmull_rom_add`` in C)."""
     x0f = wp.floor(xs)
     y0f = wp.floor(ys)
     wx = _catmull_rom_weights(xs - x0f)
@@ -343,15 +345,6 @@ def _catmull_rom_taps(xmax: int, ymax: int, xs: float, ys: float):
                   wp.clamp(x0 + 2, 0, xmax))
     yi = wp.vec4i(wp.clamp(y0 - 1, 0, ymax), wp.clamp(y0, 0, ymax), wp.clamp(y0 + 1, 0, ymax),
                   wp.clamp(y0 + 2, 0, ymax))
-    return wx, wy, xi, yi
-
-
-@wp.func
-def _catmull_rom_add(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: float, ys: float,
-                     out: wp.array3d(dtype=float), y: int, x: int):
-    """Catmull-Rom lookup of every channel at (xs, ys) (clamp-to-edge), each clamped to the range of the 2 x 2 pixels
-    the bilinear lookup reads, added to out[y, x, :] (``catmull_rom_add`` in C)."""
-    wx, wy, xi, yi = _catmull_rom_taps(xmax, ymax, xs, ys)
     for ch in range(img.shape[2]):
         s = float(0.0)
         lo = float(wp.inf)
@@ -375,42 +368,6 @@ def _catmull_rom_add(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: flo
 
 
 @wp.func
-def _catmull_rom3(img: wp.array3d(dtype=float), xmax: int, ymax: int, xs: float, ys: float) -> wp.vec3:
-    """:func:`_catmull_rom_add`'s sample of a three-channel image, every channel in one pass over the 4 x 4 pixels
-    (the same operations per channel in the same order)."""
-    wx, wy, xi, yi = _catmull_rom_taps(xmax, ymax, xs, ys)
-    s = wp.vec3(0.0, 0.0, 0.0)
-    lo = wp.vec3(wp.inf, wp.inf, wp.inf)
-    hi = wp.vec3(-wp.inf, -wp.inf, -wp.inf)
-    for j in range(4):
-        r0 = float(0.0)
-        r1 = float(0.0)
-        r2 = float(0.0)
-        for i in range(4):
-            v0 = img[yi[j], xi[i], 0]
-            v1 = img[yi[j], xi[i], 1]
-            v2 = img[yi[j], xi[i], 2]
-            r0 = r0 + wx[i] * v0
-            r1 = r1 + wx[i] * v1
-            r2 = r2 + wx[i] * v2
-            if (i == 1 or i == 2) and (j == 1 or j == 2):
-                lo = wp.vec3(wp.where(v0 < lo[0], v0, lo[0]), wp.where(v1 < lo[1], v1, lo[1]),
-                             wp.where(v2 < lo[2], v2, lo[2]))
-                hi = wp.vec3(wp.where(v0 > hi[0], v0, hi[0]), wp.where(v1 > hi[1], v1, hi[1]),
-                             wp.where(v2 > hi[2], v2, hi[2]))
-        s = wp.vec3(s[0] + wy[j] * r0, s[1] + wy[j] * r1, s[2] + wy[j] * r2)
-    out = wp.vec3(0.0, 0.0, 0.0)
-    for ch in range(3):
-        v = s[ch]
-        if v < lo[ch]:
-            v = lo[ch]
-        if v > hi[ch]:
-            v = hi[ch]
-        out[ch] = v
-    return out
-
-
-@wp.func
 def _fill_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype=float), reduced: wp.array3d(dtype=float),
                 frame: int, neighbourhood: int, filter: int, history: int, valid: int, u: float, v: float, x: int,
                 y: int, out: wp.array3d(dtype=float)):
@@ -425,13 +382,7 @@ def _fill_pixel(current: wp.array3d(dtype=float), previous: wp.array3d(dtype=flo
         ys = _snap(v * float(height) - 0.5)
         half = neighbourhood / 2
         inv_n = 1.0 / float(neighbourhood * neighbourhood)
-        if filter == _CATMULL_ROM and neighbourhood == 1 and channels == 3:
-            # the renderer's case: one sample of three channels, summed in registers (the operations of the general
-            # path below, in its order: (0 + s) * 1)
-            c = _catmull_rom3(previous, width - 1, height - 1, xs, ys)
-            for ch in range(3):
-                out[y, x, ch] = (0.0 + c[ch]) * inv_n
-        elif filter == _CATMULL_ROM:
+        if filter == _CATMULL_ROM:
             # the weights and indices once per sample, every channel summed in out
             for ch in range(channels):
                 out[y, x, ch] = 0.0
