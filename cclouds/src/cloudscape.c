@@ -644,13 +644,24 @@ void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_s
     *out = q;
 }
 
+/* The coarse test of a group of short view steps: 1 where the base shape (no detail) at ray distance t_c has density
+ * > 0, at the mip level of a view sample there, else 0. The detail only erodes, so 0 here means that a view sample at
+ * t_c has density 0 too. */
+static int coarse_cloud(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye, ccl_vec3 dir,
+                        float t_c, float pixel_angle)
+{
+    float lod = 0.0f, precip;
+    if (p->lod) lod = ccl_cloudscape_lod(t_c * pixel_angle, p->base_scale_km / (float)t->base_size, p->lod_bias);
+    return ccl_cloudscape_density_lod(p, t, ccl_vec3_add(eye, ccl_vec3_scale(dir, t_c)), 0, lod, 0.0f, &precip) > 0.0f;
+}
+
 void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye, ccl_vec3 dir,
                           ccl_vec3 to_sun, float offset, float pixel_angle, float *out_rgb, float *out_transmittance,
                           int *out_samples, float *out_depth_km)
 {
     ccl_vec3 colour = {0.0f, 0.0f, 0.0f};
     float trans = 1.0f, t0, t1, t_start, dt, dt_view, cos_theta, depth_sum = 0.0f, depth_w = 0.0f;
-    int n, i, j, k, m, sub, prev_cloud = 0, taken = 0;
+    int n, i, j, k, m, sub, grp, prev_cloud = 0, next_cloud = -1, taken = 0;
     const ccl_cloud_layer *L = &p->layer;
     if (ccl_raymarch_layer_segment(eye, dir, L->centre, L->r_earth, L->r_inner, L->r_outer, &t0, &t1)) {
         n = p->adaptive_samples ? ccl_raymarch_view_sample_count(dir.y, p->samples_min, p->samples_max)
@@ -683,6 +694,10 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                 k = kf < (float)p->refine_max ? (int)kf : p->refine_max;
             }
             dt = dt_view / (float)k;
+            /* grouping: where the view steps are already no longer than refine_step_km (k = 1), refine_max of them
+             * share a coarse test at each end of the group and are skipped together where both find no cloud (the
+             * tests at most refine_step_km x refine_max apart, as the refinement's) */
+            grp = (k == 1 && p->refine_step_km > 0.0f) ? p->refine_max : 1;
             m = 0;
             while (m < n * k) {
                 float precip, rho, h, d_light = 0.0f, a, e, t_i;
@@ -691,6 +706,20 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                 float lod_b = 0.0f, lod_d = 0.0f, lod_lb = 0.0f, lod_ld = 0.0f;
                 i = m / k;
                 sub = m - i * k;
+                if (grp > 1 && m % grp == 0) {
+                    int here = next_cloud;
+                    if (here < 0) {
+                        here = coarse_cloud(p, t, eye, dir, t_start + ((float)m + offset) * dt_view, pixel_angle);
+                        ++taken;
+                    }
+                    next_cloud = coarse_cloud(p, t, eye, dir, t_start + ((float)(m + grp) + offset) * dt_view,
+                                              pixel_angle);
+                    ++taken;
+                    if (!here && !next_cloud) {
+                        m += grp;
+                        continue;
+                    }
+                }
                 if (k > 1 && sub == 0) {
                     const float t_c = t_start + ((float)i + offset) * dt_view;
                     const float fp_c = fmaxf(t_c * pixel_angle, dt_view);

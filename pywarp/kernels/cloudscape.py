@@ -510,6 +510,24 @@ def cloudscape_density(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, wi
 
 
 @wp.func
+def coarse_cloud(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, t: float, speed_h: float,
+                 pixel_angle: float) -> int:
+    """The coarse test of a group of short view steps (twin of ``coarse_cloud`` in cloudscape.c): 1 where the base
+    shape (no detail) at ray distance ``t`` has density > 0, at the mip level of a view sample there, else 0. The
+    detail only erodes, so 0 here means that a view sample at ``t`` has density 0 too."""
+    q = eye + d * t
+    if t < empty_until(p, tex, q, t, speed_h):  # (Warp only: certainly empty, no lookup)
+        return 0
+    lod = float(0.0)
+    if p.lod != 0:
+        lod = cloudscape_lod(t * pixel_angle, p.base_scale_km / float(tex.base_size), p.lod_bias)
+    rho, precip = cloudscape_density_lod(p, tex, q, 0, lod, 0.0, 0.0)
+    if rho > 0.0:
+        return 1
+    return 0
+
+
+@wp.func
 def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, to_sun: wp.vec3,
                      offset: float, pixel_angle: float):
     """One view ray: (cloud colour, transmittance, samples taken, mean distance [km]); twin of
@@ -554,6 +572,13 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 if kf < float(p.refine_max):  # never an int() of a huge or infinite ratio
                     k = int(kf)
             dt = dt_view / float(k)
+            # grouping: where the view steps are already no longer than refine_step_km (k = 1), refine_max of them
+            # share a coarse test at each end of the group and are skipped together where both find no cloud (the
+            # tests at most refine_step_km x refine_max apart, as the refinement's)
+            grp = int(1)
+            if k == 1 and p.refine_step_km > 0.0:
+                grp = p.refine_max
+            next_cloud = int(-1)  # the coarse test at the start of the next group, once made
             prev_cloud = int(0)
             # empty-space skipping (Warp only, no change of any result): samples before skip_end have density 0
             skip_end = float(-1.0)
@@ -562,6 +587,18 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
             while m < n * k:
                 i = m / k
                 sub = m - i * k
+                if grp > 1 and m % grp == 0:
+                    here = next_cloud
+                    if here < 0:
+                        here = coarse_cloud(p, tex, eye, d, t_start + (float(m) + offset) * dt_view, speed_h,
+                                            pixel_angle)
+                        taken = taken + 1
+                    next_cloud = coarse_cloud(p, tex, eye, d, t_start + (float(m + grp) + offset) * dt_view, speed_h,
+                                              pixel_angle)
+                    taken = taken + 1
+                    if here == 0 and next_cloud == 0:
+                        m = m + grp
+                        continue
                 if k > 1 and sub == 0:
                     t_c = t_start + (float(i) + offset) * dt_view
                     taken = taken + 1

@@ -155,8 +155,10 @@ typedef struct ccl_cloudscape_params {
                                    sample's footprint, see ccl_cloudscape_lod; 0: full resolution everywhere (thesis) */
     float lod_bias;             /* added to every mip level (default 0; > 0 blurs, < 0 sharpens), in [-4, 4] */
     float refine_step_km;       /* refinement: a view step longer than this is split into sub-steps of at most this
-                                   length where the coarse test finds cloud (default 0.1 km; 0 = off, the thesis) */
-    int refine_max;             /* most sub-steps per view step, in [1, 64] (default 8) */
+                                   length where the coarse test finds cloud; where the view steps are already this
+                                   short, refine_max of them are grouped and skipped together where the coarse tests
+                                   at both ends of the group find no cloud (default 0.1 km; 0 = off, the thesis) */
+    int refine_max;             /* most sub-steps per view step, and view steps per group, in [1, 64] (default 8) */
     int weather_detile;         /* 1: the weather map does not tile visibly (ccl_cloudscape_weather; default);
                                    0: one periodic lookup, the thesis */
     /* Lighting (see "Lighting" above; defaults and their reasons in cloudscape.c). */
@@ -198,6 +200,13 @@ typedef enum ccl_lighting {
  * A longer segment takes more view steps, at most CCL_CLOUDSCAPE_COARSE_MAX_FACTOR x samples_max (4 x 128 steps
  * of 0.8 km cover those 357 km; the factor bounds the work per ray for any layer). */
 #define CCL_CLOUDSCAPE_COARSE_MAX_FACTOR 4
+/* Grouping of short view steps (refinement on, view steps <= refine_step_km: the steep rays, most of a view from
+ * below the layer): refine_max consecutive view steps share one coarse test (base shape, no detail, at the mip level
+ * of a view sample) at each end; the group is marched where either end finds cloud, else skipped. The detail only
+ * erodes, so a sample whose coarse test is 0 has density 0: a group is skipped wrongly only where cloud lies wholly
+ * between its two ends, less than refine_step_km x refine_max (0.8 km) apart -- the refinement's own spacing. Each
+ * group costs one test (its end is the next group's start); the 90 % of view samples that find no cloud cost 1 /
+ * refine_max of a lookup each. */
 /* Quadrature of the sky means of ccl_cloudscape_light: zenith-angle x azimuth cells over the upper hemisphere. 8 x 16
  * cells of 11.25 x 22.5 degrees: the Preetham and gradient skies vary slowly except within ~10 degrees of the sun,
  * which one cell averages; for a sky linear in d.y the means are off by 0.24 % (mean) and 0.11 % (cosine-weighted)
