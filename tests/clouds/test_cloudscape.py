@@ -36,13 +36,16 @@ def tech():
 @pytest.mark.parametrize("sky,jitter,extra", [
     ("preetham", "tilt", {}), ("gradient", "offset", {}),
     ("preetham", "none", dict(coverage_threshold="coverage", beer=False)),
-    ("gradient", "tilt", dict(powder=False, light_detail=False, adaptive_samples=False))])
+    ("gradient", "tilt", dict(powder=False, light_detail=False, adaptive_samples=False)),
+    # pitched up so far that every ray's view steps are short: the grouped march (tests/clouds/test_step_grouping.py)
+    ("preetham", "offset", dict(camera_pitch_deg=45.0))])
 def test_warp_pixels_match_c_reference(sky, jitter, extra):
     """300 sampled pixels of a 96x54 frame. Both sides evaluate the same float32 operations in the same order with
     the same libm (expf, powf, tanf); C is compiled without FMA contraction and Warp's CPU code does not contract
     either, so the results are expected bit-identical. The stated tolerance, 1e-5 absolute on values <= ~2, allows
     a few ulp of difference per operation accumulated over <= 128 march steps on another platform."""
-    s = small(sky=sky, jitter=jitter, camera_pitch_deg=12.0, **extra)
+    extra = {"camera_pitch_deg": 12.0, **extra}
+    s = small(sky=sky, jitter=jitter, **extra)
     t = CloudscapeTechnique(s)
     rng = np.random.default_rng(7)
     xs, ys = rng.integers(0, s.width, 300), rng.integers(0, s.height, 300)
@@ -51,8 +54,7 @@ def test_warp_pixels_match_c_reference(sky, jitter, extra):
     assert np.all(np.isfinite(w)) and np.all(np.isfinite(c))
     np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
     # the sample must contain cloudy pixels, or the comparison would prove little
-    clear = render_pixels_warp(CloudscapeTechnique(small(sky=sky, jitter=jitter, camera_pitch_deg=12.0,
-                                                         coverage=0.0, **extra)), xs, ys)
+    clear = render_pixels_warp(CloudscapeTechnique(small(sky=sky, jitter=jitter, coverage=0.0, **extra)), xs, ys)
     assert np.mean(np.any(np.abs(w - clear) > 1e-3, axis=1)) > 0.2
 
 

@@ -5,12 +5,12 @@ shape, no detail) per refine_max steps and skip a group where the tests at both 
 The reference is the march without it (refine_step_km = 0, the thesis's march): on rays whose steps are short it is
 the same march sample for sample, except for the skipped groups. A group is skipped wrongly only where a cloud lies
 wholly between two coarse tests at most refine_step_km x refine_max apart, so the frames must agree except in a few
-pixels, while most of the view samples are no longer taken."""
+pixels, while most of the view samples are no longer taken. C and Warp agree on a grouped view in
+tests/clouds/test_cloudscape.py (test_warp_pixels_match_c_reference)."""
 import numpy as np
 import pytest
 
 from pywarp.clouds.cloudscape import CameraPose, CloudscapeTechnique
-from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
 from tests.clouds.test_cloudscape import small
 
 #: a view from below the layer pitched up so far that every ray's view steps are short (elevation >= 15 deg: the
@@ -52,16 +52,3 @@ def test_grouping_changes_only_a_few_pixels(steep_pair):
     # off by more than one level of 8 bits (a cloud wholly between two coarse tests, < 0.8 km of ray)
     assert np.mean(diff == 0.0) > 0.95
     assert np.mean(diff > 1.0 / 255.0) < 0.002
-
-
-@pytest.mark.spec("vc-A17", "vc-A18", "vc-A21")
-def test_grouped_march_warp_matches_c():
-    """As test_warp_pixels_match_c_reference (same tolerance, same reason), on a view where every ray is grouped."""
-    s = small(jitter="offset", **STEEP)
-    t = CloudscapeTechnique(s)
-    rng = np.random.default_rng(11)
-    xs, ys = rng.integers(0, s.width, 300), rng.integers(0, s.height, 300)
-    w = render_pixels_warp(t, xs, ys)
-    c = render_pixels_c(s, t.textures, xs, ys)
-    assert np.all(np.isfinite(w)) and np.all(np.isfinite(c))
-    np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
