@@ -694,10 +694,16 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                 k = kf < (float)p->refine_max ? (int)kf : p->refine_max;
             }
             dt = dt_view / (float)k;
-            /* grouping: where the view steps are already no longer than refine_step_km (k = 1), refine_max of them
-             * share a coarse test at each end of the group and are skipped together where both find no cloud (the
-             * tests at most refine_step_km x refine_max apart, as the refinement's) */
-            grp = (k == 1 && p->refine_step_km > 0.0f) ? p->refine_max : 1;
+            /* grouping: where the view steps are already no longer than refine_step_km (k = 1), up to refine_max
+             * of them, spanning at most CCL_CLOUDSCAPE_GROUP_SPAN x refine_step_km, share a coarse test at each end
+             * of the group and are skipped together where both find no cloud */
+            grp = 1;
+            if (k == 1 && p->refine_step_km > 0.0f) {
+                const float gf = floorf(CCL_CLOUDSCAPE_GROUP_SPAN * p->refine_step_km / dt_view);
+                /* (also a zero-length segment: never an int conversion of inf) */
+                if (gf >= (float)p->refine_max) grp = p->refine_max;
+                else if (gf > 1.0f) grp = (int)gf;
+            }
             m = 0;
             while (m < n * k) {
                 float precip, rho, h, d_light = 0.0f, a, e, t_i;

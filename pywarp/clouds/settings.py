@@ -325,8 +325,9 @@ class CloudscapeSettings(Settings):
     refine_step_km: float = param(0.1, unit="km", lo=0.0, hi=10.0, group="clouds",
                                   doc="refinement: view steps longer than this are split into sub-steps of at most "
                                       "this length where a coarse base-shape test finds cloud; view steps already "
-                                      "this short are grouped refine_max at a time and skipped where the coarse "
-                                      "tests at both ends of the group find no cloud (0: off, the thesis)",
+                                      "this short are grouped (up to refine_max steps, at most 2 x this long) and "
+                                      "skipped where the coarse tests at both ends of the group find no cloud (0: "
+                                      "off, the thesis)",
                                   reason="0.1 km: about three mean free paths of the default extinction in a "
                                          "typical cloud; near the horizon the view steps reach ~0.8 km, one step "
                                          "crossed a whole cloud and the pixel took the light of one random depth "
@@ -341,9 +342,7 @@ class CloudscapeSettings(Settings):
                                 "short steps; with refinement on, no view "
                                 "step is longer than refine_step_km x refine_max (a longer segment takes more steps, "
                                 "at most 4 x samples_max: the coarse test would miss clouds between its points)",
-                            reason="8: 0.8 km horizon steps down to 0.1 km, and coarse tests at most 0.8 km "
-                                   "apart on steep rays, which then skip empty air at 1/8 of a lookup per step; "
-                                   "bounds the work per ray")
+                            reason="8: 0.8 km horizon steps down to 0.1 km; bounds the work per ray")
     seed: int = inherit(BaseShapeSettings, "seed", group="clouds",
                         doc="seed of every texture (uint32); the same seed gives the same image",
                         reason="0: Perlin's reference permutation")

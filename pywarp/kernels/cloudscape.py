@@ -55,6 +55,7 @@ LIGHTING_THESIS = 0  # ccl_lighting
 LIGHTING_SKY = 1
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
 COARSE_MAX_FACTOR = wp.constant(4)  # CCL_CLOUDSCAPE_COARSE_MAX_FACTOR (the reason is in cloudscape.h)
+GROUP_SPAN = wp.constant(2.0)  # CCL_CLOUDSCAPE_GROUP_SPAN (the reason is in cloudscape.h)
 GROUND_SHADOW_SAMPLES = wp.constant(12)  # CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES
 SKY_THETA_CELLS = wp.constant(8)  # CCL_CLOUDSCAPE_SKY_THETA_CELLS
 SKY_PHI_CELLS = wp.constant(16)  # CCL_CLOUDSCAPE_SKY_PHI_CELLS
@@ -570,12 +571,16 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 if kf < float(p.refine_max):  # never an int() of a huge or infinite ratio
                     k = int(kf)
             dt = dt_view / float(k)
-            # grouping: where the view steps are already no longer than refine_step_km (k = 1), refine_max of them
-            # share a coarse test at each end of the group and are skipped together where both find no cloud (the
-            # tests at most refine_step_km x refine_max apart, as the refinement's)
+            # grouping: where the view steps are already no longer than refine_step_km (k = 1), up to refine_max of
+            # them, spanning at most GROUP_SPAN x refine_step_km, share a coarse test at each end of the group and
+            # are skipped together where both find no cloud
             grp = int(1)
             if k == 1 and p.refine_step_km > 0.0:
-                grp = p.refine_max
+                gf = wp.floor(GROUP_SPAN * p.refine_step_km / dt_view)
+                if gf >= float(p.refine_max):  # (also a zero-length segment: never an int() of inf)
+                    grp = p.refine_max
+                elif gf > 1.0:
+                    grp = int(gf)
             next_cloud = int(-1)  # the coarse test at the start of the next group, once made
             prev_cloud = int(0)
             # empty-space skipping (Warp only, no change of any result): samples before skip_end have density 0

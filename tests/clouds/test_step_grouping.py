@@ -1,54 +1,69 @@
-"""The grouping of short view steps (cclouds/cloudscape.h, CCL_CLOUDSCAPE_COARSE_MAX_FACTOR's neighbour): with the
-refinement on, steep rays whose view steps are already no longer than refine_step_km take one coarse test (base
-shape, no detail) per refine_max steps and skip a group where the tests at both of its ends find no cloud.
+"""The grouping of short view steps (CCL_CLOUDSCAPE_GROUP_SPAN in cclouds/cloudscape.h): with the refinement on,
+steep rays whose view steps are already no longer than refine_step_km take one coarse test (base shape, no detail)
+per group of steps spanning at most 2 x refine_step_km, and skip a group where the tests at both of its ends find no
+cloud.
 
 The reference is the march without it (refine_step_km = 0, the thesis's march): on rays whose steps are short it is
 the same march sample for sample, except for the skipped groups. A group is skipped wrongly only where a cloud lies
-wholly between two coarse tests at most refine_step_km x refine_max apart, so the frames must agree except in a few
-pixels, while most of the view samples are no longer taken. C and Warp agree on a grouped view in
+wholly between two coarse tests, so the frames must agree except in a few pixels, while many of the view samples
+are no longer taken -- also for the thinnest clouds (stratus), whose density is positive only in small pockets at
+their edges: with groups of up to 0.8 km those pockets were missed by some pixels and not by their neighbours (0.8 %
+of a stratus frame off by more than 8 levels of 8 bits). C and Warp agree on a grouped view in
 tests/clouds/test_cloudscape.py (test_warp_pixels_match_c_reference)."""
 import numpy as np
 import pytest
 
 from pywarp.clouds.cloudscape import CameraPose, CloudscapeTechnique
-from tests.clouds.test_cloudscape import small
+from pywarp.clouds.settings import CloudscapeSettings
 
 #: a view from below the layer pitched up so far that every ray's view steps are short (elevation >= 15 deg: the
 #: 2.5 km layer takes <= 9.7 km of ray in >= 100 steps, < 0.1 km each): every ray is grouped
-STEEP = dict(camera_pitch_deg=45.0, fov_y_deg=60.0)
+STEEP = dict(camera_pitch_deg=45.0, fov_y_deg=60.0, jitter="offset")
+#: the default clouds (mostly cumulus) and the thinnest ones, stratus, at full texture size
+GENERA = {"default": {}, "stratus": dict(cloud_type=0.0, coverage=0.9)}
 
 
-@pytest.fixture(scope="module")
-def steep_pair():
+@pytest.fixture(scope="module", params=sorted(GENERA))
+def pair(request):
     out = {}
     tex = None
     for name, kw in {"grouped": {}, "ungrouped": dict(refine_step_km=0.0)}.items():
-        t = CloudscapeTechnique(small(width=160, height=90, jitter="offset", **STEEP, **kw), textures=tex)
+        s = CloudscapeSettings(width=240, height=135, **STEEP, **GENERA[request.param], **kw)
+        t = CloudscapeTechnique(s, textures=tex)
         tex = t.textures
-        img = t.render(CameraPose.from_settings(t.settings), reprojection=False, encode=False)
-        out[name] = (img, t.samples_taken().astype(np.int64))
+        pose = CameraPose.from_settings(s)
+        out[name] = t.render(pose, reprojection=False, encode=False)
+        out[name + "_samples"] = t.samples_taken().astype(np.int64)
+        # the next frame: the same march at another jitter offset, the variation every frame already has
+        out[name + "_next"] = t.render(pose, reprojection=False, encode=False)
+    s = CloudscapeSettings(width=240, height=135, **STEEP, **{**GENERA[request.param], "coverage": 0.0})
+    out["clear"] = CloudscapeTechnique(s).render(CameraPose.from_settings(s), reprojection=False, encode=False)
     return out
 
 
 @pytest.mark.spec("vc-A17", "vc-A18", "vc-A21")
-def test_grouping_skips_most_view_samples(steep_pair):
-    (_, grouped), (_, ungrouped) = steep_pair["grouped"], steep_pair["ungrouped"]
+def test_grouping_skips_view_samples(pair):
+    grouped, ungrouped = pair["grouped_samples"], pair["ungrouped_samples"]
     # the steep rays take 64..115 view samples each without grouping (fewer where a dense cloud ends the march);
-    # with it, empty air costs one test per 8 steps
+    # with it, empty air costs one test per group of up to 8 steps (0.2 km): measured 0.45 of the samples
     assert np.median(ungrouped) >= 64
-    assert grouped.sum() < 0.5 * ungrouped.sum()
+    assert grouped.sum() < 0.6 * ungrouped.sum()
 
 
 @pytest.mark.spec("vc-A17", "vc-A18", "vc-A21")
-def test_grouping_changes_only_a_few_pixels(steep_pair):
-    (a, _), (b, _) = steep_pair["grouped"], steep_pair["ungrouped"]
+def test_grouping_changes_the_frame_far_less_than_the_jitter_does(pair):
+    """The yardstick is the march's own sampling: the ungrouped march's next frame (another jitter offset) differs
+    from this one in 6 % (default) / 30 % (stratus) of the pixels by more than a level of 8 bits. Grouping changes
+    0.09 % / 0.27 % (the pockets of cloud shorter than a group that both of its ends miss), by at most 3.6 / 15
+    levels against the jitter's 7.5 / 32. Groups of up to 0.8 km fail: 5.9 % of the stratus frame, and up to 43
+    levels in the default one."""
+    a, b, jittered = pair["grouped"], pair["ungrouped"], pair["ungrouped_next"]
     assert np.all(np.isfinite(a))
-    diff = np.abs(a - b).max(axis=2)
     # the frame has clouds in it (else agreement would prove nothing): many pixels differ from the clear sky
-    clear = CloudscapeTechnique(small(width=160, height=90, jitter="offset", coverage=0.0, **STEEP)).render(
-        reprojection=False, encode=False)
-    assert np.mean(np.abs(b - clear).max(axis=2) > 0.02) > 0.2
-    # the same march where a group is not skipped wrongly: most pixels bit for bit, and no more than 0.2 % of them
-    # off by more than one level of 8 bits (a cloud wholly between two coarse tests, < 0.8 km of ray)
-    assert np.mean(diff == 0.0) > 0.95
-    assert np.mean(diff > 1.0 / 255.0) < 0.002
+    assert np.mean(np.abs(b - pair["clear"]).max(axis=2) > 0.02) > 0.2
+    group = np.abs(a - b).max(axis=2)
+    jitter = np.abs(jittered - b).max(axis=2)
+    level = 1.0 / 255.0
+    assert np.mean(group > level) < 0.05 * np.mean(jitter > level)
+    assert group.mean() < 0.05 * jitter.mean()
+    assert group.max() <= jitter.max()

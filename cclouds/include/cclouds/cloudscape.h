@@ -156,8 +156,9 @@ typedef struct ccl_cloudscape_params {
     float lod_bias;             /* added to every mip level (default 0; > 0 blurs, < 0 sharpens), in [-4, 4] */
     float refine_step_km;       /* refinement: a view step longer than this is split into sub-steps of at most this
                                    length where the coarse test finds cloud; where the view steps are already this
-                                   short, refine_max of them are grouped and skipped together where the coarse tests
-                                   at both ends of the group find no cloud (default 0.1 km; 0 = off, the thesis) */
+                                   short, those within CCL_CLOUDSCAPE_GROUP_SPAN x this are grouped and skipped
+                                   together where the coarse tests at both ends of the group find no cloud (default
+                                   0.1 km; 0 = off, the thesis) */
     int refine_max;             /* most sub-steps per view step, and view steps per group, in [1, 64] (default 8) */
     int weather_detile;         /* 1: the weather map does not tile visibly (ccl_cloudscape_weather; default);
                                    0: one periodic lookup, the thesis */
@@ -201,12 +202,15 @@ typedef enum ccl_lighting {
  * of 0.8 km cover those 357 km; the factor bounds the work per ray for any layer). */
 #define CCL_CLOUDSCAPE_COARSE_MAX_FACTOR 4
 /* Grouping of short view steps (refinement on, view steps <= refine_step_km: the steep rays, most of a view from
- * below the layer): refine_max consecutive view steps share one coarse test (base shape, no detail, at the mip level
- * of a view sample) at each end; the group is marched where either end finds cloud, else skipped. The detail only
- * erodes, so a sample whose coarse test is 0 has density 0: a group is skipped wrongly only where cloud lies wholly
- * between its two ends, less than refine_step_km x refine_max (0.8 km) apart -- the refinement's own spacing. Each
- * group costs one test (its end is the next group's start); the 90 % of view samples that find no cloud cost 1 /
- * refine_max of a lookup each. */
+ * below or above the layer): consecutive view steps spanning at most CCL_CLOUDSCAPE_GROUP_SPAN x refine_step_km
+ * (and at most refine_max of them) share one coarse test (base shape, no detail, at the mip level of a view sample)
+ * at each end; the group is marched where either end finds cloud, else skipped. The detail only erodes, so a sample
+ * whose coarse test is 0 has density 0: a group is skipped wrongly only where cloud lies wholly between its two
+ * ends. 2 (0.2 km by default) was measured on the thinnest clouds, stratus (type 0, coverage 0.9, oc fig 2.8),
+ * against the march without groups: 0.003 % of the pixels change, by at most 2 levels of 8 bits. Spans of 0.3 km
+ * and 0.8 km left speckles along thin cloud edges there (0.04 % and 0.8 % of the pixels off by more than 8
+ * levels, up to 36 and 92). Each group costs one test (its end is the next group's start). */
+#define CCL_CLOUDSCAPE_GROUP_SPAN 2.0f
 /* Quadrature of the sky means of ccl_cloudscape_light: zenith-angle x azimuth cells over the upper hemisphere. 8 x 16
  * cells of 11.25 x 22.5 degrees: the Preetham and gradient skies vary slowly except within ~10 degrees of the sun,
  * which one cell averages; for a sky linear in d.y the means are off by 0.24 % (mean) and 0.11 % (cosine-weighted)
