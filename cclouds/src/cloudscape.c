@@ -644,14 +644,14 @@ void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_s
     *out = q;
 }
 
-/* The coarse test of a group of short view steps: 1 where the base shape (no detail) at ray distance t_c has density
- * > 0, at the mip level of a view sample there, else 0. The detail only erodes, so 0 here means that a view sample at
- * t_c has density 0 too. */
+/* The coarse test of the march (the refinement's, once per long view step, and a group's, at each end): 1 where the
+ * base shape (no detail) at ray distance t_c has density > 0, at the mip level of footprint_km, else 0. The detail
+ * only erodes, so 0 at a view sample's own footprint means that the view sample has density 0 too. */
 static int coarse_cloud(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye, ccl_vec3 dir,
-                        float t_c, float pixel_angle)
+                        float t_c, float footprint_km)
 {
     float lod = 0.0f, precip;
-    if (p->lod) lod = ccl_cloudscape_lod(t_c * pixel_angle, p->base_scale_km / (float)t->base_size, p->lod_bias);
+    if (p->lod) lod = ccl_cloudscape_lod(footprint_km, p->base_scale_km / (float)t->base_size, p->lod_bias);
     return ccl_cloudscape_density_lod(p, t, ccl_vec3_add(eye, ccl_vec3_scale(dir, t_c)), 0, lod, 0.0f, &precip) > 0.0f;
 }
 
@@ -713,29 +713,30 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                 i = m / k;
                 sub = m - i * k;
                 if (grp > 1 && m % grp == 0) {
+                    /* k = 1: the group's first view sample is at t_g itself, with the same footprint */
+                    const float t_g = t_start + ((float)m + offset) * dt_view;
+                    const float t_n = t_start + ((float)(m + grp) + offset) * dt_view;
                     int here = next_cloud;
                     if (here < 0) {
-                        here = coarse_cloud(p, t, eye, dir, t_start + ((float)m + offset) * dt_view, pixel_angle);
+                        here = coarse_cloud(p, t, eye, dir, t_g, t_g * pixel_angle);
                         ++taken;
                     }
-                    next_cloud = coarse_cloud(p, t, eye, dir, t_start + ((float)(m + grp) + offset) * dt_view,
-                                              pixel_angle);
+                    next_cloud = coarse_cloud(p, t, eye, dir, t_n, t_n * pixel_angle);
                     ++taken;
                     if (!here && !next_cloud) {
                         m += grp;
                         continue;
                     }
+                    if (!here) { /* the first view sample: density 0, as its coarse test found (counted, as skipped) */
+                        ++m;
+                        ++taken;
+                        continue;
+                    }
                 }
                 if (k > 1 && sub == 0) {
                     const float t_c = t_start + ((float)i + offset) * dt_view;
-                    const float fp_c = fmaxf(t_c * pixel_angle, dt_view);
-                    float p_c, lod_c = 0.0f, r_c;
-                    int cloud;
-                    if (p->lod) lod_c = ccl_cloudscape_lod(fp_c, p->base_scale_km / (float)t->base_size, p->lod_bias);
-                    r_c = ccl_cloudscape_density_lod(p, t, ccl_vec3_add(eye, ccl_vec3_scale(dir, t_c)), 0, lod_c,
-                                                     0.0f, &p_c);
+                    const int cloud = coarse_cloud(p, t, eye, dir, t_c, fmaxf(t_c * pixel_angle, dt_view));
                     ++taken;
-                    cloud = r_c > 0.0f;
                     if (!cloud && !prev_cloud) {
                         m += k;
                         continue;

@@ -510,20 +510,23 @@ def cloudscape_density(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, wi
 
 @wp.func
 def coarse_cloud(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, t: float, speed_h: float,
-                 pixel_angle: float) -> int:
-    """The coarse test of a group of short view steps (twin of ``coarse_cloud`` in cloudscape.c): 1 where the base
-    shape (no detail) at ray distance ``t`` has density > 0, at the mip level of a view sample there, else 0. The
-    detail only erodes, so 0 here means that a view sample at ``t`` has density 0 too."""
+                 footprint_km: float):
+    """The coarse test of the march (twin of ``coarse_cloud`` in cloudscape.c; the refinement's, once per long view
+    step, and a group's, at each end): (1 where the base shape (no detail) at ray distance ``t`` has density > 0, at
+    the mip level of ``footprint_km``, else 0; the ray distance up to which the density is certainly 0, from
+    :func:`empty_until`, Warp only: where ``t`` is before it, no lookup). The detail only erodes, so 0 at a view
+    sample's own footprint means that the view sample has density 0 too."""
     q = eye + d * t
-    if t < empty_until(p, tex, q, t, speed_h):  # (Warp only: certainly empty, no lookup)
-        return 0
-    lod = float(0.0)
+    skip = empty_until(p, tex, q, t, speed_h)
+    if t < skip:
+        return int(0), skip
+    fp = float(0.0)
     if p.lod != 0:
-        lod = cloudscape_lod(t * pixel_angle, p.base_scale_km / float(tex.base_size), p.lod_bias)
-    rho, precip = cloudscape_density_lod(p, tex, q, 0, lod, 0.0, 0.0)
+        fp = footprint_km  # (its mip level is computed in the density, only where the base is looked up)
+    rho, precip = cloudscape_density_lod(p, tex, q, 0, 0.0, 0.0, fp)
     if rho > 0.0:
-        return 1
-    return 0
+        return int(1), skip
+    return int(0), skip
 
 
 @wp.func
@@ -591,32 +594,29 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 i = m / k
                 sub = m - i * k
                 if grp > 1 and m % grp == 0:
+                    # k = 1: the group's first view sample is at t_g itself, with the same footprint (the tests' own
+                    # empty-space distances are not kept: the one at the group's end lies ahead of its samples)
+                    t_g = t_start + (float(m) + offset) * dt_view
+                    t_n = t_start + (float(m + grp) + offset) * dt_view
                     here = next_cloud
                     if here < 0:
-                        here = coarse_cloud(p, tex, eye, d, t_start + (float(m) + offset) * dt_view, speed_h,
-                                            pixel_angle)
+                        here, skip_g = coarse_cloud(p, tex, eye, d, t_g, speed_h, t_g * pixel_angle)
                         taken = taken + 1
-                    next_cloud = coarse_cloud(p, tex, eye, d, t_start + (float(m + grp) + offset) * dt_view, speed_h,
-                                              pixel_angle)
+                    next_cloud, skip_n = coarse_cloud(p, tex, eye, d, t_n, speed_h, t_n * pixel_angle)
                     taken = taken + 1
                     if here == 0 and next_cloud == 0:
                         m = m + grp
+                        continue
+                    if here == 0:  # the first view sample: density 0, as its coarse test found (counted, as skipped)
+                        m = m + 1
+                        taken = taken + 1
                         continue
                 if k > 1 and sub == 0:
                     t_c = t_start + (float(i) + offset) * dt_view
                     taken = taken + 1
                     cloud = int(0)
                     if t_c >= skip_end:
-                        q_c = eye + d * t_c
-                        skip_end = empty_until(p, tex, q_c, t_c, speed_h)
-                        if t_c >= skip_end:
-                            fp_c = wp.max(t_c * pixel_angle, dt_view)
-                            lod_c = float(0.0)
-                            if p.lod != 0:
-                                lod_c = cloudscape_lod(fp_c, p.base_scale_km / float(tex.base_size), p.lod_bias)
-                            r_c, p_c = cloudscape_density_lod(p, tex, q_c, 0, lod_c, 0.0, 0.0)
-                            if r_c > 0.0:
-                                cloud = 1
+                        cloud, skip_end = coarse_cloud(p, tex, eye, d, t_c, speed_h, wp.max(t_c * pixel_angle, dt_view))
                     if cloud == 0 and prev_cloud == 0:
                         m = m + k
                         continue
