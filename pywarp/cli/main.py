@@ -26,6 +26,7 @@ import sys
 from pathlib import Path
 
 from ..core.catalogue import SEEDS as _SEED_TEXTS
+from ..core.output import clear_pending, note_interrupt, raise_pending
 from .cache import add_cache_command
 from .equations import add_equations_command
 from .notebooks import add_notebooks_command
@@ -155,15 +156,18 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _raise_terminated(signum, frame):
-    # further SIGINT/SIGTERM while the writers clean up are ignored; main() restores the defaults afterwards
+    # further SIGINT/SIGTERM while the writers clean up are ignored; main() restores the defaults afterwards. The
+    # interrupt is also recorded: raised inside a __del__, Python drops it, and the writers and main() raise it again
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    note_interrupt(Terminated)
     raise Terminated()
 
 
 def _raise_interrupted(signum, frame):
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    note_interrupt(KeyboardInterrupt)
     raise KeyboardInterrupt()
 
 
@@ -183,6 +187,7 @@ def main(argv: list[str] | None = None) -> int:
     delay it; called with ``argv`` (tests, scripts) it returns 130 / 143 instead."""
     as_program = argv is None
     argv = sys.argv[1:] if argv is None else list(argv)
+    clear_pending()
     handlers = {}
     if sys.platform != "win32":
         for signum, handler in ((signal.SIGTERM, _raise_terminated), (signal.SIGINT, _raise_interrupted)):
@@ -204,7 +209,9 @@ def main(argv: list[str] | None = None) -> int:
             if extra:
                 sub.error(f"unrecognized arguments: {' '.join(extra)}")
             try:
-                return args.run(args)
+                status = args.run(args)
+                raise_pending()  # an interrupt whose first raise was dropped ends the command as interrupted
+                return status
             except (ValueError, TypeError, OSError) as exc:
                 if isinstance(exc, BrokenPipeError):
                     raise
@@ -227,6 +234,7 @@ def main(argv: list[str] | None = None) -> int:
         _finish_interrupt(code, word, as_program)
         return code
     finally:
+        clear_pending()
         for signum, old in handlers.items():
             try:
                 signal.signal(signum, old)

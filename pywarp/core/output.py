@@ -2,8 +2,8 @@
 
 Every writer renders into a hidden temporary file next to the target (``.<stem>.<random><suffix>.part``) and renames
 it into place only when the whole image or video is complete (``os.replace`` is atomic on one file system). On any
-exception -- an error, ``KeyboardInterrupt`` (Ctrl-C), or the exception the ``pywarp`` command raises on SIGTERM --
-the temporary file is removed and the MP4 writer's ffmpeg process is killed, so no half-written PNG, GIF or MP4 and
+exception -- an error, ``KeyboardInterrupt`` (Ctrl-C), or the exception the ``pywarp`` command raises on SIGTERM,
+also when Python dropped that exception and only :func:`note_interrupt` kept it -- the temporary file is removed and the MP4 writer's ffmpeg process is killed, so no half-written PNG, GIF or MP4 and
 no ``.part`` file is left behind. :func:`remove_temporaries` removes whatever a writer still holds (the command
 calls it once more when it is interrupted).
 
@@ -32,6 +32,26 @@ TEMP_SUFFIX = ".part"
 _LIVE: set[Path] = set()
 #: The option that named each path checked by check_output_path (resolved path -> "--out"), for error messages.
 _OPTION_OF: dict[str, str] = {}
+#: Interrupts a signal handler raised (:func:`note_interrupt`). Python drops an exception raised while it runs a
+#: ``__del__`` (a Warp array freed between two frames, say) after printing it, so a handler's exception can be lost;
+#: while one is recorded here, no writer publishes a file or takes another frame (:func:`raise_pending`).
+_PENDING: list[type] = []
+
+
+def note_interrupt(exc_type: type) -> None:
+    """Record that a signal handler is raising ``exc_type`` (KeyboardInterrupt or a subclass)."""
+    _PENDING.append(exc_type)
+
+
+def raise_pending() -> None:
+    """Raise the first recorded interrupt again, if any (its first raise may have been dropped)."""
+    if _PENDING:
+        raise _PENDING[0]()
+
+
+def clear_pending() -> None:
+    """Forget the recorded interrupts (the command does, once it has handled one or finished)."""
+    _PENDING.clear()
 
 
 def _key(path: Path) -> str:
@@ -162,7 +182,8 @@ def remove_temporaries() -> list[Path]:
 
 def _publish(tmp: Path, path: Path) -> None:
     """Give the finished temporary file the usual permissions (0666 minus the umask; the temporary file is 0600) and
-    rename it into place atomically."""
+    rename it into place atomically -- not while an interrupt is pending (:func:`raise_pending`)."""
+    raise_pending()
     os.chmod(tmp, 0o666 & ~_umask())
     os.replace(tmp, path)
     _LIVE.discard(tmp)
@@ -301,6 +322,7 @@ class VideoWriter:
     def add(self, rgb) -> None:
         if self._tmp is None:
             raise RuntimeError("VideoWriter.add() outside its with block")
+        raise_pending()  # an interrupt whose first raise was dropped: no further frame
         img = rgb if (isinstance(rgb, np.ndarray) and rgb.dtype == np.uint8) else to_uint8(rgb)
         if self.path.suffix.lower() == ".gif":
             self._frames.append(img)

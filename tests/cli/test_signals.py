@@ -3,6 +3,7 @@
 no ffmpeg process left running."""
 from __future__ import annotations
 
+import importlib
 import os
 import signal
 import subprocess
@@ -80,3 +81,74 @@ def test_interrupt_in_process_returns_130_and_removes_temporaries(tmp_path, caps
     assert capsys.readouterr().err.strip() == "pywarp: interrupted"
     assert list(tmp_path.iterdir()) == []
     assert (signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)) == before  # handlers restored
+
+
+def _drop_a_signal_in_a_destructor(signum) -> list:
+    """Deliver ``signum`` while Python runs a ``__del__``, where the handler's exception is printed and dropped (as CI
+    once saw a SIGTERM land in a Warp array's ``__del__``: `pywarp animate` went on and exited 0 with its file
+    written). Returns what reached sys.unraisablehook."""
+    dropped = []
+    old_hook = sys.unraisablehook
+    sys.unraisablehook = lambda u: dropped.append(u.exc_type)
+
+    class Drop:
+        def __del__(self):
+            os.kill(os.getpid(), signum)
+            for _ in range(100000):  # the Python-level handler runs at one of these bytecode boundaries
+                pass
+
+    try:
+        d = Drop()
+        del d
+    finally:
+        sys.unraisablehook = old_hook
+    return dropped
+
+
+@pytest.mark.parametrize("signum,exc_name", [(signal.SIGTERM, "Terminated"), (signal.SIGINT, "KeyboardInterrupt")])
+def test_an_interrupt_dropped_in_a_destructor_still_stops_every_writer(tmp_path, signum, exc_name):
+    import numpy as np
+
+    from pywarp.core import output
+
+    M = importlib.import_module("pywarp.cli.main")  # (pywarp.cli's `main` is the function)
+
+    exc_type = M.Terminated if exc_name == "Terminated" else KeyboardInterrupt
+    handler = M._raise_terminated if signum == signal.SIGTERM else M._raise_interrupted
+    saved = {s: signal.getsignal(s) for s in (signal.SIGTERM, signal.SIGINT)}
+    try:
+        signal.signal(signum, handler)
+        assert _drop_a_signal_in_a_destructor(signum) == [exc_type]  # the first raise was lost
+        with pytest.raises(exc_type):
+            output.write_png(tmp_path / "x.png", np.zeros((2, 2, 3)))
+        with pytest.raises(exc_type):
+            with output.VideoWriter(tmp_path / "y.gif") as w:
+                w.add(np.zeros((2, 2, 3), np.uint8))
+        with pytest.raises(exc_type):
+            with output.atomic_path(tmp_path / "z.npy") as tmp, open(tmp, "wb") as fh:
+                np.save(fh, np.zeros(3))
+        assert list(tmp_path.iterdir()) == []  # no file, no .part file
+    finally:
+        output.clear_pending()
+        for s, h in saved.items():
+            signal.signal(s, h)
+
+
+def test_the_command_ends_as_terminated_when_the_interrupt_was_dropped(monkeypatch, capsys):
+    """A command that finishes after its SIGTERM was dropped (nothing raised it again) still ends as terminated."""
+    import argparse
+
+    M = importlib.import_module("pywarp.cli.main")
+
+    def build_parser():
+        p = argparse.ArgumentParser(prog="pywarp")
+        sub = p.add_subparsers(dest="command")
+        c = sub.add_parser("job")
+        c.set_defaults(run=lambda args: (M.note_interrupt(M.Terminated), 0)[1])  # the handler's record, raise lost
+        p._commands = sub
+        return p
+
+    monkeypatch.setattr(M, "build_parser", build_parser)
+    assert M.main(["job"]) == 143
+    assert capsys.readouterr().err.strip().splitlines() == ["pywarp: terminated"]
+    assert M.main(["job"]) == 143  # (the record is per run: cleared at the start and the end of main)
