@@ -33,8 +33,20 @@
  *                             slightly warm, as low sunlight is.
  *   ambient bottom (0.12, 0.14, 0.18), top (0.30, 0.34, 0.42)   bluish sky light, about a third of the sunlit
  *                             brightness, darker at the shadowed base: the bases stay grey-blue, not black.
- *   samples 64 .. 128, adaptive, early exit with eps 1/256, light cone 0.1 km / 15 deg / far 3:
+ *   samples 64 .. 128, adaptive, light cone 0.1 km / 15 deg / far 3:
  *                             the thesis's counts and our raymarch defaults (cclouds/raymarch.h).
+ *   early exit at T <= exit_eps 1/32 with exit_fill 1   the thesis stops "once further samples cannot change the
+ *                             colour" and gives no threshold. At the exit the rest of the ray still holds T of the
+ *                             pixel's weight; exit_fill gives it the light of the last sample (the rest of an
+ *                             opaque cloud is lit much like its last sample) instead of letting the background
+ *                             show through it. Measured against the march without early exit on the default
+ *                             view (240 x 135, linear levels of 8 bits; tests/clouds/test_early_exit.py): 1/256
+ *                             without the fill (the earlier default) changes pixels by 0.03 on average, at most
+ *                             1.2; 1/32 with the fill by 0.10, at most 10.8; 1/32 without it by 0.28. The jitter
+ *                             changes the frame by 0.25, at most 41, from one frame to the next. 1/32 with the fill
+ *                             takes 15 % less time than 1/256 (640 x 360, one thread), and the error against the
+ *                             path-traced reference does not grow (mean CIEDE2000 of the three scenes 9.04 ->
+ *                             9.02). 1/16 would save 20 % and change pixels by up to 14 levels (encoded).
  *   jitter offset (amount 0.002 for the tilt mode)   the first sample's position along the ray; the thesis's tilt
  *                             of up to 0.002 rad per axis moves the ray by more than a pixel (0.0019 rad at
  *                             960 x 540): far clouds changed from frame to frame (the flickering horizon) and near
@@ -127,7 +139,8 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->samples_max = 128;
     out->adaptive_samples = 1;
     out->early_exit = 1;
-    out->exit_eps = 1.0f / 256.0f;
+    out->exit_eps = 1.0f / 32.0f;
+    out->exit_fill = 1;
     out->light_step_km = 0.1f;
     out->light_cone_angle = 0.2617994f; /* 15 degrees */
     out->light_far_factor = 3.0f;
@@ -213,6 +226,7 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!(p->samples_min >= 1 && p->samples_min <= p->samples_max)) return bad(out_field, "samples_min");
     if (!(p->samples_max <= 4096)) return bad(out_field, "samples_max");
     if (!(p->exit_eps > 0.0f && p->exit_eps < 1.0f)) return bad(out_field, "exit_eps");
+    if (!(p->exit_fill == 0 || p->exit_fill == 1)) return bad(out_field, "exit_fill");
     if (!finite_pos(p->light_step_km)) return bad(out_field, "light_step_km");
     if (!(p->light_cone_angle >= 0.0f && p->light_cone_angle < 1.5707963f)) return bad(out_field, "light_cone_angle");
     if (!(p->light_far_factor >= 1.0f && p->light_far_factor < INFINITY)) return bad(out_field, "light_far_factor");
@@ -790,7 +804,16 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     depth_w += t_before - trans;
                     depth_sum += (t_before - trans) * t_i;
                 }
-                if (stop && p->early_exit) break;
+                if (stop && p->early_exit) {
+                    if (p->exit_fill) {
+                        /* the rest of the ray's weight, T, takes the last sample's light (see exit_fill) */
+                        colour = ccl_vec3_add(colour, ccl_vec3_scale(light, trans));
+                        depth_w += trans;
+                        depth_sum += trans * t_i;
+                        trans = 0.0f;
+                    }
+                    break;
+                }
             }
         }
     }

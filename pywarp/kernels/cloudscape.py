@@ -89,6 +89,7 @@ class CloudscapeParams:
     adaptive_samples: int
     early_exit: int
     exit_eps: float
+    exit_fill: int
     light_step_km: float
     light_cone_angle: float
     light_far_factor: float
@@ -676,6 +677,12 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                     depth_w = depth_w + (t_before - trans)
                     depth_sum = depth_sum + (t_before - trans) * t_i
                     if stop != 0 and p.early_exit != 0:
+                        if p.exit_fill != 0:
+                            # the rest of the ray's weight, T, takes the last sample's light (exit_fill in the C)
+                            colour = colour + light * trans
+                            depth_w = depth_w + trans
+                            depth_sum = depth_sum + trans * t_i
+                            trans = 0.0
                         break
     depth = float(0.0)
     if depth_w > 0.0:

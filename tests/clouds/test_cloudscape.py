@@ -38,7 +38,9 @@ def tech():
     ("preetham", "none", dict(coverage_threshold="coverage", beer=False)),
     ("gradient", "tilt", dict(powder=False, light_detail=False, adaptive_samples=False)),
     # pitched up so far that every ray's view steps are short: the grouped march (tests/clouds/test_step_grouping.py)
-    ("preetham", "offset", dict(camera_pitch_deg=45.0))])
+    ("preetham", "offset", dict(camera_pitch_deg=45.0)),
+    # the early exit without its fill, at the earlier threshold (tests/clouds/test_early_exit.py)
+    ("gradient", "offset", dict(advanced={"exit_fill": 0, "exit_eps": 1.0 / 256.0}))])
 def test_warp_pixels_match_c_reference(sky, jitter, extra):
     """300 sampled pixels of a 96x54 frame. Both sides evaluate the same float32 operations in the same order with
     the same libm (expf, powf, tanf); C is compiled without FMA contraction and Warp's CPU code does not contract

@@ -18,7 +18,7 @@
  *                   L = sun_colour * E(d_light, a, dot(d, to_sun), g) + ambient(h)   (vc-2.31, vc-A20;
  *                       the beer / powder flags replace a term of E by 1, to show what each contributes)
  *                   ccl_raymarch_accumulate(colour, T, sigma, rho, dt, L, exit_eps)     (vc-A21)
- *                   stop when early_exit and the accumulation says so
+ *                   stop when early_exit and the accumulation says so (then, with exit_fill, C += T L, T = 0)
  *   C_f    = B (1 - O_D) + C_clouds with O_D = 1 - T (vc-4.8), then sRGB encoding.
  * density(p) (vc-A17): h = relative height (vc-A15); weather map at (p.x, p.z) + wind -> coverage D_h (R),
  *   precipitation (G), cloud type (B); D_v = height gradient (vc-4.7, A16); base texture at p -> B (vc-2.28);
@@ -136,7 +136,10 @@ typedef struct ccl_cloudscape_params {
     int samples_max;            /* view samples at the horizon (128) */
     int adaptive_samples;       /* 1: n from the ray's y (vc-A18); 0: always samples_max */
     int early_exit;             /* 1: stop when the accumulation reaches full opacity (vc-A21) */
-    float exit_eps;             /* early-exit threshold: stop once 1 - T >= 1 - exit_eps (1/256) */
+    float exit_eps;             /* early-exit threshold: stop once 1 - T >= 1 - exit_eps (1/32, see the .c) */
+    int exit_fill;              /* 1: at the early exit the remaining transmittance T takes the light of the last
+                                   sample (C += T L, T = 0), an estimate of the rest of the ray; 0: T stays and
+                                   the background shows through it (default 1, see the .c) */
     float light_step_km;        /* axial step of the light cone (vc-A19; 0.1 km) */
     float light_cone_angle;     /* half-angle of the light cone, rad (15 degrees) */
     float light_far_factor;     /* distance of the far light sample relative to the near cone (3) */
