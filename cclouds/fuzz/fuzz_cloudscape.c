@@ -20,7 +20,7 @@ static const fz_field fields[] = {
     FZ_I(P, adaptive_samples), FZ_I(P, early_exit), FZ_F(P, exit_eps), FZ_F(P, light_step_km),
     FZ_F(P, light_cone_angle), FZ_F(P, light_far_factor), FZ_I(P, light_detail), FZ_I(P, jitter_mode),
     FZ_F(P, jitter_amount), FZ_I(P, gradient_clamp), FZ_I(P, detail_direction), FZ_F(P, ground_colour[1]),
-    FZ_I(P, coverage_threshold), FZ_I(P, beer), FZ_I(P, powder), FZ_I(P, exit_fill)};
+    FZ_I(P, coverage_threshold), FZ_I(P, beer), FZ_I(P, powder), FZ_I(P, exit_fill), FZ_F(P, light_interp)};
 #undef P
 
 static float *texture(fz_reader *r, int *edge, int dims) {

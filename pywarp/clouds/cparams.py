@@ -34,7 +34,7 @@ def param_values(settings) -> dict:
         "sun_colour": tuple(p.sun_colour), "ambient_bottom": tuple(p.ambient_bottom),
         "ambient_top": tuple(p.ambient_top), "samples_min": settings.samples_min,
         "samples_max": settings.samples_max, "adaptive_samples": int(settings.adaptive_samples),
-        "early_exit": int(settings.early_exit), "exit_eps": p.exit_eps, "exit_fill": p.exit_fill, "light_step_km": p.light_step_km,
+        "early_exit": int(settings.early_exit), "exit_eps": p.exit_eps, "exit_fill": p.exit_fill, "light_interp": p.light_interp, "light_step_km": p.light_step_km,
         "light_cone_angle": p.light_cone_angle, "light_far_factor": p.light_far_factor,
         "light_detail": int(settings.light_detail), "jitter_mode": JITTERS[settings.jitter],
         "jitter_amount": p.jitter_amount, "gradient_clamp": p.gradient_clamp,

@@ -90,6 +90,7 @@ class CloudscapeParams:
     early_exit: int
     exit_eps: float
     exit_fill: int
+    light_interp: float
     light_step_km: float
     light_cone_angle: float
     light_far_factor: float
@@ -531,6 +532,68 @@ def coarse_cloud(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.ve
 
 
 @wp.func
+def light_depth(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, to_sun: wp.vec3, t_i: float,
+                pixel_angle: float) -> float:
+    """vc-A19: the optical depth towards the sun of a lit sample at ``pos`` (ray distance ``t_i``) from 6 cone samples
+    (twin of ``light_depth`` in cloudscape.c)."""
+    lod_lb = float(0.0)
+    lod_ld = float(0.0)
+    if p.lod != 0:
+        # the light samples at the nearest whole level: one lookup each instead of a blend of two (the optical depth
+        # towards the sun is a sum of six samples, smooth where the view's colour is not)
+        fl = wp.max(t_i * pixel_angle, p.light_step_km)
+        lod_lb = wp.floor(cloudscape_lod(fl, p.base_scale_km / float(tex.base_size), p.lod_bias) + 0.5)
+        lod_ld = wp.floor(cloudscape_lod(fl, p.detail_scale_km / float(tex.detail_size), p.lod_bias) + 0.5)
+    d_light = float(0.0)
+    for j in range(6):
+        w = (p.light_far_factor - 1.0) * 5.0 * p.light_step_km
+        if j < 5:
+            w = p.light_step_km
+        q = raymarch_light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
+                                           p.light_far_factor, raymarch_light_cone_kernel(j))
+        if empty_until(p, tex, q, 0.0, 1.0) < 0.0:  # (else certainly 0: no lookup)
+            rj, pj = cloudscape_density_lod(p, tex, q, p.light_detail, lod_lb, lod_ld, 0.0)
+            d_light = d_light + w * rj
+    return d_light * p.sigma_light
+
+
+@wp.func
+def sample_light(p: CloudscapeParams, d_light: float, precip: float, pos: wp.vec3, cos_theta: float) -> wp.vec3:
+    """vc-2.31 + vc-A20: the light of a lit sample from its optical depth towards the sun ``d_light`` (E of vc-2.31
+    with the multiple-scattering octaves, dual-lobe phase, beer / powder flags) and the ambient by relative height
+    (twin of ``sample_light`` in cloudscape.c)."""
+    a = p.absorption_base + p.absorption_precip * precip
+    e = cloudscape_energy(p, d_light, a, cos_theta)
+    h = clouds_relative_height(wp.length(pos - p.centre), p.r_inner, p.r_outer, 0)
+    return wp.vec3(
+        p.sun_colour[0] * e + (p.ambient_bottom[0] + (p.ambient_top[0] - p.ambient_bottom[0]) * h),
+        p.sun_colour[1] * e + (p.ambient_bottom[1] + (p.ambient_top[1] - p.ambient_bottom[1]) * h),
+        p.sun_colour[2] * e + (p.ambient_bottom[2] + (p.ambient_top[2] - p.ambient_bottom[2]) * h))
+
+
+@wp.func
+def march_sample(p: CloudscapeParams, colour: wp.vec3, trans: float, depth_w: float, depth_sum: float, rho: float,
+                 dt: float, light: wp.vec3, t_i: float):
+    """vc-A21 for one lit sample at ray distance ``t_i``, and the early exit with its fill (twin of ``march_sample``
+    in cloudscape.c): (colour, transmittance, depth weight, depth sum, 1 where the ray stops)."""
+    t_before = trans
+    c, t, stop = raymarch_accumulate(colour, trans, p.sigma, rho, dt, light, p.exit_eps)
+    # the sample's weight in the pixel, for the mean distance of the aerial perspective
+    dw = depth_w + (t_before - t)
+    ds = depth_sum + (t_before - t) * t_i
+    out = int(0)
+    if stop != 0 and p.early_exit != 0:
+        out = 1
+        if p.exit_fill != 0:
+            # the rest of the ray's weight, T, takes the last sample's light (exit_fill in the C)
+            c = c + light * t
+            dw = dw + t
+            ds = ds + t * t_i
+            t = 0.0
+    return c, t, dw, ds, out
+
+
+@wp.func
 def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, to_sun: wp.vec3,
                      offset: float, pixel_angle: float):
     """One view ray: (cloud colour, transmittance, samples taken, mean distance [km]); twin of
@@ -590,6 +653,17 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
             # empty-space skipping (Warp only, no change of any result): samples before skip_end have density 0
             skip_end = float(-1.0)
             speed_h = wp.sqrt(d[0] * d[0] + d[2] * d[2])
+            # light interpolation: the waiting sample, the last lit sample whose optical depth was computed
+            pend = int(0)
+            pend_rho = float(0.0)
+            pend_t = float(0.0)
+            pend_precip = float(0.0)
+            pend_pos = wp.vec3(0.0, 0.0, 0.0)
+            computed = int(0)
+            d_prev = float(0.0)
+            light_prev = wp.vec3(0.0, 0.0, 0.0)
+            t_prev = float(0.0)
+            stop = int(0)
             m = int(0)
             while m < n * k:
                 i = m / k
@@ -631,8 +705,6 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 skip_end = empty_until(p, tex, pos, t_i, speed_h)
                 if t_i < skip_end:
                     continue
-                lod_lb = float(0.0)
-                lod_ld = float(0.0)
                 fp = float(0.0)
                 if p.lod != 0:
                     # footprint of the sample: the pixel's width at its distance (the refinement keeps the steps
@@ -641,49 +713,50 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                     fp = t_i * pixel_angle
                 rho, precip = cloudscape_density_lod(p, tex, pos, 1, 0.0, 0.0, fp)
                 if rho > 0.0:
-                    if p.lod != 0:
-                        fl = wp.max(t_i * pixel_angle, p.light_step_km)
-                        # the light samples at the nearest whole level: one lookup each instead of a blend of two
-                        # (the optical depth towards the sun is a sum of six samples, smooth where the view's colour
-                        # is not)
-                        lod_lb = wp.floor(cloudscape_lod(fl, p.base_scale_km / float(tex.base_size), p.lod_bias) + 0.5)
-                        lod_ld = wp.floor(cloudscape_lod(fl, p.detail_scale_km / float(tex.detail_size), p.lod_bias)
-                                          + 0.5)
-                    # vc-A19: optical depth towards the sun from 6 cone samples
-                    d_light = float(0.0)
-                    for j in range(6):
-                        w = (p.light_far_factor - 1.0) * 5.0 * p.light_step_km
-                        if j < 5:
-                            w = p.light_step_km
-                        q = raymarch_light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
-                                                           p.light_far_factor, raymarch_light_cone_kernel(j))
-                        if empty_until(p, tex, q, 0.0, 1.0) < 0.0:  # (else certainly 0: no lookup)
-                            rj, pj = cloudscape_density_lod(p, tex, q, p.light_detail, lod_lb, lod_ld, 0.0)
-                            d_light = d_light + w * rj
-                    d_light = d_light * p.sigma_light
-                    # vc-2.31 + vc-A20
-                    a = p.absorption_base + p.absorption_precip * precip
-                    # E of vc-2.31 (+ multiple-scattering octaves, dual-lobe phase; beer / powder flags)
-                    e = cloudscape_energy(p, d_light, a, cos_theta)
-                    h = clouds_relative_height(wp.length(pos - p.centre), p.r_inner, p.r_outer, 0)
-                    light = wp.vec3(
-                        p.sun_colour[0] * e + (p.ambient_bottom[0] + (p.ambient_top[0] - p.ambient_bottom[0]) * h),
-                        p.sun_colour[1] * e + (p.ambient_bottom[1] + (p.ambient_top[1] - p.ambient_bottom[1]) * h),
-                        p.sun_colour[2] * e + (p.ambient_bottom[2] + (p.ambient_top[2] - p.ambient_bottom[2]) * h))
-                    # vc-A21
-                    t_before = trans
-                    colour, trans, stop = raymarch_accumulate(colour, trans, p.sigma, rho, dt, light, p.exit_eps)
-                    # the sample's weight in the pixel, for the mean distance of the aerial perspective
-                    depth_w = depth_w + (t_before - trans)
-                    depth_sum = depth_sum + (t_before - trans) * t_i
-                    if stop != 0 and p.early_exit != 0:
-                        if p.exit_fill != 0:
-                            # the rest of the ray's weight, T, takes the last sample's light (exit_fill in the C)
-                            colour = colour + light * trans
-                            depth_w = depth_w + trans
-                            depth_sum = depth_sum + trans * t_i
-                            trans = 0.0
+                    # light interpolation (light_interp in the C): the lit sample right after one whose optical depth
+                    # towards the sun was computed waits for the next lit sample
+                    if p.light_interp > 0.0 and pend == 0 and computed != 0 and t_i - t_prev <= 1.5 * dt:
+                        pend = 1
+                        pend_rho = rho
+                        pend_t = t_i
+                        pend_precip = precip
+                        pend_pos = pos
+                        continue
+                    d_cur = light_depth(p, tex, pos, to_sun, t_i, pixel_angle)
+                    light = sample_light(p, d_cur, precip, pos, cos_theta)
+                    if pend != 0:
+                        # the waiting sample: the mean of its neighbours' optical depths where it is the middle of
+                        # three consecutive samples and its weight in the pixel times the largest difference of
+                        # their lights is at most light_interp, else its own
+                        pend = 0
+                        # (a sample that ends the ray also lends its light to the rest of it: the exit's fill)
+                        e_p = wp.exp(-p.sigma * pend_rho * dt)
+                        w_p = trans * (1.0 - e_p)
+                        if p.early_exit != 0 and p.exit_fill != 0 and trans * e_p <= p.exit_eps:
+                            w_p = trans
+                        diff = wp.max(wp.abs(light[0] - light_prev[0]),
+                                      wp.max(wp.abs(light[1] - light_prev[1]), wp.abs(light[2] - light_prev[2])))
+                        d_p = 0.5 * (d_prev + d_cur)
+                        if t_i - pend_t > 1.5 * dt or w_p * diff > p.light_interp:
+                            d_p = light_depth(p, tex, pend_pos, to_sun, pend_t, pixel_angle)
+                        colour, trans, depth_w, depth_sum, stop = march_sample(
+                            p, colour, trans, depth_w, depth_sum, pend_rho, dt,
+                            sample_light(p, d_p, pend_precip, pend_pos, cos_theta), pend_t)
+                        if stop != 0:
+                            break
+                    computed = 1
+                    d_prev = d_cur
+                    light_prev = light
+                    t_prev = t_i
+                    colour, trans, depth_w, depth_sum, stop = march_sample(p, colour, trans, depth_w, depth_sum, rho,
+                                                                           dt, light, t_i)
+                    if stop != 0:
                         break
+            if pend != 0:  # the ray ended with a sample waiting (a stop never leaves one)
+                d_p = light_depth(p, tex, pend_pos, to_sun, pend_t, pixel_angle)
+                colour, trans, depth_w, depth_sum, stop = march_sample(
+                    p, colour, trans, depth_w, depth_sum, pend_rho, dt,
+                    sample_light(p, d_p, pend_precip, pend_pos, cos_theta), pend_t)
     depth = float(0.0)
     if depth_w > 0.0:
         depth = depth_sum / depth_w

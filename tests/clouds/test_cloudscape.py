@@ -39,8 +39,9 @@ def tech():
     ("gradient", "tilt", dict(powder=False, light_detail=False, adaptive_samples=False)),
     # pitched up so far that every ray's view steps are short: the grouped march (tests/clouds/test_step_grouping.py)
     ("preetham", "offset", dict(camera_pitch_deg=45.0)),
-    # the early exit without its fill, at the earlier threshold (tests/clouds/test_early_exit.py)
-    ("gradient", "offset", dict(advanced={"exit_fill": 0, "exit_eps": 1.0 / 256.0}))])
+    # the thesis's march: the early exit at 1/256 without its fill (tests/clouds/test_early_exit.py), every optical
+    # depth towards the sun computed (tests/clouds/test_light_interp.py)
+    ("gradient", "offset", dict(advanced={"exit_fill": 0, "exit_eps": 1.0 / 256.0, "light_interp": 0.0}))])
 def test_warp_pixels_match_c_reference(sky, jitter, extra):
     """300 sampled pixels of a 96x54 frame. Both sides evaluate the same float32 operations in the same order with
     the same libm (expf, powf, tanf); C is compiled without FMA contraction and Warp's CPU code does not contract
@@ -267,11 +268,14 @@ def test_ground_below_the_horizon_sky_above(altitude):
 @pytest.mark.spec("vc-2.31", "vc-A20")
 def test_lighting_terms_switches_only_brighten(tech):
     """Replacing the powder or the Beer term of vc-2.31 by 1 can only raise the light of every sample (both terms
-    are <= 1) while the opacity is unchanged, so every pixel gets at least as bright; and some clouds change."""
-    s = small(sky="gradient", jitter="none", camera_pitch_deg=15.0, powder=True)  # both terms on: vc-2.31 as printed
+    are <= 1) while the opacity is unchanged, so every pixel gets at least as bright; and some clouds change. Every
+    sample computes its own optical depth towards the sun (light_interp 0): where a sample interpolates depends on
+    its neighbours' lights, so it could differ between the two models."""
+    exact = dict(advanced={"light_interp": 0.0})
+    s = small(sky="gradient", jitter="none", camera_pitch_deg=15.0, powder=True, **exact)  # vc-2.31 as printed
     on = CloudscapeTechnique(s, textures=tech.textures).render(reprojection=False, encode=False)
     for kw in (dict(powder=False), dict(beer=False, powder=True)):
-        off = CloudscapeTechnique(small(sky="gradient", jitter="none", camera_pitch_deg=15.0, **kw),
+        off = CloudscapeTechnique(small(sky="gradient", jitter="none", camera_pitch_deg=15.0, **kw, **exact),
                                   textures=tech.textures).render(reprojection=False, encode=False)
         assert np.all(off >= on)
         assert np.mean(off - on) > 1e-3

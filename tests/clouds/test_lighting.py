@@ -430,7 +430,7 @@ def test_silver_lobe_brightens_clouds_towards_the_sun(tech):
 THESIS_RENDERER = {k: v for k, v in dict(lighting="thesis", powder=True, lod=False, refine_step_km=0.0, jitter="tilt",
                                          weather_detile=False, reprojection_depth="inner_sphere",
                                          reprojection_filter="bilinear",
-                                         advanced={"exit_eps": 1.0 / 256.0, "exit_fill": 0}).items()
+                                         advanced={"exit_eps": 1.0 / 256.0, "exit_fill": 0, "light_interp": 0.0}).items()
                    if k in {f.name for f in dataclasses.fields(CloudscapeSettings)}}
 GOLDEN_XS = [8, 8, 51, 31, 37, 38, 45, 1, 31, 9, 25, 59, 35, 4, 34, 8]
 GOLDEN_YS = [27, 34, 35, 22, 31, 13, 5, 18, 15, 23, 35, 9, 30, 4, 12, 28]

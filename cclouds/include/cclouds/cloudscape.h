@@ -140,6 +140,11 @@ typedef struct ccl_cloudscape_params {
     int exit_fill;              /* 1: at the early exit the remaining transmittance T takes the light of the last
                                    sample (C += T L, T = 0), an estimate of the rest of the ray; 0: T stays and
                                    the background shows through it (default 1, see the .c) */
+    float light_interp;         /* light interpolation, >= 0 (display-linear radiance; default 1/64, see the .c): a
+                                   lit sample between two consecutive lit samples whose optical depths towards the
+                                   sun were computed takes the mean of theirs where its weight in the pixel times
+                                   the largest channel difference of their lights is at most this; 0: every lit
+                                   sample computes its own (vc-A19 as the thesis has it) */
     float light_step_km;        /* axial step of the light cone (vc-A19; 0.1 km) */
     float light_cone_angle;     /* half-angle of the light cone, rad (15 degrees) */
     float light_far_factor;     /* distance of the far light sample relative to the near cone (3) */
