@@ -88,10 +88,10 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     fig.suptitle("Fig 4.12 — discretization artifact of a thick layer (1.5–12 km) marched with 12–16 samples: "
                  "(a) without filter, (b)–(d) with filters (vc-A23)", fontsize=11)
     fig.text(0.5, 0.012, "The thesis's tilt (b) moves the samples only sideways (~10 m at 5 km) and leaves the bands; a "
-             "10x larger tilt (c) or a random start offset along the ray (d) turns them into per-pixel noise. The renderer's "
-             "default (offset jitter + refinement of long steps, refine_step_km) removes them.",
+             "10x larger tilt (c) or a random start offset along the ray (d) turns them into per-pixel noise.\nThe "
+             "renderer's default (offset jitter + refinement of long steps, refine_step_km) removes them.",
              ha="center", fontsize=9)
-    fig.subplots_adjust(left=0.005, right=0.995, top=0.90, bottom=0.05, wspace=0.02, hspace=0.1)
+    fig.subplots_adjust(left=0.005, right=0.995, top=0.90, bottom=0.08, wspace=0.02, hspace=0.1)
     out = out_dir / "fig-4.12.png"
     fig.savefig(out)
     plt.close(fig)
