@@ -263,6 +263,15 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
     tech.update(light_detail=False)
     option_light_base_only = _timed(lambda: tech.render(pose, reprojection=False), repeat)
     tech.update(light_detail=True)
+    # the renderer's two approximations of the march, each off (what each one saves): every optical depth towards the
+    # sun computed (light_interp 0, tests/clouds/test_light_interp.py); the early exit at 1/256 without its fill
+    # (tests/clouds/test_early_exit.py)
+    options = {"light_base_only": option_light_base_only}
+    for name, adv in (("no_light_interp", {"light_interp": 0.0}),
+                      ("exit_1_256_no_fill", {"exit_eps": 1.0 / 256.0, "exit_fill": 0})):
+        tech.update(advanced=adv)
+        options[name] = _timed(lambda: tech.render(pose, reprojection=False), repeat)
+    tech.update(advanced={})
     sky = measure_sky(tech, repeat)
     sky_ms = {k: v["full"] for k, v in sky.items()}
     sky_reprojected_ms = {k: v["reprojection"] for k, v in sky.items()}
@@ -308,8 +317,8 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         "ms_640x360_reprojected": r(ms_640_reproj),
         "fps_640x360_reprojected": round(1e3 / ms_640_reproj, 1),
         "ms_1280x720_full": r(ms_1280_full),
-        "options_ms": {"light_base_only": r(option_light_base_only)},
-        "options_speedup": {"light_base_only": round(ladder["early_exit"] / option_light_base_only, 3)},
+        "options_ms": {k: r(v) for k, v in options.items()},
+        "options_speedup": {k: round(ladder["early_exit"] / v, 3) for k, v in options.items()},
         "small_frame": [sw, sh],
         "machine": machine(),
     }
@@ -383,6 +392,8 @@ def report_cloudscape(res: dict) -> str:
     for k in ("parallel_speedup", "warp_over_c_per_thread", "reprojected_over_full", "ms_640x360_reprojected",
               "fps_640x360_reprojected", "ms_1280x720_full"):
         lines.append(f"  {k:<25} {res[k]}")
+    for k, v in res.get("options_ms", {}).items():
+        lines.append(f"  option {k:<18} {v:10.1f} ms   (default / option: {res['options_speedup'][k]})")
     return "\n".join(lines)
 
 
