@@ -35,32 +35,33 @@
  *                             brightness, darker at the shadowed base: the bases stay grey-blue, not black.
  *   samples 64 .. 128, adaptive, light cone 0.1 km / 15 deg / far 3:
  *                             the thesis's counts and our raymarch defaults (cclouds/raymarch.h).
- *   early exit at T <= exit_eps 1/32 with exit_fill 1   the thesis stops "once further samples cannot change the
+ *   early exit at T <= exit_eps 1/64 with exit_fill 1   the thesis stops "once further samples cannot change the
  *                             colour" and gives no threshold. At the exit the rest of the ray still holds T of the
  *                             pixel's weight; exit_fill gives it the light of the last sample (the rest of an
  *                             opaque cloud is lit much like its last sample) instead of letting the background
- *                             show through it. Measured against the march without early exit on the default
- *                             view (240 x 135, linear levels of 8 bits; tests/clouds/test_early_exit.py): 1/256
- *                             without the fill (the earlier default) changes pixels by 0.03 on average, at most
- *                             1.2; 1/32 with the fill by 0.10, at most 10.8; 1/32 without it by 0.28. The jitter
- *                             changes the frame by 0.25, at most 41, from one frame to the next. 1/32 with the fill
- *                             takes 15 % less time than 1/256 (640 x 360, one thread), and the error against the
- *                             path-traced reference does not grow (mean CIEDE2000 of the three scenes 9.04 ->
- *                             9.02). 1/16 would save 20 % and change pixels by up to 14 levels (encoded).
- *   light_interp 1/64         the six cone samples of vc-A19 are 40 % of a frame. In a cloud the lit samples are
+ *                             show through it. Measured against the march without early exit on the default view
+ *                             (240 x 135, linear levels of 8 bits; tests/clouds/test_early_exit.py): 1/256 without
+ *                             the fill (the earlier default) changes pixels by 0.03 on average, at most 1.2; 1/64
+ *                             with the fill by 0.045, at most 5.3, 99.9 % of them by at most 3.3; 1/64 without it by
+ *                             0.13; 1/32 with it by 0.10, at most 11 (99.9 %: 7.2). The jitter changes the frame by
+ *                             0.22, at most 8.8 (99.9 %: 5.1), from one frame to the next: 1/64 is the largest
+ *                             threshold below that in all three. It takes 11 % fewer light estimates than 1/256
+ *                             (5.24 instead of 5.87 per pixel, 320 x 180).
+ *   light_interp 1/256        the six cone samples of vc-A19 are 40 % of a frame. In a cloud the lit samples are
  *                             consecutive view samples 0.1 km apart, and the optical depth towards the sun changes
  *                             little from one to the next: every second one may take the mean of its neighbours'.
  *                             Where that could show -- the neighbours' lights differ, and the sample weighs in the
  *                             pixel (with the exit's fill, a sample that ends the ray weighs the rest of it too) --
  *                             it computes its own: the product of its weight and the neighbours' largest channel
  *                             difference must be at most light_interp. Measured against 0 = off (240 x 135, linear
- *                             levels of 8 bits; tests/clouds/test_light_interp.py): 1/64 changes the default view by
- *                             0.11 on average, at most 3.4 (the jitter changes it by 0.25, at most 41, from one frame
- *                             to the next), a low sun by 0.08, at most 13 (jitter 0.09, 20), the view from above by
- *                             0.14, at most 2.7 (0.32, 118); 1/32 by 0.15 / 0.13 / 0.27, interpolating everywhere
- *                             by 0.30 / 0.21 / 0.80. On the default view (320 x 180) 1/64 computes 34 % fewer optical
- *                             depths (1/32 38 %, everywhere 42 %), and the error against the path-traced reference
- *                             stays the same (mean CIEDE2000 of the three scenes 9.02 -> 9.03, SSIM 0.774).
+ *                             levels of 8 bits; tests/clouds/test_light_interp.py): 1/256 changes the default view
+ *                             by 0.05 on average, at most 3.3 (the jitter: 0.20, at most 8.7), a low sun by 0.035, at
+ *                             most 2.0 (jitter 0.07, 3.5), the view from above by 0.036, at most 3.4 (0.21, 16).
+ *                             Larger thresholds stay below the jitter on average but not everywhere: 1/128 and 1/64
+ *                             change a few low-sun pixels by 11-13 levels (a middle sample whose light path meets a
+ *                             cloud its neighbours' miss). 1/256 computes 22 % fewer optical depths than 0 (4.09
+ *                             instead of 5.24 per pixel, 320 x 180; 1/64: 3.43), and the error against the
+ *                             path-traced reference does not grow.
  *   jitter offset (amount 0.002 for the tilt mode)   the first sample's position along the ray; the thesis's tilt
  *                             of up to 0.002 rad per axis moves the ray by more than a pixel (0.0019 rad at
  *                             960 x 540): far clouds changed from frame to frame (the flickering horizon) and near
@@ -153,9 +154,9 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->samples_max = 128;
     out->adaptive_samples = 1;
     out->early_exit = 1;
-    out->exit_eps = 1.0f / 32.0f;
+    out->exit_eps = 1.0f / 64.0f;
     out->exit_fill = 1;
-    out->light_interp = 1.0f / 64.0f;
+    out->light_interp = 1.0f / 256.0f;
     out->light_step_km = 0.1f;
     out->light_cone_angle = 0.2617994f; /* 15 degrees */
     out->light_far_factor = 3.0f;
@@ -752,7 +753,7 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
 {
     ccl_vec3 colour = {0.0f, 0.0f, 0.0f};
     float trans = 1.0f, t0, t1, t_start, dt, dt_view, cos_theta, depth_sum = 0.0f, depth_w = 0.0f;
-    int n, i, k, m, sub, grp, prev_cloud = 0, next_cloud = -1, taken = 0;
+    int n, i, k, m, sub, grp, prev_cloud = 0, next_cloud = -1, ahead = -1, taken = 0;
     /* light interpolation: the waiting sample, and the last lit sample whose optical depth was computed */
     int pend = 0, computed = 0;
     float pend_rho = 0.0f, pend_t = 0.0f, pend_precip = 0.0f, d_prev = 0.0f, t_prev = 0.0f;
@@ -828,10 +829,19 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     }
                 }
                 if (k > 1 && sub == 0) {
+                    /* the step's coarse test (made ahead by the previous step), and the next step's: a cloud found
+                     * there may begin within this step (its samples lie between the coarse points of the previous
+                     * and the next step) */
                     const float t_c = t_start + ((float)i + offset) * dt_view;
-                    const int cloud = coarse_cloud(p, t, eye, dir, t_c, fmaxf(t_c * pixel_angle, dt_view));
+                    const int cloud = ahead >= 0 ? ahead
+                                                 : coarse_cloud(p, t, eye, dir, t_c, fmaxf(t_c * pixel_angle, dt_view));
                     ++taken;
-                    if (!cloud && !prev_cloud) {
+                    ahead = 0;
+                    if (i + 1 < n) {
+                        const float t_a = t_start + ((float)(i + 1) + offset) * dt_view;
+                        ahead = coarse_cloud(p, t, eye, dir, t_a, fmaxf(t_a * pixel_angle, dt_view));
+                    }
+                    if (!cloud && !prev_cloud && !ahead) {
                         m += k;
                         continue;
                     }

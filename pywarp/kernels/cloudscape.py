@@ -650,6 +650,8 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                     grp = int(gf)
             next_cloud = int(-1)  # the coarse test at the start of the next group, once made
             prev_cloud = int(0)
+            ahead = int(-1)  # the refinement's coarse test of the next step, once made
+            c_skip = float(-1.0)  # the coarse tests' empty space: up to c_skip from the last test's point
             # empty-space skipping (Warp only, no change of any result): samples before skip_end have density 0
             skip_end = float(-1.0)
             speed_h = wp.sqrt(d[0] * d[0] + d[2] * d[2])
@@ -687,12 +689,25 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                         taken = taken + 1
                         continue
                 if k > 1 and sub == 0:
+                    # the step's coarse test (made ahead by the previous step), and the next step's: a cloud found
+                    # there may begin within this step (its samples lie between the coarse points of the previous
+                    # and the next step). The tests' empty-space distances (c_skip) hold from their own points on,
+                    # so they skip later tests, not this step's samples before its point
                     t_c = t_start + (float(i) + offset) * dt_view
                     taken = taken + 1
-                    cloud = int(0)
-                    if t_c >= skip_end:
-                        cloud, skip_end = coarse_cloud(p, tex, eye, d, t_c, speed_h, wp.max(t_c * pixel_angle, dt_view))
-                    if cloud == 0 and prev_cloud == 0:
+                    cloud = ahead
+                    if cloud < 0:
+                        cloud = int(0)
+                        if t_c >= c_skip:
+                            cloud, c_skip = coarse_cloud(p, tex, eye, d, t_c, speed_h,
+                                                         wp.max(t_c * pixel_angle, dt_view))
+                    ahead = int(0)
+                    if i + 1 < n:
+                        t_a = t_start + (float(i + 1) + offset) * dt_view
+                        if t_a >= c_skip:
+                            ahead, c_skip = coarse_cloud(p, tex, eye, d, t_a, speed_h,
+                                                         wp.max(t_a * pixel_angle, dt_view))
+                    if cloud == 0 and prev_cloud == 0 and ahead == 0:
                         m = m + k
                         continue
                     prev_cloud = cloud

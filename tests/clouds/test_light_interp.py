@@ -1,6 +1,6 @@
 """Light interpolation (light_interp in cclouds/cloudscape.h): a lit sample between two consecutive lit samples whose
 optical depths towards the sun (vc-A19, six cone samples each) were computed takes the mean of theirs, where its
-weight in the pixel times the largest channel difference of their lights is at most light_interp (1/64); elsewhere it
+weight in the pixel times the largest channel difference of their lights is at most light_interp (1/256); elsewhere it
 computes its own.
 
 The reference is the march with light_interp = 0, every optical depth computed (the thesis's vc-A19). The yardsticks
@@ -41,19 +41,22 @@ def _change(a, b):
 
 @pytest.mark.spec("vc-A19")
 def test_interpolation_changes_the_frame_less_than_the_jitter(frames):
-    """Measured (default / low sun / above): mean change 0.11 / 0.08 / 0.14 levels, largest 3.4 / 13 / 2.7; the
-    jitter's 0.25 / 0.09 / 0.32 and 41 / 20 / 118."""
+    """Below the jitter's frame-to-frame change on average, in 99.9 % of the pixels and at most. Measured (default /
+    low sun / above): mean 0.05 / 0.035 / 0.036 levels, 99.9th percentile 1.5 / 0.66 / 0.75, largest 3.3 / 2.0 / 3.4;
+    the jitter's 0.20 / 0.07 / 0.21, 5.0 / 1.6 / 6.0 and 8.7 / 3.5 / 16. (1/64 changed a few low-sun pixels by 13
+    levels: more than the jitter.)"""
     on = _change(frames["on"], frames["off"])
     jitter = _change(frames["off_next"], frames["off"])
     assert on.max() > 0.0  # the interpolation is at work in every view
     assert on.mean() < jitter.mean(), (on.mean(), jitter.mean())
+    assert np.percentile(on, 99.9) < np.percentile(jitter, 99.9)
     assert on.max() < jitter.max(), (on.max(), jitter.max())
 
 
 @pytest.mark.spec("vc-A19")
 def test_criterion_keeps_the_interpolation_where_it_is_safe(frames):
-    """Without the criterion (every second lit sample interpolated) the change is 2.6 / 2.6 / 5.8 times the mean
-    and up to 9 / 1 / 12 times the largest; with it, at most half the mean and never more than the largest."""
+    """Without the criterion (every second lit sample interpolated) the change is 6 / 6 / 23 times the mean and up
+    to 9 / 6.5 / 10 times the largest; with it, at most half the mean and never more than the largest."""
     on = _change(frames["on"], frames["off"])
     everywhere = _change(frames["everywhere"], frames["off"])
     assert on.mean() < 0.5 * everywhere.mean(), (on.mean(), everywhere.mean())

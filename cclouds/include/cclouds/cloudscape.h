@@ -136,11 +136,11 @@ typedef struct ccl_cloudscape_params {
     int samples_max;            /* view samples at the horizon (128) */
     int adaptive_samples;       /* 1: n from the ray's y (vc-A18); 0: always samples_max */
     int early_exit;             /* 1: stop when the accumulation reaches full opacity (vc-A21) */
-    float exit_eps;             /* early-exit threshold: stop once 1 - T >= 1 - exit_eps (1/32, see the .c) */
+    float exit_eps;             /* early-exit threshold: stop once 1 - T >= 1 - exit_eps (1/64, see the .c) */
     int exit_fill;              /* 1: at the early exit the remaining transmittance T takes the light of the last
                                    sample (C += T L, T = 0), an estimate of the rest of the ray; 0: T stays and
                                    the background shows through it (default 1, see the .c) */
-    float light_interp;         /* light interpolation, >= 0 (display-linear radiance; default 1/64, see the .c): a
+    float light_interp;         /* light interpolation, >= 0 (display-linear radiance; default 1/256, see the .c): a
                                    lit sample between two consecutive lit samples whose optical depths towards the
                                    sun were computed takes the mean of theirs where its weight in the pixel times
                                    the largest channel difference of their lights is at most this; 0: every lit
@@ -163,7 +163,9 @@ typedef struct ccl_cloudscape_params {
                                    sample's footprint, see ccl_cloudscape_lod; 0: full resolution everywhere (thesis) */
     float lod_bias;             /* added to every mip level (default 0; > 0 blurs, < 0 sharpens), in [-4, 4] */
     float refine_step_km;       /* refinement: a view step longer than this is split into sub-steps of at most this
-                                   length where the coarse test finds cloud; where the view steps are already this
+                                   length where the coarse test of the step, of the previous or of the next step
+                                   finds cloud (a step's samples lie between the previous and the next step's coarse
+                                   points); where the view steps are already this
                                    short, those within CCL_CLOUDSCAPE_GROUP_SPAN x this are grouped and skipped
                                    together where the coarse tests at both ends of the group find no cloud (default
                                    0.1 km; 0 = off, the thesis) */
@@ -207,7 +209,11 @@ typedef enum ccl_lighting {
  * points -- from inside or above the layer, rays near the horizon cross up to 357 km of the default layer, and with
  * samples_max = 128 steps of 2.8 km each pixel's coarse points land on different clouds: a speckled row (fig 4.13 a).
  * A longer segment takes more view steps, at most CCL_CLOUDSCAPE_COARSE_MAX_FACTOR x samples_max (4 x 128 steps
- * of 0.8 km cover those 357 km; the factor bounds the work per ray for any layer). */
+ * of 0.8 km cover those 357 km; the factor bounds the work per ray for any layer). A step is refined where the
+ * coarse test of the previous, its own or the next step finds cloud: without the next step's, a cloud that begins
+ * after the step's own coarse point was entered up to a step late, past its lit surface, by some pixels and not by
+ * their neighbours -- dark speckles across the clouds at eye level from inside the layer, and frame-to-frame
+ * flicker near the horizon (tests/clouds/test_artefacts.py). The next step's test is kept for it: no extra work. */
 #define CCL_CLOUDSCAPE_COARSE_MAX_FACTOR 4
 /* Grouping of short view steps (refinement on, view steps <= refine_step_km: the steep rays, most of a view from
  * below or above the layer): consecutive view steps spanning at most CCL_CLOUDSCAPE_GROUP_SPAN x refine_step_km
