@@ -316,6 +316,13 @@ static void test_check_names_the_lighting_fields(void)
     BAD(q.ms_c = NAN, "ms_c");
     BAD(q.silver_g = 1.0f, "silver_g");
     BAD(q.silver_weight = 1.01f, "silver_weight");
+    /* the march's parameters of this renderer: the exit's fill, the light interpolation, the far light sample's
+     * distance (each factor finite, their product too large: its weight x 0 was a NaN pixel, found by fuzzing) */
+    BAD(q.exit_fill = 2, "exit_fill");
+    BAD(q.light_interp = -1.0f, "light_interp");
+    BAD(q.light_interp = INFINITY, "light_interp");
+    BAD((q.light_step_km = 2.0e34f, q.light_far_factor = 1.7e7f), "light_far_factor");
+    BAD(q.light_far_factor = 2.1e6f, "light_far_factor"); /* 2.1e6 x 5 x 0.1 km > 10^6 km */
 #undef BAD
 }
 

@@ -131,6 +131,8 @@ def test_cloudscape_validation_names_the_field():
         (dict(threads=0), r"^threads must be in \[1, 4096\], got 0$"),
         (dict(advanced={"sigma": -1.0}), r"^sigma is out of range"),
         (dict(advanced={"bogus": 1.0}), r"^advanced: unknown parameter 'bogus'"),
+        (dict(advanced={"light_far_factor": 3.0e6}), r"^light_far_factor is out of range"),
+        (dict(advanced={"light_interp": -0.5}), r"^light_interp is out of range"),
     ]
     for kw, pattern in cases:
         with pytest.raises(ValueError, match=pattern):

@@ -96,6 +96,11 @@ extern "C" {
  * texture's are below 2.5 lattice units, vc-A11). */
 #define CCL_CLOUDSCAPE_MAX_TEXCOORD 8388608
 #define CCL_CLOUDSCAPE_MAX_CURL 16
+/* Largest distance of the far light sample, light_far_factor x 5 x light_step_km, that ccl_cloudscape_check accepts
+ * (km): its weight times a density, six of them summed and times sigma_light, and the cone's radius there stay
+ * finite (each factor alone can be finite while their product overflows: inf x 0 = NaN). The layer is a few km
+ * thick; 10^6 km is far beyond any useful value. */
+#define CCL_CLOUDSCAPE_MAX_LIGHT_KM 1.0e6
 
 /* The four textures of the cloudscape (not owned). */
 typedef struct ccl_cloud_textures {
@@ -147,7 +152,9 @@ typedef struct ccl_cloudscape_params {
                                    sample computes its own (vc-A19 as the thesis has it) */
     float light_step_km;        /* axial step of the light cone (vc-A19; 0.1 km) */
     float light_cone_angle;     /* half-angle of the light cone, rad (15 degrees) */
-    float light_far_factor;     /* distance of the far light sample relative to the near cone (3) */
+    float light_far_factor;     /* distance of the far light sample relative to the near cone (3); the far sample's
+                                   distance light_far_factor x 5 x light_step_km is at most
+                                   CCL_CLOUDSCAPE_MAX_LIGHT_KM */
     int light_detail;           /* 1: light samples use the full density with detail erosion; 0: base shape only */
     int jitter_mode;            /* ccl_jitter_mode (vc-A23): CCL_JITTER_TILT (default), _OFFSET, _NONE */
     float jitter_amount;        /* tilt scale, rad (0.002) */
