@@ -63,3 +63,30 @@ def look_at64(eye, target):
     s = np.cross(f, [0.0, 1.0, 0.0])
     s /= np.linalg.norm(s)
     return e, s, np.cross(s, f), f
+
+
+def march_frames(view: dict, marches: dict, reference: str, width: int = 240, height: int = 135) -> dict:
+    """The cloudscape seen from ``view`` (settings) under each settings change of ``marches`` (one texture set):
+    display-linear frames in levels of 8 bits by name, the view samples each took as ``name + "_samples"``, and the
+    frame after ``reference``'s (the same march at the next jitter offset: the variation every frame already has) as
+    ``reference + "_next"``."""
+    from pywarp.clouds.cloudscape import CameraPose, CloudscapeTechnique
+    from pywarp.clouds.settings import CloudscapeSettings
+
+    out = {}
+    tex = None
+    for name, kw in marches.items():
+        s = CloudscapeSettings(width=width, height=height, **view, **kw)
+        t = CloudscapeTechnique(s, textures=tex)
+        tex = t.textures
+        pose = CameraPose.from_settings(s)
+        out[name] = t.render(pose, reprojection=False, encode=False) * 255.0
+        out[name + "_samples"] = int(t.samples_taken().astype(np.int64).sum())
+        if name == reference:
+            out[name + "_next"] = t.render(pose, reprojection=False, encode=False) * 255.0
+    return out
+
+
+def pixel_change(a, b) -> np.ndarray:
+    """Per pixel the largest channel difference of two (height, width, channels) frames."""
+    return np.abs(np.asarray(a) - np.asarray(b)).max(axis=2)

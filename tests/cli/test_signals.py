@@ -41,7 +41,9 @@ def test_animate_interrupted_mid_run_leaves_nothing(tmp_path, suffix, signum, co
         if suffix == ".mp4":
             ffmpeg = _running_children(p.pid)
             assert ffmpeg, "the MP4 writer runs ffmpeg"
-        assert any(f.name.endswith(".part") for f in tmp_path.iterdir())
+        # (if not: what the folder holds, and how the command ended if it did)
+        assert any(f.name.endswith(".part") for f in tmp_path.iterdir()), (
+            sorted(f.name for f in tmp_path.iterdir()), p.poll(), p.communicate() if p.poll() is not None else "")
         p.send_signal(signum)
         stdout, stderr = p.communicate(timeout=120)
     finally:

@@ -9,9 +9,7 @@ threshold without it -- an estimate of the rest of the ray, not an arbitrary col
 without the fill in tests/clouds/test_cloudscape.py (test_warp_pixels_match_c_reference)."""
 import numpy as np
 import pytest
-
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeTechnique
-from pywarp.clouds.settings import CloudscapeSettings
+from helpers import march_frames, pixel_change
 
 #: the default view and clouds twice as dense (the ladder's dense case: more rays stop, earlier)
 VIEWS = {"default": {}, "dense": dict(sigma_per_km=60.0)}
@@ -21,22 +19,7 @@ MARCHES = {"whole": dict(early_exit=False), "exit": {}, "exit_no_fill": dict(adv
 
 @pytest.fixture(scope="module", params=sorted(VIEWS))
 def frames(request):
-    out = {}
-    tex = None
-    for name, kw in MARCHES.items():
-        s = CloudscapeSettings(width=240, height=135, **VIEWS[request.param], **kw)
-        t = CloudscapeTechnique(s, textures=tex)
-        tex = t.textures
-        pose = CameraPose.from_settings(s)
-        out[name] = t.render(pose, reprojection=False, encode=False) * 255.0  # linear, in levels of 8 bits
-        out[name + "_samples"] = int(t.samples_taken().astype(np.int64).sum())
-        if name == "whole":
-            out["whole_next"] = t.render(pose, reprojection=False, encode=False) * 255.0
-    return out
-
-
-def _change(a, b):
-    return np.abs(a - b).max(axis=2)
+    return march_frames(VIEWS[request.param], MARCHES, "whole")
 
 
 @pytest.mark.spec("vc-A21")
@@ -45,8 +28,8 @@ def test_exit_changes_the_frame_less_than_the_jitter(frames):
     dense): mean 0.045 / 0.084 levels, 99.9th percentile 3.3 / 5.9, largest 5.3 / 6.9; the jitter's 0.22 / 0.35,
     5.1 / 11.2 and 8.8 / 25. (The exit at 1/32 changed the default view by up to 11 levels, 7.2 at the 99.9th
     percentile: more than the jitter.)"""
-    exit_ = _change(frames["exit"], frames["whole"])
-    jitter = _change(frames["whole_next"], frames["whole"])
+    exit_ = pixel_change(frames["exit"], frames["whole"])
+    jitter = pixel_change(frames["whole_next"], frames["whole"])
     assert jitter.mean() > 0.1  # the yardstick is not degenerate
     assert exit_.mean() < 0.8 * jitter.mean(), (exit_.mean(), jitter.mean())
     assert np.percentile(exit_, 99.9) < np.percentile(jitter, 99.9)
@@ -58,9 +41,9 @@ def test_fill_estimates_the_rest_of_the_ray(frames):
     """At the same threshold the fill brings the frame closer to the whole march (measured: 0.045 vs 0.13 levels,
     0.084 vs 0.145), and the old threshold without fill (1/256) stays the closest (0.03): the exit is an
     approximation whose size the threshold sets."""
-    fill = _change(frames["exit"], frames["whole"]).mean()
-    no_fill = _change(frames["exit_no_fill"], frames["whole"]).mean()
-    old = _change(frames["exit_1_256"], frames["whole"]).mean()
+    fill = pixel_change(frames["exit"], frames["whole"]).mean()
+    no_fill = pixel_change(frames["exit_no_fill"], frames["whole"]).mean()
+    old = pixel_change(frames["exit_1_256"], frames["whole"]).mean()
     assert fill < 0.7 * no_fill, (fill, no_fill)
     assert old < fill
 

@@ -11,32 +11,17 @@ with the interpolation (the default) and without it in tests/clouds/test_cloudsc
 (test_warp_pixels_match_c_reference)."""
 import numpy as np
 import pytest
-
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeTechnique
-from pywarp.clouds.settings import CloudscapeSettings
+from helpers import march_frames, pixel_change
 
 VIEWS = {"default": {}, "low_sun": dict(sun_elevation_deg=6.0),
          "above": dict(camera_altitude_km=8.0, camera_pitch_deg=-25.0)}
-MARCHES = {"off": {"light_interp": 0.0}, "on": {}, "everywhere": {"light_interp": 1.0e30}}
+MARCHES = {"off": dict(advanced={"light_interp": 0.0}), "on": {},
+           "everywhere": dict(advanced={"light_interp": 1.0e30})}
 
 
 @pytest.fixture(scope="module", params=sorted(VIEWS))
 def frames(request):
-    out = {}
-    tex = None
-    for name, adv in MARCHES.items():
-        s = CloudscapeSettings(width=240, height=135, advanced=adv, **VIEWS[request.param])
-        t = CloudscapeTechnique(s, textures=tex)
-        tex = t.textures
-        pose = CameraPose.from_settings(s)
-        out[name] = t.render(pose, reprojection=False, encode=False) * 255.0  # linear, in levels of 8 bits
-        if name == "off":
-            out["off_next"] = t.render(pose, reprojection=False, encode=False) * 255.0
-    return out
-
-
-def _change(a, b):
-    return np.abs(a - b).max(axis=2)
+    return march_frames(VIEWS[request.param], MARCHES, "off")
 
 
 @pytest.mark.spec("vc-A19")
@@ -45,8 +30,8 @@ def test_interpolation_changes_the_frame_less_than_the_jitter(frames):
     low sun / above): mean 0.05 / 0.035 / 0.036 levels, 99.9th percentile 1.5 / 0.66 / 0.75, largest 3.3 / 2.0 / 3.4;
     the jitter's 0.20 / 0.07 / 0.21, 5.0 / 1.6 / 6.0 and 8.7 / 3.5 / 16. (1/64 changed a few low-sun pixels by 13
     levels: more than the jitter.)"""
-    on = _change(frames["on"], frames["off"])
-    jitter = _change(frames["off_next"], frames["off"])
+    on = pixel_change(frames["on"], frames["off"])
+    jitter = pixel_change(frames["off_next"], frames["off"])
     assert on.max() > 0.0  # the interpolation is at work in every view
     assert on.mean() < jitter.mean(), (on.mean(), jitter.mean())
     assert np.percentile(on, 99.9) < np.percentile(jitter, 99.9)
@@ -57,8 +42,8 @@ def test_interpolation_changes_the_frame_less_than_the_jitter(frames):
 def test_criterion_keeps_the_interpolation_where_it_is_safe(frames):
     """Without the criterion (every second lit sample interpolated) the change is 6 / 6 / 23 times the mean and up
     to 9 / 6.5 / 10 times the largest; with it, at most half the mean and never more than the largest."""
-    on = _change(frames["on"], frames["off"])
-    everywhere = _change(frames["everywhere"], frames["off"])
+    on = pixel_change(frames["on"], frames["off"])
+    everywhere = pixel_change(frames["everywhere"], frames["off"])
     assert on.mean() < 0.5 * everywhere.mean(), (on.mean(), everywhere.mean())
     assert on.max() <= everywhere.max()
     assert np.percentile(on, 99.9) < 0.5 * np.percentile(everywhere, 99.9)
