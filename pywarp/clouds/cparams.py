@@ -34,7 +34,8 @@ def param_values(settings) -> dict:
         "sun_colour": tuple(p.sun_colour), "ambient_bottom": tuple(p.ambient_bottom),
         "ambient_top": tuple(p.ambient_top), "samples_min": settings.samples_min,
         "samples_max": settings.samples_max, "adaptive_samples": int(settings.adaptive_samples),
-        "early_exit": int(settings.early_exit), "exit_eps": p.exit_eps, "exit_fill": p.exit_fill, "light_interp": p.light_interp, "light_step_km": p.light_step_km,
+        "early_exit": int(settings.early_exit), "exit_eps": p.exit_eps, "exit_fill": p.exit_fill,
+        "light_interp": p.light_interp, "light_step_km": p.light_step_km,
         "light_cone_angle": p.light_cone_angle, "light_far_factor": p.light_far_factor,
         "light_detail": int(settings.light_detail), "jitter_mode": JITTERS[settings.jitter],
         "jitter_amount": p.jitter_amount, "gradient_clamp": p.gradient_clamp,
@@ -92,6 +93,28 @@ def _c_float(name: str, value) -> float:
     return x
 
 
+#: The valid values of the ``ccl_cloudscape_check`` fields checked against a plain range (as the check states them);
+#: the other fields are bounded by the texture coordinates they produce. For the error message only.
+FIELD_RANGES = {
+    "sigma": "> 0 and finite", "sigma_light": ">= 0 and finite", "absorption_base": ">= 0 and finite",
+    "absorption_precip": ">= 0 and finite", "g": "in (-1, 1)", "sun_colour": ">= 0 and finite per channel",
+    "ambient_bottom": ">= 0 and finite per channel", "ambient_top": ">= 0 and finite per channel",
+    "ground_colour": ">= 0 and finite per channel", "samples_min": "in [1, samples_max]",
+    "samples_max": "in [samples_min, 4096]", "exit_eps": "in (0, 1)", "exit_fill": "0 or 1",
+    "light_interp": ">= 0 and finite", "light_step_km": "> 0 and finite",
+    "light_cone_angle": "in [0, pi/2) rad",
+    "light_far_factor": ">= 1, with light_far_factor x 5 x light_step_km <= 10^6 km (CCL_CLOUDSCAPE_MAX_LIGHT_KM)",
+    "jitter_mode": "0 (tilt), 1 (offset) or 2 (none)", "jitter_amount": ">= 0 and finite",
+    "detail_direction": "0 or 1", "coverage_threshold": "0 or 1", "beer": "0 or 1", "powder": "0 or 1",
+    "lighting": "0 (thesis) or 1 (sky)", "sun_intensity": ">= 0 and finite", "ambient_bottom_ratio": "in [0, 1]",
+    "ambient_ground": ">= 0 and finite per channel", "ground_albedo": "in [0, 1] per channel",
+    "aerial_km": ">= 0 and finite", "aerial_height_km": ">= 0 and finite",
+    "ms_octaves": f"in [1, {K.MAX_MS_OCTAVES}]", "ms_a": "in [0, 1]", "ms_b": "in [0, 1]", "ms_c": "in [0, 1]",
+    "silver_g": "in (-1, 1)", "silver_weight": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
+    "lod_bias": "in [-4, 4]", "refine_step_km": ">= 0 and finite", "refine_max": "in [1, 64]",
+}
+
+
 def check_params(values: dict, sizes: dict | None = None) -> None:
     """Run ccl_cloudscape_check on the parameter values (a valid sky; textures of edge ``sizes[name]`` for name in
     base, detail, curl, weather, default 1: the check bounds the texture coordinates, which grow with the edge, and
@@ -111,6 +134,9 @@ def check_params(values: dict, sizes: dict | None = None) -> None:
     if lb.ccl_cloudscape_check(c_params(values), tex, sky, out) != 0:
         name = f.string(out[0]).decode()
         shown = values.get(name, values.get(name.split(".")[0]))
+        if name in FIELD_RANGES:
+            raise ValueError(f"{name} is out of range: it must be {FIELD_RANGES[name]} (ccl_cloudscape_check), "
+                             f"got {shown!r}")
         raise ValueError(f"{name} is out of range (ccl_cloudscape_check: with the texture sizes "
                          f"{dict(sizes or {})}, texture coordinates must stay below 2^23 texels), got {shown!r}")
 

@@ -131,8 +131,12 @@ def test_cloudscape_validation_names_the_field():
         (dict(threads=0), r"^threads must be in \[1, 4096\], got 0$"),
         (dict(advanced={"sigma": -1.0}), r"^sigma is out of range"),
         (dict(advanced={"bogus": 1.0}), r"^advanced: unknown parameter 'bogus'"),
-        (dict(advanced={"light_far_factor": 3.0e6}), r"^light_far_factor is out of range"),
-        (dict(advanced={"light_interp": -0.5}), r"^light_interp is out of range"),
+        (dict(advanced={"light_far_factor": 3.0e6}), r"^light_far_factor is out of range: it must be >= 1, with "
+         r"light_far_factor x 5 x light_step_km <= 10\^6 km .*got 3000000\.0$"),
+        (dict(advanced={"light_interp": -0.5}),
+         r"^light_interp is out of range: it must be >= 0 and finite .*got -0\.5$"),
+        (dict(advanced={"exit_fill": 2}), r"^exit_fill is out of range: it must be 0 or 1 .*got 2$"),
+        (dict(advanced={"exit_eps": 0.0}), r"^exit_eps is out of range: it must be in \(0, 1\) .*got 0\.0$"),
     ]
     for kw, pattern in cases:
         with pytest.raises(ValueError, match=pattern):
