@@ -62,10 +62,40 @@ def test_tile_launcher_progress_per_band_same_pixels(height, workers):
     calls = []
     with runtime.TileLauncher(workers=workers) as tl:
         tl.launch(_bench_image, height, w, [8], [b], progress=lambda rows: calls.append((rows, threading.get_ident())))
+        per_worker = tl.bands_per_worker
     np.testing.assert_array_equal(a.numpy(), b.numpy())
     assert sum(r for r, _ in calls) == height
-    assert len(calls) == min(height, runtime.TileLauncher.PROGRESS_BANDS if workers == 1 else workers * 4)
+    assert len(calls) == min(height, runtime.TileLauncher.PROGRESS_BANDS if workers == 1 else workers * per_worker)
     assert {t for _, t in calls} == {threading.get_ident()}
+
+
+def test_tile_launcher_hands_out_the_longest_bands_first(monkeypatch):
+    """The second launch of a kernel at one image size starts the bands that took longest at the first one (the
+    rows where the clouds are), so no worker is left with a long band at the end; same pixels either way."""
+    h, w = 48, 32
+    a = wp.zeros((h, w), dtype=float, device="cpu")
+    b = wp.zeros((h, w), dtype=float, device="cpu")
+    with runtime.TileLauncher(workers=2, bands_per_worker=4) as tl:
+        tl.launch(_bench_image, h, w, [8], [a])
+        key = (_bench_image, h, w)
+        assert len(tl._band_seconds[key]) == len(tl.bands(h)) == 8
+        assert all(s >= 0.0 for s in tl._band_seconds[key])
+        # pretend the last two bands took longest, then the first
+        tl._band_seconds[key] = [0.5, 0.1, 0.1, 0.1, 0.1, 0.1, 2.0, 3.0]
+        started = []
+        real = runtime.wp.launch
+
+        def recording(kernel, dim, inputs, outputs, device):
+            started.append(inputs[0])  # row0, in the order the workers take the bands
+            return real(kernel, dim=dim, inputs=inputs, outputs=outputs, device=device)
+
+        monkeypatch.setattr(runtime.wp, "launch", recording)
+        tl.launch(_bench_image, h, w, [8], [b])
+        rows0 = [r0 for r0, _ in tl.bands(h)]
+    assert set(started[:2]) == {rows0[7], rows0[6]}  # two workers take the two longest bands first
+    assert set(started[2:]) == set(rows0[:6])
+    assert len(started) == 8
+    np.testing.assert_array_equal(a.numpy(), b.numpy())
 
 
 def test_tile_launcher_rejects_bad_arguments():
