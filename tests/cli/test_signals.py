@@ -20,6 +20,13 @@ def _running_children(pid: int) -> list[str]:
     return [line for line in out.splitlines() if line.strip()]
 
 
+def _writer_temporaries(folder, out) -> list:
+    """The video writer's hidden file for ``out`` (``.<stem>.<random><suffix>.part``), not the one the output check
+    creates and removes at once to see that the folder is writable (``.probe.<random>.tmp.part``): a GIF writer's
+    file stays empty until the end, so a wait for any ``.part`` could catch that probe and find nothing 0.5 s later."""
+    return [f for f in folder.iterdir() if f.name.startswith(f".{out.stem}.") and f.name.endswith(f"{out.suffix}.part")]
+
+
 @pytest.mark.parametrize("suffix", [".mp4", ".gif"])
 @pytest.mark.parametrize("signum,code,word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
 def test_animate_interrupted_mid_run_leaves_nothing(tmp_path, suffix, signum, code, word):
@@ -32,7 +39,7 @@ def test_animate_interrupted_mid_run_leaves_nothing(tmp_path, suffix, signum, co
         deadline = time.monotonic() + 240
         ffmpeg = []
         while time.monotonic() < deadline and p.poll() is None:  # wait until frames are being written
-            parts = [f for f in tmp_path.iterdir() if f.name.endswith(".part")]
+            parts = _writer_temporaries(tmp_path, out)
             if parts and (suffix == ".gif" or parts[0].stat().st_size > 0):
                 break
             time.sleep(0.1)
@@ -42,7 +49,7 @@ def test_animate_interrupted_mid_run_leaves_nothing(tmp_path, suffix, signum, co
             ffmpeg = _running_children(p.pid)
             assert ffmpeg, "the MP4 writer runs ffmpeg"
         # (if not: what the folder holds, and how the command ended if it did)
-        assert any(f.name.endswith(".part") for f in tmp_path.iterdir()), (
+        assert _writer_temporaries(tmp_path, out), (
             sorted(f.name for f in tmp_path.iterdir()), p.poll(), p.communicate() if p.poll() is not None else "")
         p.send_signal(signum)
         stdout, stderr = p.communicate(timeout=120)
