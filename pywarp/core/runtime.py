@@ -102,9 +102,11 @@ class TileLauncher:
     bands_per_worker : int
         Bands per worker and frame (default 16): rows of a cloudscape differ in cost by 10x or more (clear sky,
         ground, cloud bases), so several bands per worker, handed out as workers become free, even out the load.
-        The bands are handed out longest first, by what each band of the same kernel and image size took the last
-        time (the first launch: top to bottom) -- a frame of an animation costs nearly what the previous one did, so
-        no worker is left with a long band at the end. The order changes no pixel: each pixel is one thread's.
+        That is the most: from the second launch of a kernel at an image size on, its bands are as many as give each
+        about MIN_BAND_SECONDS of work by what its rows took the last time (at least one per worker), handed out
+        longest first -- a frame of an animation costs nearly what the previous one did, so no worker is left with a
+        long band at the end, and a cheap pass is not cut into bands whose launches cost more than they share out.
+        Neither the bands nor their order change a pixel: each pixel is one thread's.
     device : str, optional
         Warp device. On CUDA a single launch already uses the whole GPU, so bands are launched from the caller.
     """
@@ -119,8 +121,8 @@ class TileLauncher:
         self.bands_per_worker = bands_per_worker
         self._pool = None
         self._loaded = set()
-        #: (kernel, height, width) -> CPU seconds each band took at its last launch (the order of the next one)
-        self._band_seconds: dict[tuple, list[float]] = {}
+        #: (kernel, height, width) -> CPU seconds per row at its last launch (each band's time spread over its rows)
+        self._row_seconds: dict[tuple, list[float]] = {}
 
     def _ensure_loaded(self, kernel) -> None:
         # Modules must be compiled/loaded before worker threads launch them concurrently.
@@ -128,9 +130,17 @@ class TileLauncher:
             wp.load_module(kernel.module, device=self.device)
             self._loaded.add(kernel.module)
 
-    def bands(self, height: int) -> list[tuple[int, int]]:
-        """Row ranges ``(row0, rows)`` covering ``height`` rows."""
-        n = 1 if (self.workers == 1 or not self.device.startswith("cpu")) else self.workers * self.bands_per_worker
+    #: CPU seconds of work a band is given where the last launch says how much there is: a launch costs ~30 us of
+    #: Python (its arguments are packed under the GIL), under 1 % of a band of 4 ms
+    MIN_BAND_SECONDS = 0.004
+
+    def bands(self, height: int, n: int | None = None) -> list[tuple[int, int]]:
+        """Row ranges ``(row0, rows)`` covering ``height`` rows: ``n`` bands (default: the most, bands_per_worker
+        per worker; one on a single worker or a GPU)."""
+        if self.workers == 1 or not self.device.startswith("cpu"):
+            n = 1
+        elif n is None:
+            n = self.workers * self.bands_per_worker
         n = max(1, min(n, height))
         edges = [round(k * height / n) for k in range(n + 1)]
         return [(edges[k], edges[k + 1] - edges[k]) for k in range(n) if edges[k + 1] > edges[k]]
@@ -149,7 +159,18 @@ class TileLauncher:
             raise ValueError(f"image size must be at least 1x1, got {width}x{height}")
         self._ensure_loaded(kernel)
         outputs = outputs or []
-        bands = self.bands(height)
+        key = (kernel, height, width)
+        per_row = self._row_seconds.get(key)
+        n = None
+        if per_row is not None:
+            n = max(self.workers, min(self.workers * self.bands_per_worker,
+                                      round(sum(per_row) / self.MIN_BAND_SECONDS)))
+        bands = self.bands(height, n)
+        order = list(range(len(bands)))
+        if per_row is not None:  # longest first (stable: ties top to bottom)
+            cost = [sum(per_row[r0:r0 + rows]) for r0, rows in bands]
+            order.sort(key=lambda k: -cost[k])
+        seconds = [0.0] * len(bands)
         if progress is not None and len(bands) == 1 and self.device.startswith("cpu"):
             n = max(1, min(self.PROGRESS_BANDS, height))
             edges = [round(k * height / n) for k in range(n + 1)]
@@ -176,12 +197,6 @@ class TileLauncher:
         else:
             if self._pool is None:
                 self._pool = ThreadPoolExecutor(max_workers=self.workers, thread_name_prefix="pywarp-tile")
-            key = (kernel, height, width)
-            last = self._band_seconds.get(key)
-            order = list(range(len(bands)))
-            if last is not None and len(last) == len(bands):
-                order.sort(key=lambda k: -last[k])  # longest first (stable: ties top to bottom)
-            seconds = [0.0] * len(bands)
             futures = [self._pool.submit(run, bands[k], seconds, k) for k in order]
             try:
                 for f in as_completed(futures):
@@ -192,9 +207,9 @@ class TileLauncher:
                 for f in futures:
                     f.cancel()
                 raise
-            if len(self._band_seconds) > 256:  # many image sizes (a resized viewer): forget the old ones
-                self._band_seconds.clear()
-            self._band_seconds[key] = seconds
+            if len(self._row_seconds) > 256:  # many image sizes (a resized viewer): forget the old ones
+                self._row_seconds.clear()
+            self._row_seconds[key] = [seconds[k] / rows for k, (_, rows) in enumerate(bands) for _ in range(rows)]
         if not self.device.startswith("cpu"):
             wp.synchronize_device(self.device)
 
