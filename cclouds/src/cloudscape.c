@@ -729,6 +729,16 @@ static ccl_vec3 sample_light(const ccl_cloudscape_params *p, float d_light, floa
 
 /* vc-A21 for one lit sample at ray distance t_i, front to back, and the early exit with its fill; 1 where the ray
  * stops */
+/* 1 where a sample of density rho and length dt ends the ray at transmittance trans: the early exit's test of
+ * ccl_raymarch_accumulate (the same operations), with the early exit on. Such a sample does not wait for the light
+ * interpolation: it gets its own optical depth at once, and the next sample's, which the interpolation would need,
+ * is never computed (the ray stops there) */
+static int ends_ray(const ccl_cloudscape_params *p, float trans, float rho, float dt)
+{
+    const float t = trans * expf(-(p->sigma * rho * dt));
+    return p->early_exit && (1.0f - t) >= (1.0f - p->exit_eps);
+}
+
 static int march_sample(const ccl_cloudscape_params *p, float rho, float dt, ccl_vec3 light, float t_i,
                         ccl_vec3 *colour, float *trans, float *depth_w, float *depth_sum)
 {
@@ -864,7 +874,8 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                 if (!(rho > 0.0f)) continue;
                 /* light interpolation (light_interp): the lit sample right after one whose optical depth towards the
                  * sun was computed waits for the next lit sample */
-                if (p->light_interp > 0.0f && !pend && computed && t_i - t_prev <= 1.5f * dt) {
+                if (p->light_interp > 0.0f && !pend && computed && t_i - t_prev <= 1.5f * dt &&
+                    !ends_ray(p, trans, rho, dt)) {
                     pend = 1;
                     pend_rho = rho;
                     pend_t = t_i;
@@ -878,10 +889,8 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     /* the waiting sample: the mean of its neighbours' optical depths where it is the middle of three
                      * consecutive samples and its weight in the pixel times the largest difference of their lights
                      * is at most light_interp, else its own */
-                    /* (a sample that ends the ray also lends its light to the rest of it: the exit's fill) */
-                    const float e_p = expf(-p->sigma * pend_rho * dt);
-                    const float w_p = p->early_exit && p->exit_fill && trans * e_p <= p->exit_eps ? trans
-                                                                                                  : trans * (1.0f - e_p);
+                    /* (it does not end the ray: a sample that would, by ends_ray, does not wait) */
+                    const float w_p = trans * (1.0f - expf(-p->sigma * pend_rho * dt));
                     const float diff = fmaxf(fabsf(light.x - light_prev.x),
                                              fmaxf(fabsf(light.y - light_prev.y), fabsf(light.z - light_prev.z)));
                     float d_p = 0.5f * (d_prev + d_cur);

@@ -572,6 +572,19 @@ def sample_light(p: CloudscapeParams, d_light: float, precip: float, pos: wp.vec
 
 
 @wp.func
+def ends_ray(p: CloudscapeParams, trans: float, rho: float, dt: float) -> int:
+    """1 where a sample of density ``rho`` and length ``dt`` ends the ray at transmittance ``trans``: the early exit's
+    test of :func:`raymarch_accumulate` (the same operations), with the early exit on (twin of ``ends_ray`` in
+    cloudscape.c). Such a sample does not wait for the light interpolation: it gets its own optical depth at once, and
+    the next sample's, which the interpolation would need, is never computed (the ray stops there)."""
+    t = trans * wp.exp(-(p.sigma * rho * dt))
+    r = int(0)
+    if p.early_exit != 0 and (1.0 - t) >= (1.0 - p.exit_eps):
+        r = 1
+    return r
+
+
+@wp.func
 def march_sample(p: CloudscapeParams, colour: wp.vec3, trans: float, depth_w: float, depth_sum: float, rho: float,
                  dt: float, light: wp.vec3, t_i: float):
     """vc-A21 for one lit sample at ray distance ``t_i``, and the early exit with its fill (twin of ``march_sample``
@@ -730,7 +743,8 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 if rho > 0.0:
                     # light interpolation (light_interp in the C): the lit sample right after one whose optical depth
                     # towards the sun was computed waits for the next lit sample
-                    if p.light_interp > 0.0 and pend == 0 and computed != 0 and t_i - t_prev <= 1.5 * dt:
+                    if p.light_interp > 0.0 and pend == 0 and computed != 0 and t_i - t_prev <= 1.5 * dt and \
+                            ends_ray(p, trans, rho, dt) == 0:
                         pend = 1
                         pend_rho = rho
                         pend_t = t_i
@@ -744,11 +758,8 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                         # three consecutive samples and its weight in the pixel times the largest difference of
                         # their lights is at most light_interp, else its own
                         pend = 0
-                        # (a sample that ends the ray also lends its light to the rest of it: the exit's fill)
-                        e_p = wp.exp(-p.sigma * pend_rho * dt)
-                        w_p = trans * (1.0 - e_p)
-                        if p.early_exit != 0 and p.exit_fill != 0 and trans * e_p <= p.exit_eps:
-                            w_p = trans
+                        # (it does not end the ray: a sample that would, by ends_ray, does not wait)
+                        w_p = trans * (1.0 - wp.exp(-p.sigma * pend_rho * dt))
                         diff = wp.max(wp.abs(light[0] - light_prev[0]),
                                       wp.max(wp.abs(light[1] - light_prev[1]), wp.abs(light[2] - light_prev[2])))
                         d_p = 0.5 * (d_prev + d_cur)

@@ -148,8 +148,9 @@ typedef struct ccl_cloudscape_params {
     float light_interp;         /* light interpolation, >= 0 (display-linear radiance; default 1/256, see the .c): a
                                    lit sample between two consecutive lit samples whose optical depths towards the
                                    sun were computed takes the mean of theirs where its weight in the pixel times
-                                   the largest channel difference of their lights is at most this; 0: every lit
-                                   sample computes its own (vc-A19 as the thesis has it) */
+                                   the largest channel difference of their lights is at most this (a sample that
+                                   ends the ray computes its own); 0: every lit sample computes its own (vc-A19 as
+                                   the thesis has it) */
     float light_step_km;        /* axial step of the light cone (vc-A19; 0.1 km) */
     float light_cone_angle;     /* half-angle of the light cone, rad (15 degrees) */
     float light_far_factor;     /* distance of the far light sample relative to the near cone (3); the far sample's
