@@ -69,43 +69,93 @@ def test_tile_launcher_progress_per_band_same_pixels(height, workers):
     assert {t for _, t in calls} == {threading.get_ident()}
 
 
-def test_tile_launcher_hands_out_the_longest_bands_first(monkeypatch):
+def test_tile_launcher_hands_out_the_longest_bands_first():
     """From the second launch of a kernel at one image size, the bands are as many as give each about
     MIN_BAND_SECONDS of the work its rows took the last time (at least one per worker, at most bands_per_worker), and
-    the longest (the rows where the clouds are) start first, so no worker is left with a long band at the end; the
-    same pixels either way."""
+    the longest (the rows where the clouds are) are handed to the workers first, so no worker is left with a long band
+    at the end; the same pixels either way."""
     h, w = 48, 32
     a = wp.zeros((h, w), dtype=float, device="cpu")
     b = wp.zeros((h, w), dtype=float, device="cpu")
-    started = []
-    real = runtime.wp.launch
-
-    def recording(kernel, dim, inputs, outputs, device):
-        started.append((inputs[0], dim[0]))  # (row0, rows), in the order the workers take the bands
-        return real(kernel, dim=dim, inputs=inputs, outputs=outputs, device=device)
-
     with runtime.TileLauncher(workers=2, bands_per_worker=4) as tl:
         tl.launch(_bench_image, h, w, [8], [a])
         key = (_bench_image, h, w)
         per_row = tl._row_seconds[key]
         assert len(per_row) == h and all(s >= 0.0 for s in per_row)
-        monkeypatch.setattr(runtime.wp, "launch", recording)
+        handed = []  # the bands (row0, rows) in the order they are queued for the workers (first in, first out)
+        submit = tl._pool.submit
+        tl._pool.submit = lambda fn, band, *rest: (handed.append(band), submit(fn, band, *rest))[1]
         # rows 36..47 took the longest, then rows 0..5; enough work for the 8 bands of 6 rows
         unit = tl.MIN_BAND_SECONDS
         tl._row_seconds[key] = [unit * (0.5 if r < 6 else 3.0 if r >= 36 else 0.1) for r in range(h)]
         tl.launch(_bench_image, h, w, [8], [b])
-        assert len(started) == 8
-        assert {s[0] for s in started[:2]} == {36, 42}  # the two workers take the two longest bands first
-        assert started[2][0] == 0
+        assert handed == [(36, 6), (42, 6), (0, 6), (6, 6), (12, 6), (18, 6), (24, 6), (30, 6)]
         np.testing.assert_array_equal(a.numpy(), b.numpy())
         # little work: one band per worker
-        started.clear()
+        handed.clear()
         tl._row_seconds[key] = [unit * 0.01] * h
         tl.launch(_bench_image, h, w, [8], [b])
-        assert sorted(started) == [(0, 24), (24, 24)]
+        assert handed == [(0, 24), (24, 24)]
         # work for 5 bands of 4 ms
-        started.clear()
+        handed.clear()
         tl._row_seconds[key] = [unit * 5 / h] * h
         tl.launch(_bench_image, h, w, [8], [b])
-        assert len(started) == 5 and sum(r for _, r in started) == h
+        assert len(handed) == 5 and sum(r for _, r in handed) == h
     np.testing.assert_array_equal(a.numpy(), b.numpy())
+
+
+def test_tile_launcher_rejects_bad_arguments():
+    with pytest.raises(ValueError, match="workers must be >= 1"):
+        runtime.TileLauncher(workers=0)
+    with pytest.raises(ValueError, match="bands_per_worker must be >= 1"):
+        runtime.TileLauncher(bands_per_worker=0)
+    out = wp.zeros((1, 1), dtype=float, device="cpu")
+    with pytest.raises(ValueError, match="image size must be at least 1x1, got 0x5"):
+        runtime.TileLauncher(workers=1).launch(_bench_image, 5, 0, [1], [out])
+
+
+def test_default_workers_env(monkeypatch):
+    monkeypatch.setenv("PYWARP_THREADS", "3")
+    assert runtime.default_workers() == 3
+    monkeypatch.setenv("PYWARP_THREADS", "0")
+    with pytest.raises(ValueError, match="PYWARP_THREADS must be >= 1"):
+        runtime.default_workers()
+
+
+def test_backward_passes_are_off():
+    import pywarp.kernels.phase  # noqa: F401
+
+    assert wp.config.enable_backward is False
+    assert wp.get_module("pywarp.kernels.phase").options["enable_backward"] is False
+
+
+def test_cli_bench_tiles_json_small(tmp_path):
+    import json
+    import subprocess
+    import sys
+
+    res = subprocess.run([sys.executable, "-m", "pywarp", "bench", "tiles", "--width", "64", "--height", "32",
+                          "--repeat", "1", "--json"], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    out = json.loads(res.stdout.strip().splitlines()[-1])
+    assert out["identical_output"] is True and out["parallel_speedup"] > 0 and out["device"] == "cpu"
+    res = subprocess.run([sys.executable, "-m", "pywarp", "bench", "tiles", "--width", "-5"],
+                         capture_output=True, text=True)
+    assert res.returncode == 2 and "--width must be in [1, 8192], got -5" in res.stderr
+    res = subprocess.run([sys.executable, "-m", "pywarp", "bench", "tiles", "--device", "cuda:3"],
+                         capture_output=True, text=True)
+    assert res.returncode == 2 and "--device must be one of 'cpu'" in res.stderr and "got 'cuda:3'" in res.stderr
+
+
+def test_init_filters_only_the_no_driver_notice(tmp_path):
+    """On a machine without an NVIDIA driver (the normal case here) Warp's native library prints a notice on every
+    start; pywarp filters that line only."""
+    import subprocess
+    import sys
+
+    code = ("import sys, pywarp.core.runtime as r; r.init(); "
+            "print('other message', file=sys.stderr)")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    assert "NVIDIA CUDA driver" not in res.stderr
+    assert "other message" in res.stderr
