@@ -179,29 +179,68 @@ class RenderTextures:
         t = gen.textures(**settings.textures())
         return cls.from_textures(t, settings.device)
 
-    def mips(self, name: str) -> np.ndarray:
-        """The flat mip chain of the base or detail volume (level 0 first; :func:`pywarp.kernels.cloudscape.mip_chain`)."""
-        key = "mips_" + name
+    def level0(self, name: str, half_base: bool = False) -> np.ndarray:
+        """The base or detail volume as the renderers read it: with ``half_base`` the base's texels rounded to
+        float16 values (:func:`half_values`; the C renderer reads these float32 values, Warp stores them as half
+        floats, so both read the same numbers)."""
+        if name != "base" or not half_base:
+            return getattr(self, name)
+        if "base_half" not in self._wp:
+            self._wp["base_half"] = half_values(self.base, "base texture")
+        return self._wp["base_half"]
+
+    def mips(self, name: str, half_base: bool = False) -> np.ndarray:
+        """The flat mip chain of the base or detail volume (level 0 first; :func:`pywarp.kernels.cloudscape.mip_chain`);
+        with ``half_base`` the base's chain of :meth:`level0`, every level rounded to float16 values."""
+        half = half_base and name == "base"
+        key = f"mips_{name}" + ("_half" if half else "")
         if key not in self._wp:
-            self._wp[key] = K.mip_chain(getattr(self, name))
+            chain = K.mip_chain(self.level0(name, half))
+            self._wp[key] = half_values(chain, "base texture") if half else chain
         return self._wp[key]
 
-    def warp(self) -> K.CloudTextures:
-        """The :class:`pywarp.kernels.cloudscape.CloudTextures` the kernels read (built once)."""
-        if "struct" not in self._wp:
+    def warp(self, half_base: bool = True) -> K.CloudTextures:
+        """The :class:`pywarp.kernels.cloudscape.CloudTextures` the kernels read (built once per ``half_base``:
+        the base chain as half floats, ``CloudscapeSettings.base_precision`` 'half', or as float32, 'single')."""
+        key = "struct_half" if half_base else "struct"
+        if key not in self._wp:
             t = K.CloudTextures()
             for name in ("base", "detail"):
-                t.__setattr__(name, wp.array(self.mips(name), dtype=wp.vec4, device=self.device))
                 t.__setattr__(name + "_size", int(getattr(self, name).shape[0]))
                 t.__setattr__(name + "_levels", K.mip_levels(getattr(self, name).shape[0]))
+            t.detail = wp.array(self.mips("detail"), dtype=wp.vec4, device=self.device)
+            chain = self.mips("base", half_base)
+            if half_base:
+                t.base_half = wp.array(chain.astype(np.float16), dtype=wp.vec4h, device=self.device)
+                t.base = wp.zeros(1, dtype=wp.vec4, device=self.device)
+            else:
+                t.base = wp.array(chain, dtype=wp.vec4, device=self.device)
+                t.base_half = wp.zeros(1, dtype=wp.vec4h, device=self.device)
+            t.half_base = int(bool(half_base))
             t.curl = wp.array(self.curl, dtype=wp.vec4, device=self.device)
             t.weather = wp.array(self.weather, dtype=wp.vec4, device=self.device)
             t.weather_empty = wp.array(K.weather_empty_distance(self.weather), dtype=wp.int32, device=self.device)
             t.empty_skip = 1
             t.selector_class = wp.array(K.selector_class(self.weather), dtype=wp.uint8, device=self.device)
-            t.base_bound = K.base_shape_bound(self.mips("base"))
-            self._wp["struct"] = t
-        return self._wp["struct"]
+            t.base_bound = K.base_shape_bound(chain)
+            self._wp[key] = t
+        return self._wp[key]
+
+
+#: Largest magnitude of a float16 (finite values beyond it would round to infinity)
+HALF_MAX = 65504.0
+
+
+def half_values(a: np.ndarray, what: str) -> np.ndarray:
+    """float32 array of the float16 values nearest to ``a`` (round to nearest even; NaN and infinities kept). A finite
+    value beyond +-HALF_MAX has no float16 value: ValueError naming ``what``."""
+    a = np.asarray(a, dtype=np.float32)
+    with np.errstate(invalid="ignore"):
+        big = np.isfinite(a) & (np.abs(a) > HALF_MAX)
+    if big.any():
+        raise ValueError(f"{what}: a texel of {float(a[big].flat[0])!r} is beyond the float16 range +-{HALF_MAX:g}; use "
+                         f"base_precision='single'")
+    return a.astype(np.float16).astype(np.float32)
 
 
 # --- parameters shared by Warp and C --------------------------------------------------------------------------------------
@@ -342,7 +381,7 @@ class CloudscapeTechnique:
         b = self._buffers
         h, w = s.height, s.width
         layer = s.layer()
-        tex = self.textures.warp()
+        tex = self.textures.warp(s.base_precision == "half")
         sun = wp.vec3(*self.sky.sun.tolist())
         target = b["current"] if reproj else b["out"]
         depth_target = b["depth"] if reproj else b["out_depth"]
@@ -467,23 +506,24 @@ def c_sky(settings: CloudscapeSettings):
     return sky
 
 
-def c_textures(textures: RenderTextures):
+def c_textures(textures: RenderTextures, half_base: bool = True):
     """A ``ccl_cloud_textures`` pointing into the NumPy arrays of ``textures`` (which must outlive it: the cffi
-    object keeps a reference to each buffer)."""
+    object keeps a reference to each buffer); ``half_base``: the base's texels rounded to float16 values, the numbers
+    the Warp renderer reads with ``base_precision`` 'half'."""
     from ..core.binding import ffi
 
     f = ffi()
     tex = f.new("ccl_cloud_textures *")
     buffers = []
     for name in ("base", "detail", "curl", "weather"):
-        arr = getattr(textures, name)
+        arr = textures.level0(name, half_base) if name in ("base", "detail") else getattr(textures, name)
         buf = f.from_buffer("float[]", arr)
         buffers.append(buf)
         setattr(tex, name, f.cast("const float *", buf))
         setattr(tex, f"{name}_size", arr.shape[0])
     for name in ("base", "detail"):
         n = getattr(textures, name).shape[0]
-        chain = textures.mips(name)
+        chain = textures.mips(name, half_base)
         if n > 1:  # levels 1.. of the same chain the Warp kernels read
             buf = f.from_buffer("float[]", chain[n ** 3:])
             buffers.append(buf)
@@ -516,7 +556,7 @@ def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, 
     s = settings.validate()
     pose = pose or CameraPose.from_settings(s)
     params = c_params(param_values(s))
-    tex = c_textures(textures)
+    tex = c_textures(textures, s.base_precision == "half")
     sky = c_sky(s)
     cam = c_camera(pose.camera(s.width, s.height))
     field_ = f.new("const char **")
@@ -538,7 +578,7 @@ def render_pixels_warp(technique: CloudscapeTechnique, xs, ys, pose: CameraPose 
     s = technique.settings
     pose = pose or CameraPose.from_settings(s)
     cam = pose.camera(s.width, s.height)
-    tex = technique.textures.warp()
+    tex = technique.textures.warp(s.base_precision == "half")
     dev = technique.device
     xa = wp.array(np.asarray(xs, dtype=np.int32), dtype=wp.int32, device=dev)
     ya = wp.array(np.asarray(ys, dtype=np.int32), dtype=wp.int32, device=dev)
@@ -582,7 +622,7 @@ def render_frame_c(settings: CloudscapeSettings, textures: RenderTextures, pose:
     s = settings.validate()
     pose = pose or CameraPose.from_settings(s)
     params = c_params(param_values(s))
-    tex = c_textures(textures)
+    tex = c_textures(textures, s.base_precision == "half")
     out = np.empty((s.height, s.width, 3), dtype=np.float32)
     status = lb.ccl_cloudscape_render(params, tex, c_sky(s), c_camera(pose.camera(s.width, s.height)), s.width,
                                       s.height, frame, f.from_buffer("float[]", out), out.size)

@@ -648,9 +648,10 @@ def _pyramid(level0: np.ndarray, reduce) -> np.ndarray:
 
 
 def majorant_grids(textures: RenderTextures, enabled: bool = True, fine_km: float = None,
-                   coarse_km: float = None, device: str = "cpu") -> MajorantGrids:
+                   coarse_km: float = None, device: str = "cpu", half_base: bool = True) -> MajorantGrids:
     """The :class:`MajorantGrids` of ``textures``: periodic max pyramids of the weather coverage and of the per-texel
-    base shape B = (R - L + 1) / (2 - L), L = 0.625 G + 0.25 B + 0.125 A (vc-2.28).
+    base shape B = (R - L + 1) / (2 - L), L = 0.625 G + 0.25 B + 0.125 A (vc-2.28), of the base's texels as the
+    kernels read them (``half_base``: rounded to float16 values, ``RenderTextures.level0``).
 
     Why the per-texel B bounds B at any point: the trilinear lookup interpolates the channels, so (R, L) at a point
     is a convex combination of the 8 texels' (R, L); B is a linear-fractional function of (R, L) with a positive
@@ -658,7 +659,7 @@ def majorant_grids(textures: RenderTextures, enabled: bool = True, fine_km: floa
     is at most the largest value at the texels. :data:`B_MARGIN` covers the float32 rounding of the kernel's
     interpolation and remap."""
     w = np.asarray(textures.weather[..., 0], dtype=np.float32)
-    base = np.asarray(textures.base, dtype=np.float64)
+    base = np.asarray(textures.level0("base", half_base), dtype=np.float64)
     lfbm = 0.625 * base[..., 1] + 0.25 * base[..., 2] + 0.125 * base[..., 3]
     b_texel = (base[..., 0] - lfbm + 1.0) / (2.0 - lfbm) + B_MARGIN
     wl = _pyramid(w, np.maximum)
@@ -749,7 +750,7 @@ class ReferenceRenderer:
                                  f"needs them), got [{a.min()!r}, {a.max()!r}]")
         self.majorant = bool(majorant)
         self.grids = majorant_grids(self.textures, enabled=self.majorant and density == "cloudscape",
-                                    device=self.device)
+                                    device=self.device, half_base=s.base_precision == "half")
         # the sun, sky and medium exactly as the real-time technique sets them up for these settings (its
         # parameters, including any per-frame light set-up from the sky model, and its sky model)
         rt = CloudscapeTechnique(s, textures=self.textures)
@@ -800,7 +801,7 @@ class ReferenceRenderer:
         pose = pose or CameraPose.from_settings(s)
         cam = pose.camera(s.width, s.height)
         h, w = s.height, s.width
-        tex = self.textures.warp()
+        tex = self.textures.warp(s.base_precision == "half")
         sun = wp.vec3(*self.sky.sun.tolist())
         inputs = [self.sky.kind, sun, self.sky.preetham, self.sky.gradient, cam.mat44("inv_view_proj_rot"),
                   cam.eye_vec3()]
@@ -843,7 +844,8 @@ class ReferenceRenderer:
                             "function changed; update chunk_bound)")
                 warnings.warn(f"reference: {majorant}; redoing the samples with the constant majorant",
                               RuntimeWarning, stacklevel=2)
-                grids = majorant_grids(self.textures, enabled=False, device=self.device)
+                grids = majorant_grids(self.textures, enabled=False, device=self.device,
+                                       half_base=s.base_precision == "half")
                 continue
             break
         seconds = time.perf_counter() - t0

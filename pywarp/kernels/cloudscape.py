@@ -263,6 +263,10 @@ class CloudTextures:
     base: wp.array(dtype=wp.vec4)
     base_size: int
     base_levels: int  # mip levels present (1: level 0 only, no level of detail)
+    # half_base = 1: the base chain is read from base_half (its texels' float16 values, the numbers the C renderer is
+    # given with base_precision 'half'; half the memory, so that it stays in the cache) and base is not read
+    base_half: wp.array(dtype=wp.vec4h)
+    half_base: int
     detail: wp.array(dtype=wp.vec4)
     detail_size: int
     detail_levels: int
@@ -315,9 +319,50 @@ def sample_mip_level(tex: wp.array(dtype=wp.vec4), size: int, level: int, p: wp.
 
 
 @wp.func
+def sample_mip_level(tex: wp.array(dtype=wp.vec4h), size: int, level: int, p: wp.vec3) -> wp.vec4:
+    """:func:`sample_mip_level` of a half-float chain: each texel converted to float32 (exactly), then the same
+    operations."""
+    n = size >> level
+    mask = n - 1
+    base = mip_offset(size, level)
+    x, y, z, ok = trilinear_scale(p, n)
+    if not ok:
+        return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
+    x0, x1, tx = trilinear_axis(x, mask)
+    y0, y1, ty = trilinear_axis(y, mask)
+    z0, z1, tz = trilinear_axis(z, mask)
+    y0 = y0 * n
+    y1 = y1 * n
+    z0 = z0 * n * n
+    z1 = z1 * n * n
+    return trilinear_lerp(wp.vec4(tex[base + z0 + y0 + x0]), wp.vec4(tex[base + z0 + y0 + x1]),
+                          wp.vec4(tex[base + z0 + y1 + x0]), wp.vec4(tex[base + z0 + y1 + x1]),
+                          wp.vec4(tex[base + z1 + y0 + x0]), wp.vec4(tex[base + z1 + y0 + x1]),
+                          wp.vec4(tex[base + z1 + y1 + x0]), wp.vec4(tex[base + z1 + y1 + x1]), tx, ty, tz)
+
+
+@wp.func
 def sample_mip(tex: wp.array(dtype=wp.vec4), size: int, levels: int, lod: float, p: wp.vec3) -> wp.vec4:
     """Twin of ``sample_mip`` in cloudscape.c: level 0 for lod <= 0, else the blend of levels floor(lod) and
     floor(lod) + 1 by frac(lod) (the last level for lod >= levels - 1; level lod alone for a whole lod)."""
+    if lod <= 0.0 or levels <= 1:
+        return sample_mip_level(tex, size, 0, p)
+    top = float(levels - 1)
+    if lod >= top:
+        return sample_mip_level(tex, size, levels - 1, p)
+    l0 = wp.floor(lod)
+    f = lod - l0
+    k = int(l0)
+    a = sample_mip_level(tex, size, k, p)
+    if f == 0.0:  # a whole level (the light samples'): one lookup
+        return a
+    b = sample_mip_level(tex, size, k + 1, p)
+    return a + (b - a) * f
+
+
+@wp.func
+def sample_mip(tex: wp.array(dtype=wp.vec4h), size: int, levels: int, lod: float, p: wp.vec3) -> wp.vec4:
+    """:func:`sample_mip` of a half-float chain (the same operations on the texels' float32 values)."""
     if lod <= 0.0 or levels <= 1:
         return sample_mip_level(tex, size, 0, p)
     top = float(levels - 1)
@@ -477,8 +522,12 @@ def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3
                 lb = lod_base
                 if footprint_km > 0.0:
                     lb = cloudscape_lod(footprint_km, p.base_scale_km / float(tex.base_size), p.lod_bias)
-                bs = sample_mip(tex.base, tex.base_size, tex.base_levels, lb,
-                                wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km, pos[2] / p.base_scale_km))
+                q_b = wp.vec3(pos[0] / p.base_scale_km, pos[1] / p.base_scale_km, pos[2] / p.base_scale_km)
+                bs = wp.vec4()
+                if tex.half_base != 0:
+                    bs = sample_mip(tex.base_half, tex.base_size, tex.base_levels, lb, q_b)
+                else:
+                    bs = sample_mip(tex.base, tex.base_size, tex.base_levels, lb, q_b)
                 l_fbm, b = clouds_base_shape(bs[0], bs[1], bs[2], bs[3])
                 b_d = clouds_coverage(b, d_v, w[0], c_thr, 1)
                 if b_d > 0.0:

@@ -425,10 +425,12 @@ def test_silver_lobe_brightens_clouds_towards_the_sun(tech):
 # --- the thesis's lighting, bit for bit ---------------------------------------------------------------------------------
 
 #: The thesis's renderer: its lighting, and every later change that alters pixels switched off (the level of detail,
-#: the step refinement, the ray jitter's default, the de-tiled weather map, the depth-aware reprojection and its
-#: history filter -- these two alter reprojected frames only; a future change of that kind must add its switch here).
+#: the step refinement, the ray jitter's default, the de-tiled weather map, the half-float base texture, the
+#: depth-aware reprojection and its history filter -- these two alter reprojected frames only; a future change of
+#: that kind must add its switch here).
 THESIS_RENDERER = {k: v for k, v in dict(lighting="thesis", powder=True, lod=False, refine_step_km=0.0, jitter="tilt",
-                                         weather_detile=False, reprojection_depth="inner_sphere",
+                                         weather_detile=False, base_precision="single",
+                                         reprojection_depth="inner_sphere",
                                          reprojection_filter="bilinear",
                                          advanced={"exit_eps": 1.0 / 256.0, "exit_fill": 0, "light_interp": 0.0}).items()
                    if k in {f.name for f in dataclasses.fields(CloudscapeSettings)}}
