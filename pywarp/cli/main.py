@@ -171,6 +171,18 @@ def _raise_interrupted(signum, frame):
     raise KeyboardInterrupt()
 
 
+def _quiet_dropped_interrupts(hook):
+    """A ``sys.unraisablehook`` that passes everything to ``hook`` except an interrupt the signal handlers raised
+    while Python ran a ``__del__`` (e.g. a Warp array's): Python cannot raise it there and would print it with a
+    traceback; the handler recorded it (note_interrupt) and main() raises it again, so the command still ends with
+    its one line."""
+    def unraisable(u):
+        if u.exc_type is not None and issubclass(u.exc_type, KeyboardInterrupt):
+            return
+        hook(u)
+    return unraisable
+
+
 def _error_text(exc: BaseException) -> str:
     if isinstance(exc, OSError) and exc.strerror and exc.filename is not None:
         return f"{exc.strerror}: {exc.filename}"
@@ -196,6 +208,9 @@ def main(argv: list[str] | None = None) -> int:
                     handlers[signum] = signal.signal(signum, handler)
             except ValueError:
                 break
+    old_unraisable = sys.unraisablehook
+    if handlers:
+        sys.unraisablehook = _quiet_dropped_interrupts(old_unraisable)
     command = None
     try:
         try:
@@ -235,6 +250,7 @@ def main(argv: list[str] | None = None) -> int:
         return code
     finally:
         clear_pending()
+        sys.unraisablehook = old_unraisable
         for signum, old in handlers.items():
             try:
                 signal.signal(signum, old)

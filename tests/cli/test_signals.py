@@ -92,6 +92,36 @@ def test_interrupt_in_process_returns_130_and_removes_temporaries(tmp_path, caps
     assert (signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)) == before  # handlers restored
 
 
+@pytest.mark.parametrize("signum,code,word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
+def test_an_interrupt_raised_in_a_destructor_prints_only_its_line(tmp_path, capsys, monkeypatch, signum, code, word):
+    """A signal that lands while Python runs a ``__del__`` (as CI saw in a Warp array's, during `pywarp animate`):
+    the handler's exception cannot be raised there and Python would print it with a traceback ("Exception ignored
+    in ..."); the command still ends as interrupted, with its one line on stderr and nothing else."""
+    cli_main = importlib.import_module("pywarp.cli.main")
+
+    class Drop:
+        def __del__(self):
+            os.kill(os.getpid(), signum)
+            for _ in range(100000):  # the Python-level handler runs at one of these bytecode boundaries
+                pass
+
+    def run(args):
+        d = Drop()
+        del d
+        return 0
+
+    parser = cli_main.build_parser()
+    monkeypatch.setattr(cli_main, "build_parser", lambda: parser)
+    parser._commands.choices["figures"].set_defaults(run=run)
+    # Python's own hook (pytest replaces it with one that turns what it gets into warnings): it prints to stderr
+    monkeypatch.setattr(sys, "unraisablehook", sys.__unraisablehook__)
+    hook = sys.unraisablehook
+    assert cli_main.main(["figures"]) == code
+    err = capsys.readouterr().err
+    assert err.strip().splitlines() == [f"pywarp: {word}"], err
+    assert sys.unraisablehook is hook  # restored
+
+
 def _drop_a_signal_in_a_destructor(signum) -> list:
     """Deliver ``signum`` while Python runs a ``__del__``, where the handler's exception is printed and dropped (as CI
     once saw a SIGTERM land in a Warp array's ``__del__``: `pywarp animate` went on and exited 0 with its file
