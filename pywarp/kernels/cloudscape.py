@@ -15,6 +15,8 @@ Frame buffers are ``wp.array3d(dtype=float)`` of shape (height, width, 3), row 0
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import warp as wp
 
@@ -297,31 +299,10 @@ def mip_offset(size: int, level: int) -> int:
 
 
 @wp.func
-def sample_mip_level(tex: wp.array(dtype=wp.vec4), size: int, level: int, p: wp.vec3) -> wp.vec4:
+def sample_mip_level(tex: wp.array(dtype=Any), size: int, level: int, p: wp.vec3) -> wp.vec4:
     """Trilinear wrap sample of mip level ``level`` (twin of ``ccl_texgen_sample_trilinear_wrap`` on that level's
-    texels; the same operations in the same order)."""
-    n = size >> level
-    mask = n - 1
-    base = mip_offset(size, level)
-    x, y, z, ok = trilinear_scale(p, n)
-    if not ok:
-        return wp.vec4(wp.nan, wp.nan, wp.nan, wp.nan)
-    x0, x1, tx = trilinear_axis(x, mask)
-    y0, y1, ty = trilinear_axis(y, mask)
-    z0, z1, tz = trilinear_axis(z, mask)
-    y0 = y0 * n
-    y1 = y1 * n
-    z0 = z0 * n * n
-    z1 = z1 * n * n
-    return trilinear_lerp(tex[base + z0 + y0 + x0], tex[base + z0 + y0 + x1], tex[base + z0 + y1 + x0],
-                          tex[base + z0 + y1 + x1], tex[base + z1 + y0 + x0], tex[base + z1 + y0 + x1],
-                          tex[base + z1 + y1 + x0], tex[base + z1 + y1 + x1], tx, ty, tz)
-
-
-@wp.func
-def sample_mip_level(tex: wp.array(dtype=wp.vec4h), size: int, level: int, p: wp.vec3) -> wp.vec4:
-    """:func:`sample_mip_level` of a half-float chain: each texel converted to float32 (exactly), then the same
-    operations."""
+    texels; the same operations in the same order). ``tex``: a chain of ``wp.vec4`` or of ``wp.vec4h`` (each texel
+    converted to float32 first, exactly)."""
     n = size >> level
     mask = n - 1
     base = mip_offset(size, level)
@@ -342,27 +323,9 @@ def sample_mip_level(tex: wp.array(dtype=wp.vec4h), size: int, level: int, p: wp
 
 
 @wp.func
-def sample_mip(tex: wp.array(dtype=wp.vec4), size: int, levels: int, lod: float, p: wp.vec3) -> wp.vec4:
+def sample_mip(tex: wp.array(dtype=Any), size: int, levels: int, lod: float, p: wp.vec3) -> wp.vec4:
     """Twin of ``sample_mip`` in cloudscape.c: level 0 for lod <= 0, else the blend of levels floor(lod) and
     floor(lod) + 1 by frac(lod) (the last level for lod >= levels - 1; level lod alone for a whole lod)."""
-    if lod <= 0.0 or levels <= 1:
-        return sample_mip_level(tex, size, 0, p)
-    top = float(levels - 1)
-    if lod >= top:
-        return sample_mip_level(tex, size, levels - 1, p)
-    l0 = wp.floor(lod)
-    f = lod - l0
-    k = int(l0)
-    a = sample_mip_level(tex, size, k, p)
-    if f == 0.0:  # a whole level (the light samples'): one lookup
-        return a
-    b = sample_mip_level(tex, size, k + 1, p)
-    return a + (b - a) * f
-
-
-@wp.func
-def sample_mip(tex: wp.array(dtype=wp.vec4h), size: int, levels: int, lod: float, p: wp.vec3) -> wp.vec4:
-    """:func:`sample_mip` of a half-float chain (the same operations on the texels' float32 values)."""
     if lod <= 0.0 or levels <= 1:
         return sample_mip_level(tex, size, 0, p)
     top = float(levels - 1)
