@@ -727,8 +727,6 @@ static ccl_vec3 sample_light(const ccl_cloudscape_params *p, float d_light, floa
     return light;
 }
 
-/* vc-A21 for one lit sample at ray distance t_i, front to back, and the early exit with its fill; 1 where the ray
- * stops */
 /* 1 where a sample of density rho and length dt ends the ray at transmittance trans: the early exit's test of
  * ccl_raymarch_accumulate (the same operations), with the early exit on. Such a sample does not wait for the light
  * interpolation: it gets its own optical depth at once, and the next sample's, which the interpolation would need,
@@ -739,6 +737,8 @@ static int ends_ray(const ccl_cloudscape_params *p, float trans, float rho, floa
     return p->early_exit && (1.0f - t) >= (1.0f - p->exit_eps);
 }
 
+/* vc-A21 for one lit sample at ray distance t_i, front to back, and the early exit with its fill; 1 where the ray
+ * stops */
 static int march_sample(const ccl_cloudscape_params *p, float rho, float dt, ccl_vec3 light, float t_i,
                         ccl_vec3 *colour, float *trans, float *depth_w, float *depth_sum)
 {

@@ -180,9 +180,9 @@ class RenderTextures:
         return cls.from_textures(t, settings.device)
 
     def level0(self, name: str, half_base: bool = False) -> np.ndarray:
-        """The base or detail volume as the renderers read it: with ``half_base`` the base's texels rounded to
-        float16 values (:func:`half_values`; the C renderer reads these float32 values, Warp stores them as half
-        floats, so both read the same numbers)."""
+        """A texture (base, detail, curl, weather) as the renderers read it: with ``half_base`` the base's texels
+        rounded to float16 values (:func:`half_values`; the C renderer reads these float32 values, Warp stores them as
+        half floats, so both read the same numbers)."""
         if name != "base" or not half_base:
             return getattr(self, name)
         if "base_half" not in self._wp:
@@ -238,8 +238,8 @@ def half_values(a: np.ndarray, what: str) -> np.ndarray:
     with np.errstate(invalid="ignore"):
         big = np.isfinite(a) & (np.abs(a) > HALF_MAX)
     if big.any():
-        raise ValueError(f"{what}: a texel of {float(a[big].flat[0])!r} is beyond the float16 range +-{HALF_MAX:g}; use "
-                         f"base_precision='single'")
+        raise ValueError(f"{what}: a texel of {float(a[big].flat[0])!r} is beyond the float16 range "
+                         f"+-{HALF_MAX:g}; use base_precision='single'")
     return a.astype(np.float16).astype(np.float32)
 
 
@@ -516,7 +516,7 @@ def c_textures(textures: RenderTextures, half_base: bool = True):
     tex = f.new("ccl_cloud_textures *")
     buffers = []
     for name in ("base", "detail", "curl", "weather"):
-        arr = textures.level0(name, half_base) if name in ("base", "detail") else getattr(textures, name)
+        arr = textures.level0(name, half_base)
         buf = f.from_buffer("float[]", arr)
         buffers.append(buf)
         setattr(tex, name, f.cast("const float *", buf))
