@@ -727,14 +727,17 @@ static ccl_vec3 sample_light(const ccl_cloudscape_params *p, float d_light, floa
     return light;
 }
 
-/* 1 where a sample of density rho and length dt ends the ray at transmittance trans: the early exit's test of
- * ccl_raymarch_accumulate (the same operations), with the early exit on. Such a sample does not wait for the light
- * interpolation: it gets its own optical depth at once, and the next sample's, which the interpolation would need,
- * is never computed (the ray stops there) */
+/* 1 where a sample of density rho and length dt ends the ray at transmittance trans: the stop flag of
+ * ccl_raymarch_accumulate (vc-A21) for that sample (its colour does not matter: none is passed), with the early exit
+ * on. Such a sample does not wait for the light interpolation: it gets its own optical depth at once, and the next
+ * sample's, which the interpolation would need, is never computed (the ray stops there) */
 static int ends_ray(const ccl_cloudscape_params *p, float trans, float rho, float dt)
 {
-    const float t = trans * expf(-(p->sigma * rho * dt));
-    return p->early_exit && (1.0f - t) >= (1.0f - p->exit_eps);
+    const ccl_vec3 zero = {0.0f, 0.0f, 0.0f};
+    float t;
+    int stop;
+    (void)ccl_raymarch_accumulate(zero, trans, p->sigma, rho, dt, zero, p->exit_eps, &t, &stop);
+    return p->early_exit && stop;
 }
 
 /* vc-A21 for one lit sample at ray distance t_i, front to back, and the early exit with its fill; 1 where the ray

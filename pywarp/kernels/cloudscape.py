@@ -585,13 +585,15 @@ def sample_light(p: CloudscapeParams, d_light: float, precip: float, pos: wp.vec
 
 @wp.func
 def ends_ray(p: CloudscapeParams, trans: float, rho: float, dt: float) -> int:
-    """1 where a sample of density ``rho`` and length ``dt`` ends the ray at transmittance ``trans``: the early exit's
-    test of :func:`raymarch_accumulate` (the same operations), with the early exit on (twin of ``ends_ray`` in
-    cloudscape.c). Such a sample does not wait for the light interpolation: it gets its own optical depth at once, and
-    the next sample's, which the interpolation would need, is never computed (the ray stops there)."""
-    t = trans * wp.exp(-(p.sigma * rho * dt))
+    """1 where a sample of density ``rho`` and length ``dt`` ends the ray at transmittance ``trans``: the stop flag of
+    :func:`raymarch_accumulate` (vc-A21) for that sample (its colour does not matter: none is passed), with the early
+    exit on (twin of ``ends_ray`` in cloudscape.c). Such a sample does not wait for the light interpolation: it gets
+    its own optical depth at once, and the next sample's, which the interpolation would need, is never computed (the
+    ray stops there)."""
+    zero = wp.vec3(0.0, 0.0, 0.0)
+    c, t, stop = raymarch_accumulate(zero, trans, p.sigma, rho, dt, zero, p.exit_eps)
     r = int(0)
-    if p.early_exit != 0 and (1.0 - t) >= (1.0 - p.exit_eps):
+    if p.early_exit != 0 and stop != 0:
         r = 1
     return r
 
