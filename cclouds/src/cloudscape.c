@@ -246,7 +246,8 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!finite_nonneg(p->light_interp)) return bad(out_field, "light_interp");
     if (!finite_pos(p->light_step_km)) return bad(out_field, "light_step_km");
     if (!(p->light_cone_angle >= 0.0f && p->light_cone_angle < 1.5707963f)) return bad(out_field, "light_cone_angle");
-    if (!(p->light_far_factor >= 1.0f && p->light_far_factor < INFINITY)) return bad(out_field, "light_far_factor");
+    if (!(p->light_far_factor >= 1.0f && p->light_far_factor <= CCL_CLOUDSCAPE_MAX_LIGHT_FAR_FACTOR))
+        return bad(out_field, "light_far_factor");
     if (!((double)p->light_far_factor * 5.0 * (double)p->light_step_km <= CCL_CLOUDSCAPE_MAX_LIGHT_KM))
         return bad(out_field, "light_far_factor");
     if (!(p->jitter_mode >= CCL_JITTER_TILT && p->jitter_mode <= CCL_JITTER_NONE)) return bad(out_field, "jitter_mode");

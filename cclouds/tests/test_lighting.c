@@ -323,6 +323,9 @@ static void test_check_names_the_lighting_fields(void)
     BAD(q.light_interp = INFINITY, "light_interp");
     BAD((q.light_step_km = 2.0e34f, q.light_far_factor = 1.7e7f), "light_far_factor");
     BAD(q.light_far_factor = 2.1e6f, "light_far_factor"); /* 2.1e6 x 5 x 0.1 km > 10^6 km */
+    /* the product small, the factor near FLT_MAX: (factor - 1) x 5 overflowed (found by fuzzing) */
+    BAD((q.light_step_km = 1.0e-39f, q.light_far_factor = 3.0e38f), "light_far_factor");
+    BAD(q.light_far_factor = 1.01e6f, "light_far_factor");
 #undef BAD
 }
 

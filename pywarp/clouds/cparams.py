@@ -103,7 +103,8 @@ FIELD_RANGES = {
     "samples_max": "in [samples_min, 4096]", "exit_eps": "in (0, 1)", "exit_fill": "0 or 1",
     "light_interp": ">= 0 and finite", "light_step_km": "> 0 and finite",
     "light_cone_angle": "in [0, pi/2) rad",
-    "light_far_factor": ">= 1, with light_far_factor x 5 x light_step_km <= 10^6 km (CCL_CLOUDSCAPE_MAX_LIGHT_KM)",
+    "light_far_factor": "in [1, 10^6] (CCL_CLOUDSCAPE_MAX_LIGHT_FAR_FACTOR), with light_far_factor x 5 x "
+                        "light_step_km <= 10^6 km (CCL_CLOUDSCAPE_MAX_LIGHT_KM)",
     "jitter_mode": "0 (tilt), 1 (offset) or 2 (none)", "jitter_amount": ">= 0 and finite",
     "detail_direction": "0 or 1", "coverage_threshold": "0 or 1", "beer": "0 or 1", "powder": "0 or 1",
     "lighting": "0 (thesis) or 1 (sky)", "sun_intensity": ">= 0 and finite", "ambient_bottom_ratio": "in [0, 1]",

@@ -131,8 +131,11 @@ def test_cloudscape_validation_names_the_field():
         (dict(threads=0), r"^threads must be in \[1, 4096\], got 0$"),
         (dict(advanced={"sigma": -1.0}), r"^sigma is out of range"),
         (dict(advanced={"bogus": 1.0}), r"^advanced: unknown parameter 'bogus'"),
-        (dict(advanced={"light_far_factor": 3.0e6}), r"^light_far_factor is out of range: it must be >= 1, with "
-         r"light_far_factor x 5 x light_step_km <= 10\^6 km .*got 3000000\.0$"),
+        (dict(advanced={"light_far_factor": 3.0e6}), r"^light_far_factor is out of range: it must be in \[1, 10\^6\] "
+         r"\(CCL_CLOUDSCAPE_MAX_LIGHT_FAR_FACTOR\), with light_far_factor x 5 x light_step_km <= 10\^6 km "
+         r".*got 3000000\.0$"),
+        (dict(advanced={"light_far_factor": 3.0e38, "light_step_km": 1.0e-39}),
+         r"^light_far_factor is out of range: it must be in \[1, 10\^6\] .*got 3e\+38$"),
         (dict(advanced={"light_interp": -0.5}),
          r"^light_interp is out of range: it must be >= 0 and finite .*got -0\.5$"),
         (dict(advanced={"exit_fill": 2}), r"^exit_fill is out of range: it must be 0 or 1 .*got 2$"),

@@ -101,6 +101,11 @@ extern "C" {
  * finite (each factor alone can be finite while their product overflows: inf x 0 = NaN). The layer is a few km
  * thick; 10^6 km is far beyond any useful value. */
 #define CCL_CLOUDSCAPE_MAX_LIGHT_KM 1.0e6
+/* Largest light_far_factor that ccl_cloudscape_check accepts: the far sample's weight is
+ * (light_far_factor - 1) x 5 x light_step_km, and its first product overflowed to inf for a factor near FLT_MAX
+ * while the whole product stayed small (a step of 1e-39 km: inf x a density of 0 = a NaN pixel, found by fuzzing).
+ * The thesis's factor is 3; 10^6 is far beyond any useful value. */
+#define CCL_CLOUDSCAPE_MAX_LIGHT_FAR_FACTOR 1.0e6f
 
 /* The four textures of the cloudscape (not owned). */
 typedef struct ccl_cloud_textures {
@@ -153,9 +158,9 @@ typedef struct ccl_cloudscape_params {
                                    the thesis has it) */
     float light_step_km;        /* axial step of the light cone (vc-A19; 0.1 km) */
     float light_cone_angle;     /* half-angle of the light cone, rad (15 degrees) */
-    float light_far_factor;     /* distance of the far light sample relative to the near cone (3); the far sample's
-                                   distance light_far_factor x 5 x light_step_km is at most
-                                   CCL_CLOUDSCAPE_MAX_LIGHT_KM */
+    float light_far_factor;     /* distance of the far light sample relative to the near cone (3), in
+                                   [1, CCL_CLOUDSCAPE_MAX_LIGHT_FAR_FACTOR]; the far sample's distance
+                                   light_far_factor x 5 x light_step_km is at most CCL_CLOUDSCAPE_MAX_LIGHT_KM */
     int light_detail;           /* 1: light samples use the full density with detail erosion; 0: base shape only */
     int jitter_mode;            /* ccl_jitter_mode (vc-A23): CCL_JITTER_TILT (default), _OFFSET, _NONE */
     float jitter_amount;        /* tilt scale, rad (0.002) */
