@@ -92,10 +92,12 @@ ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume_grid *g
     else if (!finite_f(p->sun_glow_power) || !(p->sun_glow_power > 0.0f)) bad = "sun_glow_power";
     else if (!finite_f(p->field_size) || !(p->field_size > 0.0f)) bad = "field_size";
     else if (!finite_f(p->fog_distance) || !(p->fog_distance > 0.0f)) bad = "fog_distance";
-    else if (!finite_f(p->tau_per_voxel) || p->tau_per_voxel < 0.0f) bad = "tau_per_voxel";
-    else if (!finite_f(p->light_tau_per_voxel) || p->light_tau_per_voxel < 0.0f) bad = "light_tau_per_voxel";
-    else if (!finite_f(p->step_voxels) || !(p->step_voxels >= 0.05f)) bad = "step_voxels";
-    else if (!finite_f(p->light_step_voxels) || !(p->light_step_voxels >= 0.05f)) bad = "light_step_voxels";
+    else if (!(p->tau_per_voxel >= 0.0f && p->tau_per_voxel <= (float)CCL_VOLUME_MAX_TAU)) bad = "tau_per_voxel";
+    else if (!(p->light_tau_per_voxel >= 0.0f && p->light_tau_per_voxel <= (float)CCL_VOLUME_MAX_TAU))
+        bad = "light_tau_per_voxel";
+    else if (!(p->step_voxels >= 0.05f && p->step_voxels <= (float)CCL_VOLUME_MAX_STEP)) bad = "step_voxels";
+    else if (!(p->light_step_voxels >= 0.05f && p->light_step_voxels <= (float)CCL_VOLUME_MAX_STEP))
+        bad = "light_step_voxels";
     else if (!finite_f(p->exit_transmittance) || p->exit_transmittance < 0.0f || p->exit_transmittance >= 1.0f)
         bad = "exit_transmittance";
     else if (p->max_steps < 1 || p->max_steps > 100000) bad = "max_steps";

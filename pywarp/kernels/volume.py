@@ -36,6 +36,11 @@ MAX_COLOUR = 1.0e6
 #: Box extents per axis in [1 / LENGTH_RANGE, LENGTH_RANGE] m (CCL_VOLUME_LENGTH_RANGE): a finite, non-zero voxel
 #: scale and light direction (a denormal extent gave NaN light).
 LENGTH_RANGE = 1.0e6
+#: Largest optical depth per voxel (tau_per_voxel, light_tau_per_voxel) and step in voxels (step_voxels,
+#: light_step_voxels) accepted (CCL_VOLUME_MAX_TAU, CCL_VOLUME_MAX_STEP): a finite optical depth per step (their
+#: product overflowed to Inf, and Inf x a density of 0 gave NaN light).
+MAX_TAU = 1.0e6
+MAX_STEP = 1.0e6
 _COLOUR_FIELDS = ("sun_colour", "ambient_top", "ambient_bottom", "sky_zenith", "sky_horizon", "ground_a", "ground_b")
 AIRCRAFT_STEPS = wp.constant(64)  # CCL_VOLUME_AIRCRAFT_STEPS
 AIRCRAFT_BOUND = wp.constant(6.3)
@@ -141,9 +146,9 @@ def check_values(values: dict) -> None:
         if abs(n - 1.0) > 1e-3:
             raise ValueError(f"{name} must be a unit vector, got |v| = {n:.6g}")
     rules = {"sun_glow": (0.0, MAX_COLOUR, False), "sun_glow_power": (0.0, None, True), "field_size": (0.0, None, True),
-             "fog_distance": (0.0, None, True), "tau_per_voxel": (0.0, None, False),
-             "light_tau_per_voxel": (0.0, None, False), "step_voxels": (0.05, None, False),
-             "light_step_voxels": (0.05, None, False), "max_steps": (1, 100000, False)}
+             "fog_distance": (0.0, None, True), "tau_per_voxel": (0.0, MAX_TAU, False),
+             "light_tau_per_voxel": (0.0, MAX_TAU, False), "step_voxels": (0.05, MAX_STEP, False),
+             "light_step_voxels": (0.05, MAX_STEP, False), "max_steps": (1, 100000, False)}
     for name, (lo, hi, open_lo) in rules.items():
         v = values[name]
         if (v <= lo if open_lo else v < lo) or (hi is not None and v > hi):

@@ -291,6 +291,51 @@ def test_volume_pixels_finite_with_colours_at_the_limit():
 def test_volume_colour_and_length_limits_are_the_c_constants():
     assert V.MAX_COLOUR == lib().CCL_VOLUME_MAX_COLOUR == 1e6
     assert V.LENGTH_RANGE == lib().CCL_VOLUME_LENGTH_RANGE == 1e6
+    assert V.MAX_TAU == lib().CCL_VOLUME_MAX_TAU == 1e6
+    assert V.MAX_STEP == lib().CCL_VOLUME_MAX_STEP == 1e6
+
+
+# --- finding 11: volume, the optical depth of a step ------------------------------------------------------------------
+
+@pytest.mark.parametrize("field, value", [("light_tau_per_voxel", 1.6e32), ("light_step_voxels", 8.4e6),
+                                          ("tau_per_voxel", 2e6), ("step_voxels", 3e38)])
+def test_volume_optical_depths_and_steps_bounded_in_c_and_python(field, value):
+    """Before: any finite optical depth per voxel and step passed; light_tau_per_voxel = 1.6e32 with
+    light_step_voxels = 8.4e6 made the step's optical depth Inf, and Inf x a density of 0 wrote NaN light."""
+    vals = V.default_values()
+    vals[field] = value
+    g, keep = _volume_grid((10.0, 10.0, 10.0), np.full((2, 2, 2), 100, np.uint8))
+    assert _c_check(V.c_params(vals), g) == (1, field)
+    out = np.full(8, -5.0, np.float32)
+    assert lib().ccl_volume_light(V.c_params(vals), g, ffi().from_buffer("float[]", out), out.size) != 0
+    assert np.all(out == -5.0)
+    lo = "0" if "tau" in field else "0.05"
+    with pytest.raises(ValueError, match=rf"^{field} must be in \[{lo}, 1e\+06\]"):
+        V.check_values(vals)
+    del keep
+
+
+def test_volume_light_and_pixels_finite_with_optical_depths_and_steps_at_the_limit():
+    """Optical depths per voxel and steps at 10^6 (the step's optical depth 10^12): the light in [0, 1] and the
+    pixels finite, Warp and C alike; empty voxels next to dense ones (the density of 0 that met Inf)."""
+    vals = V.default_values()
+    vals.update(tau_per_voxel=1e6, light_tau_per_voxel=1e6, step_voxels=1e6, light_step_voxels=1e6)
+    dens = np.zeros((4, 4, 4), np.uint8)
+    dens[1:3, 1:3, 1:3] = 255
+    v = V.PlacedVolume(dens, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
+    vs = V.VolumeSet([v])
+    vs.compute_light(vals)
+    c = V.light_c(vals, v)
+    for a in (vs.light[0], c):
+        assert np.all((a >= 0.0) & (a <= 1.0)), a
+    np.testing.assert_array_equal(vs.light[0], c)
+    cam = CAM.camera_look_at(np.array([0.0, 104.0, 0.0]), np.array([0.0, 100.0, -100.0]), (0.0, 1.0, 0.0),
+                             math.radians(60.0), 16 / 9, 0.1, 1e5)
+    xs, ys = np.meshgrid(np.arange(0, 64, 3), np.arange(0, 36, 3))
+    w = V.pixels_warp(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36)
+    cp = V.pixels_c(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36)
+    assert np.all(np.isfinite(w)) and np.all(np.isfinite(cp))
+    np.testing.assert_allclose(w, cp, rtol=1e-5, atol=1e-6)
 
 
 def test_volume_sky_glow_clamps_the_cosine_in_c_and_warp():

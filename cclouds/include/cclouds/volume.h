@@ -56,6 +56,12 @@ extern "C" {
  * the light ray's voxel-space direction stay finite and non-zero (a denormal extent made them Inf, a huge one
  * underflowed the direction's length to 0: NaN light). */
 #define CCL_VOLUME_LENGTH_RANGE 1000000
+/* Largest optical depth per voxel (tau_per_voxel, light_tau_per_voxel) and largest step in voxels (step_voxels,
+ * light_step_voxels) ccl_volume_check accepts: 10^6 each, so the optical depth of a step, their product, stays
+ * finite (with 1.6e32 x 8.4e6 it was Inf, and Inf x a density of 0 made the light volume NaN). A voxel of optical
+ * depth 10^6 is opaque many times over; a step of 10^6 voxels is beyond any grid's diagonal. */
+#define CCL_VOLUME_MAX_TAU 1000000
+#define CCL_VOLUME_MAX_STEP 1000000
 #define CCL_VOLUME_AIRCRAFT_STEPS 64
 #define CCL_VOLUME_BRICK 2 /* edge of the empty-space-skipping bricks, voxels (2: measured faster than 4 on the
                                 flight scene's soft clouds, whose 4^3 bricks are 40 % occupied) */
@@ -107,7 +113,8 @@ CCL_API void ccl_volume_params_default(ccl_volume_params *out);
 
 /* Validate parameters and grids (count in [0, CCL_VOLUME_MAX_GRIDS], sizes >= 1, extents in [1e-6, 1e6] m
  * (CCL_VOLUME_LENGTH_RANGE), non-NULL arrays, unit sun and axes, finite values, colour components and sun_glow in
- * [0, CCL_VOLUME_MAX_COLOUR], steps > 0, max_steps in [1, 100000], g in (-1, 1)). Returns CCL_OK or CCL_EINVAL
+ * [0, CCL_VOLUME_MAX_COLOUR], optical depths per voxel in [0, CCL_VOLUME_MAX_TAU], steps in
+ * [0.05, CCL_VOLUME_MAX_STEP] voxels, max_steps in [1, 100000], g in (-1, 1)). Returns CCL_OK or CCL_EINVAL
  * with *out_field = the first bad field (static string; out_field may be NULL). */
 CCL_API ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume_grid *grids, int count,
                                     const char **out_field);
