@@ -279,13 +279,18 @@ def test_volume_pixels_finite_with_colours_at_the_limit():
                 aircraft_up=up, g=0.999)
     vs = V.VolumeSet([V.PlacedVolume(np.full((8, 8, 8), 255, np.uint8), (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))])
     vs.compute_light(vals)
+    w, c = _volume_pixels_both(vals, vs)
+    assert np.all(np.isfinite(w)) and np.all(np.isfinite(c))
+    np.testing.assert_allclose(w, c, rtol=1e-5, atol=1e-6 * 1e6)
+
+
+def _volume_pixels_both(vals: dict, vs) -> tuple:
+    """Pixels of a 64 x 36 view towards the volumes at (-40..40, 80..140, -300..-220), every third pixel: (Warp, C)."""
     cam = CAM.camera_look_at(np.array([0.0, 104.0, 0.0]), np.array([0.0, 100.0, -100.0]), (0.0, 1.0, 0.0),
                              math.radians(60.0), 16 / 9, 0.1, 1e5)
     xs, ys = np.meshgrid(np.arange(0, 64, 3), np.arange(0, 36, 3))
-    w = V.pixels_warp(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36)
-    c = V.pixels_c(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36)
-    assert np.all(np.isfinite(w)) and np.all(np.isfinite(c))
-    np.testing.assert_allclose(w, c, rtol=1e-5, atol=1e-6 * 1e6)
+    return (V.pixels_warp(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36),
+            V.pixels_c(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36))
 
 
 def test_volume_colour_and_length_limits_are_the_c_constants():
@@ -329,11 +334,7 @@ def test_volume_light_and_pixels_finite_with_optical_depths_and_steps_at_the_lim
     for a in (vs.light[0], c):
         assert np.all((a >= 0.0) & (a <= 1.0)), a
     np.testing.assert_array_equal(vs.light[0], c)
-    cam = CAM.camera_look_at(np.array([0.0, 104.0, 0.0]), np.array([0.0, 100.0, -100.0]), (0.0, 1.0, 0.0),
-                             math.radians(60.0), 16 / 9, 0.1, 1e5)
-    xs, ys = np.meshgrid(np.arange(0, 64, 3), np.arange(0, 36, 3))
-    w = V.pixels_warp(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36)
-    cp = V.pixels_c(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36)
+    w, cp = _volume_pixels_both(vals, vs)
     assert np.all(np.isfinite(w)) and np.all(np.isfinite(cp))
     np.testing.assert_allclose(w, cp, rtol=1e-5, atol=1e-6)
 
