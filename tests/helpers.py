@@ -90,3 +90,16 @@ def march_frames(view: dict, marches: dict, reference: str, width: int = 240, he
 def pixel_change(a, b) -> np.ndarray:
     """Per pixel the largest channel difference of two (height, width, channels) frames."""
     return np.abs(np.asarray(a) - np.asarray(b)).max(axis=2)
+
+
+def differential_settings(default_examples: int):
+    """The hypothesis settings of the differential tests in tests/hardening (Warp against C at the edges of the
+    domains): deterministic (``derandomize=True``, no example database, no deadline), ``default_examples`` examples
+    or the number in the environment variable ``PYWARP_DIFF_EXAMPLES`` (a longer search)."""
+    import os
+
+    from hypothesis import HealthCheck, settings
+
+    n = int(os.environ.get("PYWARP_DIFF_EXAMPLES", str(default_examples)))
+    return settings(max_examples=n, derandomize=True, database=None, deadline=None,
+                    suppress_health_check=list(HealthCheck), print_blob=True)

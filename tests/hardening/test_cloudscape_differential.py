@@ -4,17 +4,16 @@ paths of its own -- the empty-space skip, the base-shape bound, the half-float b
 pixels by the Warp kernel and by the C reference: both finite, and equal within the tolerance of
 ``tests/clouds/test_cloudscape.py::test_warp_pixels_match_c_reference`` (relative to the values' size, since the sun
 intensity scales them). A set the settings refuse is skipped: the refusal itself is tested in test_settings.py and
-test_vc_findings.py. Deterministic (``derandomize=True``, no example database), ``MAX_EXAMPLES`` sets
-(150; the environment variable ``PYWARP_DIFF_EXAMPLES`` sets another number for a longer search)."""
+test_vc_findings.py. Deterministic (``derandomize=True``, no example database); ``PYWARP_DIFF_EXAMPLES`` sets another
+number of examples for a longer search (default 150)."""
 from __future__ import annotations
-
-import os
 
 import numpy as np
 import pytest
+from helpers import differential_settings
 
 hypothesis = pytest.importorskip("hypothesis")
-from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
+from hypothesis import assume, given  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from pywarp.clouds.cloudscape import (  # noqa: E402
@@ -25,9 +24,7 @@ from pywarp.clouds.cloudscape import (  # noqa: E402
 )
 from pywarp.clouds.settings import CloudscapeSettings  # noqa: E402
 
-MAX_EXAMPLES = int(os.environ.get("PYWARP_DIFF_EXAMPLES", "150"))
-SETTINGS = settings(max_examples=MAX_EXAMPLES, derandomize=True, database=None, deadline=None,
-                    suppress_health_check=list(HealthCheck), print_blob=True)
+SETTINGS = differential_settings(150)
 #: small textures (generated once) and a small frame
 TEXTURE_SIZES = dict(base_size=16, detail_size=16, curl_size=16, weather_size=64)
 SIZE = dict(width=48, height=27)

@@ -9,22 +9,18 @@ for a longer search (default 100)."""
 from __future__ import annotations
 
 import math
-import os
-
 import numpy as np
 import pytest
-from helpers import max_ulp_diff
+from helpers import differential_settings, max_ulp_diff
 
 hypothesis = pytest.importorskip("hypothesis")
-from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import given  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from pywarp.kernels import camera as cm  # noqa: E402
 from pywarp.kernels import reproj as rp  # noqa: E402
 
-MAX_EXAMPLES = int(os.environ.get("PYWARP_DIFF_EXAMPLES", "100"))
-SETTINGS = settings(max_examples=MAX_EXAMPLES, derandomize=True, database=None, deadline=None,
-                    suppress_health_check=list(HealthCheck), print_blob=True)
+SETTINGS = differential_settings(100)
 
 COLOURS = np.array([0.0, 1e-30, 0.25, 1.0, 1e30, -1e30], np.float32)
 DEPTHS = np.array([0.0, -1.0, np.nan, 1e-30, 0.9, 2.6, 40.0, rp.SKY_DEPTH_KM, np.inf], np.float32)

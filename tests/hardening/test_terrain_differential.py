@@ -6,21 +6,18 @@ refusals are tested in tests/terrain and test_fuzz_findings.py). Deterministic (
 database); ``PYWARP_DIFF_EXAMPLES`` sets another number of examples for a longer search (default 60)."""
 from __future__ import annotations
 
-import os
-
 import numpy as np
 import pytest
+from helpers import differential_settings
 
 hypothesis = pytest.importorskip("hypothesis")
-from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
+from hypothesis import assume, given  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from pywarp.terrain.settings import TerrainSettings  # noqa: E402
 from pywarp.terrain.technique import render_pixels_c, render_pixels_warp  # noqa: E402
 
-MAX_EXAMPLES = int(os.environ.get("PYWARP_DIFF_EXAMPLES", "60"))
-SETTINGS = settings(max_examples=MAX_EXAMPLES, derandomize=True, database=None, deadline=None,
-                    suppress_health_check=list(HealthCheck), print_blob=True)
+SETTINGS = differential_settings(60)
 SIZE = dict(width=48, height=27)
 
 #: settings, each at its edges and a typical value (the march's lengths kept small enough for a quick test)

@@ -12,13 +12,12 @@ for a longer search (default 100)."""
 from __future__ import annotations
 
 import math
-import os
-
 import numpy as np
 import pytest
+from helpers import differential_settings
 
 hypothesis = pytest.importorskip("hypothesis")
-from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import given  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from pywarp.core.binding import ffi, lib  # noqa: E402
@@ -26,9 +25,7 @@ from pywarp.kernels import camera as CAM  # noqa: E402
 from pywarp.kernels import flight as F  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
 
-MAX_EXAMPLES = int(os.environ.get("PYWARP_DIFF_EXAMPLES", "100"))
-SETTINGS = settings(max_examples=MAX_EXAMPLES, derandomize=True, database=None, deadline=None,
-                    suppress_health_check=list(HealthCheck), print_blob=True)
+SETTINGS = differential_settings(100)
 F32_MAX = float(np.finfo(np.float32).max)
 
 #: scalar fields, each at and beyond its edges (the refusals must agree) and at typical values
