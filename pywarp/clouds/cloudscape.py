@@ -381,7 +381,7 @@ class CloudscapeTechnique:
         b = self._buffers
         h, w = s.height, s.width
         layer = s.layer()
-        tex = self.textures.warp(s.base_precision == "half")
+        tex = self.textures.warp(s.half_base())
         sun = wp.vec3(*self.sky.sun.tolist())
         target = b["current"] if reproj else b["out"]
         depth_target = b["depth"] if reproj else b["out_depth"]
@@ -556,7 +556,7 @@ def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, 
     s = settings.validate()
     pose = pose or CameraPose.from_settings(s)
     params = c_params(param_values(s))
-    tex = c_textures(textures, s.base_precision == "half")
+    tex = c_textures(textures, s.half_base())
     sky = c_sky(s)
     cam = c_camera(pose.camera(s.width, s.height))
     field_ = f.new("const char **")
@@ -578,7 +578,7 @@ def render_pixels_warp(technique: CloudscapeTechnique, xs, ys, pose: CameraPose 
     s = technique.settings
     pose = pose or CameraPose.from_settings(s)
     cam = pose.camera(s.width, s.height)
-    tex = technique.textures.warp(s.base_precision == "half")
+    tex = technique.textures.warp(s.half_base())
     dev = technique.device
     xa = wp.array(np.asarray(xs, dtype=np.int32), dtype=wp.int32, device=dev)
     ya = wp.array(np.asarray(ys, dtype=np.int32), dtype=wp.int32, device=dev)
@@ -622,7 +622,7 @@ def render_frame_c(settings: CloudscapeSettings, textures: RenderTextures, pose:
     s = settings.validate()
     pose = pose or CameraPose.from_settings(s)
     params = c_params(param_values(s))
-    tex = c_textures(textures, s.base_precision == "half")
+    tex = c_textures(textures, s.half_base())
     out = np.empty((s.height, s.width, 3), dtype=np.float32)
     status = lb.ccl_cloudscape_render(params, tex, c_sky(s), c_camera(pose.camera(s.width, s.height)), s.width,
                                       s.height, frame, f.from_buffer("float[]", out), out.size)

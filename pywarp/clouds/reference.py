@@ -750,7 +750,7 @@ class ReferenceRenderer:
                                  f"needs them), got [{a.min()!r}, {a.max()!r}]")
         self.majorant = bool(majorant)
         self.grids = majorant_grids(self.textures, enabled=self.majorant and density == "cloudscape",
-                                    device=self.device, half_base=s.base_precision == "half")
+                                    device=self.device, half_base=s.half_base())
         # the sun, sky and medium exactly as the real-time technique sets them up for these settings (its
         # parameters, including any per-frame light set-up from the sky model, and its sky model)
         rt = CloudscapeTechnique(s, textures=self.textures)
@@ -801,7 +801,7 @@ class ReferenceRenderer:
         pose = pose or CameraPose.from_settings(s)
         cam = pose.camera(s.width, s.height)
         h, w = s.height, s.width
-        tex = self.textures.warp(s.base_precision == "half")
+        tex = self.textures.warp(s.half_base())
         sun = wp.vec3(*self.sky.sun.tolist())
         inputs = [self.sky.kind, sun, self.sky.preetham, self.sky.gradient, cam.mat44("inv_view_proj_rot"),
                   cam.eye_vec3()]
@@ -845,7 +845,7 @@ class ReferenceRenderer:
                 warnings.warn(f"reference: {majorant}; redoing the samples with the constant majorant",
                               RuntimeWarning, stacklevel=2)
                 grids = majorant_grids(self.textures, enabled=False, device=self.device,
-                                       half_base=s.base_precision == "half")
+                                       half_base=s.half_base())
                 continue
             break
         seconds = time.perf_counter() - t0

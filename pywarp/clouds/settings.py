@@ -50,7 +50,7 @@ SKIES = ("preetham", "gradient")
 JITTER_NAMES = ("tilt", "offset", "none")  # ccl_jitter_mode order
 COVERAGE_THRESHOLD_NAMES = ("coverage", "one_minus_coverage")  # ccl_coverage_threshold order
 LIGHTING_NAMES = ("thesis", "sky")  # ccl_lighting order
-REPROJECTION_DEPTHS = ("clouds", "inner_sphere")  # pywarp.kernels.reproj: depth iterations 3 / 0
+REPROJECTION_DEPTHS = ("clouds", "inner_sphere")  # pywarp.kernels.reproj: DEPTH_ITERATIONS (2) / 0
 BASE_PRECISIONS = ("half", "single")  # RenderTextures: how the renderer stores the base-shape texture
 REPROJECTION_FILTERS = ("catmull_rom", "bilinear")  # pywarp.kernels.reproj.FILTERS (ccl_reproj_filter)
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
@@ -542,6 +542,11 @@ class CloudscapeSettings(Settings):
                 "weather_map": WeatherMapSettings(size=self.weather_size, seed=self.seed, coverage=self.coverage,
                                                   precipitation=self.precipitation, cloud_type=self.cloud_type,
                                                   cloud_type_variation=self.cloud_type_variation)}
+
+    def half_base(self) -> bool:
+        """True where the renderers read the base-shape texture as float16 values (``base_precision`` 'half'):
+        the ``half_base`` argument of ``RenderTextures``, ``c_textures`` and ``majorant_grids``."""
+        return self.base_precision == "half"
 
     def layer(self):
         """The cloud layer (vc-A14) as ``pywarp.kernels.raymarch.CloudLayer``."""
