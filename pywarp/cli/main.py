@@ -14,15 +14,18 @@ Exit status: 0 success (bare ``pywarp`` prints this help and exits 0, like ``--h
 2 a bad argument or value: one line ``pywarp <command>: error: --option ...`` on stderr, no traceback (argparse's own
 errors too); 130 Ctrl-C and 143 SIGTERM: one line ``pywarp: interrupted`` / ``pywarp: terminated``, no traceback, and
 no output file or hidden temporary file left behind (the writers of pywarp.core.output remove theirs; when run as the
-program the process then exits at once, without waiting for render threads). Set PYWARP_DEBUG=1 for tracebacks.
+program the process then exits at once, without waiting for render threads). Set PYWARP_DEBUG=1 for tracebacks (the
+exit statuses stay the same). Options are never abbreviated; a misspelt one is named with the closest match.
 """
 from __future__ import annotations
 
 import argparse
+import difflib
 import os
 import re
 import signal
 import sys
+import traceback
 from pathlib import Path
 
 from ..core.catalogue import SEEDS as _SEED_TEXTS
@@ -48,7 +51,7 @@ _ARGPARSE_REWRITES = [  # argparse's wording -> ours: the option first, what is 
     (re.compile(r"^argument (?P<opt>[^:]+): invalid int value: (?P<v>.*)$"), "{opt} must be an integer, got {v}"),
     (re.compile(r"^argument (?P<opt>[^:]+): invalid float value: (?P<v>.*)$"), "{opt} must be a number, got {v}"),
     (re.compile(r"^argument (?P<opt>[^:]+): invalid choice: (?P<v>.*?) \(choose from (?P<c>.*)\)$"),
-     "{opt} must be one of {c}, got {v}"),
+     "{opt} must be one of {c}, got {v}{hint}"),
     (re.compile(r"^argument (?P<opt>[^:]+): expected one argument$"), "{opt} needs a value"),
     (re.compile(r"^argument (?P<opt>[^:]+): expected at least one argument$"), "{opt} needs at least one value"),
     (re.compile(r"^argument (?P<opt>[^:]+): not allowed with argument (?P<o>.*)$"), "{opt} cannot be used with {o}"),
@@ -71,16 +74,38 @@ def usage_message(message: str) -> str:
         if m:
             d = m.groupdict()
             if "c" in d:
-                d["c"] = ", ".join(x.strip().strip("'") for x in d["c"].split(","))
+                choices = [x.strip().strip("'") for x in d["c"].split(",")]
+                d["c"] = ", ".join(choices)
+                d["hint"] = did_you_mean(d["v"].strip("'"), choices)
             if "msg" in d and d["msg"].startswith(d["opt"].split("/")[0]):
                 return d["msg"]  # a type function's own message already names the option
             return fmt.format(**d)
     return message
 
 
+def did_you_mean(word: str, candidates) -> str:
+    """`` (did you mean --width?)`` for the closest of ``candidates`` to a misspelt ``word``; empty if none is close."""
+    close = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.75)
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
+def unknown_arguments_message(parser: argparse.ArgumentParser, extra: list[str]) -> str:
+    """The error for arguments a command does not know, with the closest option of that command for a misspelt one
+    (``--widht`` -> ``--width``)."""
+    options = [o for action in parser._actions for o in action.option_strings]
+    hints = "".join(did_you_mean(a.split("=", 1)[0], options) for a in extra if a.startswith("--"))
+    return f"unrecognized arguments: {' '.join(extra)}{hints}"
+
+
 class Parser(argparse.ArgumentParser):
     """ArgumentParser whose every error is one line ``<prog>: error: <message>`` on stderr, exit status 2 -- no usage
-    block. Sub-command parsers are of this class too (add_subparsers uses the parent's class)."""
+    block. Sub-command parsers are of this class too (add_subparsers uses the parent's class). Options are never
+    abbreviated (``--wid 64`` is an error, not ``--width 64``): an abbreviation that works today would break as soon
+    as a scene adds an option with the same prefix."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
 
     def error(self, message):  # noqa: D401 - argparse API
         self.exit(EXIT_USAGE, f"{self.prog}: error: {usage_message(message)}\n")
@@ -222,7 +247,7 @@ def main(argv: list[str] | None = None) -> int:
             command = args.command
             sub = parser._commands.choices[command]
             if extra:
-                sub.error(f"unrecognized arguments: {' '.join(extra)}")
+                sub.error(unknown_arguments_message(sub, extra))
             try:
                 status = args.run(args)
                 raise_pending()  # an interrupt whose first raise was dropped ends the command as interrupted
@@ -230,8 +255,8 @@ def main(argv: list[str] | None = None) -> int:
             except (ValueError, TypeError, OSError) as exc:
                 if isinstance(exc, BrokenPipeError):
                     raise
-                if os.environ.get("PYWARP_DEBUG"):
-                    raise
+                if os.environ.get("PYWARP_DEBUG"):  # the traceback, then the same line and exit status as without
+                    traceback.print_exc()
                 sub.exit(EXIT_USAGE if not isinstance(exc, OSError) or exc.errno is None else 1,
                          f"{sub.prog}: error: {_one_line(_error_text(exc))}\n")
         except BrokenPipeError:  # `pywarp equations | head`: the reader left; not an error of ours

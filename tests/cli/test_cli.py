@@ -66,6 +66,12 @@ def test_python_dash_m_is_the_console_script(tmp_path):
     (["render", "--out", "x.jpg"], "pywarp render: error: --out must end in .png"),
     (["render", "--out", "no-such-folder/x.png"], "pywarp render: error: --out: folder 'no-such-folder' does not"),
     (["animate", "--fps", "fast"], "pywarp animate: error: --fps must be a number, got 'fast'"),
+    # no abbreviations: a prefix of an option is an unknown argument, named with the option it resembles
+    (["render", "--wid", "64"], "pywarp render: error: unknown argument: --wid (did you mean --width?)"),
+    (["render", "--widht", "64"], "pywarp render: error: unknown argument: --widht (did you mean --width?)"),
+    (["equations", "--sed", "vc"], "pywarp equations: error: unknown argument: --sed vc (did you mean --seed?)"),
+    (["equations", "--form", "csv"], "pywarp equations: error: unknown argument: --form csv (did you mean --format?)"),
+    (["equations", "--seed", "cv"], "pywarp equations: error: --seed must be one of vc, pt, rr, oc, got 'cv'"),
 ])
 def test_every_bad_value_is_one_line_exit_2(tmp_path, args, expected):
     _one_error_line(_cli(*args, cwd=tmp_path), expected)
@@ -77,6 +83,8 @@ def test_usage_message_rewrites_argparse_wording():
     assert um("argument --width: invalid int value: 'x'") == "--width must be an integer, got 'x'"
     assert um("argument --fps: invalid float value: 'x'") == "--fps must be a number, got 'x'"
     assert um("argument --seed: invalid choice: 'q' (choose from 'vc', 'pt')") == "--seed must be one of vc, pt, got 'q'"
+    assert (um("argument --format: invalid choice: 'jsn' (choose from 'csv', 'json')")
+            == "--format must be one of csv, json, got 'jsn' (did you mean json?)")
     assert um("the following arguments are required: name") == "missing argument: name"
     # a type function's own message already names the option: not repeated
     assert um("argument --width: --width must be >= 1, got 0") == "--width must be >= 1, got 0"
@@ -94,6 +102,22 @@ def test_errors_raised_by_a_command_are_one_line_with_the_command_name(capsys, m
         cli_main.main(["figures"])
     assert exc.value.code == 2
     assert capsys.readouterr().err == "pywarp figures: error: --thing must be fine, got 3\n"
+
+
+def test_pywarp_debug_adds_the_traceback_and_keeps_the_exit_status(capsys, monkeypatch):
+    def boom(args):
+        raise ValueError("--thing must be fine, got 3")
+
+    parser = cli_main.build_parser()
+    monkeypatch.setattr(cli_main, "build_parser", lambda: parser)
+    monkeypatch.setenv("PYWARP_DEBUG", "1")
+    parser._commands.choices["figures"].set_defaults(run=boom)
+    with pytest.raises(SystemExit) as exc:
+        cli_main.main(["figures"])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "Traceback" in err and "in boom" in err
+    assert err.endswith("pywarp figures: error: --thing must be fine, got 3\n")
 
 
 def test_an_io_error_names_no_temporary_file_and_exits_1(capsys, monkeypatch):
