@@ -20,6 +20,7 @@ When ``main``'s body cannot be unrolled like that (a ``return`` before its end, 
 from __future__ import annotations
 
 import ast
+import sys
 import textwrap
 from pathlib import Path
 
@@ -159,8 +160,19 @@ def cmd_notebooks(args) -> int:
 
     check_output_dir(args.out, "--out")
     paths = write_notebooks(args.out, args.seed, quick=args.quick)
-    print(f"wrote {len(paths)} notebooks under {args.out} (open with: jupyter lab {args.out})")
+    print(f"wrote {len(paths)} notebooks under {args.out} ({open_hint(args.out)})")
     return 0
+
+
+def open_hint(out) -> str:
+    """How to open the notebooks: ``jupyter lab`` where it is installed, else how to install it (the ``notebooks``
+    extra) -- nothing else of the package installs Jupyter."""
+    import shutil
+
+    if shutil.which("jupyter-lab") or shutil.which("jupyter-lab", path=str(Path(sys.executable).parent)):
+        return f"open with: jupyter lab {out}"
+    return f'open with JupyterLab, not installed here: pip install "cclouds[notebooks]", then jupyter lab {out}'
+
 
 
 def add_notebooks_command(sub) -> None:

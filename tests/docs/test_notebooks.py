@@ -61,3 +61,16 @@ def test_one_notebook_executes_with_nbclient(written, tmp_path):
     assert len(shown) == len(pngs)
     errors = [o for c in nb.cells if c.cell_type == "code" for o in c.outputs if o.output_type == "error"]
     assert errors == [], json.dumps(errors)[:2000]
+
+
+def test_open_hint_names_what_is_installed(monkeypatch):
+    """The hint after ``pywarp notebooks`` names ``jupyter lab`` only where it exists; else how to install it."""
+    import shutil
+
+    from pywarp.cli import notebooks
+
+    monkeypatch.setattr(shutil, "which", lambda *a, **k: None)
+    hint = notebooks.open_hint("nb")
+    assert 'pip install "cclouds[notebooks]"' in hint and hint.endswith("jupyter lab nb")
+    monkeypatch.setattr(shutil, "which", lambda *a, **k: "/usr/bin/jupyter-lab")
+    assert notebooks.open_hint("nb") == "open with: jupyter lab nb"
