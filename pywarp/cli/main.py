@@ -143,7 +143,9 @@ def cmd_figures(args) -> int:
     return 1 if failures else 0
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(help_for: str | None = None) -> argparse.ArgumentParser:
+    """The ``pywarp`` parser; ``help_for`` a scene name: built to print that scene's ``--help`` (see
+    :func:`pywarp.cli.scene.add_scene_commands`)."""
     from .. import __version__
 
     p = Parser(prog="pywarp", description=__doc__.split("\n\n")[0], epilog="\n\n".join(__doc__.split("\n\n")[1:3]),
@@ -176,7 +178,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     from .scene import add_scene_commands  # scenes, render, animate, bench: built from the scene registry
 
-    add_scene_commands(sub)
+    add_scene_commands(sub, help_for)
     return p
 
 
@@ -239,7 +241,10 @@ def main(argv: list[str] | None = None) -> int:
     command = None
     try:
         try:
-            parser = build_parser()
+            from .scene import help_scene
+
+            scene_help = help_scene(argv)  # `pywarp render terrain --help`: terrain's options and defaults
+            parser = build_parser(scene_help) if scene_help else build_parser()
             if not argv:
                 parser.print_help()
                 return 0

@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import sys
+import textwrap
 from dataclasses import dataclass
 
 from ..core.params import Settings, add_options, from_options, option_message, param, specs
@@ -74,13 +75,15 @@ def _dest(option: str) -> str:
     return "opt_" + option.lstrip("-").replace("-", "_")
 
 
-def _add_scene_options(parser: argparse.ArgumentParser, command: str) -> None:
-    """One option per settings field of every scene (shared option strings added once). Defaults are not stored in
-    the namespace: each scene's own defaults apply (shown in the help)."""
+def _add_scene_options(parser: argparse.ArgumentParser, command: str, only: str | None = None) -> None:
+    """One option per settings field of every scene (shared option strings added once), or of the scene ``only``
+    (the help of ``pywarp <command> <scene> --help``: that scene's options with that scene's defaults). Defaults are
+    not stored in the namespace: each scene's own defaults apply (shown in the help)."""
     added, groups = set(), {}
-    for sc in all_scenes().values():
+    chosen = [get_scene(only)] if only is not None else list(all_scenes().values())
+    for sc in chosen:
         exclude = sc.command_exclude.get(command, ())
-        defaults = sc.command_defaults.get(command, {})
+        defaults = {**(view_defaults(sc) if command == "view" else {}), **sc.command_defaults.get(command, {})}
         starts = set(sc.path().start_fields) if (command == "animate" and sc.paths) else set()
         for p in specs(sc.settings):
             opt = p.option
@@ -88,7 +91,7 @@ def _add_scene_options(parser: argparse.ArgumentParser, command: str) -> None:
                 continue
             added.add(opt)
             title = p.group or "settings"
-            if len(all_scenes()) > 1 and sc.name != DEFAULT_SCENE:
+            if only is None and len(all_scenes()) > 1 and sc.name != DEFAULT_SCENE:
                 title = f"{sc.name}: {title}"
             if title not in groups:
                 groups[title] = parser.add_argument_group(title)
@@ -101,6 +104,14 @@ def _add_scene_options(parser: argparse.ArgumentParser, command: str) -> None:
             else:
                 groups[title].add_argument(opt, dest=_dest(opt), default=argparse.SUPPRESS, metavar=p.metavar(),
                                            help=text)
+
+
+def help_scene(argv: list[str]) -> str | None:
+    """The scene whose options ``argv`` asks to see: ``pywarp render|animate|view [SCENE] ... --help`` (the scene
+    named right after the command, else the default scene); None when ``argv`` asks for no such help."""
+    if len(argv) < 2 or argv[0] not in ("render", "animate", "view") or not {"-h", "--help"} & set(argv):
+        return None
+    return argv[1] if argv[1] in all_scenes() else DEFAULT_SCENE
 
 
 def settings_from_args(sc, args: argparse.Namespace, command: str, defaults: dict | None = None):
@@ -312,10 +323,19 @@ def cmd_view(args) -> int:
 
 # --- the parsers ---------------------------------------------------------------------------------------------------------
 
-def add_scene_commands(sub) -> None:
-    """Add ``scenes``, ``render``, ``animate`` and ``bench`` to the ``pywarp`` subparsers ``sub``."""
-    default = get_scene()
+def add_scene_commands(sub, help_for: str | None = None) -> None:
+    """Add ``scenes``, ``render``, ``animate``, ``view`` and ``bench`` to the ``pywarp`` subparsers ``sub``.
+
+    ``help_for``: a scene name when the parser is built to print ``pywarp render|animate|view <scene> --help``: the
+    commands then have that scene's options only, with its defaults (size, ``--out``, camera path). Otherwise they
+    accept the options of every scene (each checked against the chosen scene when the command runs)."""
+    default = get_scene(help_for)
     fmt = argparse.RawDescriptionHelpFormatter
+    others = ", ".join(n for n in all_scenes() if n != default.name)
+    depends = textwrap.fill(
+        f"Options depend on the scene; these are {default.name}'s"
+               f"{' (the default scene)' if default.name == DEFAULT_SCENE else ''}. Other scenes: {others} "
+        f"(`pywarp {{command}} SCENE --help` lists a scene's options; `pywarp scenes` describes them).", 100)
 
     s = sub.add_parser("scenes", help="list the scenes (render, animate, bench take one; default clouds)",
                        description="List the registered scenes with their camera paths and benchmarks.")
@@ -324,11 +344,11 @@ def add_scene_commands(sub) -> None:
 
     r = sub.add_parser("render", help=f"render one image of a scene (default {default.name}: {default.description})",
                        formatter_class=fmt,
-                       description="Render one image of a scene. Every option has a unit, a range and a default "
-                                   "(the default scene's; `pywarp scenes` lists the scenes).\n\n"
+                       description=depends.format(command="render") + "\n\nRender one image of a scene. Every "
+                                   "option has a unit, a range and a default.\n\n"
                                    f"{default.name}: {default.description}")
     _scene_arg(r)
-    _add_scene_options(r, "render")
+    _add_scene_options(r, "render", help_for)
     r.add_argument("--out", default=None, metavar="PATH",
                    help=f"output .png (sRGB, 8 bit), or .exr / .npy (display-linear float RGB before the sRGB "
                         f"encoding; scenes with a linear image), checked writable before any work (default: "
@@ -342,7 +362,8 @@ def add_scene_commands(sub) -> None:
     a = sub.add_parser("animate", help="render a video along a scene's camera path "
                                        f"({default.name}: {path.description if path else '-'})",
                        formatter_class=fmt,
-                       description="Render a video along a camera path of a scene: MP4 (H.264) or GIF. The camera "
+                       description=depends.format(command="animate") + "\n\n"
+                                   "Render a video along a camera path of a scene: MP4 (H.264) or GIF. The camera "
                                    "options (" + ", ".join(
                                        o for o in (next((p.option for p in specs(default.settings) if p.name == f),
                                                         None) for f in (path.start_fields if path else ()))
@@ -355,7 +376,7 @@ def add_scene_commands(sub) -> None:
                                                     for sc in all_scenes().values() if sc.paths)
                         + " (default: the scene's default path"
                         + (f", {path.name} for {default.name})" if path else ")"))
-    _add_scene_options(a, "animate")
+    _add_scene_options(a, "animate", help_for)
     a.add_argument("--out", default=None, metavar="PATH",
                    help=f"output .mp4 or .gif, or numbered frames with a %%04d field: frames/frame_%%04d.png "
                         f"(sRGB), .exr or .npy (display-linear float); checked writable before any work (default: "
@@ -376,14 +397,15 @@ def add_scene_commands(sub) -> None:
 
     v = sub.add_parser("view", help="open a scene in an interactive window (fly, panel of every setting)",
                        formatter_class=fmt,
-                       description="Open a scene in a window: its image beside a panel of every setting (unit, range "
+                       description=depends.format(command="view") + "\n\n"
+                                   "Open a scene in a window: its image beside a panel of every setting (unit, range "
                                    "and help on hover; changes apply live), frame time and frames/s. Keys: the "
                                    "scene's (F1 shows them), F12 screenshot, Esc quit. Renders at reduced resolution "
                                    "while the view moves and refines when it stops. Default size 640 x 360. Needs a "
                                    "display (run under `xvfb-run -a` without one) unless --no-window.\n\n"
                                    "scenes: " + ", ".join(all_scenes()))
     _scene_arg(v)
-    _add_scene_options(v, "view")
+    _add_scene_options(v, "view", help_for)
     v.add_argument("--benchmark", type=float, default=None, metavar="SECONDS",
                    help="benchmark mode: hold the scene's benchmark keys (the free-fly default: D + Left, circling "
                         "at constant altitude) and count the frames shown for SECONDS after a warm-up; prints "

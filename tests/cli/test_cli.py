@@ -161,3 +161,41 @@ def test_broken_pipe_is_quiet(tmp_path):
     err = p.stderr.read().decode()
     assert p.wait(timeout=300) == 0
     assert "Traceback" not in err and "BrokenPipe" not in err
+
+
+def _scene_help(command, scene, tmp_path):
+    res = _cli(command, *([scene] if scene else []), "--help", cwd=tmp_path)
+    assert res.returncode == 0 and res.stderr == "", res.stderr
+    return res.stdout
+
+
+@pytest.mark.parametrize("command", ["render", "animate", "view"])
+def test_scene_help_lists_that_scenes_options_and_defaults(tmp_path, command):
+    """`pywarp <command> <scene> --help`: the scene's own options with its own defaults (size, --out), none of another
+    scene's options; bare `--help` says that options depend on the scene and names the scenes."""
+    from pywarp.cli.scene import view_defaults
+    from pywarp.core.params import specs
+    from pywarp.core.scenes import DEFAULT_SCENE, scenes
+
+    every = {name: {p.option for p in specs(sc.settings) if p.option} for name, sc in scenes().items()}
+    for name, sc in scenes().items():
+        text = _scene_help(command, name, tmp_path)
+        assert f"these are {name}'s" in " ".join(text.split())
+        mine = every[name] - set(sc.command_exclude.get(command, ()))
+        for other, opts in every.items():
+            for opt in opts - every[name]:
+                assert f"  {opt} " not in text, (name, other, opt)
+        defaults = {p.name: p.default for p in specs(sc.settings)}
+        defaults.update(view_defaults(sc) if command == "view" else {})
+        defaults.update(sc.command_defaults.get(command, {}))
+        if "width" in defaults:
+            width = " ".join(text.split("--width INT", 2)[-1].split())  # the option's help, wrapped lines joined
+            assert f"default: {defaults['width']}" in width.split("--height")[0], (name, width[:200])
+        if command != "view":
+            out = sc.outputs.get(command, f"{name}.png" if command == "render" else f"{name}.mp4")
+            assert f"(default: {out})" in " ".join(text.split()), name
+        assert any(o in text for o in mine)
+    bare = " ".join(_scene_help(command, None, tmp_path).split())
+    assert "Options depend on the scene" in bare and f"these are {DEFAULT_SCENE}'s (the default scene)" in bare
+    others = bare.split("Other scenes:")[1].split("(")[0]
+    assert sorted(n.strip(" ,") for n in others.split()) == sorted(n for n in scenes() if n != DEFAULT_SCENE)
