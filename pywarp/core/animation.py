@@ -76,6 +76,9 @@ def open_sink(out, fps: float, precision: str = "half", option: str = "--out"):
     if Path(str(out)).suffix.lower() in L.FRAME_SUFFIXES:
         raise ValueError(f"{option}: frames need a numbered path such as frames/frame_%04d"
                          f"{Path(str(out)).suffix.lower()}, got {str(out)!r}")
+    if Path(str(out)).suffix.lower() not in VIDEO_SUFFIXES:
+        raise ValueError(f"{option} must be a video ({' or '.join(VIDEO_SUFFIXES)}) or numbered frames such as "
+                         f"frames/frame_%04d.png ({', '.join(L.FRAME_SUFFIXES)}), got {str(out)!r}")
     return _Video(check_output_path(out, VIDEO_SUFFIXES, option), fps)
 
 

@@ -13,8 +13,8 @@ A scene's technique offers linear output by having a method ::
 
 which renders one frame exactly as ``render(pose, progress)`` does (same frame counter, same temporal history: an
 animation may mix neither) and returns the float image before its display encoding. A technique without it is
-refused by :func:`render_linear` with a ValueError naming the option (``--out: scene 'rain' has no linear image
-output (its technique has no render_linear); use .png``), before any frame is rendered.
+refused by :func:`render_linear` with a ValueError naming the option (``--out: scene 'rain' writes 8-bit images
+only, ...; use .png``), before any frame is rendered.
 
 Files
 -----
@@ -62,8 +62,8 @@ def has_linear(technique) -> bool:
 def check_linear(technique, scene_name: str, option: str = "--out") -> None:
     """ValueError naming ``option`` when ``technique`` has no linear output (see the module docstring)."""
     if not has_linear(technique):
-        raise ValueError(f"{option}: scene {scene_name!r} has no linear image output (its technique has no "
-                         f"render_linear); use {' or '.join(IMAGE_SUFFIXES)}")
+        raise ValueError(f"{option}: scene {scene_name!r} writes 8-bit images only, not the linear (.exr, .npy) "
+                         f"image of a scene such as 'clouds'; use {' or '.join(IMAGE_SUFFIXES)}")
 
 
 def render_linear(technique, pose=None, progress=None) -> np.ndarray:

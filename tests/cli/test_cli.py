@@ -66,6 +66,8 @@ def test_python_dash_m_is_the_console_script(tmp_path):
     (["render", "--out", "x.jpg"], "pywarp render: error: --out must end in .png"),
     (["render", "--out", "no-such-folder/x.png"], "pywarp render: error: --out: folder 'no-such-folder' does not"),
     (["animate", "--fps", "fast"], "pywarp animate: error: --fps must be a number, got 'fast'"),
+    (["animate", "--out", "a.avi"], "pywarp animate: error: --out must be a video (.mp4 or .gif) or numbered frames "
+                                    "such as frames/frame_%04d.png (.png, .exr, .npy), got 'a.avi'"),
     # no abbreviations: a prefix of an option is an unknown argument, named with the option it resembles
     (["render", "--wid", "64"], "pywarp render: error: unknown argument: --wid (did you mean --width?)"),
     (["render", "--widht", "64"], "pywarp render: error: unknown argument: --widht (did you mean --width?)"),

@@ -112,11 +112,11 @@ def scene_without_linear():
 def test_a_scene_without_the_hook_is_refused_with_a_clear_error(tmp_path, capsys, scene_without_linear, out):
     assert _run("render", "tinytest", "--out", str(tmp_path / out), "--no-progress") == 2
     err = capsys.readouterr().err.strip()
-    assert err == ("pywarp render: error: --out: scene 'tinytest' has no linear image output (its technique has no "
-                   "render_linear); use .png")
+    assert err == ("pywarp render: error: --out: scene 'tinytest' writes 8-bit images only, not the linear (.exr, "
+                   ".npy) image of a scene such as 'clouds'; use .png")
     assert list(tmp_path.iterdir()) == []
     assert _run("animate", "tinytest", "--frames", "2", "--out", str(tmp_path / "f_%03d.exr"), "--no-progress") == 2
-    assert "has no linear image output" in capsys.readouterr().err
+    assert "writes 8-bit images only" in capsys.readouterr().err
     assert not any(tmp_path.rglob("*.exr"))
     # its PNG frames work
     assert _run("animate", "tinytest", "--frames", "2", "--out", str(tmp_path / "f_%03d.png"), "--no-progress") == 0
