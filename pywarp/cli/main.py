@@ -1,21 +1,22 @@
 """pywarp: the equations of four texts on procedural atmospheric rendering, their figures, scenes and benchmarks.
 
-    pywarp render [options] [--out cloudscape.png]   one image of the volumetric cloudscape (vc)
-    pywarp animate [options] [--out flythrough.mp4]  a camera path from below the cloud layer, into it and above it
+    pywarp scenes                                 the scenes: clouds (vc, default), terrain (pt), rain (rr), flight (oc)
+    pywarp render [SCENE] [options]               one image of a scene (SCENE --help: its options and defaults)
+    pywarp animate [SCENE] [options]              a video along the scene's camera path
+    pywarp view [SCENE] [options]                 the scene in an interactive window
+    pywarp bench [SCENE] [BENCHMARK] [options]    a benchmark of a scene (bench --help lists them)
     pywarp equations [--seed KEY] [--missing | --figures] [--format table|csv|markdown|json]
                                                   traceability matrix: ID, title, C, Warp, tests, figures
-    pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...] [--scheduler local|dask[=ADDRESS]]
+    pywarp figures [--seed KEY] [--quick] [--out DIR] [--only fig-4.9 ...]   regenerate the figures
     pywarp notebooks [--out DIR] [--seed KEY] [--quick]   every figure tutorial as a Jupyter notebook
     pywarp cache info|clear [--json]              the on-disk texture cache: entries, size, cap; remove them
-    pywarp bench tiles|cloudscape|textures|reprojection|dask [--width W] [--height H] [--repeat N] [--workers N]
-                 [--device D] [--json]
 
-Exit status: 0 success (bare ``pywarp`` prints this help and exits 0, like ``--help``); 1 a command failed;
-2 a bad argument or value: one line ``pywarp <command>: error: --option ...`` on stderr, no traceback (argparse's own
-errors too); 130 Ctrl-C and 143 SIGTERM: one line ``pywarp: interrupted`` / ``pywarp: terminated``, no traceback, and
-no output file or hidden temporary file left behind (the writers of pywarp.core.output remove theirs; when run as the
-program the process then exits at once, without waiting for render threads). Set PYWARP_DEBUG=1 for tracebacks (the
-exit statuses stay the same). Options are never abbreviated; a misspelt one is named with the closest match.
+Exit status: 0 success (bare pywarp prints this help and exits 0, like --help); 1 a command failed; 2 a bad argument
+or value: one line "pywarp <command>: error: --option ..." on stderr, no traceback (argparse's own errors too); 130
+Ctrl-C and 143 SIGTERM: one line "pywarp: interrupted" / "pywarp: terminated", no traceback, and no output file or
+hidden temporary file left behind (an animation written as numbered frames keeps the frames it finished). Set
+PYWARP_DEBUG=1 for tracebacks (the exit statuses stay the same). Options are never abbreviated; a misspelt one is
+named with the closest match.
 """
 from __future__ import annotations
 
