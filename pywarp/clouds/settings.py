@@ -439,9 +439,13 @@ class CloudscapeSettings(Settings):
                        doc="the loop of the cloud march: fast (refinement of long steps, grouping and skipping of "
                            "empty ones, light interpolation, level of detail) or textbook (vc-A18..A21 as the thesis "
                            "prints the loop, ccl_cloudscape_march_textbook: for reading beside the text)",
-                       reason="'fast': the same clouds 4-6 times faster, and without the textbook loop's noise near "
-                              "the horizon, where its long steps and full-resolution textures undersample the "
-                              "clouds (tutorials/vc/extra_textbook_march.py)")
+                       reason="'fast': towards the horizon the textbook's view steps grow to hundreds of metres "
+                              "(from inside the layer to kilometres) and each takes the light of one depth: noise "
+                              "that changes every frame. Against a fine march (1024 samples, 0.1 km steps in "
+                              "cloud; 320x180, below / inside the layer) the fast march is off by 7.4 / 6.0 levels "
+                              "of 8 bits at the 99th percentile in 1.3 times the textbook's time, the textbook by "
+                              "15 / 95, and with 8 times its samples by 4.1 / 5.8 in 3.7 times the fast march's "
+                              "time (tutorials/vc/extra_textbook_march.py)")
     accumulate: int = param(1, unit="frames", kind="int", lo=1, hi=1024, group="quality",
                             doc="frames averaged into one still (pywarp render): each seen through the camera moved by "
                                 "a sub-pixel offset of the R2 low-discrepancy sequence (pywarp.kernels.camera."
