@@ -15,7 +15,7 @@ figures/vc/extra-textbook-march.png.
 # the cloud density; where it is not zero, six samples towards the sun give the optical depth of the light's path;
 # the light is Beer's law times the phase function (plus an ambient term); add the sample's share to the colour,
 # front to back, and stop once the cloud is opaque. `pywarp.kernels.cloudscape.cloudscape_march_textbook` (and
-# `ccl_cloudscape_march_textbook` in C) is that paragraph, about 30 lines that name its steps.
+# `ccl_cloudscape_march_textbook` in C) is that paragraph, under 40 lines that name its steps.
 #
 # The renderer's default march computes the same loop with four additions, each a parameter with its measured
 # reason: steps longer than 0.1 km are split where there is cloud (refinement), runs of short empty steps are
