@@ -188,6 +188,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->refine_step_km = 0.1f;
     out->refine_max = 8;
     out->weather_detile = 1;
+    out->march = CCL_CLOUDSCAPE_MARCH_FAST;
 }
 
 static int finite_pos(float v) { return v > 0.0f && v < INFINITY; }
@@ -281,6 +282,8 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!(p->lod_bias >= -4.0f && p->lod_bias <= 4.0f)) return bad(out_field, "lod_bias");
     if (!(p->refine_step_km >= 0.0f && p->refine_step_km < INFINITY)) return bad(out_field, "refine_step_km");
     if (!(p->refine_max >= 1 && p->refine_max <= 64)) return bad(out_field, "refine_max");
+    if (!(p->march == CCL_CLOUDSCAPE_MARCH_FAST || p->march == CCL_CLOUDSCAPE_MARCH_TEXTBOOK))
+        return bad(out_field, "march");
     if (t == NULL) return bad(out_field, "textures");
     if (t->base == NULL || !is_pow2(t->base_size)) return bad(out_field, "base");
     if (t->detail == NULL || !is_pow2(t->detail_size)) return bad(out_field, "detail");
@@ -763,6 +766,70 @@ static int march_sample(const ccl_cloudscape_params *p, float rho, float dt, ccl
     return 1;
 }
 
+/* --- the textbook march (vc-A18..A21 as the thesis prints the loop, §4.3.2) -----------------------------------------
+ * For reading beside the text: the same density (vc-A17), light (vc-2.31, vc-A20) and accumulation (vc-A21) as the
+ * fast march below, in the thesis's loop. Its symbols: d the optical depth towards the sun, a the precipitation
+ * coefficient and theta the angle of HG in E (vc-2.31); C the colour of the clouds (C_clouds of vc-4.8) and T the view
+ * transmittance, O_D = 1 - T. */
+
+/* vc-A19: the optical depth d towards the sun of the sample at pos: six pseudo-random samples q_j in a cone from pos
+ * towards the sun, each further out and further to the side; five near ones (a light step apart), the sixth at
+ * light_far_factor times their distance. Each density counts for the length w_j of the path it stands for. */
+static float textbook_light_depth(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 pos,
+                                  ccl_vec3 to_sun)
+{
+    float d = 0.0f, precip_j;
+    int j;
+    for (j = 0; j < 6; ++j) {
+        const float w_j = j < 5 ? p->light_step_km : (p->light_far_factor - 1.0f) * 5.0f * p->light_step_km;
+        const ccl_vec3 q_j = ccl_raymarch_light_sample_position(pos, to_sun, j, p->light_step_km,
+                                                                p->light_cone_angle, p->light_far_factor,
+                                                                ccl_raymarch_light_cone_kernel(j));
+        d += w_j * ccl_cloudscape_density(p, t, q_j, p->light_detail, &precip_j);
+    }
+    return d * p->sigma_light;
+}
+
+void ccl_cloudscape_march_textbook(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye,
+                                   ccl_vec3 dir, ccl_vec3 to_sun, float offset, float *out_rgb,
+                                   float *out_transmittance, int *out_samples, float *out_depth_km)
+{
+    ccl_vec3 C = {0.0f, 0.0f, 0.0f};
+    float T = 1.0f, t0, t1, t_start = 0.0f, dt = 0.0f, depth_w = 0.0f, depth_sum = 0.0f;
+    /* theta of HG: |dir| and |to_sun| are 1 only to within rounding, keep cos(theta) in [-1, 1] */
+    const float cos_theta = fminf(fmaxf(ccl_vec3_dot(dir, to_sun), -1.0f), 1.0f);
+    int n = 0, i, taken = 0;
+    /* vc-A14 / A24: the start and end points, where the ray crosses the layer; vc-A18: n samples between them, 64
+     * towards the zenith .. 128 towards the horizon (or always samples_max) */
+    if (ccl_raymarch_layer_segment(eye, dir, p->layer.centre, p->layer.r_earth, p->layer.r_inner, p->layer.r_outer,
+                                   &t0, &t1)) {
+        n = p->adaptive_samples ? ccl_raymarch_view_sample_count(dir.y, p->samples_min, p->samples_max)
+                                : p->samples_max;
+        if (!ccl_raymarch_interval(t0, t1, n, &t_start, &dt)) n = 0;
+    }
+    for (i = 0; i < n; ++i) {
+        const float t_i = t_start + ((float)i + offset) * dt;
+        const ccl_vec3 pos = ccl_raymarch_point(eye, dir, t_start, dt, i, offset);
+        float precip, rho, d;
+        ++taken;
+        rho = ccl_cloudscape_density(p, t, pos, 1, &precip); /* vc-A17, full resolution */
+        if (!(rho > 0.0f)) continue;
+        d = textbook_light_depth(p, t, pos, to_sun); /* vc-A19: only where the density is non-zero */
+        /* vc-2.31 + vc-A20: L = sun E(d, a, theta, g) + the ambient by relative height; vc-A21: C += T (1 -
+         * exp(-sigma rho dt)) L, T *= exp(-sigma rho dt), and stop once O_D = 1 - T has reached its maximum */
+        if (march_sample(p, rho, dt, sample_light(p, d, precip, pos, cos_theta), t_i, &C, &T, &depth_w, &depth_sum))
+            break;
+    }
+    out_rgb[0] = C.x;
+    out_rgb[1] = C.y;
+    out_rgb[2] = C.z;
+    *out_transmittance = T;
+    *out_samples = taken;
+    if (out_depth_km) *out_depth_km = depth_w > 0.0f ? depth_sum / depth_w : 0.0f;
+}
+
+/* --- the fast march --------------------------------------------------------------------------------------------- */
+
 void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye, ccl_vec3 dir,
                           ccl_vec3 to_sun, float offset, float pixel_angle, float *out_rgb, float *out_transmittance,
                           int *out_samples, float *out_depth_km)
@@ -775,6 +842,11 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
     float pend_rho = 0.0f, pend_t = 0.0f, pend_precip = 0.0f, d_prev = 0.0f, t_prev = 0.0f;
     ccl_vec3 pend_pos = {0.0f, 0.0f, 0.0f}, light_prev = {0.0f, 0.0f, 0.0f};
     const ccl_cloud_layer *L = &p->layer;
+    if (p->march == CCL_CLOUDSCAPE_MARCH_TEXTBOOK) {
+        ccl_cloudscape_march_textbook(p, t, eye, dir, to_sun, offset, out_rgb, out_transmittance, out_samples,
+                                      out_depth_km);
+        return;
+    }
     if (ccl_raymarch_layer_segment(eye, dir, L->centre, L->r_earth, L->r_inner, L->r_outer, &t0, &t1)) {
         n = p->adaptive_samples ? ccl_raymarch_view_sample_count(dir.y, p->samples_min, p->samples_max)
                                 : p->samples_max;

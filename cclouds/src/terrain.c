@@ -108,6 +108,9 @@ static float slab_entry(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float pr
 
 /* ---- the marches and shadows on a heightfield -------------------------------------------------------------------- */
 
+/* pt-code-7.4 (Kod 7.4, the fixed step of §7.1.2): for (t = 0; t < MAX_T; t += STEP_SIZE) { point = ro + rd t;
+ * hit when point.y - PRECISION < map(point) } with map the height h (q is the text's point). Beyond the text: the
+ * break above the slab (f->hmax; NO_SLAB: as printed) and the cap of CCL_TERRAIN_MAX_FIXED_STEPS. */
 static int32_t march_fixed(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float max_t, float step_size,
                            float precision, float *out_t, int *out_steps)
 {
@@ -129,6 +132,11 @@ static int32_t march_fixed(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float
     return 0;
 }
 
+/* pt-code-7.5 (Kod 7.5, the dynamic step of §7.1.3): for (i < MAX_STEPS) { point = ro + rd t; stepSize =
+ * map(point), the vertical gap point.y - h; t += stepSize; hit when stepSize < PRECISION; miss when t > MAX_T }
+ * (q is the text's point, d its stepSize). Beyond the text: step_scale (its remedy for overshooting, "for example to
+ * half"; 1: as printed), the start and the break at the slab (f->hmax; NO_SLAB: as printed) and the precision growing
+ * with t (f->precision_t; 0: as printed). */
 static int32_t march_dynamic(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float max_t, float precision,
                              int32_t max_steps, float step_scale, float *out_t, int *out_steps)
 {

@@ -11,6 +11,7 @@ from ..kernels import cloudscape as K
 JITTERS = {"tilt": K.JITTER_TILT, "offset": K.JITTER_OFFSET, "none": K.JITTER_NONE}
 COVERAGE_THRESHOLDS = {"coverage": 0, "one_minus_coverage": 1}
 LIGHTINGS = {"thesis": K.LIGHTING_THESIS, "sky": K.LIGHTING_SKY}
+MARCHES = {"fast": K.MARCH_FAST, "textbook": K.MARCH_TEXTBOOK}
 
 
 def param_values(settings) -> dict:
@@ -43,7 +44,7 @@ def param_values(settings) -> dict:
         "coverage_threshold": COVERAGE_THRESHOLDS[settings.coverage_threshold], "beer": int(settings.beer),
         "powder": int(settings.powder), "lod": int(settings.lod), "lod_bias": settings.lod_bias,
         "refine_step_km": settings.refine_step_km, "refine_max": settings.refine_max,
-        "weather_detile": int(settings.weather_detile),
+        "weather_detile": int(settings.weather_detile), "march": MARCHES[settings.march],
     }
     # lighting: 'thesis' is the thesis's model entirely (its constants, one octave, one HG lobe); 'sky' takes the
     # multiple-scattering and silver-lining settings

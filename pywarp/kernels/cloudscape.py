@@ -61,6 +61,8 @@ GROUP_SPAN = wp.constant(2.0)  # CCL_CLOUDSCAPE_GROUP_SPAN (the reason is in clo
 GROUND_SHADOW_SAMPLES = wp.constant(12)  # CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES
 SKY_THETA_CELLS = wp.constant(8)  # CCL_CLOUDSCAPE_SKY_THETA_CELLS
 SKY_PHI_CELLS = wp.constant(16)  # CCL_CLOUDSCAPE_SKY_PHI_CELLS
+MARCH_FAST = wp.constant(0)  # ccl_cloudscape_march_kind: cloudscape_march's own loop (the default)
+MARCH_TEXTBOOK = wp.constant(1)  # the thesis's loop: cloudscape_march_textbook
 
 
 @wp.struct
@@ -124,6 +126,7 @@ class CloudscapeParams:
     refine_step_km: float
     refine_max: int
     weather_detile: int
+    march: int
 
 
 @wp.func
@@ -620,13 +623,83 @@ def march_sample(p: CloudscapeParams, colour: wp.vec3, trans: float, depth_w: fl
     return c, t, dw, ds, out
 
 
+# --- the textbook march (vc-A18..A21 as the thesis prints the loop, §4.3.2) ------------------------------------------
+# For reading beside the text: the same density (vc-A17), light (vc-2.31, vc-A20) and accumulation (vc-A21) as the fast
+# march below, in the thesis's loop. Its symbols: d the optical depth towards the sun, a the precipitation coefficient
+# and theta the angle of HG in E (vc-2.31); C the colour of the clouds (C_clouds of vc-4.8) and T the view
+# transmittance, O_D = 1 - T.
+
+@wp.func
+def textbook_light_depth(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, to_sun: wp.vec3) -> float:
+    """vc-A19: the optical depth d towards the sun of the sample at ``pos``: six pseudo-random samples q_j in a cone
+    from ``pos`` towards the sun, each further out and further to the side; five near ones (a light step apart), the
+    sixth at light_far_factor times their distance. Each density counts for the length w_j of the path it stands for
+    (twin of ``textbook_light_depth`` in cloudscape.c)."""
+    d = float(0.0)
+    for j in range(6):
+        w_j = (p.light_far_factor - 1.0) * 5.0 * p.light_step_km
+        if j < 5:
+            w_j = p.light_step_km
+        q_j = raymarch_light_sample_position(pos, to_sun, j, p.light_step_km, p.light_cone_angle,
+                                             p.light_far_factor, raymarch_light_cone_kernel(j))
+        rho_j, precip_j = cloudscape_density(p, tex, q_j, p.light_detail)
+        d = d + w_j * rho_j
+    return d * p.sigma_light
+
+
+@wp.func
+def cloudscape_march_textbook(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, dir: wp.vec3, to_sun: wp.vec3,
+                              offset: float):
+    """The thesis's loop (vc-A18..A21): (C, T, samples taken, mean distance [km]) as :func:`cloudscape_march`,
+    without refinement, grouping, light interpolation or level of detail; twin of ``ccl_cloudscape_march_textbook``."""
+    C = wp.vec3(0.0, 0.0, 0.0)
+    T = float(1.0)
+    depth_w = float(0.0)
+    depth_sum = float(0.0)
+    taken = int(0)
+    # theta of HG: |dir| and |to_sun| are 1 only to within rounding, keep cos(theta) in [-1, 1]
+    cos_theta = wp.min(wp.max(wp.dot(dir, to_sun), -1.0), 1.0)
+    # vc-A14 / A24: the start and end points, where the ray crosses the layer; vc-A18: n samples between them, 64
+    # towards the zenith .. 128 towards the horizon (or always samples_max)
+    t0, t1 = raymarch_layer_segment(eye, dir, p.centre, p.r_earth, p.r_inner, p.r_outer)
+    n = p.samples_max
+    if p.adaptive_samples != 0:
+        n = raymarch_view_sample_count(dir[1], p.samples_min, p.samples_max)
+    t_start, dt = raymarch_interval(t0, t1, n)
+    if not (t1 >= t0 and dt == dt):  # no segment, or none in front of the eye (NaN)
+        n = 0
+    for i in range(n):
+        t_i = t_start + (float(i) + offset) * dt
+        pos = raymarch_point(eye, dir, t_start, dt, i, offset)
+        taken = taken + 1
+        rho, precip = cloudscape_density(p, tex, pos, 1)  # vc-A17, full resolution
+        if rho > 0.0:
+            d = textbook_light_depth(p, tex, pos, to_sun)  # vc-A19: only where the density is non-zero
+            # vc-2.31 + vc-A20: L = sun E(d, a, theta, g) + the ambient by relative height; vc-A21: C += T (1 -
+            # exp(-sigma rho dt)) L, T *= exp(-sigma rho dt), and stop once O_D = 1 - T has reached its maximum
+            C, T, depth_w, depth_sum, stop = march_sample(p, C, T, depth_w, depth_sum, rho, dt,
+                                                          sample_light(p, d, precip, pos, cos_theta), t_i)
+            if stop != 0:
+                break
+    depth = float(0.0)
+    if depth_w > 0.0:
+        depth = depth_sum / depth_w
+    return C, T, taken, depth
+
+
+# --- the fast march ---------------------------------------------------------------------------------------------------
+
 @wp.func
 def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: wp.vec3, to_sun: wp.vec3,
                      offset: float, pixel_angle: float):
     """One view ray: (cloud colour, transmittance, samples taken, mean distance [km]); twin of
     ``ccl_cloudscape_march`` (the mean distance: the transmittance-weighted mean distance of the samples, 0 where
     nothing was accumulated, for the aerial perspective).
-    ``pixel_angle``: the angle between neighbouring pixels' rays (rad), for the level of detail."""
+    ``pixel_angle``: the angle between neighbouring pixels' rays (rad), for the level of detail.
+    ``p.march`` selects the loop: MARCH_FAST, this one; MARCH_TEXTBOOK, :func:`cloudscape_march_textbook`."""
+    if p.march == MARCH_TEXTBOOK:
+        tb_colour, tb_trans, tb_taken, tb_depth = cloudscape_march_textbook(p, tex, eye, d, to_sun, offset)
+        return tb_colour, tb_trans, tb_taken, tb_depth
     colour = wp.vec3(0.0, 0.0, 0.0)
     trans = float(1.0)
     taken = int(0)

@@ -192,7 +192,9 @@ def _slab_entry(ro: wp.vec3, rd: wp.vec3, precision: float, hmax: float) -> floa
 def _march_fixed(ro: wp.vec3, rd: wp.vec3, max_t: float, step_size: float, precision: float, octaves: int,
                  height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32), heightmap: int,
                  hmax: float) -> tuple[int, float, int]:
-    """Kod 7.4 clipped to the slab y <= hmax + precision (hmax = _NO_SLAB: as printed). C: march_fixed."""
+    """Kod 7.4 (the fixed step of §7.1.2: for t = 0 while t < MAX_T, t += STEP_SIZE, hit when point.y - PRECISION <
+    map(point), map the height; ``q`` is the text's point) clipped to the slab y <= hmax + precision (hmax =
+    _NO_SLAB: as printed), at most _MAX_FIXED steps. C: march_fixed."""
     t = float(0.0)
     steps = int(0)
     while t < max_t and steps < _MAX_FIXED:
@@ -227,8 +229,10 @@ def terrain_march_dynamic(ro: wp.vec3, rd: wp.vec3, max_t: float, precision: flo
 def _march_dynamic(ro: wp.vec3, rd: wp.vec3, max_t: float, precision: float, max_steps: int, step_scale: float,
                    octaves: int, height_scale: float, horizontal_scale: float, perm: wp.array(dtype=wp.int32),
                    heightmap: int, hmax: float, precision_t: float) -> tuple[int, float, int]:
-    """Kod 7.5 clipped to the slab y <= hmax + precision (hmax = _NO_SLAB: as printed), the hit test d < precision +
-    precision_t t (precision_t = 0: as printed). C: march_dynamic."""
+    """Kod 7.5 (the dynamic step of §7.1.3: stepSize = map(point), the vertical gap point.y - h; t += stepSize; hit
+    when stepSize < PRECISION, miss when t > MAX_T; ``q`` is the text's point, ``d`` its stepSize) with t += step_scale
+    d (the text's remedy for overshooting; 1: as printed), clipped to the slab y <= hmax + precision (hmax = _NO_SLAB:
+    as printed), the hit test d < precision + precision_t t (precision_t = 0: as printed). C: march_dynamic."""
     t = _slab_entry(ro, rd, precision, hmax)
     for i in range(max_steps):
         q = _along(ro, rd, t)

@@ -53,6 +53,7 @@ PUBLIC = {
     "beer": [True, False],
     "base_precision": ["half", "single"],
     "weather_detile": [True, False],
+    "march": ["fast", "textbook"],
     "ms_octaves": [1, 4, 8],
     "silver_weight": [0.0, 0.5, 1.0],
     "sun_intensity": [0.0, 16.0, 1000.0],

@@ -19,6 +19,9 @@
  *                       the beer / powder flags replace a term of E by 1, to show what each contributes)
  *                   ccl_raymarch_accumulate(colour, T, sigma, rho, dt, L, exit_eps)     (vc-A21)
  *                   stop when early_exit and the accumulation says so (then, with exit_fill, C += T L, T = 0)
+ *            -- this loop is ccl_cloudscape_march_textbook (march = CCL_CLOUDSCAPE_MARCH_TEXTBOOK); the default
+ *            march (CCL_CLOUDSCAPE_MARCH_FAST) computes it with refinement, grouping, light interpolation and
+ *            level of detail (see ccl_cloudscape_march)
  *   C_f    = B (1 - O_D) + C_clouds with O_D = 1 - T (vc-4.8), then sRGB encoding.
  * density(p) (vc-A17): h = relative height (vc-A15); weather map at (p.x, p.z) + wind -> coverage D_h (R),
  *   precipitation (G), cloud type (B); D_v = height gradient (vc-4.7, A16); base texture at p -> B (vc-2.28);
@@ -203,7 +206,15 @@ typedef struct ccl_cloudscape_params {
     float silver_g;             /* second HG lobe: phase = (1 - w) HG(g) + w HG(silver_g), in (-1, 1) (default 0.8) */
     float silver_weight;        /* w of the second lobe, in [0, 1]; 0 = the thesis's single HG (default 0: chosen
                                    by measurement, see the .c) */
+    int march;                  /* ccl_cloudscape_march_kind: CCL_CLOUDSCAPE_MARCH_FAST (default) or
+                                   CCL_CLOUDSCAPE_MARCH_TEXTBOOK (the thesis's loop, see ccl_cloudscape_march) */
 } ccl_cloudscape_params;
+
+/* The loop of ccl_cloudscape_march. */
+typedef enum ccl_cloudscape_march_kind {
+    CCL_CLOUDSCAPE_MARCH_FAST = 0,     /* refinement, grouping, light interpolation, level of detail (default) */
+    CCL_CLOUDSCAPE_MARCH_TEXTBOOK = 1  /* vc-A18..A21 as the thesis prints them: ccl_cloudscape_march_textbook */
+} ccl_cloudscape_march_kind;
 
 /* Where the light of the cloud pass comes from. */
 typedef enum ccl_lighting {
@@ -357,10 +368,24 @@ CCL_API void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_clou
  * number of view samples taken. offset in [0, 1): sample position within each step (0.5 = midpoints).
  * pixel_angle: the angle between neighbouring pixels' rays (rad), for the level of detail (p->lod).
  * *out_depth_km (may be NULL): the transmittance-weighted mean distance of the samples (0 where nothing was
- * accumulated), the distance of the aerial perspective. */
+ * accumulated), the distance of the aerial perspective.
+ * p->march selects the loop: CCL_CLOUDSCAPE_MARCH_FAST, the loop above with refinement, grouping, light
+ * interpolation and level of detail (each documented at its parameter); CCL_CLOUDSCAPE_MARCH_TEXTBOOK,
+ * ccl_cloudscape_march_textbook. */
 CCL_API void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye,
                                   ccl_vec3 dir, ccl_vec3 to_sun, float offset, float pixel_angle, float *out_rgb,
                                   float *out_transmittance, int *out_samples, float *out_depth_km);
+
+/* The thesis's loop (vc-A18..A21, §4.3.2), for reading beside the text: n uniform view samples (vc-A18: adaptive
+ * or samples_max) through the layer segment; at each, the full-resolution density (vc-A17); where it is non-zero,
+ * the optical depth towards the sun from the 6 cone samples (vc-A19), the light E + ambient (vc-2.31, vc-A20) and
+ * the front-to-back accumulation with the early termination (vc-A21). No refinement, grouping, light interpolation
+ * or level of detail (refine_step_km, refine_max, light_interp, lod and lod_bias are not read); every other
+ * parameter means what it means in the fast march, which with lod = 0, refine_step_km = 0 and light_interp = 0
+ * gives the same result bit for bit. Outputs as ccl_cloudscape_march (out_samples: the view samples taken). */
+CCL_API void ccl_cloudscape_march_textbook(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 eye,
+                                           ccl_vec3 dir, ccl_vec3 to_sun, float offset, float *out_rgb,
+                                           float *out_transmittance, int *out_samples, float *out_depth_km);
 
 /* The display-linear colour (before sRGB encoding) of pixel (x, y) of a width x height frame: sky, clouds,
  * composite. frame seeds the ray jitter. out_rgb[3]. With sky lighting, p must come from ccl_cloudscape_light (it
