@@ -10,7 +10,9 @@ texts (the scenes' cameras are ``pywarp.kernels.camera``), so they live here, on
 * :func:`row_of_elevation`: where the pinhole image shows a given elevation (to draw the horizon or the sun's height);
 * :func:`billboard_frame`: the right and up vectors of a billboard facing the viewer (a rain drop's mask frame);
 * :func:`environment`: a stand-in scene as a function of direction (sky, sun, a mountain ridge, a chequered meadow with
-  a road, haze), the backdrop the rain tutorials refract through their drops.
+  a road, haze), the backdrop the rain tutorials refract through their drops;
+* :func:`one_type_textures`: the cloudscape's textures with one cloud type over the whole weather map, the stand-in
+  scene of the cloud-genus figures (this one renders with Warp).
 
 Example::
 
@@ -22,7 +24,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["pinhole_directions", "fisheye_directions", "row_of_elevation", "billboard_frame", "environment"]
+__all__ = ["pinhole_directions", "fisheye_directions", "row_of_elevation", "billboard_frame", "environment",
+           "one_type_textures"]
 
 
 def pinhole_directions(width: int, height: int, fov_y_deg: float, azimuth_deg: float = 0.0,
@@ -103,3 +106,21 @@ def environment(d) -> np.ndarray:
     ground = (1 - haze[..., None]) * grass + haze[..., None] * np.array([0.8, 0.84, 0.9])
     rgb = np.where(below[..., None], ground, rgb)
     return np.clip(rgb, 0, 1).astype(np.float32)
+
+
+def one_type_textures(settings, generator):
+    """The cloudscape's textures for ``settings`` (a :class:`pywarp.clouds.cloudscape.CloudscapeSettings`) from
+    ``generator`` (a :class:`pywarp.clouds.textures.TextureGenerator`), with the weather map's cloud-type spread set to
+    0: the type channel is ``settings.cloud_type`` everywhere, so one genus fills the sky. The base, detail and curl
+    textures do not depend on the type (a caching generator returns them from its cache). Returns the
+    :class:`pywarp.clouds.cloudscape.RenderTextures` to pass to ``CloudscapeTechnique(settings, textures=...)``."""
+    from .clouds import textures as T  # the scene layer (and Warp) only for this helper
+    from .clouds.cloudscape import RenderTextures
+
+    s = settings
+    tex = generator.textures(
+        T.BaseShapeSettings(size=s.base_size, seed=s.seed), T.DetailShapeSettings(size=s.detail_size, seed=s.seed),
+        T.CurlNoiseSettings(size=s.curl_size, seed=s.seed),
+        T.WeatherMapSettings(size=s.weather_size, seed=s.seed, coverage=s.coverage, precipitation=s.precipitation,
+                             cloud_type=s.cloud_type, cloud_type_variation=0.0))
+    return RenderTextures.from_textures(tex, s.device)

@@ -74,3 +74,21 @@ def test_environment_sky_sun_ridge_and_ground():
     np.testing.assert_allclose(rgb[4], [0.8, 0.84, 0.9], rtol=1e-5)
     img = environment(pinhole_directions(32, 16, 120.0))
     assert img.shape == (16, 32, 3) and img.min() >= 0.0 and img.max() <= 1.0
+
+
+def test_one_type_textures_fill_the_weather_map_with_one_type(tmp_path):
+    from pywarp.clouds import textures as T
+    from pywarp.clouds.cloudscape import CloudscapeSettings
+    from pywarp.tutorial import one_type_textures
+
+    gen = T.BasicTextureGenerator(cache=T.TextureCache(tmp_path))
+    s = CloudscapeSettings(width=16, height=9, base_size=32, detail_size=16, curl_size=32, weather_size=64,
+                           coverage=0.6, precipitation=0.3, cloud_type=0.7, seed=4)
+    tex = one_type_textures(s, gen)
+    assert np.all(tex.weather[..., 2] == np.float32(0.7))  # the type channel: one value
+    # coverage and precipitation are those of the same weather map with its default type spread
+    spread = gen.weather_map(T.WeatherMapSettings(size=64, seed=4, coverage=0.6, precipitation=0.3, cloud_type=0.7))
+    assert np.ptp(spread[..., 2]) > 0.1
+    np.testing.assert_array_equal(tex.weather[..., :2], spread[..., :2])
+    np.testing.assert_array_equal(tex.base, gen.base_shape(T.BaseShapeSettings(size=32, seed=4)))
+    assert tex.base.shape == (32, 32, 32, 4) and tex.detail.shape == (16, 16, 16, 4) and tex.curl.shape == (32, 32, 4)
