@@ -1,4 +1,4 @@
-"""Camera rays and a stand-in scene for the tutorials (and your own notebooks): NumPy, float64, no Warp.
+"""Camera rays and stand-in scenes for the tutorials (and your own notebooks): NumPy in float64, but for the textures.
 
 The figures of the texts often need the view directions of a simple camera -- to evaluate a sky model per pixel, to
 place a drop on the screen -- or a scene to look at where the text shows a photograph. These are not equations of the
