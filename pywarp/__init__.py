@@ -6,6 +6,7 @@ Every catalogued equation is reachable by its ID, ``pywarp.equation("vc-2.13")``
 """
 from __future__ import annotations
 
+import pkgutil
 from importlib.metadata import PackageNotFoundError, version as _version
 
 from .core.registry import equation, missing, registry
@@ -15,8 +16,9 @@ try:
 except PackageNotFoundError:  # running from a source tree
     __version__ = "0.0.0+source"
 
-_SUBMODULES = {"kernels", "core", "cli", "clouds",
-}
+#: The package's modules and subpackages (``core``, ``kernels``, the scene packages, ...): never catalogue names, so
+#: ``pywarp.<submodule>`` before its import fails at once instead of importing every topic module to look it up.
+_SUBMODULES = frozenset(m.name for m in pkgutil.iter_modules(__path__))
 
 __all__ = ["equation", "registry", "missing", "__version__"]
 

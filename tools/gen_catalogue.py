@@ -18,9 +18,11 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from pywarp.core.catalogue import SEEDS  # noqa: E402  (the four texts: one list, in the package)
+
 OUT = ROOT / "pywarp" / "data" / "catalogue.json"
-SEEDS = ("vc", "pt", "rr", "oc")
-ID_RE = r"(?:vc|pt|rr|oc)-[A-Za-z0-9][A-Za-z0-9.\-]*[A-Za-z0-9]"
+ID_RE = rf"(?:{'|'.join(SEEDS)})-[A-Za-z0-9][A-Za-z0-9.\-]*[A-Za-z0-9]"
 HEADING = re.compile(rf"^###\s+({ID_RE})\s+—\s+(.*?)\s*$")
 ROW = re.compile(rf"^\|\s*({ID_RE})\s*\|\s*([^|]*?)\s*\|")
 ID_ANYWHERE = re.compile(rf"\b({ID_RE})\b")

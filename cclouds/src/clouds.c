@@ -4,12 +4,6 @@
 #include "cclouds/phase.h"
 #include "internal.h"
 
-/* clamp to [0, 1]; NaN propagates */
-static float saturate(float x)
-{
-    return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x);
-}
-
 /* max(0, x); NaN propagates */
 static float nonneg(float x)
 {
@@ -75,8 +69,8 @@ static float height_profile(float h, float lo0, float lo1, float hi0, float hi1,
     float up = ccl_interp_remap(h, lo0, lo1, 0.0f, 1.0f);
     float down = ccl_interp_remap(h, hi0, hi1, 1.0f, 0.0f);
     if (clamp) {
-        up = saturate(up);
-        down = saturate(down);
+        up = clamp01(up);
+        down = clamp01(down);
     }
     return nonneg(up * down);
 }
@@ -124,6 +118,6 @@ float ccl_clouds_sample_light(float d, float a, float cos_theta, float h, float 
                               float ambient_bottom, float ambient_top)
 {
     /* vc-A20: direct light (vc-2.31) + ambient interpolated by relative height */
-    float ambient = lerp(ambient_bottom, ambient_top, saturate(h));
+    float ambient = lerp(ambient_bottom, ambient_top, clamp01(h));
     return sun_intensity * ccl_clouds_energy(d, a, cos_theta, g) + ambient;
 }

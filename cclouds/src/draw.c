@@ -19,15 +19,6 @@ static ccl_vec2 v2(float x, float y)
     return r;
 }
 
-static ccl_vec3 v3(float x, float y, float z)
-{
-    ccl_vec3 r;
-    r.x = x;
-    r.y = y;
-    r.z = z;
-    return r;
-}
-
 ccl_vec2 ccl_draw_coords(ccl_vec2 frag, ccl_vec2 resolution, int aspect, ccl_vec2 *out_p, ccl_vec2 *out_polar)
 {
     ccl_vec2 uv = v2(frag.x / resolution.x, frag.y / resolution.y);

@@ -148,13 +148,6 @@ static float round_box(ccl_vec3 p, ccl_vec3 c, ccl_vec3 e, float r)
     return ccl_vec3_length(qp) + inner - r;
 }
 
-static ccl_vec3 v3(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x; v.y = y; v.z = z;
-    return v;
-}
-
 float ccl_flight_aircraft(ccl_vec3 p, int *out_part)
 {
     float d, e;

@@ -190,15 +190,6 @@ float ccl_rain_terminal_speed(float radius_mm, float slowdown)
 
 /* --- masks ---------------------------------------------------------------------------------------------------------- */
 
-static ccl_vec3 v3(float x, float y, float z)
-{
-    ccl_vec3 r;
-    r.x = x;
-    r.y = y;
-    r.z = z;
-    return r;
-}
-
 /* implicit function of the drop (per unit a): |p| - s(theta(p)); <= 0 inside */
 static float drop_f(const float *c, ccl_vec3 p)
 {

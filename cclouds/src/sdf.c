@@ -5,15 +5,6 @@
 
 #include <math.h>
 
-static ccl_vec3 v3(float x, float y, float z)
-{
-    ccl_vec3 r;
-    r.x = x;
-    r.y = y;
-    r.z = z;
-    return r;
-}
-
 float ccl_sdf_sphere(ccl_vec3 p, float s)
 {
     return ccl_vec3_length(p) - s;

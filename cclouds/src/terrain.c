@@ -13,32 +13,10 @@
 
 /* ---- small helpers (Warp: the same expressions) --------------------------------------------------------------- */
 
-static ccl_vec3 v3(float x, float y, float z)
-{
-    ccl_vec3 r;
-    r.x = x;
-    r.y = y;
-    r.z = z;
-    return r;
-}
-
-/* a + (b - a) f, component-wise (GLSL mix) */
-static ccl_vec3 mix3(ccl_vec3 a, ccl_vec3 b, float f)
-{
-    return v3(a.x + (b.x - a.x) * f, a.y + (b.y - a.y) * f, a.z + (b.z - a.z) * f);
-}
-
 /* ro + rd t */
 static ccl_vec3 along(ccl_vec3 ro, ccl_vec3 rd, float t)
 {
     return v3(ro.x + rd.x * t, ro.y + rd.y * t, ro.z + rd.z * t);
-}
-
-static float clamp01(float x)
-{
-    if (x < 0.0f) x = 0.0f;
-    if (x > 1.0f) x = 1.0f;
-    return x;
 }
 
 /* GLSL smoothstep(a, b, x) for a < b */

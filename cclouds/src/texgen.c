@@ -4,11 +4,6 @@
 
 /* ---- small helpers (mirrored in pywarp/kernels/texgen.py) ------------------------------------------------------- */
 
-static float clamp01(float v)
-{
-    return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v); /* NaN passes through */
-}
-
 /* Texture coordinate of the centre of texel i: (i mod size + 0.5) / size, exact for power-of-two sizes. i is always
  * reduced modulo size first (size is a power of two; the texture is periodic, so the texel is the same one): u then
  * lies in (0, 1) and u * frequency is the same float for i and i + k size, so the single-texel functions equal the

@@ -10,13 +10,6 @@
 
 #define BIG_T 3.0e38f
 
-static ccl_vec3 v3(float x, float y, float z)
-{
-    ccl_vec3 v;
-    v.x = x; v.y = y; v.z = z;
-    return v;
-}
-
 void ccl_volume_params_default(ccl_volume_params *out)
 {
     if (out == NULL) return;
@@ -427,11 +420,6 @@ static ccl_vec3 aircraft_colour(const ccl_volume_params *p, ccl_vec3 q, int part
     lit = ccl_vec3_add(ccl_vec3_scale(p->sun_colour, ndl),
                        ccl_vec3_add(ccl_vec3_scale(p->ambient_top, up), ccl_vec3_scale(p->ambient_bottom, 1.0f - up)));
     return v3(base.x * lit.x, base.y * lit.y, base.z * lit.z);
-}
-
-static ccl_vec3 mix3(ccl_vec3 a, ccl_vec3 b, float t)
-{
-    return ccl_vec3_add(a, ccl_vec3_scale(ccl_vec3_sub(b, a), t));
 }
 
 ccl_vec3 ccl_volume_background(const ccl_volume_params *p, ccl_vec3 eye, ccl_vec3 d, float *out_t)

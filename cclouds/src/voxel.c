@@ -164,11 +164,6 @@ static void build_level(const ccl_voxel_settings *s, const float *prev, int32_t 
             }
 }
 
-static float clamp01(float v)
-{
-    return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
-}
-
 ccl_status ccl_voxel_noise(const ccl_voxel_settings *s, float *out, size_t out_len)
 {
     int32_t n, base, l, x, y, z, nc = 0;

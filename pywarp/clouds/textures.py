@@ -38,7 +38,7 @@ Example::
     from pywarp.clouds.textures import BasicTextureGenerator, BaseShapeSettings
     gen = BasicTextureGenerator()                      # Warp on the CPU, all cores, cached
     base = gen.base_shape(BaseShapeSettings(seed=3))   # (128, 128, 128, 4) float32, read-only
-    tex = gen.textures().to_warp()                     # the four textures as Warp arrays for the renderer
+    tex = gen.textures()                               # the four textures, checked (CloudTextures)
 """
 from __future__ import annotations
 
@@ -582,50 +582,6 @@ class WeatherMap:
 
 # --- textures for the renderer ----------------------------------------------------------------------------------------
 
-def to_warp_texture3d(arr, device: str | None = None):
-    """A (n, n, n, 3|4) float32 volume as a ``wp.array3d(dtype=wp.vec4)`` indexed [z, y, x] (RGB gets A = 0), the
-    input of :func:`pywarp.kernels.texgen.texgen_sample_trilinear_wrap` (size_mask = n - 1)."""
-    import warp as wp
-
-    from ..core.runtime import resolve_device
-
-    a = np.asarray(arr, dtype=np.float32)
-    if a.ndim != 4 or a.shape[3] not in (3, 4) or not a.shape[0] == a.shape[1] == a.shape[2] or not _is_pow2(
-            a.shape[0]):
-        raise ValueError(f"arr must have shape (n, n, n, 3 or 4) with n a power of two, got {a.shape}")
-    if a.shape[3] == 3:
-        a = np.concatenate([a, np.zeros(a.shape[:3] + (1,), np.float32)], axis=3)
-    return wp.array(np.ascontiguousarray(a), dtype=wp.vec4, device=resolve_device(device))
-
-
-def to_warp_texture2d(arr, device: str | None = None):
-    """A (h, w, 2|4) float32 image as a ``wp.array2d`` of ``wp.vec2`` / ``wp.vec4`` indexed [y, x]."""
-    import warp as wp
-
-    from ..core.runtime import resolve_device
-
-    a = np.asarray(arr, dtype=np.float32)
-    if a.ndim != 3 or a.shape[2] not in (2, 4) or not (_is_pow2(a.shape[0]) and _is_pow2(a.shape[1])):
-        raise ValueError(f"arr must have shape (h, w, 2 or 4) with powers of two h, w, got {a.shape}")
-    return wp.array(np.ascontiguousarray(a), dtype=wp.vec2 if a.shape[2] == 2 else wp.vec4,
-                    device=resolve_device(device))
-
-
-@dataclass(frozen=True)
-class WarpCloudTextures:
-    """The four textures on a Warp device: base/detail ``array3d(vec4)`` (detail A = 0), curl ``array2d(vec2)``,
-    weather ``array2d(vec4)``; ``*_mask`` = edge - 1 for the bit-mask wrap."""
-
-    base_shape: object
-    detail_shape: object
-    curl_noise: object
-    weather_map: object
-    base_mask: int
-    detail_mask: int
-    curl_mask: int
-    weather_mask: tuple
-
-
 @dataclass(frozen=True, eq=False)
 class CloudTextures:
     """The four input textures of the cloudscape, checked: shapes as in the module docstring, power-of-two edges,
@@ -652,13 +608,6 @@ class CloudTextures:
             if name != "curl_noise" and (a.min() < 0.0 or a.max() > 1.0):
                 raise ValueError(f"{name} values must be in [0, 1], got [{a.min()}, {a.max()}]")
             object.__setattr__(self, name, a)
-
-    def to_warp(self, device: str | None = None) -> WarpCloudTextures:
-        return WarpCloudTextures(
-            to_warp_texture3d(self.base_shape, device), to_warp_texture3d(self.detail_shape, device),
-            to_warp_texture2d(self.curl_noise, device), to_warp_texture2d(self.weather_map, device),
-            self.base_shape.shape[0] - 1, self.detail_shape.shape[0] - 1, self.curl_noise.shape[0] - 1,
-            (self.weather_map.shape[0] - 1, self.weather_map.shape[1] - 1))
 
 
 # --- generators (vc-A32) ----------------------------------------------------------------------------------------------

@@ -17,8 +17,9 @@ from functools import lru_cache
 from importlib import resources
 from pathlib import Path
 
+from .catalogue import SEEDS
+
 _PKG = Path(__file__).resolve().parents[1]  # the pywarp package folder
-SEEDS = ("vc", "pt", "rr", "oc")
 
 
 def tutorial_dir() -> Path:
@@ -38,7 +39,7 @@ def tutorials(seed: str | None = None) -> list[Path]:
 def figure_ids(path: Path) -> list[str]:
     """The figure IDs (``vc-fig-4.9``) a tutorial's title docstring names, plus extras (``vc-extra-…``)."""
     doc = ast.get_docstring(ast.parse(path.read_text(encoding="utf-8"))) or ""
-    return sorted(set(re.findall(r"\b(?:vc|pt|rr|oc)-(?:fig|extra)-[A-Za-z0-9.\-]*[A-Za-z0-9]", doc)))
+    return sorted(set(re.findall(rf"\b(?:{'|'.join(SEEDS)})-(?:fig|extra)-[A-Za-z0-9.\-]*[A-Za-z0-9]", doc)))
 
 
 def load(path: Path):

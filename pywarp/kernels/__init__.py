@@ -13,9 +13,12 @@ from ..core.runtime import init as _init
 
 _init()
 
-#: Topic modules, in the order of the C umbrella header.
-TOPICS = ("camera", "phase", "media", "hash", "interp", "noise", "texgen", "clouds",
-          "raymarch", "colour", "sky", "reproj", "cloudscape", "draw", "fractal", "sdf", "terrain", "optics", "rain", "valuenoise", "voxel", "particles", "flight", "volume")
+#: Topic modules, in the order of the C umbrella header ``cclouds/cclouds.h`` (``common.h`` aside: its types are
+#: Warp's own; ``common.py`` holds the helpers of ``src/internal.h``). tests/core/test_binding.py pins the list to
+#: the header.
+TOPICS = ("camera", "phase", "media", "hash", "interp", "noise", "texgen", "clouds", "raymarch", "colour", "sky",
+          "reproj", "cloudscape", "optics", "rain", "draw", "fractal", "sdf", "terrain", "valuenoise", "voxel",
+          "particles", "flight", "volume")
 
 
 def load_all() -> None:

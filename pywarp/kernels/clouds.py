@@ -36,6 +36,7 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, Option, declare
+from .common import clamp01
 from .interp import interp_remap
 from .phase import phase_hg
 
@@ -46,15 +47,6 @@ DEFAULT_AMBIENT_BOTTOM = 0.006
 
 
 # --- helpers (NaN propagates, like the C statics) ---------------------------------------------------------------------
-
-@wp.func
-def _saturate(x: float) -> float:
-    if x < 0.0:
-        return 0.0
-    if x > 1.0:
-        return 1.0
-    return x
-
 
 @wp.func
 def _nonneg(x: float) -> float:
@@ -185,8 +177,8 @@ def _height_profile(h: float, lo0: float, lo1: float, hi0: float, hi1: float, cl
     up = interp_remap(h, lo0, lo1, 0.0, 1.0)
     down = interp_remap(h, hi0, hi1, 1.0, 0.0)
     if clamp != 0:
-        up = _saturate(up)
-        down = _saturate(down)
+        up = clamp01(up)
+        down = clamp01(down)
     return _nonneg(up * down)
 
 
@@ -300,5 +292,5 @@ def clouds_density(coverage: float, cloud_type: float, h: float, base_r: float, 
 def clouds_sample_light(d: float, a: float, cos_theta: float, h: float, g: float, sun_intensity: float,
                         ambient_bottom: float, ambient_top: float) -> float:
     """vc-A20: sun_intensity E(d, a, cos_theta, g) + lerp(ambient_bottom, ambient_top, clamp(h, 0, 1))."""
-    ambient = _lerp_exact(ambient_bottom, ambient_top, _saturate(h))
+    ambient = _lerp_exact(ambient_bottom, ambient_top, clamp01(h))
     return sun_intensity * clouds_energy(d, a, cos_theta, g) + ambient

@@ -29,6 +29,7 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, Option, declare
+from .common import clamp01, mix3
 from .noise import _check_seed, noise_fbm_perlin2, noise_perlin2, perm_array
 
 HEIGHTMAPS = {"test": 0, "fbm": 1}
@@ -78,24 +79,9 @@ _COLOUR = dict(lo=0.0, hi=100.0)
 # --- helpers (the static functions of terrain.c) ------------------------------------------------------------------------
 
 @wp.func
-def _clamp01(x: float) -> float:
-    y = x
-    if y < 0.0:
-        y = 0.0
-    if y > 1.0:
-        y = 1.0
-    return y
-
-
-@wp.func
 def _smoothstep(a: float, b: float, x: float) -> float:
-    s = _clamp01((x - a) / (b - a))
+    s = clamp01((x - a) / (b - a))
     return s * s * (3.0 - 2.0 * s)
-
-
-@wp.func
-def _mix3(a: wp.vec3, b: wp.vec3, f: float) -> wp.vec3:
-    return wp.vec3(a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f, a[2] + (b[2] - a[2]) * f)
 
 
 @wp.func
@@ -520,8 +506,8 @@ def clouds_perm(colour: wp.vec3, ro: wp.vec3, rd: wp.vec3, cloud_height: float, 
     qx = ro[0] + rd[0] * t + wind[0] * time
     qz = ro[2] + rd[2] * t + wind[1] * time
     f = fbm_perm(qx / cloud_scale, qz / cloud_scale, 4, perm)
-    w = _clamp01(f * rd[1])
-    return _mix3(colour, cloud_colour, w)
+    w = clamp01(f * rd[1])
+    return mix3(colour, cloud_colour, w)
 
 
 @declare("pt-code-7.11", c="ccl_terrain_clouds",
@@ -662,9 +648,9 @@ def _terrain_colour(p: TerrainParams, perm: wp.array(dtype=wp.int32), pos: wp.ve
     n, _g = _normal(pos, p.normal_h, octn, p.height_scale, p.horizontal_scale, perm, p.heightmap)
     c = p.colour_rock
     if p.stage >= 1:
-        c = _mix3(p.colour_low, p.colour_rock, _smoothstep(p.material_low, p.material_high, pos[1]))
+        c = mix3(p.colour_low, p.colour_rock, _smoothstep(p.material_low, p.material_high, pos[1]))
     if p.stage >= 2:
-        c = _mix3(c, p.colour_grass, _smoothstep(p.grass_min_normal_y, p.grass_min_normal_y + p.grass_band, n[1]))
+        c = mix3(c, p.colour_grass, _smoothstep(p.grass_min_normal_y, p.grass_min_normal_y + p.grass_band, n[1]))
     shadow = float(1.0)
     if p.shadows != 0:
         origin = wp.vec3(pos[0], terrain_height_perm(pos[0], pos[2], p.march_octaves, p.height_scale,
@@ -721,10 +707,10 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
                                 perm, p.cloud_variant)
         f = terrain_water_weight(rd, n, p.water_kappa)
         under = wp.vec3(colour[0] * p.water_tint[0], colour[1] * p.water_tint[1], colour[2] * p.water_tint[2])
-        colour = _mix3(reflected, under, f)
+        colour = mix3(reflected, under, f)
         dist = tw
     if p.stage >= 2:
-        colour = _mix3(colour, sky, terrain_fog(dist, p.fog_density, p.fog_variant))
+        colour = mix3(colour, sky, terrain_fog(dist, p.fog_density, p.fog_variant))
     return colour, steps
 
 
@@ -752,9 +738,9 @@ def terrain_pixel(p: TerrainParams, perm: wp.array(dtype=wp.int32), inv_view_pro
                                     m[2][0] * nx + m[2][1] * ny + m[2][2] + m[2][3]))
             c, s = terrain_shade(p, perm, eye, rd)
             steps += s
-            ax += _clamp01(c[0])
-            ay += _clamp01(c[1])
-            az += _clamp01(c[2])
+            ax += clamp01(c[0])
+            ay += clamp01(c[1])
+            az += clamp01(c[2])
     inv = float(nn * nn)
     return wp.vec3(ax / inv, ay / inv, az / inv), steps
 

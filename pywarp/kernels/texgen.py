@@ -34,6 +34,7 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import Arg, Equation, declare
+from .common import clamp01
 from .noise import (COMBINATION, COMBINATIONS, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3, noise_perlin_worley,
                     noise_worley3, perm_array)
 
@@ -52,15 +53,6 @@ _MAX_LATTICE = wp.constant(MAX_LATTICE)
 
 
 # --- helpers (mirror the C statics of texgen.c) -----------------------------------------------------------------------
-
-@wp.func
-def _clamp01(v: float) -> float:
-    if v < 0.0:
-        return 0.0
-    if v > 1.0:
-        return 1.0
-    return v  # NaN passes through
-
 
 @wp.func
 def _texcoord(i: int, size: int) -> float:
@@ -84,7 +76,7 @@ def _sliding_fbm(layers: wp.vec4, w0: float, w1: float, w2: float) -> wp.vec3:
     c0 = (w0 * layers[0] + w1 * layers[1] + w2 * layers[2]) / (w0 + w1 + w2)
     c1 = (w0 * layers[1] + w1 * layers[2] + w2 * layers[3]) / (w0 + w1 + w2)
     c2 = (w0 * layers[2] + w1 * layers[3]) / (w0 + w1)
-    return wp.vec3(_clamp01(c0), _clamp01(c1), _clamp01(c2))
+    return wp.vec3(clamp01(c0), clamp01(c1), clamp01(c2))
 
 
 @wp.func
@@ -92,7 +84,7 @@ def _perlin01(u: float, v: float, w: float, octaves: int, frequency: int, perm: 
               gain: float) -> float:
     """Perlin fBm mapped to [0, 1]: clamp(gain fbm + 0.5, 0, 1); period = frequency cells = one texture."""
     p = noise_fbm_perlin3(u, v, w, octaves, float(frequency), perm, frequency)
-    return _clamp01(gain * p + 0.5)
+    return clamp01(gain * p + 0.5)
 
 
 @wp.func
@@ -100,7 +92,7 @@ def _coverage_shape(n: float, c: float) -> float:
     """clamp(remap(n, 1 - c, 1, 0, 1), 0, 1) for c > 0, 0 for c <= 0."""
     if c <= 0.0:
         return 0.0
-    return _clamp01((n - (1.0 - c)) / c)
+    return clamp01((n - (1.0 - c)) / c)
 
 
 # --- argument domains, checks and samples of the declared entries --------------------------------------------------
@@ -359,7 +351,7 @@ def _base_shape_rgba(ix: int, iy: int, iz: int, size: int, seed: wp.uint32, perl
     ch = _sliding_fbm(_worley_layers(u, v, w, worley_cells, seed), worley_w0, worley_w1, worley_w2)
     p = _perlin01(u, v, w, perlin_octaves, perlin_frequency, perm, 0.5)
     r = noise_perlin_worley(p, ch[0], combination)  # vc-A8
-    return wp.vec4(texgen_gamma(_clamp01(r), gamma), texgen_gamma(ch[0], gamma), texgen_gamma(ch[1], gamma),
+    return wp.vec4(texgen_gamma(clamp01(r), gamma), texgen_gamma(ch[0], gamma), texgen_gamma(ch[1], gamma),
                    texgen_gamma(ch[2], gamma))
 
 
@@ -464,7 +456,7 @@ def texgen_weather_map_texel(ix: int, iy: int, size: int, seed: wp.uint32, perli
     p2 = _perlin01(u, v, 0.0, perlin_octaves, perlin_frequency, perm1, perlin_contrast)
     g = _coverage_shape(p2, precipitation)
     p3 = _perlin01(u, v, 0.0, perlin_octaves, perlin_frequency, perm2, perlin_contrast)
-    b = _clamp01(cloud_type + cloud_type_variation * (2.0 * p3 - 1.0))
+    b = clamp01(cloud_type + cloud_type_variation * (2.0 * p3 - 1.0))
     return wp.vec4(r, g, b, 0.0)
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, fields
+from typing import Any
 
 import numpy as np
 import warp as wp
@@ -24,6 +25,7 @@ import warp as wp
 from ..core.registry import Arg, declare
 from .camera import camera_ray
 from .colour import colour_srgb_encode
+from .common import mix3
 from .flight import flight_aircraft
 from .hash import hash_pcg, hash_unit
 from .phase import phase_hg
@@ -209,8 +211,12 @@ def _idx(offset: int, nx: int, ny: int, x: int, y: int, z: int) -> int:
 
 
 @wp.func
-def volume_sample(density: wp.array(dtype=wp.uint8), offset: int, nx: int, ny: int, nz: int, v: wp.vec3) -> float:
-    """Twin of ``ccl_volume_sample`` (the grid's voxels start at ``offset`` of the flat array)."""
+def volume_sample(values: wp.array(dtype=Any), offset: int, nx: int, ny: int, nz: int, v: wp.vec3,
+                  scale: float) -> float:
+    """Trilinear sample of a grid at voxel coordinates ``v`` (clamped to the edge voxels), times ``scale``; the grid's
+    voxels start at ``offset`` of the flat array ``values``, each converted to float32 first (exactly). Twin of
+    ``ccl_volume_sample`` (uint8 densities, ``scale`` = 1/255) and of ``ccl_volume_sample_float`` (float32 values,
+    ``scale`` = 1, an exact product)."""
     ux = v[0] - 0.5
     uy = v[1] - 0.5
     uz = v[2] - 0.5
@@ -227,36 +233,11 @@ def volume_sample(density: wp.array(dtype=wp.uint8), offset: int, nx: int, ny: i
     z0 = wp.clamp(int(iz), 0, nz - 1)
     z1 = wp.clamp(int(iz) + 1, 0, nz - 1)
     r = _tri_mix(fx, fy, fz,
-                 float(density[_idx(offset, nx, ny, x0, y0, z0)]), float(density[_idx(offset, nx, ny, x1, y0, z0)]),
-                 float(density[_idx(offset, nx, ny, x0, y1, z0)]), float(density[_idx(offset, nx, ny, x1, y1, z0)]),
-                 float(density[_idx(offset, nx, ny, x0, y0, z1)]), float(density[_idx(offset, nx, ny, x1, y0, z1)]),
-                 float(density[_idx(offset, nx, ny, x0, y1, z1)]), float(density[_idx(offset, nx, ny, x1, y1, z1)]))
-    return r * _INV_255
-
-
-@wp.func
-def volume_sample_float(values: wp.array(dtype=float), offset: int, nx: int, ny: int, nz: int, v: wp.vec3) -> float:
-    """Twin of ``ccl_volume_sample_float``."""
-    ux = v[0] - 0.5
-    uy = v[1] - 0.5
-    uz = v[2] - 0.5
-    ix = wp.floor(ux)
-    iy = wp.floor(uy)
-    iz = wp.floor(uz)
-    fx = ux - ix
-    fy = uy - iy
-    fz = uz - iz
-    x0 = wp.clamp(int(ix), 0, nx - 1)
-    x1 = wp.clamp(int(ix) + 1, 0, nx - 1)
-    y0 = wp.clamp(int(iy), 0, ny - 1)
-    y1 = wp.clamp(int(iy) + 1, 0, ny - 1)
-    z0 = wp.clamp(int(iz), 0, nz - 1)
-    z1 = wp.clamp(int(iz) + 1, 0, nz - 1)
-    return _tri_mix(fx, fy, fz,
-                    values[_idx(offset, nx, ny, x0, y0, z0)], values[_idx(offset, nx, ny, x1, y0, z0)],
-                    values[_idx(offset, nx, ny, x0, y1, z0)], values[_idx(offset, nx, ny, x1, y1, z0)],
-                    values[_idx(offset, nx, ny, x0, y0, z1)], values[_idx(offset, nx, ny, x1, y0, z1)],
-                    values[_idx(offset, nx, ny, x0, y1, z1)], values[_idx(offset, nx, ny, x1, y1, z1)])
+                 float(values[_idx(offset, nx, ny, x0, y0, z0)]), float(values[_idx(offset, nx, ny, x1, y0, z0)]),
+                 float(values[_idx(offset, nx, ny, x0, y1, z0)]), float(values[_idx(offset, nx, ny, x1, y1, z0)]),
+                 float(values[_idx(offset, nx, ny, x0, y0, z1)]), float(values[_idx(offset, nx, ny, x1, y0, z1)]),
+                 float(values[_idx(offset, nx, ny, x0, y1, z1)]), float(values[_idx(offset, nx, ny, x1, y1, z1)]))
+    return r * scale
 
 
 @wp.func
@@ -339,7 +320,7 @@ def light_kernel(p: VolumeParams, g: VolumeGrid, density: wp.array(dtype=wp.uint
         q = c + s_v * (float(k) * step)
         if q[0] < 0.0 or q[1] < 0.0 or q[2] < 0.0 or q[0] > fnx or q[1] > fny or q[2] > fnz:
             break
-        total = total + volume_sample(density, g.offset, nx, ny, nz, q)
+        total = total + volume_sample(density, g.offset, nx, ny, nz, q, _INV_255)
     out[i] = wp.exp(-tau * total)
 
 
@@ -422,11 +403,6 @@ def _aircraft_colour(p: VolumeParams, q: wp.vec3, part: int) -> wp.vec3:
 
 
 @wp.func
-def _mix3(a: wp.vec3, b: wp.vec3, t: float) -> wp.vec3:
-    return a + (b - a) * t
-
-
-@wp.func
 def volume_background(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
     """Twin of ``ccl_volume_background``: (colour, aircraft distance or BIG_T)."""
     col = wp.vec3(0.0, 0.0, 0.0)
@@ -452,9 +428,9 @@ def volume_background(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
             h = hash_pcg((cx * _U73856093) ^ hash_pcg(cz))
             u = hash_unit(h)
             sun_up = wp.where(p.sun[1] > 0.0, p.sun[1], 0.0)
-            ground = _mix3(p.ground_a, p.ground_b, u) * (0.35 + 0.65 * sun_up)
+            ground = mix3(p.ground_a, p.ground_b, u) * (0.35 + 0.65 * sun_up)
             f = wp.exp(-t / p.fog_distance)
-            col = _mix3(p.sky_horizon, ground, f)
+            col = mix3(p.sky_horizon, ground, f)
         else:
             col = volume_sky(p, d)
     return col, t_out
@@ -575,7 +551,7 @@ def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
                     s = s + 1
                 continue
             s = s + 1
-            # volume_sample and volume_sample_float at v, sharing the weights
+            # volume_sample of the density (scale 1/255) and of the light (scale 1) at v, sharing the weights
             ux = v[0] - 0.5
             uy = v[1] - 0.5
             uz = v[2] - 0.5
@@ -604,7 +580,7 @@ def volume_pixel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
                           light[i001 + x0], light[i001 + x1], light[i011 + x0], light[i011 + x1])
             alpha = 1.0 - wp.exp(-a_step * rho)
             hfrac = wp.clamp(v[1] / float(g.ny), 0.0, 1.0)
-            amb = _mix3(p.ambient_bottom, p.ambient_top, hfrac)
+            amb = mix3(p.ambient_bottom, p.ambient_top, hfrac)
             lc = p.sun_colour * (tl * phase) + amb
             col = col + lc * (trans * alpha)
             trans = trans * (1.0 - alpha)

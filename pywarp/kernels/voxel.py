@@ -33,6 +33,7 @@ import warp as wp
 
 from ..core.params import Settings, param
 from ..core.registry import Arg, Equation, declare
+from .common import clamp01
 from .valuenoise import INTERPOLATIONS, SMOOTHINGS, interp_kind, octave_seed, valuenoise_linear, valuenoise_smooth
 
 BORDERS = {"none": 0, "sin": 1, "zero": 2}  # CCL_VOXEL_BORDER_*
@@ -318,15 +319,6 @@ def _face_distance(i: int, n: int) -> int:
 
 
 @wp.func
-def _clamp01(v: float) -> float:
-    if v < 0.0:
-        return 0.0
-    if v > 1.0:
-        return 1.0
-    return v
-
-
-@wp.func
 def _to_u8(d: float) -> wp.uint8:
     r = wp.floor(d + 0.5)
     if r < 0.0:
@@ -350,7 +342,7 @@ def _finish_kernel(row0: int, n: int, norm: float, border: int, radius: float, c
     if border == _BORDER_SIN:
         v = v * voxel_sin_window(_face_distance(x, n), radius) * voxel_sin_window(_face_distance(y, n), radius) \
             * voxel_sin_window(_face_distance(z, n), radius)
-    v = _clamp01(v)
+    v = clamp01(v)
     noise[k] = v
     if filtered != 0:
         cloud[k] = _to_u8(voxel_filter(v, cover, sharpness))

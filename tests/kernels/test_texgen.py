@@ -693,9 +693,6 @@ def test_generator_interface_and_user_generator(tmp_path):
 
     tex = Flat().textures()
     assert isinstance(tex, T.CloudTextures)
-    wt = tex.to_warp()
-    assert wt.base_shape.shape == (4, 4, 4) and wt.base_mask == 3 and wt.weather_mask == (3, 7)
-    assert wt.detail_shape.numpy().shape == (4, 4, 4, 4) and np.all(wt.detail_shape.numpy()[..., 3] == 0)
 
     class Broken(Flat):
         def base_shape(self, settings=None):

@@ -240,3 +240,41 @@ def test_textured_ellipsoid_opacity():
     assert_twins_agree("oc-4.3", p, radii, tex, 0.1, 0.5)
     with pytest.raises(ValueError, match="texture"):
         E(np.float32([0, 0, 0]), radii, 1.5, 0.1, 0.5)
+
+
+@wp.kernel
+def _sample_u8(values: wp.array(dtype=wp.uint8), offset: int, nx: int, ny: int, nz: int, v: wp.array(dtype=wp.vec3),
+               out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = V.volume_sample(values, offset, nx, ny, nz, v[i], V._INV_255)
+
+
+@wp.kernel
+def _sample_f32(values: wp.array(dtype=float), offset: int, nx: int, ny: int, nz: int, v: wp.array(dtype=wp.vec3),
+                out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = V.volume_sample(values, offset, nx, ny, nz, v[i], 1.0)
+
+
+def test_volume_sample_is_the_twin_of_both_c_samplers():
+    """The one generic sampler gives, bit for bit, ccl_volume_sample on uint8 densities (scale 1/255) and
+    ccl_volume_sample_float on float32 values (scale 1), inside the grid, on its faces and clamped outside it, with the
+    grid at an offset of the flat array."""
+    from pywarp.core.binding import ffi, lib
+
+    rng = np.random.default_rng(5)
+    nx, ny, nz, offset = 5, 4, 3, 7
+    dens = rng.integers(0, 256, (nz, ny, nx), dtype=np.uint8)
+    vals = rng.normal(0.0, 3.0, (nz, ny, nx)).astype(np.float32)
+    pts = np.concatenate([rng.uniform(-2.0, 8.0, (200, 3)), [[0.5, 0.5, 0.5], [5.0, 4.0, 3.0], [2.5, 1.0, 0.0]]])
+    pts = pts.astype(np.float32)
+    v = wp.array(pts, dtype=wp.vec3, device="cpu")
+    for grid, kernel, c_fn, ctype in [(dens, _sample_u8, lib().ccl_volume_sample, "unsigned char[]"),
+                                      (vals, _sample_f32, lib().ccl_volume_sample_float, "float[]")]:
+        flat = np.concatenate([np.zeros(offset, grid.dtype), grid.ravel()])
+        out = wp.zeros(len(pts), dtype=float, device="cpu")
+        wp.launch(kernel, dim=len(pts), inputs=[wp.array(flat, device="cpu"), offset, nx, ny, nz, v, out],
+                  device="cpu")
+        buf = ffi().from_buffer(ctype, np.ascontiguousarray(grid.ravel()))
+        want = np.array([c_fn(buf, nx, ny, nz, {"x": p[0], "y": p[1], "z": p[2]}) for p in pts], np.float32)
+        np.testing.assert_array_equal(out.numpy().view(np.uint32), want.view(np.uint32))

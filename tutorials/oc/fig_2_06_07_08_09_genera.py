@@ -31,7 +31,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from pywarp.clouds import textures as T  # noqa: E402
-from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique, RenderTextures  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.tutorial import one_type_textures  # noqa: E402
 
 GENERA = (("fig-2.6.png", "nimbostratus-like overcast (type 0.5, coverage 1, precipitation 1)",
            dict(cloud_type=0.5, coverage=1.0, precipitation=1.0)),
@@ -44,16 +45,6 @@ FULL = dict(width=480, height=270)
 QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
 
 
-def textures_for(s: CloudscapeSettings, generator) -> RenderTextures:
-    """The renderer's textures with the weather map's type spread set to 0 (one genus everywhere)."""
-    tex = generator.textures(
-        T.BaseShapeSettings(size=s.base_size, seed=s.seed), T.DetailShapeSettings(size=s.detail_size, seed=s.seed),
-        T.CurlNoiseSettings(size=s.curl_size, seed=s.seed),
-        T.WeatherMapSettings(size=s.weather_size, seed=s.seed, coverage=s.coverage, precipitation=s.precipitation,
-                             cloud_type=s.cloud_type, cloud_type_variation=0.0))
-    return RenderTextures.from_textures(tex, s.device)
-
-
 def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -61,7 +52,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     written = []
     for name, title, genus in GENERA:
         s = CloudscapeSettings(**(QUICK if quick else FULL), **{**SCENE, **genus})
-        img = CloudscapeTechnique(s, textures=textures_for(s, gen)).render()
+        img = CloudscapeTechnique(s, textures=one_type_textures(s, gen)).render()
         h, w = img.shape[:2]
         fig = plt.figure(figsize=(w / 100, h / 100 + 0.35), dpi=100)
         ax = fig.add_axes([0, 0, 1, h / (h + 35)])

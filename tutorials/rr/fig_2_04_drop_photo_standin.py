@@ -14,8 +14,9 @@ rr-alg-3.2.2) and the drop's non-equilibrium shape. Output: figures/rr/fig-2.4.p
 # wide-angle image (the drop "sees" about 150-165 deg, rr-der-3.2.1). The text builds its whole drop shading on that
 # observation, and this stand-in shows the result of that shading.
 #
-# The scene is a function of direction (sky, sun, a mountain ridge, a chequered meadow with a road). It is rendered
-# twice from the same eye: once as the viewer's image (50 deg FOVy) and once as the capture (150 deg, 512 x 512).
+# The scene is a function of direction (`pywarp.tutorial.environment`: sky, sun, a mountain ridge, a chequered meadow
+# with a road). It is rendered twice from the same eye (`pinhole_directions`): once as the viewer's image (50 deg
+# FOVy) and once as the capture (150 deg, 512 x 512).
 # Each drop is a billboard facing the viewer; `rain_shade_drop(capture, mask, centre_dir, angular_radius, ...)`
 # returns its RGBA pixels, which are composited over the view at the directions they cover.
 
@@ -32,6 +33,7 @@ import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
 from pywarp.kernels import rain  # noqa: E402
+from pywarp.tutorial import billboard_frame, environment, pinhole_directions  # noqa: E402
 
 FOV_CAPTURE = 150.0  # the capture camera's FOVy: the text's contract (rr-der-3.2.1, variant 'thesis')
 FOV_VIEW = 50.0  # the viewer's FOVy: a normal camera lens (the text does not give one)
@@ -40,49 +42,6 @@ FOV_VIEW = 50.0  # the viewer's FOVy: a normal camera lens (the text does not gi
 DROPS = (("sphere (the text)", "sphere", 1.0, (-0.26, 0.05, -1.0), 0.075),
          ("3 mm Beard-Chuang (exact)", "exact", 3.0, (0.02, -0.08, -1.0), 0.095),
          ("4.5 mm Beard-Chuang (exact)", "exact", 4.5, (0.28, 0.1, -1.0), 0.11))
-
-
-def environment(d):
-    """The scene around the viewer as a function of direction (camera space, x right, y up, looking down -z): sky
-    gradient, sun, a mountain ridge on the horizon, a chequered meadow 1.6 m below the eye, haze with distance."""
-    d = d / np.linalg.norm(d, axis=-1, keepdims=True)
-    x, y, z = d[..., 0], d[..., 1], d[..., 2]
-    up = np.clip(y, 0, 1)[..., None]
-    rgb = (1 - np.sqrt(up)) * np.array([0.86, 0.9, 0.96]) + np.sqrt(up) * np.array([0.22, 0.42, 0.85])
-    sun = np.array([-0.45, 0.45, -1.0]) / np.linalg.norm([-0.45, 0.45, -1.0])
-    rgb = rgb + np.clip((d @ sun - 0.996) / 0.002, 0, 1)[..., None] * np.array([1.2, 1.0, 0.6])
-    az = np.arctan2(x, -z)
-    ridge = (y >= 0) & (y < 0.07 + 0.05 * np.sin(3 * az + 0.5) + 0.025 * np.sin(11 * az))
-    rgb = np.where(ridge[..., None], np.array([0.42, 0.45, 0.58]), rgb)
-    below = y < 0
-    dist = 1.6 / np.maximum(-y, 1e-4)
-    gx, gz = x * dist, z * dist
-    cell = (np.floor(gx / 2.0) + np.floor(gz / 2.0)) % 2
-    grass = np.where(cell[..., None] > 0, np.array([0.22, 0.5, 0.16]), np.array([0.62, 0.52, 0.22]))
-    road = np.abs(gx) < 1.2
-    grass = np.where(road[..., None], np.array([0.3, 0.3, 0.32]), grass)
-    haze = 1 - np.exp(-dist / 60.0)
-    ground = (1 - haze[..., None]) * grass + haze[..., None] * np.array([0.8, 0.84, 0.9])
-    rgb = np.where(below[..., None], ground, rgb)
-    return np.clip(rgb, 0, 1).astype(np.float32)
-
-
-def render_view(h, w, fov_deg):
-    """Pixel directions and the scene of a pinhole camera looking down -z (row 0 at the top)."""
-    t = np.tan(np.radians(fov_deg) / 2)
-    ys = (1 - 2 * (np.arange(h) + 0.5) / h) * t
-    xs = (2 * (np.arange(w) + 0.5) / w - 1) * t * w / h
-    X, Y = np.meshgrid(xs, ys)
-    d = np.stack([X, Y, -np.ones_like(X)], -1)
-    d /= np.linalg.norm(d, axis=-1, keepdims=True)
-    return d, environment(d)
-
-
-def billboard_frame(f):
-    """Right and up vectors of a billboard facing the viewer in direction f (the drop's mask frame)."""
-    rt = np.cross(f, [0.0, 1.0, 0.0])
-    rt /= np.linalg.norm(rt)
-    return rt, np.cross(rt, f)
 
 
 def composite(img, dirs, drop_rgba, f, ar):
@@ -106,8 +65,9 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     h, w = (150, 240) if quick else (480, 768)
     cap_size = 128 if quick else 512
     mask_size = 64 if quick else 256
-    dirs, view = render_view(h, w, FOV_VIEW)
-    cdirs, capture = render_view(cap_size, cap_size, FOV_CAPTURE)
+    dirs = pinhole_directions(w, h, FOV_VIEW)  # camera space: looking down -z, row 0 at the top
+    view = environment(dirs)
+    capture = environment(pinhole_directions(cap_size, cap_size, FOV_CAPTURE))
 
     # %% [markdown]
     # One mask per drop shape (cached), one billboard per drop. The billboard is rendered at about twice the pixels

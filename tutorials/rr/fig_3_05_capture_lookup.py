@@ -34,36 +34,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
+from pywarp.tutorial import billboard_frame, environment  # noqa: E402
 
 N_WATER = 1.33
 FOV_Y = 150.0  # the capture camera's FOVy: the text's contract (rr-der-3.2.1, variant 'thesis')
 TAN_H = float(np.tan(np.radians(FOV_Y) / 2))
 S_Y = 0.5 / TAN_H  # capture scale: uv per unit of tan (aspect 1)
-
-
-def environment(d):
-    """The scene around the viewer as a function of direction (camera space, x right, y up, looking down -z): sky
-    gradient, sun, a mountain ridge on the horizon, a chequered meadow 1.6 m below the eye, haze with distance."""
-    d = d / np.linalg.norm(d, axis=-1, keepdims=True)
-    x, y, z = d[..., 0], d[..., 1], d[..., 2]
-    up = np.clip(y, 0, 1)[..., None]
-    rgb = (1 - np.sqrt(up)) * np.array([0.86, 0.9, 0.96]) + np.sqrt(up) * np.array([0.22, 0.42, 0.85])
-    sun = np.array([-0.45, 0.45, -1.0]) / np.linalg.norm([-0.45, 0.45, -1.0])
-    rgb = rgb + np.clip((d @ sun - 0.996) / 0.002, 0, 1)[..., None] * np.array([1.2, 1.0, 0.6])
-    az = np.arctan2(x, -z)
-    ridge = (y >= 0) & (y < 0.07 + 0.05 * np.sin(3 * az + 0.5) + 0.025 * np.sin(11 * az))
-    rgb = np.where(ridge[..., None], np.array([0.42, 0.45, 0.58]), rgb)
-    below = y < 0
-    dist = 1.6 / np.maximum(-y, 1e-4)
-    gx, gz = x * dist, z * dist
-    cell = (np.floor(gx / 2.0) + np.floor(gz / 2.0)) % 2
-    grass = np.where(cell[..., None] > 0, np.array([0.22, 0.5, 0.16]), np.array([0.62, 0.52, 0.22]))
-    road = np.abs(gx) < 1.2
-    grass = np.where(road[..., None], np.array([0.3, 0.3, 0.32]), grass)
-    haze = 1 - np.exp(-dist / 60.0)
-    ground = (1 - haze[..., None]) * grass + haze[..., None] * np.array([0.8, 0.84, 0.9])
-    rgb = np.where(below[..., None], ground, rgb)
-    return np.clip(rgb, 0, 1).astype(np.float32)
 
 
 def capture(size):
@@ -72,13 +48,6 @@ def capture(size):
     u, v = np.meshgrid(c, c)
     d = np.stack([(u - 0.5) / S_Y, (0.5 - v) / S_Y, -np.ones_like(u)], -1)
     return environment(d)
-
-
-def billboard_frame(f):
-    """Right and up vectors of a billboard facing the viewer in direction f (as the shader's drop frame)."""
-    rt = np.cross(f, [0.0, 1.0, 0.0])
-    rt /= np.linalg.norm(rt)
-    return rt, np.cross(rt, f)
 
 
 def side_view(ax, v_pix=0.55, D=5.0, R=1.0, L=12.0):

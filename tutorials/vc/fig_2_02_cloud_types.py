@@ -39,7 +39,8 @@ import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
 from pywarp.clouds import textures as T  # noqa: E402
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, RenderTextures  # noqa: E402
+from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.tutorial import one_type_textures  # noqa: E402
 
 TYPES = ((0.0, "stratus (type 0)"), (0.5, "stratocumulus (type 0.5)"), (1.0, "cumulus (type 1)"))
 SCENE = dict(coverage=0.5, precipitation=0.2, seed=0, sun_elevation_deg=25.0, sun_azimuth_deg=110.0,
@@ -50,20 +51,11 @@ ABOVE = CameraPose(x_km=0.0, altitude_km=5.0, z_km=0.0, yaw_deg=0.0, pitch_deg=-
 
 
 # %% [markdown]
-# The textures for one cloud type: the same generator the renderer uses, with the weather map's type spread set to 0.
-# The base, detail and curl textures do not depend on the type (they come from the cache after the first column).
+# The textures for one cloud type (`pywarp.tutorial.one_type_textures`): the same generator the renderer uses, with
+# the weather map's type spread set to 0. The base, detail and curl textures do not depend on the type (they come from
+# the cache after the first column).
 
 # %%
-def textures_for(settings: CloudscapeSettings, generator: T.TextureGenerator) -> RenderTextures:
-    s = settings
-    tex = generator.textures(
-        T.BaseShapeSettings(size=s.base_size, seed=s.seed), T.DetailShapeSettings(size=s.detail_size, seed=s.seed),
-        T.CurlNoiseSettings(size=s.curl_size, seed=s.seed),
-        T.WeatherMapSettings(size=s.weather_size, seed=s.seed, coverage=s.coverage, precipitation=s.precipitation,
-                             cloud_type=s.cloud_type, cloud_type_variation=0.0))
-    return RenderTextures.from_textures(tex, s.device)
-
-
 def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -76,7 +68,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         row = []
         for cloud_type, _ in TYPES:
             s = CloudscapeSettings(**(QUICK if quick else FULL), **SCENE, cloud_type=cloud_type, advanced=advanced)
-            tech = CloudscapeTechnique(s, textures=textures_for(s, gen))
+            tech = CloudscapeTechnique(s, textures=one_type_textures(s, gen))
             row.append(tech.render(pose))
         images.append(row)
 

@@ -30,6 +30,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
+from pywarp.tutorial import fisheye_directions, pinhole_directions, row_of_elevation  # noqa: E402
 
 SUN_ELEVATION_DEG = 15.0
 SUN_AZIMUTH_DEG = 0.0
@@ -38,47 +39,16 @@ PITCH_DEG = 25.0  # the camera looks 25° up: the horizon sits 5° above the low
 
 
 # %% [markdown]
-# Directions. A pinhole camera (the ray generation of vc-A25 without the matrices): the camera looks along
-# f = (cos p sin a, sin p, −cos p cos a) — azimuth a, pitch p, Y up — and the ray through the image point (u, v)
-# (both in [−1, 1], u to the right, v up) is f + u·tan(fov/2)·aspect·r + v·tan(fov/2)·up, normalised. Because the camera
-# has no roll, the horizon (d_y = 0) projects to a horizontal line.
+# Directions, from `pywarp.tutorial`. A pinhole camera (`pinhole_directions`, the ray generation of vc-A25 without the
+# matrices): the camera looks along f = (cos p sin a, sin p, −cos p cos a) — azimuth a, pitch p, Y up — and the ray
+# through the image point (u, v) (both in [−1, 1], u to the right, v up) is f + u·tan(fov/2)·aspect·r +
+# v·tan(fov/2)·up, normalised. Because the camera has no roll, the horizon (d_y = 0) projects to a horizontal line.
 #
-# The fisheye is equidistant: the distance from the centre is proportional to the zenith angle (centre = zenith,
-# rim = horizon). It shows the sky as seen looking up from below, azimuth 0 at the top, so azimuth 90° (+X) is on the
-# LEFT, as in all-sky camera images.
+# The fisheye (`fisheye_directions`) is equidistant: the distance from the centre is proportional to the zenith angle
+# (centre = zenith, rim = horizon). It shows the sky as seen looking up from below, azimuth 0 at the top, so azimuth
+# 90° (+X) is on the LEFT, as in all-sky camera images.
 
 # %%
-def pinhole_directions(width: int, height: int, fov_y_deg: float, azimuth_deg: float, pitch_deg: float) -> np.ndarray:
-    """Unit view directions (height, width, 3) through the pixel centres of a pinhole camera (row 0 = top)."""
-    t = np.tan(np.radians(fov_y_deg) / 2.0)
-    u = ((np.arange(width) + 0.5) / width * 2.0 - 1.0) * t * (width / height)
-    v = (1.0 - (np.arange(height) + 0.5) / height * 2.0) * t
-    uu, vv = np.meshgrid(u, v)
-    a, p = np.radians(azimuth_deg), np.radians(pitch_deg)
-    fwd = np.array([np.cos(p) * np.sin(a), np.sin(p), -np.cos(p) * np.cos(a)])
-    right = np.array([np.cos(a), 0.0, np.sin(a)])
-    up = np.cross(right, fwd)
-    d = fwd + uu[..., None] * right + vv[..., None] * up
-    return d / np.linalg.norm(d, axis=-1, keepdims=True)
-
-
-def fisheye_directions(size: int) -> tuple[np.ndarray, np.ndarray]:
-    """Equidistant all-sky fisheye: unit directions (size, size, 3) and the mask of pixels inside the horizon circle."""
-    c = (np.arange(size) + 0.5) / size * 2.0 - 1.0
-    uu, vv = np.meshgrid(c, -c)  # v up
-    r = np.hypot(uu, vv)
-    zen = np.minimum(r, 1.0) * (np.pi / 2.0)  # zenith angle
-    az = np.arctan2(-uu, vv)  # top = azimuth 0, left = azimuth 90 (looking up from below)
-    d = np.stack([np.sin(zen) * np.sin(az), np.cos(zen), -np.sin(zen) * np.cos(az)], axis=-1)
-    return d, r <= 1.0
-
-
-def row_of_elevation(elev_deg, height: int, fov_y_deg: float, pitch_deg: float):
-    """Fractional pixel row at which the centre column of the pinhole camera sees elevation elev_deg."""
-    v = np.tan(np.radians(np.asarray(elev_deg) - pitch_deg)) / np.tan(np.radians(fov_y_deg) / 2.0)
-    return (1.0 - v) / 2.0 * height - 0.5
-
-
 def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir = out_dir if isinstance(out_dir, Path) else Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
