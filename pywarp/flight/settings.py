@@ -193,12 +193,12 @@ class FlightSettings(Settings):
         return v
 
     def flight_model(self):
-        from ..kernels.flight import FlightModel
+        from .model import FlightModel
 
         return FlightModel(max_speed=self.max_speed_mps, point_rate=self.point_rate_mps, turn_rate=self.turn_rate)
 
     def start_state(self):
-        from ..kernels.flight import FlightState
+        from .model import FlightState
 
         return FlightState(position=(0.0, self.start_altitude_m, 0.0), heading=0.0, speed=self.start_speed_mps)
 

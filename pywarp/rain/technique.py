@@ -4,7 +4,7 @@
   the built-in analytic :class:`Panorama`; rendered twice and cached -- the view at the output size and the
   wide-angle capture (FBOBJECT, rr-alg-3.1.2: the viewer's pose, FOVy 150 deg, 512 x 512);
 * DROP: the refraction mask of the chosen shape (rr-alg-3.1.1, ``pywarp.kernels.rain``), built once per shape;
-* RAIN PARTICLE: :class:`pywarp.kernels.particles.ParticleSystem` (rr-code-5.2.2), advanced by the time field;
+* RAIN PARTICLE: :class:`pywarp.rain.particles.ParticleSystem` (rr-code-5.2.2), advanced by the time field;
 * SHADER + POST OBJECT: the particles projected to billboards (drops, or streaks, rr-alg-3.2.3) and composited over
   the view by the refraction / persistence shaders (rr-code-5.2.3 / 5.2.4) in one multi-core Warp pass over the
   screen tiles that hold drops;
@@ -28,7 +28,7 @@ from ..core.runtime import init, launcher as shared_launcher
 
 init()
 
-from ..kernels import particles as P  # noqa: E402
+from . import particles as P  # noqa: E402
 from .settings import PANORAMA, RainSettings  # noqa: E402
 
 

@@ -1,6 +1,7 @@
-"""Topic tests of pywarp.kernels.particles (rr-code-5.2.2, rr-alg-3.2.3, rr-alg-3.1.2, rr-code-5.2.3/5.2.4): particle
-counts of both variants, determinism, spawn box and sizes, terminal speeds from Table 2.2, frame-rate independence,
-streak geometry, the capture lookup, the compositing (uniform capture, Warp tiles vs the C reference)."""
+"""Topic tests of pywarp.kernels.particles and its host side pywarp.rain.particles (rr-code-5.2.2, rr-alg-3.2.3,
+rr-alg-3.1.2, rr-code-5.2.3/5.2.4): particle counts of both variants, determinism, spawn box and sizes, terminal speeds
+from Table 2.2, frame-rate independence, streak geometry, the capture lookup, the compositing (uniform capture, Warp
+tiles vs the C reference)."""
 from __future__ import annotations
 
 import math
@@ -10,7 +11,7 @@ import pytest
 from helpers import assert_twins_agree
 
 import pywarp
-from pywarp.kernels import particles as P
+from pywarp.rain import particles as P
 
 sim_w = pywarp.equation("rr-code-5.2.2")
 sim_c = pywarp.equation("rr-code-5.2.2", impl="c")

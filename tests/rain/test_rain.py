@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from pywarp.core.scenes import scene
-from pywarp.kernels import particles as P
+from pywarp.rain import particles as P
 from pywarp.rain.settings import CONTROLS, RainSettings
 from pywarp.rain.technique import Panorama, RainPose, RainTechnique, sphere_mask
 
