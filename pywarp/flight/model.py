@@ -61,7 +61,6 @@ class FlightModel:
         return p
 
 
-
 def axes(heading: float, pitch: float, roll: float) -> tuple[tuple, tuple, tuple]:
     """Body axes (forward, right, up) of ``ccl_flight_axes`` on the host, in float32 NumPy operations (for placing
     the aircraft in a scene). Angles in radians."""
@@ -77,7 +76,6 @@ def axes(heading: float, pitch: float, roll: float) -> tuple[tuple, tuple, tuple
     return tuple(map(float, f)), tuple(map(float, r)), tuple(map(float, u))
 
 
-
 @dataclass(frozen=True)
 class FlightState:
     """A state of the aircraft (``ccl_flight_state``)."""
@@ -87,7 +85,6 @@ class FlightState:
     speed: float = 0.0
     nose_offset: float = 0.0
     wing_offset: float = 0.0
-
 
 
 @dataclass(frozen=True)
@@ -111,10 +108,8 @@ class Trajectory:
         return int(min(max(round(t / dt) - 1, 0), len(self.time) - 1))
 
 
-
 #: the most steps a simulation takes (bounds the kernel's loop)
 MAX_STEPS = 10_000_000
-
 
 
 def key_mask(script, duration: float, dt: float) -> np.ndarray:
@@ -147,7 +142,6 @@ def key_mask(script, duration: float, dt: float) -> np.ndarray:
     return mask
 
 
-
 def _finish(model: FlightModel, dt: float, keys, pos, heading, speed, nose, wing) -> Trajectory:
     from ..core.registry import equation
 
@@ -161,7 +155,6 @@ def _finish(model: FlightModel, dt: float, keys, pos, heading, speed, nose, wing
                       np.asarray(roll), keys)
 
 
-
 def _check_state(state: FlightState, model: FlightModel) -> FlightState:
     pos = np.asarray(state.position, dtype=np.float64)
     if pos.shape != (3,) or not np.all(np.isfinite(pos)):
@@ -173,7 +166,6 @@ def _check_state(state: FlightState, model: FlightModel) -> FlightState:
     if not 0 <= state.speed <= model.max_speed:
         raise ValueError(f"start speed must be in [0, max_speed = {model.max_speed:g}], got {state.speed!r}")
     return state
-
 
 
 def simulate(script, duration: float, dt: float = 1.0 / 60.0, start: FlightState | None = None,
@@ -196,7 +188,6 @@ def simulate(script, duration: float, dt: float = 1.0 / 60.0, start: FlightState
               outputs=outs, device=dev)
     pos, heading, speed, nose, wing = (o.numpy()[:n] for o in outs)
     return _finish(model, dt, keys, pos, heading, speed, nose, wing)
-
 
 
 def simulate_c(script, duration: float, dt: float = 1.0 / 60.0, start: FlightState | None = None,

@@ -1,5 +1,5 @@
 """The flight technique (init / update / render / resize, the scene interface of pywarp.core.scenes): cloud arrays
-of the oc text (:func:`pywarp.kernels.voxel.cloud_volume`) placed along a scripted flight, their light volumes, and
+of the oc text (:func:`pywarp.flight.clouds.cloud_volume`) placed along a scripted flight, their light volumes, and
 the volume renderer of :mod:`pywarp.kernels.volume` (row bands on every core through
 :class:`pywarp.core.runtime.TileLauncher`) with the aircraft of :mod:`pywarp.kernels.flight`.
 
@@ -78,7 +78,7 @@ class FlightTechnique:
                                      model=s.flight_model(), device=self.device)
 
     def _build_clouds(self) -> None:
-        from ..kernels.voxel import cloud_volume
+        from .clouds import cloud_volume
 
         s = self.settings
         boxes = S.cloud_boxes(s, self.trajectory)

@@ -38,7 +38,6 @@ class PlacedVolume:
                              f"{self.extent}")
 
 
-
 def occupancy(density: np.ndarray) -> np.ndarray:
     """Brick occupancy of a uint8 volume (nz, ny, nx), as ``ccl_volume_occupancy``: brick b of BRICK^3 voxels is 1
     when any voxel of indices B b - 1 .. B b + B (B = BRICK, clamped) is > 0 -- every voxel a trilinear sample
@@ -58,7 +57,6 @@ def occupancy(density: np.ndarray) -> np.ndarray:
                 x0, x1 = max(bx * BRICK - 1, 0), min(bx * BRICK + BRICK, d.shape[2] - 1) + 1
                 out[bz, by, bx] = row[x0:x1].any()
     return out
-
 
 
 def skip_distance(density: np.ndarray) -> np.ndarray:
@@ -83,7 +81,6 @@ def skip_distance(density: np.ndarray) -> np.ndarray:
         out[grown & ~reached] = m
         reached = grown
     return out
-
 
 
 @dataclass
@@ -156,7 +153,6 @@ class VolumeSet:
         return w["grids"], w["count"], w["density"], w["light"], w["skip"]
 
 
-
 def c_grids(vset: VolumeSet):
     """``ccl_volume_grid[count]`` pointing into the NumPy arrays of ``vset`` (kept alive with the returned tuple)."""
     from ..core.binding import ffi
@@ -181,7 +177,6 @@ def c_grids(vset: VolumeSet):
     return arr, keep
 
 
-
 def light_c(values: dict, volume: PlacedVolume) -> np.ndarray:
     """``ccl_volume_light`` of one volume (the C reference of :meth:`VolumeSet.compute_light`)."""
     from ..core.binding import ffi, lib, status_error
@@ -196,7 +191,6 @@ def light_c(values: dict, volume: PlacedVolume) -> np.ndarray:
     return out
 
 
-
 def _c_camera(cam):
     from ..core.binding import ffi
 
@@ -207,7 +201,6 @@ def _c_camera(cam):
         for i, v in enumerate(cam.column_major(name)):
             arr[i] = float(v)
     return c
-
 
 
 def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: int) -> np.ndarray:
@@ -230,7 +223,6 @@ def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: 
     return out
 
 
-
 def pixels_warp(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: int,
                 device: str | None = None) -> np.ndarray:
     """:func:`volume_pixel` at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
@@ -243,7 +235,6 @@ def pixels_warp(values: dict, vset: VolumeSet, camera, xs, ys, width: int, heigh
                                                   camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), xa, ya,
                                                   width, height], outputs=[out], device=dev)
     return out.numpy()
-
 
 
 def render(vset: VolumeSet, values: dict, camera, width: int, height: int, launcher=None) -> np.ndarray:

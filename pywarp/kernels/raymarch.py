@@ -29,8 +29,9 @@ Choices where the thesis gives no value (each a named parameter; see also the he
 """
 from __future__ import annotations
 
+import linecache
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, make_dataclass
 
 import numpy as np
 import warp as wp
@@ -625,123 +626,69 @@ declare("vc-A35", c="ccl_raymarch_sphere", make_warp=lambda eq, device: _sphere_
 
 # --- vc-A36: constants ------------------------------------------------------------------------------------------------
 
-@wp.struct
-class VcConstantTable:
-    """Warp twin of ``ccl_vc_constant_table`` (field by field)."""
-
-    base_texture_size: int
-    base_texture_channels: int
-    detail_texture_size: int
-    detail_texture_channels: int
-    low_freq_fbm_weights: wp.vec3
-    high_freq_fbm_weights: wp.vec3
-    detail_erosion: float
-    powder_factor: float
-    schlick_fit: wp.vec2
-    cloud_types: wp.vec3
-    gradient_cumulus: wp.vec4
-    gradient_stratocumulus: wp.vec4
-    gradient_stratus: wp.vec4
-    view_samples_zenith: int
-    view_samples_horizon: int
-    light_samples: int
-    light_samples_near: int
-    light_far_factor: float
-    reprojection_block: int
-    reprojection_cycle: int
-    tone_map_constant: float
-    cie_clear_sky_bcde: wp.vec4
-    low_cloud_top_km: float
-    middle_cloud_base_km: float
-    middle_cloud_top_km: float
-    high_cloud_base_km: float
-    rayleigh_blue_nm: float
-    rayleigh_blue_vs_red: float
-    rayleigh_red_nm: float
+#: vc-A36, the constants collected from the thesis, stated once (the reasons are in ``ccl_vc_constant_table``,
+#: cclouds/raymarch.h): field -> an int, a float, or a tuple of 2-4 floats, in the order of the C struct. The Warp
+#: struct :class:`VcConstantTable`, its kernel-side constructor :func:`raymarch_vc_constants`, the host record
+#: :class:`VcConstants` and both evaluators are derived from this table; tests/kernels/test_raymarch.py pins it to
+#: ``ccl_raymarch_vc_constants`` field by field.
+VC_CONSTANTS = {
+    "base_texture_size": 128, "base_texture_channels": 4, "detail_texture_size": 32, "detail_texture_channels": 3,
+    "low_freq_fbm_weights": (0.625, 0.25, 0.125), "high_freq_fbm_weights": (0.625, 0.25, 0.125),
+    "detail_erosion": 0.2, "powder_factor": 2.0, "schlick_fit": (1.55, 0.55), "cloud_types": (0.0, 0.5, 1.0),
+    "gradient_cumulus": (0.01, 0.30, 0.6, 0.95), "gradient_stratocumulus": (0.01, 0.25, 0.3, 0.65),
+    "gradient_stratus": (0.01, 0.05, 0.0, 0.20), "view_samples_zenith": 64, "view_samples_horizon": 128,
+    "light_samples": 6, "light_samples_near": 5, "light_far_factor": 3.0, "reprojection_block": 4,
+    "reprojection_cycle": 16, "tone_map_constant": 0.03, "cie_clear_sky_bcde": (-0.32, 10.0, -3.0, 0.45),
+    "low_cloud_top_km": 2.0, "middle_cloud_base_km": 2.0, "middle_cloud_top_km": 6.0, "high_cloud_base_km": 6.0,
+    "rayleigh_blue_nm": 400.0, "rayleigh_blue_vs_red": 10.0, "rayleigh_red_nm": 700.0,
+}
+_VC_TYPES = {int: ("int", int, int), float: ("float", float, float), 2: ("wp.vec2", wp.vec2, tuple),
+             3: ("wp.vec3", wp.vec3, tuple), 4: ("wp.vec4", wp.vec4, tuple)}
 
 
-@wp.func
-def raymarch_vc_constants() -> VcConstantTable:
-    """vc-A36: the constants collected from the thesis, usable inside kernels."""
-    c = VcConstantTable()
-    c.base_texture_size = 128
-    c.base_texture_channels = 4
-    c.detail_texture_size = 32
-    c.detail_texture_channels = 3
-    c.low_freq_fbm_weights = wp.vec3(0.625, 0.25, 0.125)
-    c.high_freq_fbm_weights = wp.vec3(0.625, 0.25, 0.125)
-    c.detail_erosion = 0.2
-    c.powder_factor = 2.0
-    c.schlick_fit = wp.vec2(1.55, 0.55)
-    c.cloud_types = wp.vec3(0.0, 0.5, 1.0)
-    c.gradient_cumulus = wp.vec4(0.01, 0.30, 0.6, 0.95)
-    c.gradient_stratocumulus = wp.vec4(0.01, 0.25, 0.3, 0.65)
-    c.gradient_stratus = wp.vec4(0.01, 0.05, 0.0, 0.20)
-    c.view_samples_zenith = 64
-    c.view_samples_horizon = 128
-    c.light_samples = 6
-    c.light_samples_near = 5
-    c.light_far_factor = 3.0
-    c.reprojection_block = 4
-    c.reprojection_cycle = 16
-    c.tone_map_constant = 0.03
-    c.cie_clear_sky_bcde = wp.vec4(-0.32, 10.0, -3.0, 0.45)
-    c.low_cloud_top_km = 2.0
-    c.middle_cloud_base_km = 2.0
-    c.middle_cloud_top_km = 6.0
-    c.high_cloud_base_km = 6.0
-    c.rayleigh_blue_nm = 400.0
-    c.rayleigh_blue_vs_red = 10.0
-    c.rayleigh_red_nm = 700.0
-    return c
+def _vc_field(value) -> tuple[str, type, type]:
+    """(Warp type as written in a kernel, Warp type, host type) of a :data:`VC_CONSTANTS` value."""
+    return _VC_TYPES[len(value) if isinstance(value, tuple) else type(value)]
 
 
-@dataclass(frozen=True)
-class VcConstants:
-    """The constants of vc-A36 (float32 values as stored by C and Warp; tuples for the weight/break-point lists)."""
+def _vc_constants_func():
+    """:func:`raymarch_vc_constants` written from the table: one assignment per field, as a kernel would state it
+    (generated like the registry's evaluation kernels, with its source in linecache for Warp's code generator)."""
+    body = ["def raymarch_vc_constants() -> VcConstantTable:",
+            '    """vc-A36: the constants collected from the thesis, usable inside kernels."""',
+            "    c = VcConstantTable()"]
+    for name, v in VC_CONSTANTS.items():
+        wtype = _vc_field(v)[0]
+        value = f"{wtype}({', '.join(map(repr, v))})" if isinstance(v, tuple) else repr(v)
+        body.append(f"    c.{name} = {value}")
+    body.append("    return c")
+    src = "\n".join(body) + "\n"
+    filename = f"<pywarp generated {__name__}.raymarch_vc_constants>"
+    linecache.cache[filename] = (len(src), None, src.splitlines(True), filename)
+    ns = {"wp": wp, "VcConstantTable": VcConstantTable, "__name__": __name__}
+    exec(compile(src, filename, "exec"), ns)
+    return wp.func(ns["raymarch_vc_constants"])
 
-    base_texture_size: int
-    base_texture_channels: int
-    detail_texture_size: int
-    detail_texture_channels: int
-    low_freq_fbm_weights: tuple
-    high_freq_fbm_weights: tuple
-    detail_erosion: float
-    powder_factor: float
-    schlick_fit: tuple
-    cloud_types: tuple
-    gradient_cumulus: tuple
-    gradient_stratocumulus: tuple
-    gradient_stratus: tuple
-    view_samples_zenith: int
-    view_samples_horizon: int
-    light_samples: int
-    light_samples_near: int
-    light_far_factor: float
-    reprojection_block: int
-    reprojection_cycle: int
-    tone_map_constant: float
-    cie_clear_sky_bcde: tuple
-    low_cloud_top_km: float
-    middle_cloud_base_km: float
-    middle_cloud_top_km: float
-    high_cloud_base_km: float
-    rayleigh_blue_nm: float
-    rayleigh_blue_vs_red: float
-    rayleigh_red_nm: float
+
+VcConstantTable = wp.struct(type("VcConstantTable", (), {
+    "__doc__": "Warp twin of ``ccl_vc_constant_table`` (field by field, from :data:`VC_CONSTANTS`).",
+    "__module__": __name__, "__qualname__": "VcConstantTable",
+    "__annotations__": {name: _vc_field(v)[1] for name, v in VC_CONSTANTS.items()}}))
+raymarch_vc_constants = _vc_constants_func()
+
+VcConstants = make_dataclass("VcConstants", [(name, _vc_field(v)[2]) for name, v in VC_CONSTANTS.items()],
+                             frozen=True, namespace={
+                                 "__module__": __name__,
+                                 "__doc__": "The constants of vc-A36 (float32 values as stored by C and Warp; tuples "
+                                            "for the weight/break-point lists)."})
 
 
 def _to_constants(get) -> VcConstants:
     """Build VcConstants from ``get(name)`` returning a number or a sequence; floats rounded through float32."""
     out = {}
-    for fd in fields(VcConstants):
-        v = get(fd.name)
-        if fd.type in ("int", int):
-            out[fd.name] = int(v)
-        elif fd.type in ("tuple", tuple):
-            out[fd.name] = tuple(_f32(x) for x in v)
-        else:
-            out[fd.name] = _f32(v)
+    for name, v in VC_CONSTANTS.items():
+        x = get(name)
+        out[name] = tuple(_f32(c) for c in x) if isinstance(v, tuple) else int(x) if isinstance(v, int) else _f32(x)
     return VcConstants(**out)
 
 

@@ -95,7 +95,6 @@ class ParticleSystem:
                 "count": self.count}
 
 
-
 def _simulate_args(frames, requested, dt, capacity, warm, variant):
     for name, v in (("frames", frames), ("requested", requested)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
@@ -111,7 +110,6 @@ def _simulate_args(frames, requested, dt, capacity, warm, variant):
     return int(frames), int(requested), float(dt), int(capacity), bool(warm), VARIANT.check(variant)
 
 
-
 def simulate_warp(eq, device):
     # not element-wise: a stateful system (the count grows by one per frame; particles respawn) run for n frames
     def particles_simulate(frames, requested, dt=1.0 / 60.0, capacity=None, warm=False, variant="corrected",
@@ -125,7 +123,6 @@ def simulate_warp(eq, device):
         return ps.state()
 
     return particles_simulate
-
 
 
 def simulate_c(eq):
@@ -155,13 +152,11 @@ def simulate_c(eq):
     return particles_simulate
 
 
-
 def particles_streak_np(speed, persistence_s, radius):
     """:func:`particles_streak` on NumPy arrays (the same float32 operations), for the per-frame vertex stage."""
     sp = np.asarray(speed, np.float32)
     length = sp * np.float32(persistence_s)
     return length, (length / np.float32(6.0)) / (np.float32(2.0) * np.asarray(radius, np.float32) + length)
-
 
 
 def pack_mask(mask: np.ndarray) -> np.ndarray:
@@ -177,18 +172,15 @@ def pack_mask(mask: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(q.transpose(1, 0, 2)).reshape(-1)
 
 
-
 def pack_normals(normals: np.ndarray) -> np.ndarray:
     """The mask's entry normals (n, n, 3) column-major like :func:`pack_mask` (texel (my, mx) at 3 (mx n + my))."""
     return np.ascontiguousarray(np.asarray(normals, np.float32).transpose(1, 0, 2)).reshape(-1)
-
 
 
 def capture_scale(fov_capture: float) -> float:
     """Offset scale of the refraction vector in capture texture units, 0.5 / tan(fov_capture / 2) (float32): a drop in
     the centre of the view then samples its refracted direction exactly."""
     return float(np.float32(0.5) / np.tan(np.float32(0.5) * np.float32(fov_capture)))
-
 
 
 def bin_sprites(sprites: np.ndarray, width: int, height: int, tile: int = 8) -> tuple[np.ndarray, np.ndarray, int]:
@@ -224,7 +216,6 @@ def bin_sprites(sprites: np.ndarray, width: int, height: int, tile: int = 8) -> 
     start = np.zeros(ntiles + 1, np.int64)
     start[1:] = np.cumsum(np.bincount(t, minlength=ntiles))
     return start.astype(np.int32), items, tiles_x
-
 
 
 def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, streaks, filter, opacity,
@@ -265,7 +256,6 @@ def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, s
     return bg, cap, m, sp, float(fv), float(fc), int(bool(streaks)), FILTERS[filter], float(op)
 
 
-
 #: The frame pass on the CPU: one thread per screen tile of TILE x TILE pixels that composites the tile's drops one
 #: after the other (a drop's taps then follow each other in time and its mask column stays in cache: 3-4x faster
 #: than a thread per pixel for 10 000 streaks); 24-64 px tiles measure the same, 32 keeps 240 tiles in a 640 x 360
@@ -273,9 +263,7 @@ def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, s
 TILE = 32
 
 
-
 TILE_PIXEL = 8
-
 
 
 def _light_args(lights, positions, normals, sp, m):
@@ -296,7 +284,6 @@ def _light_args(lights, positions, normals, sp, m):
         raise ValueError(f"normals must be the mask's ({m.shape[0]}, {m.shape[1]}, 3) finite entry normals, got "
                          f"shape {nrm.shape}")
     return v, pos, nrm
-
 
 
 def composite(background, capture, mask, sprites, fov_view, fov_capture=math.radians(150.0), streaks=False,
@@ -365,7 +352,6 @@ def composite(background, capture, mask, sprites, fov_view, fov_capture=math.rad
     return frame if cpu else out.numpy()
 
 
-
 def composite_pixels(background, capture, mask, sprites, xs, ys, fov_view, fov_capture=math.radians(150.0),
                      streaks=False, filter="nearest", opacity=1.0, *, lights: dict | None = None, positions=None,
                      normals=None, impl="warp", device=None) -> np.ndarray:
@@ -427,7 +413,6 @@ def composite_pixels(background, capture, mask, sprites, xs, ys, fov_view, fov_c
     return out.numpy()
 
 
-
 def composite_warp(eq, device):
     # not element-wise: a whole frame (every pixel composites the drops whose billboard covers it)
     def particles_composite(background, capture, mask, sprites, fov_view, fov_capture=math.radians(150.0),
@@ -436,7 +421,6 @@ def composite_warp(eq, device):
                          device=device)
 
     return particles_composite
-
 
 
 def composite_c(eq):

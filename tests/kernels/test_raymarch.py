@@ -430,6 +430,29 @@ def test_vc_constants_agree_with_the_named_defaults():
     assert k.schlick_fit == (float(np.float32(1.55)), float(np.float32(0.55)))
 
 
+@pytest.mark.spec("vc-A36")
+def test_vc_constants_table_is_the_c_table():
+    """VC_CONSTANTS, the one Python statement of vc-A36 (the Warp struct, its constructor and the host record are
+    derived from it), holds the fields of ccl_vc_constant_table in the C order, with the C values (float32) and
+    the C shapes (int, float, float[n] as an n-tuple)."""
+    from pywarp.core.binding import ffi, lib
+
+    ct = ffi().typeof("ccl_vc_constant_table")
+    assert list(rm.VC_CONSTANTS) == [name for name, _ in ct.fields]
+    c = lib().ccl_raymarch_vc_constants()
+    for name, field in ct.fields:
+        v = rm.VC_CONSTANTS[name]
+        if field.type.kind == "array":
+            assert isinstance(v, tuple) and len(v) == field.type.length, name
+            assert [float(np.float32(x)) for x in v] == list(getattr(c, name)), name
+        elif field.type.cname == "int":
+            assert type(v) is int and v == getattr(c, name), name
+        else:
+            assert field.type.cname == "float" and type(v) is float, name
+            assert float(np.float32(v)) == getattr(c, name), name
+    assert list(rm.VcConstantTable.vars) == list(rm.VC_CONSTANTS)
+
+
 # --- C vs Warp --------------------------------------------------------------------------------------------------------
 
 @pytest.mark.spec("vc-A14", "vc-A18", "vc-A19", "vc-A21", "vc-A23", "vc-A24", "vc-A35")
