@@ -51,7 +51,7 @@ def bench_drops(width: int = 640, height: int = 360, repeat: int = 3, workers=No
         if n in TABLE_6_2:
             row["table_6_2_fps"] = TABLE_6_2[n]
         rows.append(row)
-    from ..kernels import rain as R
+    from . import drops as R
 
     mask_ms = {}
     for method in ("sphere", "outline", "exact") if masks else ():

@@ -303,7 +303,7 @@ def composite(background, capture, mask, sprites, fov_view, fov_capture=math.rad
 
     ``lights``: the light-drop model (rr-A1..rr-CF, ``ccl_particles_shade_pixel_lit``) -- a dict of the fields of
     :data:`LIGHT_DEFAULTS`; then ``positions`` (k, 3) (each sprite's drop centre, camera-relative scene units) and
-    ``normals`` (the mask's (m, m, 3) entry normals, ``pywarp.kernels.rain.drop_mask(..., normals=True)``) are
+    ``normals`` (the mask's (m, m, 3) entry normals, ``pywarp.rain.drops.drop_mask(..., normals=True)``) are
     required. Lights that change nothing (no colour, ambient 1) skip the model: the unlit frame, bit for bit."""
     from ..core.runtime import launcher as shared_launcher
 

@@ -155,7 +155,7 @@ def drop_mask(shape: str, method: str, size: int) -> tuple[np.ndarray, float, np
 
 
 def _build_mask(a: float, method: str, size: int) -> tuple[np.ndarray, float, np.ndarray]:
-    from ..kernels import rain as R
+    from . import drops as R
 
     m, normals = R.drop_mask(size, a, method=method, normals=True)
     extent = 1.0 if method == "sphere" else float(np.asarray(R.drop_extent(a)).ravel()[0]) / a
@@ -163,7 +163,7 @@ def _build_mask(a: float, method: str, size: int) -> tuple[np.ndarray, float, np
 
 
 def sphere_mask(size: int, n_water: float = 1.33) -> np.ndarray:
-    """A sphere's refraction mask in NumPy float64 (an independent check of ``pywarp.kernels.rain.drop_mask``) (rays along +z through both surfaces; (0, 0, 0) where the exit
+    """A sphere's refraction mask in NumPy float64 (an independent check of ``pywarp.rain.drops.drop_mask``) (rays along +z through both surfaces; (0, 0, 0) where the exit
     is totally reflected), the encoding of ``ccl_rain_mask``: row 0 the top, (x, y, z) the exit direction (x right,
     y up, z away from the viewer), a the inside flag."""
     j = np.arange(size)

@@ -242,7 +242,7 @@ def test_packed_mask_holds_the_shader_quotients_column_major(rng):
 # --- the light-drop model in the frame (rr-A1..rr-CF) --------------------------------------------------------------
 
 def _lit_inputs(rng, streaks):
-    from pywarp.kernels import rain as R
+    from pywarp.rain import drops as R
 
     bg, cap, _, sp = _scene(rng, h=30, w=48, n=25, streaks=streaks)
     mask, normals = R.drop_mask(32, 1.0, method="sphere", normals=True)

@@ -40,7 +40,7 @@ def test_settings_refuse_bad_values():
 
 @pytest.mark.spec("rr-alg-3.1.1")
 def test_scene_mask_matches_an_independent_sphere():
-    from pywarp.kernels import rain as R
+    from pywarp.rain import drops as R
 
     m = np.asarray(R.drop_mask(64, 1.0, method="sphere"))
     ref = sphere_mask(64)
