@@ -10,6 +10,7 @@ import pytest
 from helpers import assert_twins_agree
 
 import pywarp
+from pywarp.clouds import raymarch as crm
 from pywarp.kernels import raymarch as rm
 
 EPS32 = float(np.finfo(np.float32).eps)
@@ -331,7 +332,7 @@ def test_ray_jitter_offsets_are_uniform():
 @pytest.mark.parametrize("impl", IMPLS)
 def test_march_volume_sphere_and_box(impl):
     mv = pywarp.equation("vc-A35", impl=impl)
-    box = lambda *a, **k: rm.march_box(*a, impl=impl, **k)  # noqa: E731
+    box = lambda *a, **k: crm.march_box(*a, impl=impl, **k)  # noqa: E731
     pts, dt = mv([0, 0, -5], [0, 0, 2], (0, 0, 0), 1.0, 4)  # any direction length: normalized
     np.testing.assert_array_equal(pts[:, 2], [-0.75, -0.25, 0.25, 0.75])
     assert dt == 0.5
@@ -482,8 +483,8 @@ def test_raymarch_c_and_warp_agree_on_random_inputs(rng):
             w = pywarp.equation("vc-A35")(o, d, kw["centre"], kw["radius"], 8)
             cc = pywarp.equation("vc-A35", impl="c")(o, d, kw["centre"], kw["radius"], 8)
         else:
-            w = rm.march_box(o, d, kw["box_min"], kw["box_max"], 8)
-            cc = rm.march_box(o, d, kw["box_min"], kw["box_max"], 8, impl="c")
+            w = crm.march_box(o, d, kw["box_min"], kw["box_max"], 8)
+            cc = crm.march_box(o, d, kw["box_min"], kw["box_max"], 8, impl="c")
         for a, b in zip(w, cc):  # the march is not element-wise: compare its arrays directly
             np.testing.assert_array_equal(np.isnan(a), np.isnan(b))
             assert np.array_equal(a[~np.isnan(a)], b[~np.isnan(b)]), kw
@@ -548,4 +549,4 @@ def test_raymarch_bad_input_raises_value_error_naming_parameter(impl):
     with pytest.raises(ValueError, match=r"^offset must be in \[0, 1\)"):
         eq("vc-A35")(o, (0, 0, 1), o, 1.0, 4, offset=1.0)
     with pytest.raises(ValueError, match=r"^box_min must be <= box_max"):
-        rm.march_box(o, (0, 0, 1), (1, 0, 0), (0, 1, 1), 4, impl=impl)
+        crm.march_box(o, (0, 0, 1), (1, 0, 0), (0, 1, 1), 4, impl=impl)
