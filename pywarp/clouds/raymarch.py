@@ -1,7 +1,7 @@
-"""The host side of the uniform march through a bounding volume (vc-A35, cclouds/raymarch.h): rays checked and
-broadcast on NumPy arrays, marched through a sphere (the evaluators the registry names for vc-A35) or an axis-aligned
-box (:func:`march_box`) by the Warp kernel or the C functions. The equations and kernels are
-:mod:`pywarp.kernels.raymarch`.
+"""The host side of the raymarch topic (cclouds/raymarch.h): the uniform march through a bounding volume (vc-A35) on
+NumPy rays -- through a sphere (the evaluators the registry names for vc-A35) or an axis-aligned box (:func:`march_box`)
+by the Warp kernel or the C functions -- and the evaluators of the vc-A36 constants table (:class:`VcConstants` from the
+Warp struct or the C struct). The equations, the table and the kernels are :mod:`pywarp.kernels.raymarch`.
 """
 from __future__ import annotations
 
@@ -9,7 +9,8 @@ import numpy as np
 import warp as wp
 
 from ..kernels.camera import _finite_float, _vec3_value
-from ..kernels.raymarch import march_volume_kernel
+from ..kernels.raymarch import (VC_CONSTANTS, VcConstants, VcConstantTable, _f32, march_volume_kernel,
+                               vc_constants_kernel)
 
 
 def _march_args(origin, direction, n, offset, name):
@@ -116,3 +117,38 @@ def sphere_warp(eq, device=None):
 def sphere_c(eq):
     """The C evaluator of vc-A35 (``ccl_raymarch_sphere``)."""
     return _sphere_evaluator("c")
+
+
+def _to_constants(get) -> VcConstants:
+    """Build VcConstants from ``get(name)`` returning a number or a sequence; floats rounded through float32."""
+    out = {}
+    for name, v in VC_CONSTANTS.items():
+        x = get(name)
+        out[name] = tuple(_f32(c) for c in x) if isinstance(v, tuple) else int(x) if isinstance(v, int) else _f32(x)
+    return VcConstants(**out)
+
+
+def constants_warp(eq, device=None):
+    """The evaluator of vc-A36 (a table, not an array) on Warp: the constants as a kernel reads them."""
+    from ..core.runtime import resolve_device
+
+    dev = resolve_device(device)
+
+    def call():
+        arr = wp.empty(1, dtype=VcConstantTable, device=dev)
+        wp.launch(vc_constants_kernel, dim=1, inputs=[arr], device=dev)
+        rec = arr.numpy()[0]
+        return _to_constants(lambda name: rec[name])
+
+    return call
+
+
+def constants_c(eq):
+    """The C evaluator of vc-A36 (``ccl_raymarch_vc_constants``)."""
+    from ..core.binding import lib
+
+    def call():
+        p = lib().ccl_raymarch_vc_constants()
+        return _to_constants(lambda name: getattr(p, name))
+
+    return call

@@ -534,8 +534,8 @@ declare("vc-A35", c="ccl_raymarch_sphere", make_warp="pywarp.clouds.raymarch:sph
 #: vc-A36, the constants collected from the thesis, stated once (the reasons are in ``ccl_vc_constant_table``,
 #: cclouds/raymarch.h): field -> an int, a float, or a tuple of 2-4 floats, in the order of the C struct. The Warp
 #: struct :class:`VcConstantTable`, its kernel-side constructor :func:`raymarch_vc_constants`, the host record
-#: :class:`VcConstants` and both evaluators are derived from this table; tests/kernels/test_raymarch.py pins it to
-#: ``ccl_raymarch_vc_constants`` field by field.
+#: :class:`VcConstants` and the evaluators (pywarp.clouds.raymarch) are derived from this table;
+#: tests/kernels/test_raymarch.py pins it to ``ccl_raymarch_vc_constants`` field by field.
 VC_CONSTANTS = {
     "base_texture_size": 128, "base_texture_channels": 4, "detail_texture_size": 32, "detail_texture_channels": 3,
     "low_freq_fbm_weights": (0.625, 0.25, 0.125), "high_freq_fbm_weights": (0.625, 0.25, 0.125),
@@ -588,46 +588,14 @@ VcConstants = make_dataclass("VcConstants", [(name, _vc_field(v)[2]) for name, v
                                             "for the weight/break-point lists)."})
 
 
-def _to_constants(get) -> VcConstants:
-    """Build VcConstants from ``get(name)`` returning a number or a sequence; floats rounded through float32."""
-    out = {}
-    for name, v in VC_CONSTANTS.items():
-        x = get(name)
-        out[name] = tuple(_f32(c) for c in x) if isinstance(v, tuple) else int(x) if isinstance(v, int) else _f32(x)
-    return VcConstants(**out)
-
-
 @wp.kernel
-def _eval_vc_constants(out: wp.array(dtype=VcConstantTable)):
+def vc_constants_kernel(out: wp.array(dtype=VcConstantTable)):
     out[0] = raymarch_vc_constants()
 
 
-def _warp_vc_constants(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def call():
-        arr = wp.empty(1, dtype=VcConstantTable, device=dev)
-        wp.launch(_eval_vc_constants, dim=1, inputs=[arr], device=dev)
-        rec = arr.numpy()[0]
-        return _to_constants(lambda name: rec[name])
-
-    return call
-
-
-def _c_vc_constants(eq):
-    from ..core.binding import lib
-
-    def call():
-        p = lib().ccl_raymarch_vc_constants()
-        return _to_constants(lambda name: getattr(p, name))
-
-    return call
-
-
 # Not element-wise: the result is a table of constants (a struct of scalars and short vectors), not an array.
-declare("vc-A36", c="ccl_raymarch_vc_constants", make_warp=_warp_vc_constants, make_c=_c_vc_constants,
+declare("vc-A36", c="ccl_raymarch_vc_constants", make_warp="pywarp.clouds.raymarch:constants_warp",
+        make_c="pywarp.clouds.raymarch:constants_c",
         summary="raymarch_vc_constants() -> VcConstants: the constants collected from the thesis (texture sizes, fBm "
                 "weights, erosion, powder, Schlick fit, cloud types, gradient break points, sample counts, "
                 "reprojection block and cycle, tone-map constant, CIE clear sky, cloud altitudes, Rayleigh ratio).",
