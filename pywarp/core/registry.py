@@ -13,7 +13,7 @@ A topic module (``pywarp/kernels/<topic>.py``) writes the ``@wp.func`` twin of a
 
 From that one declaration come: the element-wise evaluation kernel (generated from the function's annotations, in
 the topic's Warp module), the NumPy-in / NumPy-out evaluators of the Warp twin and of the C function, the validation
-of every argument, the docstring, and the contract tests (``tests/registry/test_contracts.py``)::
+of every argument, the docstring, and the contract tests (``tests/core/test_contracts.py``)::
 
     >>> import pywarp
     >>> pywarp.equation("vc-2.13")(cos_theta=[1.0, 0.0], g=0.76)     # Warp, CPU
