@@ -1,7 +1,8 @@
 """The host side of the raymarch topic (cclouds/raymarch.h): the uniform march through a bounding volume (vc-A35) on
 NumPy rays -- through a sphere (the evaluators the registry names for vc-A35) or an axis-aligned box (:func:`march_box`)
-by the Warp kernel or the C functions -- and the evaluators of the vc-A36 constants table (:class:`VcConstants` from the
-Warp struct or the C struct). The equations, the table and the kernels are :mod:`pywarp.kernels.raymarch`.
+by the Warp kernel or the C functions -- and the evaluators of the vc-A36 constants table
+(:class:`pywarp.kernels.raymarch.VcConstants` from the Warp struct or the C struct). The equations, the table and the
+kernels are :mod:`pywarp.kernels.raymarch`.
 """
 from __future__ import annotations
 

@@ -144,18 +144,19 @@ def _iterations(value) -> int:
 def reproj_frame_depth(current, depth, previous, previous_depth, reduced, frame, camera, prev_camera, layer=None,
                        neighbourhood: int = 1, filter: str = "catmull_rom", iterations: int = DEPTH_ITERATIONS,
                        history: bool = True, impl: str = "warp", device=None):
-    """The depth-aware reprojection pass (twin of ``ccl_reproj_frame_depth``): pixels not rendered this frame come
-    from the previous frame at the position found through the depth of what they show (:func:`reproj_uv_depth`), else
-    from the reduced buffer, as :func:`pywarp.reproj_frame` (vc-A26/A27) otherwise.
+    """The depth-aware reprojection pass (twin of ``ccl_reproj_frame_depth``): pixels not rendered this frame come from
+    the previous frame at the position found through the depth of what they show
+    (:func:`pywarp.kernels.reproj.reproj_uv_depth`), else from the reduced buffer, as :func:`pywarp.reproj_frame`
+    (vc-A26/A27) otherwise.
 
     current (H, W[, C]), previous, reduced, frame, camera, prev_camera, layer, neighbourhood, history: as
-    ``reproj_frame``; depth (H, W): this frame's depths (km from camera.eye; :func:`reproj_surface_depth`) of the
-    pixels rendered this frame; previous_depth (H, W): the previous frame's final depths (km from prev_camera.eye; a
-    value not > 0 is unknown); filter: the sampler of the previous frame, "catmull_rom" or "bilinear" (the thesis's,
-    :data:`FILTERS`); iterations: fixed-point refinements in [0, MAX_DEPTH_ITERATIONS] (0 with "bilinear": the
-    thesis's inner-sphere point, the colours of ``reproj_frame`` bit for bit); impl: "warp" or "c".
-    Returns (frame, depth): float32, the shapes of current and depth (the depth of every pixel, km from camera.eye).
-    Everything is checked before any kernel runs.
+    ``reproj_frame``; depth (H, W): this frame's depths (km from camera.eye;
+    :func:`pywarp.kernels.reproj.reproj_surface_depth`) of the pixels rendered this frame; previous_depth (H, W): the
+    previous frame's final depths (km from prev_camera.eye; a value not > 0 is unknown); filter: the sampler of the
+    previous frame, "catmull_rom" or "bilinear" (the thesis's, :data:`pywarp.kernels.reproj.FILTERS`); iterations:
+    fixed-point refinements in [0, MAX_DEPTH_ITERATIONS] (0 with "bilinear": the thesis's inner-sphere point, the
+    colours of ``reproj_frame`` bit for bit); impl: "warp" or "c". Returns (frame, depth): float32, the shapes of
+    current and depth (the depth of every pixel, km from camera.eye). Everything is checked before any kernel runs.
     """
     if impl not in ("warp", "c"):
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
@@ -206,8 +207,9 @@ def reproj_frame_depth(current, depth, previous, previous_depth, reduced, frame,
 
 def reproj_uv_depth_at(x, y, camera, prev_camera, previous_depth, layer=None, iterations: int = DEPTH_ITERATIONS,
                        impl: str = "warp"):
-    """:func:`reproj_uv_depth` (``ccl_reproj_uv_depth``) at pixels (x, y) of a frame the size of ``previous_depth``
-    (H, W): (visible int32, u, v, t float32), arrays of the shape of x and y (for tests and figures)."""
+    """:func:`pywarp.kernels.reproj.reproj_uv_depth` (``ccl_reproj_uv_depth``) at pixels (x, y) of a frame the size of
+    ``previous_depth`` (H, W): (visible int32, u, v, t float32), arrays of the shape of x and y (for tests and
+    figures)."""
     if impl not in ("warp", "c"):
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
     lay = CloudLayer() if layer is None else layer
@@ -255,8 +257,8 @@ def reproj_uv_depth_at(x, y, camera, prev_camera, previous_depth, layer=None, it
 
 
 def surface_depth(march_depth, eye, d, layer=None, impl: str = "warp") -> np.ndarray:
-    """:func:`reproj_surface_depth` (``ccl_reproj_surface_depth``) element-wise: march depths (...,) and unit rays d
-    (..., 3) from one eye (3,); float32 (...,)."""
+    """:func:`pywarp.kernels.reproj.reproj_surface_depth` (``ccl_reproj_surface_depth``) element-wise: march depths
+    (...,) and unit rays d (..., 3) from one eye (3,); float32 (...,)."""
     if impl not in ("warp", "c"):
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
     lay = CloudLayer() if layer is None else layer

@@ -172,7 +172,8 @@ def _generate_warp(kind: str, s, device, launcher) -> np.ndarray:
 
 def base_shape_settings_codes(size, perlin_octaves, perlin_frequency, worley_cells, worley_w0, worley_w1, worley_w2,
                               combination, gamma, device=None) -> np.ndarray:
-    """Evaluate :func:`texgen_base_shape_settings_code` on NumPy arrays (no validation: any values; int32/float32)."""
+    """Evaluate :func:`pywarp.kernels.texgen.texgen_base_shape_settings_code` on NumPy arrays (no validation: any
+    values; int32/float32)."""
     from ..core.runtime import resolve_device
 
     dev = resolve_device(device)
@@ -191,8 +192,8 @@ def base_shape_settings_codes(size, perlin_octaves, perlin_frequency, worley_cel
 
 def sample_trilinear_wrap_np(tex, p, impl: str = "warp", device=None) -> np.ndarray:
     """Sample an RGBA volume ``tex`` of shape (n, n, n, 4) (n a power of two, indexed [z, y, x, c]) at texture
-    coordinates ``p`` of shape (..., 3) with :func:`texgen_sample_trilinear_wrap` (``impl="warp"``) or
-    ``ccl_texgen_sample_trilinear_wrap`` (``impl="c"``). Returns float32 (..., 4)."""
+    coordinates ``p`` of shape (..., 3) with :func:`pywarp.kernels.texgen.texgen_sample_trilinear_wrap`
+    (``impl="warp"``) or ``ccl_texgen_sample_trilinear_wrap`` (``impl="c"``). Returns float32 (..., 4)."""
     tex = np.ascontiguousarray(tex, dtype=np.float32)
     if tex.ndim != 4 or tex.shape[3] != 4 or not (tex.shape[0] == tex.shape[1] == tex.shape[2]):
         raise ValueError(f"tex must have shape (n, n, n, 4), got {tex.shape}")

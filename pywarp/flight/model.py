@@ -113,9 +113,9 @@ MAX_STEPS = 10_000_000
 
 
 def key_mask(script, duration: float, dt: float) -> np.ndarray:
-    """The keys held during each step of ``duration`` seconds: ``script`` is a sequence of ``(key, t_on, t_off)``
-    (key a name of :data:`KEYS` or a bit, times in seconds); step k (from t = k dt to (k + 1) dt) holds the keys
-    with ``t_on <= k dt < t_off``. Validated: ValueError naming the bad entry."""
+    """The keys held during each step of ``duration`` seconds: ``script`` is a sequence of ``(key, t_on, t_off)`` (key a
+    name of :data:`pywarp.kernels.flight.KEYS` or a bit, times in seconds); step k (from t = k dt to (k + 1) dt) holds
+    the keys with ``t_on <= k dt < t_off``. Validated: ValueError naming the bad entry."""
     if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
         raise ValueError(f"dt must be in (0, inf), got {dt!r}")
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration >= 0):

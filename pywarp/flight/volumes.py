@@ -85,7 +85,8 @@ def skip_distance(density: np.ndarray) -> np.ndarray:
 
 @dataclass
 class VolumeSet:
-    """Grids and their light volumes as the kernels read them (flat arrays + :class:`VolumeGrid` records)."""
+    """Grids and their light volumes as the kernels read them (flat arrays + :class:`pywarp.kernels.volume.VolumeGrid`
+    records)."""
 
     volumes: list
     light: list = field(default_factory=list)  # float32 arrays of the volumes' shapes
@@ -225,7 +226,7 @@ def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: 
 
 def pixels_warp(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: int,
                 device: str | None = None) -> np.ndarray:
-    """:func:`volume_pixel` at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
+    """:func:`pywarp.kernels.volume.volume_pixel` at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
     grids, count, dens, light, occ = vset.warp()
     dev = vset.device
     xa = wp.array(np.asarray(xs, np.int32), dtype=wp.int32, device=dev)

@@ -153,7 +153,8 @@ def simulate_c(eq):
 
 
 def particles_streak_np(speed, persistence_s, radius):
-    """:func:`particles_streak` on NumPy arrays (the same float32 operations), for the per-frame vertex stage."""
+    """:func:`pywarp.kernels.particles.particles_streak` on NumPy arrays (the same float32 operations), for the
+    per-frame vertex stage."""
     sp = np.asarray(speed, np.float32)
     length = sp * np.float32(persistence_s)
     return length, (length / np.float32(6.0)) / (np.float32(2.0) * np.asarray(radius, np.float32) + length)
@@ -292,19 +293,21 @@ def composite(background, capture, mask, sprites, fov_view, fov_capture=math.rad
               per_tile: bool | None = None) -> np.ndarray:
     """rr-code-5.2.3 / rr-code-5.2.4 over a whole frame on the Warp device: ``background`` (H, W, 3), the ``capture``
     (n, n, 3), the drop ``mask`` (m, m, 4), ``sprites`` (k, 6) in compositing order (far first; columns
-    :data:`SPRITE_FIELDS`). Returns the frame (H, W, 3) float32.
+    :data:`pywarp.kernels.particles.SPRITE_FIELDS`). Returns the frame (H, W, 3) float32.
 
-    The sprites are binned into ``tile`` x ``tile`` screen tiles (:func:`bin_sprites`); the frame starts as a copy
-    of the background and only the tiles that hold a sprite are shaded, in TileLauncher bands of those tiles, so an
-    empty frame costs a copy. ``per_tile`` (default: on the CPU) runs one thread per tile
-    (:func:`composite_tile_kernel`, ``tile`` default :data:`TILE`), else one per pixel (:func:`composite_kernel`,
-    default :data:`TILE_PIXEL`); every choice gives the same pixels, bit for bit. ``cache``: a dict the caller keeps between frames; unchanged
-    background, capture and mask arrays (the same NumPy objects) are neither checked nor copied to the device again.
+    The sprites are binned into ``tile`` x ``tile`` screen tiles (:func:`bin_sprites`); the frame starts as a copy of
+    the background and only the tiles that hold a sprite are shaded, in TileLauncher bands of those tiles, so an empty
+    frame costs a copy. ``per_tile`` (default: on the CPU) runs one thread per tile
+    (:func:`pywarp.kernels.particles.composite_tile_kernel`, ``tile`` default :data:`TILE`), else one per pixel
+    (:func:`pywarp.kernels.particles.composite_kernel`, default :data:`TILE_PIXEL`); every choice gives the same pixels,
+    bit for bit. ``cache``: a dict the caller keeps between frames; unchanged background, capture and mask arrays (the
+    same NumPy objects) are neither checked nor copied to the device again.
 
     ``lights``: the light-drop model (rr-A1..rr-CF, ``ccl_particles_shade_pixel_lit``) -- a dict of the fields of
-    :data:`LIGHT_DEFAULTS`; then ``positions`` (k, 3) (each sprite's drop centre, camera-relative scene units) and
-    ``normals`` (the mask's (m, m, 3) entry normals, ``pywarp.rain.drops.drop_mask(..., normals=True)``) are
-    required. Lights that change nothing (no colour, ambient 1) skip the model: the unlit frame, bit for bit."""
+    :data:`pywarp.kernels.particles.LIGHT_DEFAULTS`; then ``positions`` (k, 3) (each sprite's drop centre,
+    camera-relative scene units) and ``normals`` (the mask's (m, m, 3) entry normals, ``pywarp.rain.drops.drop_mask(...,
+    normals=True)``) are required. Lights that change nothing (no colour, ambient 1) skip the model: the unlit frame,
+    bit for bit."""
     from ..core.runtime import launcher as shared_launcher
 
     checked = None if cache is None else cache.setdefault("checked", {})
