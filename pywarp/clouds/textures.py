@@ -59,7 +59,7 @@ import numpy as np
 
 from ..kernels.noise import COMBINATIONS  # Perlin-Worley combination names (vc-A8)
 from ..kernels.texgen import MAX_SIZE_2D, MIN_SIZE  # cclouds/texgen.h limits
-from ..kernels import texgen as _texgen  # the whole-texture generation (Warp tile kernels, C)
+from . import texgen as _texgen  # the whole-texture generation (Warp tile kernels, C)
 
 #: Version of the generated data's definition; bump it whenever a texture's content changes for the same settings.
 FORMAT_VERSION = 1
@@ -117,7 +117,7 @@ def _check_impl(impl) -> str:
 # --- C structs ------------------------------------------------------------------------------------------------------
 
 def _c_struct(kind: str, values: dict):
-    """A cffi ``ccl_<kind>_settings *`` holding ``values`` (see :func:`pywarp.kernels.texgen.settings_struct`)."""
+    """A cffi ``ccl_<kind>_settings *`` holding ``values`` (see :func:`pywarp.clouds.texgen.settings_struct`)."""
     return _texgen.settings_struct(kind, values)
 
 
@@ -213,7 +213,7 @@ def _code_hash() -> str:
     textures cached by an older one even within one package version (a development install)."""
     root = Path(__file__).resolve().parents[1]  # the pywarp package folder
     h = hashlib.sha256()
-    for rel in ("kernels/texgen.py", "kernels/noise.py", "kernels/interp.py", "kernels/hash.py",
+    for rel in ("kernels/texgen.py", "clouds/texgen.py", "kernels/noise.py", "kernels/interp.py", "kernels/hash.py",
                 "include/cclouds/texgen.h", "include/cclouds/noise.h", "include/cclouds/interp.h",
                 "include/cclouds/hash.h"):
         f = root / rel

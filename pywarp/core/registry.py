@@ -35,7 +35,10 @@ Calling convention (the same for the Warp function, the generated kernel and the
   distinct value of that argument. The C function takes the argument itself.
 
 Entries that are not element-wise (a whole image, a sum over sample arrays, a texture generator) give their own
-evaluators, ``make_warp(eq, device)`` and ``make_c(eq)``, and no kernel is generated.
+evaluators, ``make_warp(eq, device)`` and ``make_c(eq)``, and no kernel is generated. Where that evaluator is host code
+(a particle system, a texture generator, a volume builder: it lives in a scene package), the declaration names it as
+a string ``"module:function"`` (``make_warp="pywarp.rain.particles:simulate_warp"``), imported on first use: a topic
+module of ``pywarp/kernels`` never imports upwards.
 """
 from __future__ import annotations
 
@@ -204,8 +207,9 @@ class Equation:
     references: tuple[str, ...] = ()
     summary: str = ""
     check: Callable | None = None  # extra cross-argument validation: check(**arrays_and_options)
-    make_warp: Callable | None = None
-    make_c: Callable | None = None
+    #: ``make_warp(eq, device)`` / ``make_c(eq)``, or a ``"module:function"`` string naming one (see :func:`evaluator`)
+    make_warp: Callable | str | None = None
+    make_c: Callable | str | None = None
     also: tuple[str, ...] = ()  # further catalogue IDs answered by the same function
     derived: dict = field(default_factory=dict)  # warp parameter -> (argument name, fn(value, device) -> wp.array)
     out_specs: tuple[Output, ...] = ()
@@ -411,7 +415,7 @@ def _generate_kernel(func, eq: Equation):
 def declare(cid: str, *also: str, c: str | None, args: tuple[Arg, ...] = (), options: tuple[Option, ...] = (),
             outputs: tuple[str, ...] = ("value",), summary: str = "", references: tuple[str, ...] = (),
             check: Callable | None = None, derived: dict | None = None, name: str | None = None,
-            make_warp: Callable | None = None, make_c: Callable | None = None, extra: dict | None = None,
+            make_warp: Callable | str | None = None, make_c: Callable | str | None = None, extra: dict | None = None,
             ulp: int = 2, samples: Callable | None = None, nonfinite: str = ""):
     """Decorator of a ``@wp.func``: register it as the twin of C function ``c`` for catalogue ID(s) ``cid, *also``.
 
@@ -419,9 +423,13 @@ def declare(cid: str, *also: str, c: str | None, args: tuple[Arg, ...] = (), opt
     (with each ``derived`` parameter standing in the place of its argument), and the evaluation kernel is generated
     from the annotations. ``ulp`` bounds the C vs Warp difference in the contract tests (state the reason where it
     is above 2); ``samples(rng, n)`` draws valid inputs where arguments are tied by ``check``; ``nonfinite`` says why
-    outputs may be NaN or infinite for accepted inputs (a ray miss; empty: never). Returns the Warp function
-    unchanged.
+    outputs may be NaN or infinite for accepted inputs (a ray miss; empty: never). ``make_warp``/``make_c`` may be
+    ``"module:function"`` strings, resolved on first use (:func:`evaluator`). Returns the Warp function unchanged.
     """
+
+    for label, ev in (("make_warp", make_warp), ("make_c", make_c)):
+        if isinstance(ev, str):
+            _split_ref(ev, f"{cid}: {label}")
 
     def wrap(func):
         fn = getattr(func, "func", None)
@@ -458,6 +466,36 @@ def declare(cid: str, *also: str, c: str | None, args: tuple[Arg, ...] = (), opt
         return func
 
     return wrap
+
+
+def _split_ref(ref: str, what: str) -> tuple[str, str]:
+    """(module, function) of a ``"module:function"`` reference; ValueError naming ``what`` when malformed."""
+    module, sep, name = ref.partition(":")
+    if not sep or not all(p.isidentifier() for p in module.split(".")) or not name.isidentifier():
+        raise ValueError(f"{what} must be a callable or a 'module:function' string (e.g. "
+                         f"'pywarp.rain.particles:simulate_warp'), got {ref!r}")
+    return module, name
+
+
+def evaluator(eq: Equation, impl: str) -> Callable | None:
+    """``eq.make_warp`` (``impl="warp"``) or ``eq.make_c`` (``"c"``) as a callable: a ``"module:function"`` string is
+    imported here, on first use, so that the topic module declaring it needs no import of the (scene-level) module
+    that holds it. ImportError/AttributeError name the entry and the reference."""
+    import importlib
+
+    label = "make_warp" if impl == "warp" else "make_c"
+    ev = getattr(eq, label)
+    if not isinstance(ev, str):
+        return ev
+    module, name = _split_ref(ev, f"{eq.id}: {label}")
+    try:
+        mod = importlib.import_module(module)
+    except ImportError as exc:
+        raise ImportError(f"{eq.id}: {label} {ev!r}: module {module!r} cannot be imported ({exc})") from exc
+    fn = getattr(mod, name, None)
+    if not callable(fn):
+        raise AttributeError(f"{eq.id}: {label} {ev!r}: {module} has no function {name!r}")
+    return fn
 
 
 # --- lookup ----------------------------------------------------------------------------------------------------------
@@ -637,9 +675,9 @@ def equation(cid: str, impl: str = "warp", device: str | None = None) -> Callabl
         raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
     eq = get(cid)
     if impl == "warp":
-        fn = eq.make_warp(eq, device) if eq.make_warp else _warp_eval(eq, device)
+        fn = evaluator(eq, "warp")(eq, device) if eq.make_warp else _warp_eval(eq, device)
     else:
-        fn = eq.make_c(eq) if eq.make_c else _c_eval(eq)
+        fn = evaluator(eq, "c")(eq) if eq.make_c else _c_eval(eq)
     fn.__name__ = eq.name
     fn.__qualname__ = eq.name
     fn.__doc__ = eq.docstring()

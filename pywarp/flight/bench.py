@@ -8,7 +8,7 @@
   ``preview`` -- the preview frame the viewer shows while the view moves (:meth:`FlightSettings.preview`: reduced
   resolution and a coarser step). The machine's load average is recorded with the numbers (a shared machine's load
   slows every number; compare the ratios).
-* ``clouds``: the cloud-array generation time (:func:`pywarp.kernels.voxel.bench_cloud_array`, noise + filter) by
+* ``clouds``: the cloud-array generation time (:func:`pywarp.flight.clouds.bench_cloud_array`, noise + filter) by
   size 32^3, 64^3, 128^3 and by interpolation linear / cosine / cubic -- the text calls the cubic "unusable for real
   time" (§5.1.4.3) without measuring it.
 """
@@ -97,7 +97,7 @@ def report_frame(r: dict) -> str:
 
 def bench_clouds(repeat: int = 3, workers: int | None = None, device: str = "cpu") -> dict:
     from ..core.runtime import launcher
-    from ..kernels.voxel import bench_cloud_array
+    from .clouds import bench_cloud_array
 
     lau = launcher(device, workers)
     r = bench_cloud_array(sizes=(32, 64, 128), interpolations=("linear", "cosine", "cubic"), repeats=repeat,

@@ -2,7 +2,7 @@
 (:class:`pywarp.core.scenes.Controls`; ``pywarp view flight``).
 
 The aircraft is flown live by the flight model of :mod:`pywarp.kernels.flight` (``flight_step`` through
-:func:`pywarp.kernels.flight.simulate`, the model of the settings: ``max_speed_mps``, ``point_rate_mps``,
+:func:`pywarp.flight.model.simulate`, the model of the settings: ``max_speed_mps``, ``point_rate_mps``,
 ``turn_rate``): the viewer's frame time advances the flight in fixed steps of :data:`pywarp.flight.script.DT` with
 the keys held in that frame, so a script (fixed frame time) always flies the same path. The flight starts from the
 scripted flight's state at the settings' ``time_s`` (the frame ``pywarp render flight`` shows) and goes back there
@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core.scenes import Binding, Controls, Input, Step
-from ..kernels import flight as F
+from . import model as F
 from . import script as S
 from .technique import AircraftState, FlightPose
 

@@ -1,7 +1,7 @@
 """The default scripted flight and the placement of the clouds along it.
 
 A script is a list of ``(key, t_on, t_off)``: the key (up, down, left, right, w, s -- the control table of oc
-§6.1.2) is held from ``t_on`` to ``t_off`` seconds. :func:`pywarp.kernels.flight.simulate` steps the flight model with
+§6.1.2) is held from ``t_on`` to ``t_off`` seconds. :func:`pywarp.flight.model.simulate` steps the flight model with
 a fixed dt, so the same script always gives the same trajectory.
 """
 from __future__ import annotations
@@ -30,8 +30,8 @@ DT = 1.0 / 60.0
 
 
 def trajectory(settings, device: str | None = None):
-    """The default script flown with the settings' flight model (:func:`pywarp.kernels.flight.simulate`)."""
-    from ..kernels.flight import simulate
+    """The default script flown with the settings' flight model (:func:`pywarp.flight.model.simulate`)."""
+    from .model import simulate
 
     return simulate(DEFAULT_SCRIPT, settings.flight_duration_s, dt=DT, start=settings.start_state(),
                     model=settings.flight_model(), device=device)

@@ -44,7 +44,7 @@ class FlightSettings(Settings):
     cloud_size: int = param(64, unit="voxels", kind="int", lo=32, hi=256, check=_size_check, invalidates="textures",
                             group="clouds", cli="--cloud-size", doc="edge of each cloud array (oc-5.2.1)",
                             reason="64: the noise64 of the filter listing (oc-5.2.2)")
-    # the four fields below mirror pywarp.kernels.voxel.CloudArraySettings (cover, sharpness, persistence,
+    # the four fields below mirror pywarp.flight.clouds.CloudArraySettings (cover, sharpness, persistence,
     # interpolation), declared here so that registering the scene imports no Warp (tests/flight check they agree)
     cloud_cover: float = param(128.0, unit="0..255", lo=0.0, hi=255.0, invalidates="textures", group="clouds",
                                cli="--cloud-cover",
@@ -165,9 +165,9 @@ class FlightSettings(Settings):
                              f"got {self.start_speed_mps!r}")
 
     def cloud_array(self, k: int):
-        """The cloud-array settings (``pywarp.kernels.voxel.CloudArraySettings``) of cloud ``k``, its seed derived
+        """The cloud-array settings (``pywarp.flight.clouds.CloudArraySettings``) of cloud ``k``, its seed derived
         from the scene's."""
-        from ..kernels.voxel import CloudArraySettings
+        from .clouds import CloudArraySettings
 
         return CloudArraySettings(size=self.cloud_size, seed=(self.seed * 7919 + 104729 * k) % 2 ** 32,
                                   cover=self.cloud_cover, sharpness=self.cloud_sharpness,
@@ -193,12 +193,12 @@ class FlightSettings(Settings):
         return v
 
     def flight_model(self):
-        from ..kernels.flight import FlightModel
+        from .model import FlightModel
 
         return FlightModel(max_speed=self.max_speed_mps, point_rate=self.point_rate_mps, turn_rate=self.turn_rate)
 
     def start_state(self):
-        from ..kernels.flight import FlightState
+        from .model import FlightState
 
         return FlightState(position=(0.0, self.start_altitude_m, 0.0), heading=0.0, speed=self.start_speed_mps)
 

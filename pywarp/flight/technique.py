@@ -1,5 +1,5 @@
 """The flight technique (init / update / render / resize, the scene interface of pywarp.core.scenes): cloud arrays
-of the oc text (:func:`pywarp.kernels.voxel.cloud_volume`) placed along a scripted flight, their light volumes, and
+of the oc text (:func:`pywarp.flight.clouds.cloud_volume`) placed along a scripted flight, their light volumes, and
 the volume renderer of :mod:`pywarp.kernels.volume` (row bands on every core through
 :class:`pywarp.core.runtime.TileLauncher`) with the aircraft of :mod:`pywarp.kernels.flight`.
 
@@ -20,8 +20,8 @@ from ..core.runtime import init, launcher as shared_launcher
 init()
 
 from ..kernels import camera as CAM  # noqa: E402
-from ..kernels import flight as F  # noqa: E402
-from ..kernels import volume as V  # noqa: E402
+from . import model as F  # noqa: E402
+from . import volumes as V  # noqa: E402
 from . import script as S  # noqa: E402
 from .settings import VIEWS, FlightSettings  # noqa: E402
 
@@ -52,8 +52,8 @@ class AircraftState:
 
 class FlightTechnique:
     """The flight scene's technique. ``volumes``: the placed cloud arrays with their light volumes
-    (:class:`pywarp.kernels.volume.VolumeSet`); ``trajectory``: the scripted flight
-    (:class:`pywarp.kernels.flight.Trajectory`)."""
+    (:class:`pywarp.flight.volumes.VolumeSet`); ``trajectory``: the scripted flight
+    (:class:`pywarp.flight.model.Trajectory`)."""
 
     def __init__(self, settings: FlightSettings | None = None, script=None):
         self.settings = (settings or FlightSettings()).validate()
@@ -78,7 +78,7 @@ class FlightTechnique:
                                      model=s.flight_model(), device=self.device)
 
     def _build_clouds(self) -> None:
-        from ..kernels.voxel import cloud_volume
+        from .clouds import cloud_volume
 
         s = self.settings
         boxes = S.cloud_boxes(s, self.trajectory)

@@ -5,16 +5,17 @@ Conventions: coefficients ``sigma_a`` (absorption), ``sigma_s`` (scattering), ``
 The ``*_derivative`` functions are the right-hand sides dL/dx of the ODEs vc-2.1 .. 2.4, 2.9, 2.10 along the ray.
 
 Sampled rays (vc-2.8, 2.17, 2.18, 2.34) are not element-wise: their Warp twins take 2-D arrays ``[rays, samples]``
-and a row index, march one ray per thread, and are evaluated through the registry's custom evaluators
-(``make_warp``/``make_c``): sample arrays of shape ``(..., n)`` give one result per ray, shape ``(...)``. Integrals
-are left Riemann sums over the samples ``x_k = x + k dt omega``, ``k = 0 .. n-1`` (first order in ``dt``).
+and a row index, march one ray per thread, and are evaluated through the custom evaluators of
+:mod:`pywarp.clouds.media` (``make_warp``/``make_c``): sample arrays of shape ``(..., n)`` give one result per ray,
+shape ``(...)``. Integrals are left Riemann sums over the samples ``x_k = x + k dt omega``, ``k = 0 .. n-1`` (first
+order in ``dt``).
 """
 from __future__ import annotations
 
 import numpy as np
 import warp as wp
 
-from ..core.registry import VARIANT, Arg, Equation, declare
+from ..core.registry import VARIANT, Arg, declare
 
 TWO_PI = wp.constant(6.28318530717958647692)  # 2 pi
 
@@ -123,101 +124,10 @@ def media_rte_derivative(sigma_a: float, sigma_s: float, L_e: float, L_i: float,
     return (sigma_a * L_e + sigma_s * L_i) - (sigma_a + sigma_s) * L
 
 
-# --- custom evaluators of the sampled-ray entries ---------------------------------------------------------------------
+# --- the sampled-ray entries' calling convention (their evaluators: pywarp.clouds.media) ------------------------------
 # Calling convention: the registered ``args`` are the sample arrays (shape (..., n), broadcast together) followed by
 # the per-ray arguments (broadcast to (...)); the Warp kernel takes them as 2-D / 1-D arrays in that order, then the
 # options, then the output; the C function takes (sample pointers..., n, per-ray scalars..., options..., out pointer).
-
-def _bind_rays(eq: Equation, args, kwargs):
-    """Validate a call of a sampled-ray entry: (rays shape, 2-D sample arrays, 1-D per-ray arrays, option ints)."""
-    sig = eq.signature()
-    try:
-        bound = sig.bind(*args, **kwargs)
-    except TypeError as exc:
-        raise TypeError(f"{eq.name}(): {exc}") from None
-    bound.apply_defaults()
-    n_samples = eq.extra["n_sample_args"]
-    sample_args, ray_args = eq.args[:n_samples], eq.args[n_samples:]
-    samples = []
-    for a in sample_args:
-        x = a.check(bound.arguments[a.name])
-        if x.ndim < 1:
-            raise ValueError(f"{a.name} must be an array of samples along the ray (last axis), got a scalar")
-        samples.append(x)
-    try:
-        shape = np.broadcast_shapes(*(x.shape for x in samples))
-    except ValueError:
-        shapes = ", ".join(f"{a.name}{tuple(x.shape)}" for a, x in zip(sample_args, samples))
-        raise ValueError(f"{eq.name}(): the shapes of the sample arrays do not broadcast: {shapes}") from None
-    rays_shape, n = shape[:-1], shape[-1]
-    per_ray = []
-    for a in ray_args:
-        x = a.check(bound.arguments[a.name])
-        try:
-            x = np.broadcast_to(x, rays_shape)
-        except ValueError:
-            raise ValueError(f"{eq.name}(): {a.name} of shape {tuple(x.shape)} does not broadcast to the rays shape "
-                             f"{tuple(rays_shape)} (the sample arrays without their last axis)") from None
-        per_ray.append(x)
-    opts = [o.check(bound.arguments[o.name]) for o in eq.options]
-    nrays = int(np.prod(rays_shape, dtype=np.int64))
-    samples = [np.ascontiguousarray(np.broadcast_to(x, shape).reshape(nrays, n), dtype=np.float32) for x in samples]
-    per_ray = [np.ascontiguousarray(x.reshape(nrays), dtype=np.float32) for x in per_ray]
-    if eq.check is not None:
-        eq.check(n=n, **{a.name: x for a, x in zip(sample_args, samples)},
-                 **{a.name: x for a, x in zip(ray_args, per_ray)})
-    return rays_shape, samples, per_ray, opts
-
-
-def _finish(rays_shape, out):
-    out = np.asarray(out, dtype=np.float32).reshape(rays_shape)
-    return out[()] if rays_shape == () else out
-
-
-def _make_rows_warp(eq: Equation, device):
-    # not element-wise: one thread marches one ray over its whole sample axis (kernel _rows_<name>, defined below)
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def call(*args, **kwargs):
-        rays_shape, samples, per_ray, opts = _bind_rays(eq, args, kwargs)
-        nrays = samples[0].shape[0]
-        out = np.empty(nrays, dtype=np.float32)
-        if nrays:
-            ins = [wp.array(x, dtype=float, device=dev) for x in samples]
-            ins += [wp.array(x, dtype=float, device=dev) for x in per_ray]
-            res = wp.empty(nrays, dtype=float, device=dev)
-            wp.launch(globals()[f"_rows_{eq.name}"], dim=nrays, inputs=[*ins, *opts], outputs=[res], device=dev)
-            out = res.numpy()
-        return _finish(rays_shape, out)
-
-    call.__signature__ = eq.signature()
-    return call
-
-
-def _make_rows_c(eq: Equation):
-    # not element-wise: the C function takes pointers to the n samples of one ray
-    from ..core.binding import ffi, lib, status_error
-
-    f, lb = ffi(), lib()
-    fn = getattr(lb, eq.c_symbol)
-
-    def call(*args, **kwargs):
-        rays_shape, samples, per_ray, opts = _bind_rays(eq, args, kwargs)
-        nrays, n = samples[0].shape
-        out = np.empty(nrays, dtype=np.float32)
-        res = f.new("float *")
-        for r in range(nrays):
-            ptrs = [f.cast("const float *", f.from_buffer("float[]", x[r])) if n else f.NULL for x in samples]
-            status = fn(*ptrs, n, *(float(x[r]) for x in per_ray), *opts, res)
-            status_error(status, f"{eq.c_symbol} (ray {r})")
-            out[r] = res[0]
-        return _finish(rays_shape, out)
-
-    call.__signature__ = eq.signature()
-    return call
-
 
 def _check_phase_nodes(n, **_):
     if n < 3 or n % 2 == 0:
@@ -237,9 +147,9 @@ _L_BG = Arg("L_bg", "radiance of the surface behind the medium L(x_s) >= 0", lo=
 _SAMPLES = "samples along the ray on the last axis, >= 0"
 _P_NODES = Arg("p", "phase function p(mu) [sr^-1] >= 0 at the n (odd, >= 3) uniform nodes mu_i = -1 + 2 i/(n-1) on "
                     "the last axis", lo=0.0)
-# The sampled-ray entries below are not element-wise (a sum over the sample axis of each ray): they use the custom
-# evaluators _make_rows_warp / _make_rows_c.
-_ROWS = {"make_warp": _make_rows_warp, "make_c": _make_rows_c}
+# The sampled-ray entries below are not element-wise (a sum over the sample axis of each ray): their evaluators are
+# pywarp.clouds.media's.
+_ROWS = {"make_warp": "pywarp.clouds.media:rows_warp", "make_c": "pywarp.clouds.media:rows_c"}
 
 
 # --- sampled-ray twins (one row of a [rays, samples] array) -----------------------------------------------------------

@@ -8,7 +8,7 @@ Frames and units (see ``cclouds/rain.h`` for the full statement):
   (0.5, 1.0, 3.0, 4.5 mm).
 * **Mask frame** (rr-alg-3.1.1): x right, y up, z along the viewing direction (away from the viewer; the text's
   shaders keep texels with ``z > 0``). Texel (u, v) in [-1, 1]^2 is the point (u L, v L) of the drop's mid-plane,
-  ``L = drop_extent(a)`` (outline/exact) or ``a`` (sphere). Row i, column j of a size x size mask: u = 2 (j + 0.5) /
+  ``L = rain_drop_extent(a)`` (outline/exact) or ``a`` (sphere). Row i, column j of a size x size mask: u = 2 (j + 0.5) /
   size - 1, v = 1 - 2 (i + 0.5) / size. Camera space (OpenGL) of a billboard facing f: ``x r + y u + z f``,
   ``r = normalize(f x (0, 1, 0))``, ``u = r x f``.
 * **Capture**: RGB float image, rows from the top, uv with v DOWN, perspective with vertical FOV ``fov_y``; edges
@@ -25,13 +25,13 @@ Readings of what the text leaves open (each a named parameter):
   which a light has half its intensity).
 
 Stable API used by the rain scene: :func:`rain_terminal_speed` (pywarp.rain_terminal_speed(radius_mm, slowdown)),
-:func:`rain_drop_radius`, :func:`drop_extent`, :func:`drop_mask` (cached), :func:`rain_mask_texel`,
-:func:`rain_refracted_uv`, :func:`rain_sample_capture` and the light functions -- all ``@wp.func`` usable in kernels.
+:func:`rain_drop_radius`, :func:`rain_drop_extent`, :func:`rain_mask_texel`, :func:`rain_refracted_uv`,
+:func:`rain_sample_capture` and the light functions -- all ``@wp.func`` usable in kernels. The drop's shape on NumPy
+arrays and the cached refraction mask (``drop_mask``) are :mod:`pywarp.rain.drops`.
 """
 from __future__ import annotations
 
 import math
-import threading
 
 import numpy as np
 import warp as wp
@@ -566,9 +566,9 @@ def rain_shade_pixel(capture: wp.array2d(dtype=wp.vec3), mask: wp.array2d(dtype=
 
 
 @wp.kernel
-def _shade_drop_kernel(row0: int, capture: wp.array2d(dtype=wp.vec3), mask: wp.array2d(dtype=wp.vec4), f: wp.vec3,
-                       t: float, tan_half_fov: float, aspect: float, mapping: int, filter: int,
-                       out: wp.array2d(dtype=wp.vec4)):
+def shade_drop_kernel(row0: int, capture: wp.array2d(dtype=wp.vec3), mask: wp.array2d(dtype=wp.vec4), f: wp.vec3,
+                      t: float, tan_half_fov: float, aspect: float, mapping: int, filter: int,
+                      out: wp.array2d(dtype=wp.vec4)):
     i0, j = wp.tid()
     i = row0 + i0
     n = out.shape[0]
@@ -578,72 +578,9 @@ def _shade_drop_kernel(row0: int, capture: wp.array2d(dtype=wp.vec3), mask: wp.a
     out[i, j] = rain_shade_pixel(capture, mask, f, rt, uu, t, u, v, tan_half_fov, aspect, mapping, filter)
 
 
-def _shade_args(capture, mask, centre_dir, angular_radius, fov_y_deg, aspect, mapping, filter, out_size):
-    cap = np.asarray(capture)
-    if cap.ndim != 3 or cap.shape[2] != 3 or cap.shape[0] < 1 or cap.shape[1] < 1:
-        raise ValueError(f"capture must be an (height, width, 3) RGB array, got shape {cap.shape}")
-    cap = Arg("capture").check(cap)
-    m = np.asarray(mask)
-    if m.ndim != 3 or m.shape[2] != 4 or m.shape[0] != m.shape[1] or m.shape[0] < 1:
-        raise ValueError(f"mask must be a (size, size, 4) array from drop_mask(), got shape {m.shape}")
-    m = Arg("mask").check(m)
-    c = Arg("centre_dir", unit=True, length=3).check(centre_dir)
-    if c.shape != (3,) or not c[2] < 0.0:
-        raise ValueError(f"centre_dir must be one unit 3-vector looking into the scene (z < 0), got {c.tolist()}")
-    ar = float(Arg("angular_radius", lo=0.0, hi=0.5, lo_open=True).check(angular_radius))
-    fov = float(Arg("fov_y_deg", lo=0.0, hi=179.0, lo_open=True).check(fov_y_deg))
-    asp = float(Arg("aspect", lo=0.0, hi=100.0, lo_open=True).check(aspect))
-    n = int(Arg("out_size", lo=1, hi=4096, dtype="int32").check(out_size))
-    return (np.ascontiguousarray(cap, np.float32), np.ascontiguousarray(m, np.float32), c.astype(np.float32), ar,
-            math.tan(math.radians(fov) / 2.0), asp, MAPPING.check(mapping), FILTER.check(filter), n)
-
-
-_SHADE_DOC = """rain_shade_drop(capture, mask, centre_dir, angular_radius=0.01, fov_y_deg=150, aspect=1, mapping='offset',
-filter='nearest', out_size=64) -> (out_size, out_size, 4) RGBA of one drop billboard (rr-alg-3.1): per pixel the
-mask texel (nearest), outside alpha 0; inside the capture colour at P_c (rr-alg-3.1.3), alpha 1."""
-
-
-def _shade_warp(eq, device):
-    from ..core.runtime import launcher
-
-    def rain_shade_drop(capture, mask, centre_dir, angular_radius=0.01, fov_y_deg=CAPTURE_FOV_DEG, aspect=1.0,
-                        mapping="offset", filter="nearest", out_size=64):
-        cap, m, c, ar, tan_h, asp, mp, fl, n = _shade_args(capture, mask, centre_dir, angular_radius, fov_y_deg,
-                                                           aspect, mapping, filter, out_size)
-        tl = launcher(device)
-        out = wp.empty((n, n), dtype=wp.vec4, device=tl.device)
-        tl.launch(_shade_drop_kernel, n, n,
-                  [wp.array(cap, dtype=wp.vec3, device=tl.device), wp.array(m, dtype=wp.vec4, device=tl.device),
-                   wp.vec3(*c.tolist()), float(np.float32(math.tan(ar))), float(np.float32(tan_h)), asp, mp, fl],
-                  [out])
-        return out.numpy()
-
-    rain_shade_drop.__doc__ = _SHADE_DOC
-    return rain_shade_drop
-
-
-def _shade_c(eq):
-    from ..core.binding import ffi, lib, status_error
-
-    def rain_shade_drop(capture, mask, centre_dir, angular_radius=0.01, fov_y_deg=CAPTURE_FOV_DEG, aspect=1.0,
-                        mapping="offset", filter="nearest", out_size=64):
-        cap, m, c, ar, tan_h, asp, mp, fl, n = _shade_args(capture, mask, centre_dir, angular_radius, fov_y_deg,
-                                                           aspect, mapping, filter, out_size)
-        f = ffi()
-        out = np.empty((n, n, 4), np.float32)
-        cv = f.new("ccl_vec3 *", [float(x) for x in c])[0]
-        st = lib().ccl_rain_shade_drop(f.from_buffer("float[]", cap), cap.shape[1], cap.shape[0],
-                                       f.from_buffer("float[]", m), m.shape[0], cv, ar, float(np.float32(tan_h)), asp,
-                                       mp, fl, n, f.from_buffer("float[]", out))
-        status_error(st, "ccl_rain_shade_drop")
-        return out
-
-    rain_shade_drop.__doc__ = _SHADE_DOC
-    return rain_shade_drop
-
-
 # Not element-wise: the capture and the mask are whole textures shared by every pixel of the billboard.
-@declare("rr-alg-3.1", c="ccl_rain_shade_drop", make_warp=_shade_warp, make_c=_shade_c,
+@declare("rr-alg-3.1", c="ccl_rain_shade_drop", make_warp="pywarp.rain.drops:shade_drop_warp",
+         make_c="pywarp.rain.drops:shade_drop_c",
          summary="One drop billboard: mask lookup (inside flag, refraction vector), P_o of the undeviated view "
                  "direction, P_c = P_o + refraction, capture colour at P_c (nearest or linear); see rain_shade_pixel "
                  "for the per-pixel @wp.func used by the rain scene.",
@@ -777,7 +714,7 @@ def rain_light_colour(c_o: wp.vec3, c_amb: wp.vec3, p: wp.vec3, n: wp.vec3, eye:
 # --- whole-shape helpers (not catalogue entries: evaluators of the unregistered shape functions) ----------------------
 
 @wp.kernel
-def _scalar_shape_kernel(which: int, a: wp.array(dtype=float), interp: int, out: wp.array(dtype=float)):
+def scalar_shape_kernel(which: int, a: wp.array(dtype=float), interp: int, out: wp.array(dtype=float)):
     i = wp.tid()
     if which == 0:
         out[i] = rain_drop_volume(a[i], interp)
@@ -788,8 +725,8 @@ def _scalar_shape_kernel(which: int, a: wp.array(dtype=float), interp: int, out:
 
 
 @wp.kernel
-def _surface_kernel(theta: wp.array(dtype=float), phi: wp.array(dtype=float), a: wp.array(dtype=float), interp: int,
-                    out_p: wp.array(dtype=wp.vec3), out_n: wp.array(dtype=wp.vec3)):
+def surface_kernel(theta: wp.array(dtype=float), phi: wp.array(dtype=float), a: wp.array(dtype=float), interp: int,
+                   out_p: wp.array(dtype=wp.vec3), out_n: wp.array(dtype=wp.vec3)):
     i = wp.tid()
     p, n = rain_drop_surface(theta[i], phi[i], a[i], interp)
     out_p[i] = p
@@ -797,8 +734,8 @@ def _surface_kernel(theta: wp.array(dtype=float), phi: wp.array(dtype=float), a:
 
 
 @wp.kernel
-def _mask_kernel(row0: int, a: float, deform: float, n_water: float, interp: int, method: int,
-                 out: wp.array2d(dtype=wp.vec4), out_n: wp.array2d(dtype=wp.vec3)):
+def mask_kernel(row0: int, a: float, deform: float, n_water: float, interp: int, method: int,
+                out: wp.array2d(dtype=wp.vec4), out_n: wp.array2d(dtype=wp.vec3)):
     i0, j = wp.tid()
     i = row0 + i0
     size = out.shape[0]
@@ -809,145 +746,9 @@ def _mask_kernel(row0: int, a: float, deform: float, n_water: float, interp: int
     out_n[i, j] = n
 
 
-def _impl(impl):
-    if impl not in ("warp", "c"):
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    return impl
-
-
-def _shape_inputs(a, interp):
-    k = INTERP.check(interp)
-    arr = _A.check(a)
-    _check_a(arr, interp)
-    return np.ascontiguousarray(arr, np.float32), k
-
-
-def _scalar_shape(which, cname, a, interp, impl, device):
-    arr, k = _shape_inputs(a, interp)
-    flat = arr.ravel()
-    if _impl(impl) == "c":
-        from ..core.binding import lib
-
-        fn = getattr(lib(), cname)
-        out = np.array([fn(float(x), k) for x in flat], np.float32)
-    else:
-        from ..core.runtime import resolve_device
-
-        dev = resolve_device(device)
-        o = wp.empty(flat.size, dtype=float, device=dev)
-        if flat.size:
-            wp.launch(_scalar_shape_kernel, dim=flat.size, inputs=[which, wp.array(flat, dtype=float, device=dev), k],
-                      outputs=[o], device=dev)
-        out = o.numpy()
-    out = out.reshape(arr.shape)
-    return out[()] if out.ndim == 0 else out
-
-
-def drop_volume(a, interp="table", impl="warp", device=None):
-    """Volume [mm^3] of the Beard-Chuang drop of radius ``a`` (C: ccl_rain_drop_volume); close to 4/3 pi a^3."""
-    return _scalar_shape(0, "ccl_rain_drop_volume", a, interp, impl, device)
-
-
-def drop_axis_ratio(a, interp="table", impl="warp", device=None):
-    """Axis ratio height / width of the drop of radius ``a`` (C: ccl_rain_drop_axis_ratio); 1 = sphere."""
-    return _scalar_shape(1, "ccl_rain_drop_axis_ratio", a, interp, impl, device)
-
-
-def drop_extent(a, interp="table", impl="warp", device=None):
-    """Half-size L [mm] of the drop's mask and billboard (C: ccl_rain_drop_extent): a bound of max r(theta)."""
-    return _scalar_shape(2, "ccl_rain_drop_extent", a, interp, impl, device)
-
-
-def drop_surface(theta, phi, a, interp="table", impl="warp", device=None):
-    """Points [mm] and outward unit normals (..., 3) of the axisymmetric Beard-Chuang drop at (theta, phi)
-    (rr-eq1 revolved about the vertical; C: ccl_rain_drop_surface)."""
-    th = Arg("theta", lo=0.0, hi=_PI_F32).check(theta)
-    ph = Arg("phi").check(phi)
-    arr, k = _shape_inputs(a, interp)
-    shape = np.broadcast_shapes(th.shape, ph.shape, arr.shape)
-    th, ph, aa = (np.ascontiguousarray(np.broadcast_to(x, shape).ravel(), np.float32) for x in (th, ph, arr))
-    if _impl(impl) == "c":
-        from ..core.binding import ffi, lib
-
-        nptr = ffi().new("ccl_vec3 *")
-        P = np.empty((th.size, 3), np.float32)
-        N = np.empty((th.size, 3), np.float32)
-        for i in range(th.size):
-            p = lib().ccl_rain_drop_surface(float(th[i]), float(ph[i]), float(aa[i]), k, nptr)
-            P[i] = (p.x, p.y, p.z)
-            N[i] = (nptr.x, nptr.y, nptr.z)
-    else:
-        from ..core.runtime import resolve_device
-
-        dev = resolve_device(device)
-        op = wp.empty(th.size, dtype=wp.vec3, device=dev)
-        on = wp.empty(th.size, dtype=wp.vec3, device=dev)
-        if th.size:
-            wp.launch(_surface_kernel, dim=th.size, inputs=[wp.array(th, dtype=float, device=dev),
-                                                          wp.array(ph, dtype=float, device=dev),
-                                                          wp.array(aa, dtype=float, device=dev), k],
-                      outputs=[op, on], device=dev)
-        P, N = op.numpy(), on.numpy()
-    return P.reshape(shape + (3,)), N.reshape(shape + (3,))
-
-
-_MASK_CACHE: dict = {}
-_MASK_LOCK = threading.Lock()
-_MASK_CACHE_MAX = 16
-
-
-def drop_mask(size=MASK_SIZE, a=1.0, method="sphere", interp="table", deform=1.0, n_water=1.33, normals=False,
-              impl="warp", device=None):
-    """The size x size refraction mask of rr-alg-3.1.1: float32 (size, size, 4) = (exit x, y, z, inside) per texel
-    (row 0 at the top, mask frame of :mod:`pywarp.kernels.rain`); with ``normals=True`` also the (size, size, 3)
-    entry normals. ``method``: 'sphere' (the text), 'outline' (the application's flattened outline with sphere
-    refraction), 'exact' (traced through the Beard-Chuang drop). Cached in memory per arguments (the last 16); the
-    returned arrays are read-only. ``impl='c'`` computes it with ccl_rain_mask."""
-    size = int(Arg("size", lo=1, hi=4096, dtype="int32").check(size))
-    m = METHOD.check(method)
-    k = INTERP.check(interp)
-    a_f = float(_A.check(a))
-    if m != 0:
-        _check_a(np.float32(a_f), interp)
-    d_f = float(Arg("deform", lo=0.0, hi=1.0).check(deform))
-    n_f = float(Arg("n_water", lo=1.0, hi=2.0).check(n_water))
-    _impl(impl)
-    key = (size, float(np.float32(a_f)), m, k, float(np.float32(d_f)), float(np.float32(n_f)), impl,
-           device if impl == "warp" else None)
-    with _MASK_LOCK:
-        hit = _MASK_CACHE.get(key)
-    if hit is None:
-        if impl == "c":
-            from ..core.binding import ffi, lib, status_error
-
-            f = ffi()
-            rgba = np.empty((size, size, 4), np.float32)
-            nrm = np.empty((size, size, 3), np.float32)
-            st = lib().ccl_rain_mask(size, a_f, d_f, n_f, k, m, f.from_buffer("float[]", rgba),
-                                     f.from_buffer("float[]", nrm))
-            status_error(st, "ccl_rain_mask")
-        else:
-            from ..core.runtime import launcher
-
-            tl = launcher(device)
-            o = wp.empty((size, size), dtype=wp.vec4, device=tl.device)
-            on = wp.empty((size, size), dtype=wp.vec3, device=tl.device)
-            tl.launch(_mask_kernel, size, size, [a_f, d_f, n_f, k, m], [o, on])
-            rgba, nrm = o.numpy(), on.numpy()
-        rgba.setflags(write=False)
-        nrm.setflags(write=False)
-        hit = (rgba, nrm)
-        with _MASK_LOCK:
-            if len(_MASK_CACHE) >= _MASK_CACHE_MAX:
-                _MASK_CACHE.pop(next(iter(_MASK_CACHE)))
-            _MASK_CACHE[key] = hit
-    return hit if normals else hit[0]
-
-
 __all__ = ["SHAPE_RADII", "SHAPE_TABLE", "SPEED_RADII", "SPEED_VALUES", "APP_SLOWDOWN", "MASK_SIZE", "CAPTURE_FOV_DEG",
            "INTERP", "METHOD", "MAPPING", "FILTER",
            "rain_drop_coefficient", "rain_drop_radius", "rain_drop_surface", "rain_drop_volume", "rain_drop_axis_ratio",
            "rain_drop_extent", "rain_terminal_speed", "rain_mask_texel", "rain_refracted_uv", "rain_sample_capture",
            "rain_shade_pixel", "rain_shade_drop", "rain_capture_parallax", "rain_light_a1", "rain_light_a2",
-           "rain_light_a3", "rain_light_colour", "drop_volume", "drop_axis_ratio", "drop_extent", "drop_surface",
-           "drop_mask"]
+           "rain_light_a3", "rain_light_colour"]

@@ -29,14 +29,15 @@ Choices where the thesis gives no value (each a named parameter; see also the he
 """
 from __future__ import annotations
 
+import linecache
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, make_dataclass
 
 import numpy as np
 import warp as wp
 
 from ..core.registry import Arg, Option, declare
-from .camera import _finite_float, _vec3_value
+from .camera import _finite_float
 from .hash import hash_pcg, hash_unit
 
 # --- named defaults ---------------------------------------------------------------------------------------------------
@@ -506,9 +507,9 @@ def raymarch_box(o: wp.vec3, d: wp.vec3, bmin: wp.vec3, bmax: wp.vec3, n: int, o
 
 
 @wp.kernel
-def _march_volume_kernel(origins: wp.array(dtype=wp.vec3), dirs: wp.array(dtype=wp.vec3), kind: int, a: wp.vec3,
-                         b: wp.vec3, radius: float, n: int, offset: float, points: wp.array2d(dtype=wp.vec3),
-                         dts: wp.array(dtype=float)):
+def march_volume_kernel(origins: wp.array(dtype=wp.vec3), dirs: wp.array(dtype=wp.vec3), kind: int, a: wp.vec3,
+                        b: wp.vec3, radius: float, n: int, offset: float, points: wp.array2d(dtype=wp.vec3),
+                        dts: wp.array(dtype=float)):
     r = wp.tid()
     if kind == 0:
         dts[r] = raymarch_sphere(origins[r], dirs[r], a, radius, n, offset, points, r)
@@ -516,266 +517,85 @@ def _march_volume_kernel(origins: wp.array(dtype=wp.vec3), dirs: wp.array(dtype=
         dts[r] = raymarch_box(origins[r], dirs[r], a, b, n, offset, points, r)
 
 
-def _march_args(origin, direction, n, offset, name):
-    o = np.asarray(origin, dtype=np.float64) if not isinstance(origin, str) else None
-    d = np.asarray(direction, dtype=np.float64) if not isinstance(direction, str) else None
-    for arr, nm in ((o, "origin"), (d, "direction")):
-        if arr is None or arr.ndim == 0 or arr.shape[-1] != 3:
-            raise ValueError(f"{nm} must be an array of 3-vectors (..., 3)")
-        if not np.all(np.isfinite(arr)):
-            raise ValueError(f"{nm} must be finite (no NaN or Inf)")
-    try:
-        shape = np.broadcast_shapes(o.shape[:-1], d.shape[:-1])
-    except ValueError:
-        raise ValueError(f"{name}(): origin{o.shape} and direction{d.shape} do not broadcast") from None
-    if np.any(np.sum(d * d, axis=-1) == 0.0):
-        raise ValueError("direction must be non-zero")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-        raise TypeError(f"n must be an integer, got {n!r}")
-    if n < 1:
-        raise ValueError(f"n must be >= 1, got {n}")
-    off = _finite_float(offset, "offset")
-    if not 0.0 <= off < 1.0:
-        raise ValueError(f"offset must be in [0, 1), got {offset}")
-    f32 = lambda v: np.ascontiguousarray(v, dtype=np.float32)  # noqa: E731
-    return (f32(np.broadcast_to(o, (*shape, 3)).reshape(-1, 3)), f32(np.broadcast_to(d, (*shape, 3)).reshape(-1, 3)),
-            shape, int(n), float(np.float32(off)))
-
-
-def _sphere_args(centre, radius):
-    a = _vec3_value(centre, "centre")
-    r = _finite_float(radius, "radius")
-    if r <= 0:
-        raise ValueError(f"radius must be > 0, got {radius}")
-    return np.float32(a), np.zeros(3, np.float32), float(np.float32(r))
-
-
-def _box_args(box_min, box_max):
-    a = _vec3_value(box_min, "box_min")
-    b = _vec3_value(box_max, "box_max")
-    if np.any(a > b):
-        raise ValueError(f"box_min must be <= box_max component-wise, got {a.tolist()} and {b.tolist()}")
-    return np.float32(a), np.float32(b), 0.0
-
-
-def _march(kind, impl, device, o, d, shape, n, a, b, r, off):
-    """n uniform steps of every ray through a sphere (kind 0: centre a, radius r) or a box (kind 1: a, b)."""
-    if impl == "warp":
-        from ..core.runtime import resolve_device
-
-        dev = resolve_device(device)
-        pts = wp.empty((o.shape[0], n), dtype=wp.vec3, device=dev)
-        dts = wp.empty(o.shape[0], dtype=float, device=dev)
-        if o.shape[0]:
-            wp.launch(_march_volume_kernel, dim=o.shape[0],
-                      inputs=[wp.array(o, dtype=wp.vec3, device=dev), wp.array(d, dtype=wp.vec3, device=dev), kind,
-                              wp.vec3(*a.tolist()), wp.vec3(*b.tolist()), r, n, off], outputs=[pts, dts], device=dev)
-        return pts.numpy().reshape(*shape, n, 3), dts.numpy().reshape(shape)
-    from ..core.binding import ffi, lib
-
-    F, L = ffi(), lib()
-    pts_c = F.new("ccl_vec3[]", n)
-    dt_c = F.new("float *")
-    pts = np.empty((o.shape[0], n, 3), np.float32)
-    dts = np.empty(o.shape[0], np.float32)
-    for k in range(o.shape[0]):
-        ok, dk = tuple(o[k].tolist()), tuple(d[k].tolist())
-        if kind == 0:
-            L.ccl_raymarch_sphere(ok, dk, tuple(a.tolist()), r, n, off, pts_c, dt_c)
-        else:
-            L.ccl_raymarch_box(ok, dk, tuple(a.tolist()), tuple(b.tolist()), n, off, pts_c, dt_c)
-        pts[k] = np.frombuffer(F.buffer(pts_c), dtype=np.float32).reshape(n, 3)
-        dts[k] = dt_c[0]
-    return pts.reshape(*shape, n, 3), dts.reshape(shape)
-
-
-def _sphere_evaluator(impl, device=None):
-    def raymarch_sphere(origin, direction, centre, radius, n, offset=0.5):
-        """Sample positions (..., n, 3) and step lengths (...) of n uniform steps through the sphere (centre,
-        radius) in front of the origin (direction of any non-zero length); NaN where the ray misses (vc-A35)."""
-        o, d, shape, n, off = _march_args(origin, direction, n, offset, "raymarch_sphere")
-        a, b, r = _sphere_args(centre, radius)
-        return _march(0, impl, device, o, d, shape, n, a, b, r, off)
-
-    return raymarch_sphere
-
-
-def march_box(origin, direction, box_min, box_max, n, offset=0.5, *, impl: str = "warp", device=None):
-    """vc-A35 with an axis-aligned box (``ccl_raymarch_box``): sample positions (..., n, 3) and step lengths (...) of n
-    uniform steps through the box in front of the origin (direction of any non-zero length); NaN where the ray
-    misses. ``impl="c"`` evaluates the C function. The registered vc-A35 entry is the sphere, ``raymarch_sphere``
-    (a box is not a catalogue entry of its own)."""
-    if impl not in ("warp", "c"):
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    o, d, shape, n, off = _march_args(origin, direction, n, offset, "march_box")
-    a, b, r = _box_args(box_min, box_max)
-    return _march(1, impl, device, o, d, shape, n, a, b, r, off)
-
-
-# Not element-wise: one ray gives n sample points, (..., n, 3); the same march through a box is march_box.
-declare("vc-A35", c="ccl_raymarch_sphere", make_warp=lambda eq, device: _sphere_evaluator("warp", device),
-        make_c=lambda eq: _sphere_evaluator("c"),
+# Not element-wise: one ray gives n sample points, (..., n, 3); the same march through a box is
+# pywarp.clouds.raymarch.march_box.
+declare("vc-A35", c="ccl_raymarch_sphere", make_warp="pywarp.clouds.raymarch:sphere_warp",
+        make_c="pywarp.clouds.raymarch:sphere_c",
         summary="raymarch_sphere(origin, direction, centre, radius, n, offset=0.5) -> (points (..., n, 3), dt (...)): "
                 "n uniform steps over the part of the ray in front of the origin inside a bounding sphere, sample i "
                 "at t_start + (i + offset) dt; NaN where the ray misses. The same through an axis-aligned box "
-                "(ccl_raymarch_box): pywarp.kernels.raymarch.march_box(..., impl='warp' | 'c').",
+                "(ccl_raymarch_box): pywarp.clouds.raymarch.march_box(..., impl='warp' | 'c').",
         references=("Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed., §11.3 (ray marching)",))(
     raymarch_sphere)
 
 
 # --- vc-A36: constants ------------------------------------------------------------------------------------------------
 
-@wp.struct
-class VcConstantTable:
-    """Warp twin of ``ccl_vc_constant_table`` (field by field)."""
-
-    base_texture_size: int
-    base_texture_channels: int
-    detail_texture_size: int
-    detail_texture_channels: int
-    low_freq_fbm_weights: wp.vec3
-    high_freq_fbm_weights: wp.vec3
-    detail_erosion: float
-    powder_factor: float
-    schlick_fit: wp.vec2
-    cloud_types: wp.vec3
-    gradient_cumulus: wp.vec4
-    gradient_stratocumulus: wp.vec4
-    gradient_stratus: wp.vec4
-    view_samples_zenith: int
-    view_samples_horizon: int
-    light_samples: int
-    light_samples_near: int
-    light_far_factor: float
-    reprojection_block: int
-    reprojection_cycle: int
-    tone_map_constant: float
-    cie_clear_sky_bcde: wp.vec4
-    low_cloud_top_km: float
-    middle_cloud_base_km: float
-    middle_cloud_top_km: float
-    high_cloud_base_km: float
-    rayleigh_blue_nm: float
-    rayleigh_blue_vs_red: float
-    rayleigh_red_nm: float
+#: vc-A36, the constants collected from the thesis, stated once (the reasons are in ``ccl_vc_constant_table``,
+#: cclouds/raymarch.h): field -> an int, a float, or a tuple of 2-4 floats, in the order of the C struct. The Warp
+#: struct :class:`VcConstantTable`, its kernel-side constructor :func:`raymarch_vc_constants`, the host record
+#: :class:`VcConstants` and the evaluators (pywarp.clouds.raymarch) are derived from this table;
+#: tests/kernels/test_raymarch.py pins it to ``ccl_raymarch_vc_constants`` field by field.
+VC_CONSTANTS = {
+    "base_texture_size": 128, "base_texture_channels": 4, "detail_texture_size": 32, "detail_texture_channels": 3,
+    "low_freq_fbm_weights": (0.625, 0.25, 0.125), "high_freq_fbm_weights": (0.625, 0.25, 0.125),
+    "detail_erosion": 0.2, "powder_factor": 2.0, "schlick_fit": (1.55, 0.55), "cloud_types": (0.0, 0.5, 1.0),
+    "gradient_cumulus": (0.01, 0.30, 0.6, 0.95), "gradient_stratocumulus": (0.01, 0.25, 0.3, 0.65),
+    "gradient_stratus": (0.01, 0.05, 0.0, 0.20), "view_samples_zenith": 64, "view_samples_horizon": 128,
+    "light_samples": 6, "light_samples_near": 5, "light_far_factor": 3.0, "reprojection_block": 4,
+    "reprojection_cycle": 16, "tone_map_constant": 0.03, "cie_clear_sky_bcde": (-0.32, 10.0, -3.0, 0.45),
+    "low_cloud_top_km": 2.0, "middle_cloud_base_km": 2.0, "middle_cloud_top_km": 6.0, "high_cloud_base_km": 6.0,
+    "rayleigh_blue_nm": 400.0, "rayleigh_blue_vs_red": 10.0, "rayleigh_red_nm": 700.0,
+}
+_VC_TYPES = {int: ("int", int, int), float: ("float", float, float), 2: ("wp.vec2", wp.vec2, tuple),
+             3: ("wp.vec3", wp.vec3, tuple), 4: ("wp.vec4", wp.vec4, tuple)}
 
 
-@wp.func
-def raymarch_vc_constants() -> VcConstantTable:
-    """vc-A36: the constants collected from the thesis, usable inside kernels."""
-    c = VcConstantTable()
-    c.base_texture_size = 128
-    c.base_texture_channels = 4
-    c.detail_texture_size = 32
-    c.detail_texture_channels = 3
-    c.low_freq_fbm_weights = wp.vec3(0.625, 0.25, 0.125)
-    c.high_freq_fbm_weights = wp.vec3(0.625, 0.25, 0.125)
-    c.detail_erosion = 0.2
-    c.powder_factor = 2.0
-    c.schlick_fit = wp.vec2(1.55, 0.55)
-    c.cloud_types = wp.vec3(0.0, 0.5, 1.0)
-    c.gradient_cumulus = wp.vec4(0.01, 0.30, 0.6, 0.95)
-    c.gradient_stratocumulus = wp.vec4(0.01, 0.25, 0.3, 0.65)
-    c.gradient_stratus = wp.vec4(0.01, 0.05, 0.0, 0.20)
-    c.view_samples_zenith = 64
-    c.view_samples_horizon = 128
-    c.light_samples = 6
-    c.light_samples_near = 5
-    c.light_far_factor = 3.0
-    c.reprojection_block = 4
-    c.reprojection_cycle = 16
-    c.tone_map_constant = 0.03
-    c.cie_clear_sky_bcde = wp.vec4(-0.32, 10.0, -3.0, 0.45)
-    c.low_cloud_top_km = 2.0
-    c.middle_cloud_base_km = 2.0
-    c.middle_cloud_top_km = 6.0
-    c.high_cloud_base_km = 6.0
-    c.rayleigh_blue_nm = 400.0
-    c.rayleigh_blue_vs_red = 10.0
-    c.rayleigh_red_nm = 700.0
-    return c
+def _vc_field(value) -> tuple[str, type, type]:
+    """(Warp type as written in a kernel, Warp type, host type) of a :data:`VC_CONSTANTS` value."""
+    return _VC_TYPES[len(value) if isinstance(value, tuple) else type(value)]
 
 
-@dataclass(frozen=True)
-class VcConstants:
-    """The constants of vc-A36 (float32 values as stored by C and Warp; tuples for the weight/break-point lists)."""
-
-    base_texture_size: int
-    base_texture_channels: int
-    detail_texture_size: int
-    detail_texture_channels: int
-    low_freq_fbm_weights: tuple
-    high_freq_fbm_weights: tuple
-    detail_erosion: float
-    powder_factor: float
-    schlick_fit: tuple
-    cloud_types: tuple
-    gradient_cumulus: tuple
-    gradient_stratocumulus: tuple
-    gradient_stratus: tuple
-    view_samples_zenith: int
-    view_samples_horizon: int
-    light_samples: int
-    light_samples_near: int
-    light_far_factor: float
-    reprojection_block: int
-    reprojection_cycle: int
-    tone_map_constant: float
-    cie_clear_sky_bcde: tuple
-    low_cloud_top_km: float
-    middle_cloud_base_km: float
-    middle_cloud_top_km: float
-    high_cloud_base_km: float
-    rayleigh_blue_nm: float
-    rayleigh_blue_vs_red: float
-    rayleigh_red_nm: float
+def _vc_constants_func():
+    """:func:`raymarch_vc_constants` written from the table: one assignment per field, as a kernel would state it
+    (generated like the registry's evaluation kernels, with its source in linecache for Warp's code generator)."""
+    body = ["def raymarch_vc_constants() -> VcConstantTable:",
+            '    """vc-A36: the constants collected from the thesis, usable inside kernels."""',
+            "    c = VcConstantTable()"]
+    for name, v in VC_CONSTANTS.items():
+        wtype = _vc_field(v)[0]
+        value = f"{wtype}({', '.join(map(repr, v))})" if isinstance(v, tuple) else repr(v)
+        body.append(f"    c.{name} = {value}")
+    body.append("    return c")
+    src = "\n".join(body) + "\n"
+    filename = f"<pywarp generated {__name__}.raymarch_vc_constants>"
+    linecache.cache[filename] = (len(src), None, src.splitlines(True), filename)
+    ns = {"wp": wp, "VcConstantTable": VcConstantTable, "__name__": __name__}
+    exec(compile(src, filename, "exec"), ns)
+    return wp.func(ns["raymarch_vc_constants"])
 
 
-def _to_constants(get) -> VcConstants:
-    """Build VcConstants from ``get(name)`` returning a number or a sequence; floats rounded through float32."""
-    out = {}
-    for fd in fields(VcConstants):
-        v = get(fd.name)
-        if fd.type in ("int", int):
-            out[fd.name] = int(v)
-        elif fd.type in ("tuple", tuple):
-            out[fd.name] = tuple(_f32(x) for x in v)
-        else:
-            out[fd.name] = _f32(v)
-    return VcConstants(**out)
+VcConstantTable = wp.struct(type("VcConstantTable", (), {
+    "__doc__": "Warp twin of ``ccl_vc_constant_table`` (field by field, from :data:`VC_CONSTANTS`).",
+    "__module__": __name__, "__qualname__": "VcConstantTable",
+    "__annotations__": {name: _vc_field(v)[1] for name, v in VC_CONSTANTS.items()}}))
+raymarch_vc_constants = _vc_constants_func()
+
+VcConstants = make_dataclass("VcConstants", [(name, _vc_field(v)[2]) for name, v in VC_CONSTANTS.items()],
+                             frozen=True, namespace={
+                                 "__module__": __name__,
+                                 "__doc__": "The constants of vc-A36 (float32 values as stored by C and Warp; tuples "
+                                            "for the weight/break-point lists)."})
 
 
 @wp.kernel
-def _eval_vc_constants(out: wp.array(dtype=VcConstantTable)):
+def vc_constants_kernel(out: wp.array(dtype=VcConstantTable)):
     out[0] = raymarch_vc_constants()
 
 
-def _warp_vc_constants(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def call():
-        arr = wp.empty(1, dtype=VcConstantTable, device=dev)
-        wp.launch(_eval_vc_constants, dim=1, inputs=[arr], device=dev)
-        rec = arr.numpy()[0]
-        return _to_constants(lambda name: rec[name])
-
-    return call
-
-
-def _c_vc_constants(eq):
-    from ..core.binding import lib
-
-    def call():
-        p = lib().ccl_raymarch_vc_constants()
-        return _to_constants(lambda name: getattr(p, name))
-
-    return call
-
-
 # Not element-wise: the result is a table of constants (a struct of scalars and short vectors), not an array.
-declare("vc-A36", c="ccl_raymarch_vc_constants", make_warp=_warp_vc_constants, make_c=_c_vc_constants,
+declare("vc-A36", c="ccl_raymarch_vc_constants", make_warp="pywarp.clouds.raymarch:constants_warp",
+        make_c="pywarp.clouds.raymarch:constants_c",
         summary="raymarch_vc_constants() -> VcConstants: the constants collected from the thesis (texture sizes, fBm "
                 "weights, erosion, powder, Schlick fit, cloud types, gradient break points, sample counts, "
                 "reprojection block and cycle, tone-map constant, CIE clear sky, cloud altitudes, Rayleigh ratio).",

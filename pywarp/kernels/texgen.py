@@ -23,19 +23,17 @@ The readings chosen where the thesis is silent are stated in the C header (``ccl
 * every channel is clamped to [0, 1], then gamma-corrected (vc-4.6);
 * weather map: R coverage, G precipitation (the spec's reading of the "blue twice" erratum), B cloud type, A = 0.
 
-The Python-side generator classes, settings dataclasses and the cache are in :mod:`pywarp.clouds.textures`.
+The whole-texture generation, the C settings structs and the NumPy evaluators are :mod:`pywarp.clouds.texgen`; the
+generator classes, settings dataclasses and the cache are in :mod:`pywarp.clouds.textures`.
 """
 from __future__ import annotations
-
-import math
-from dataclasses import asdict, is_dataclass
 
 import numpy as np
 import warp as wp
 
-from ..core.registry import Arg, Equation, declare
+from ..core.registry import Arg, declare
 from .common import clamp01
-from .noise import (COMBINATION, COMBINATIONS, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3, noise_perlin_worley,
+from .noise import (COMBINATION, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3, noise_perlin_worley,
                     noise_worley3, perm_array)
 
 # Field order of the settings validation codes (1-based; 0 = valid), as checked by ccl_texgen_base_shape_settings_check.
@@ -184,145 +182,6 @@ def seed_tables(seed: int, device=None) -> SeedTables:
     return t
 
 
-# --- custom evaluators of the entries that are not element-wise (a whole texture, a settings check) -----------------
-
-def _texture_evaluator(kind: str, name: str):
-    """make_warp / make_c of a whole-texture entry: ``fn(settings)`` with a settings object of ``kind`` (the
-    dataclasses of :mod:`pywarp.clouds.settings`, validated when built) -> float32 array of ``settings.shape``."""
-    def make(impl):
-        def factory(eq: Equation, device=None):
-            def call(settings):
-                if not (is_dataclass(settings) and hasattr(settings, "shape")):
-                    raise TypeError(f"{name}(): settings must be a texture settings object "
-                                    f"(pywarp.clouds.settings), got {type(settings).__name__}")
-                return generate(kind, settings, impl=impl, device=device)
-
-            return call
-
-        return factory if impl == "warp" else (lambda eq: factory(eq, None))
-
-    return make("warp"), make("c")
-
-
-_curl_warp, _curl_c = _texture_evaluator("curl_noise", "texgen_curl_noise")
-_weather_warp, _weather_c = _texture_evaluator("weather_map", "texgen_weather_map")
-
-
-def _settings_check_make(impl):
-    """make_warp / make_c of vc-A13: ``fn(settings)`` -> the name of the first invalid field of a base-shape settings
-    object in the order of the C check, or None. The dataclass itself refuses invalid values when built, so this
-    checks one built with ``dataclasses.replace`` or a look-alike (any object with the fields)."""
-    def factory(eq: Equation, device=None):
-        def call(settings):
-            v = {f: getattr(settings, f) for f in ("size", "perlin_octaves", "perlin_frequency", "worley_cells",
-                                                    "worley_weights", "combination", "gamma")}
-            if impl == "c":
-                from ..core.binding import ffi, lib
-
-                out = ffi().new("const char **")
-                st = settings_struct("base_shape", {**v, "seed": getattr(settings, "seed", 0)})
-                if lib().ccl_texgen_base_shape_settings_check(st, out) == 0:
-                    return None
-                return ffi().string(out[0]).decode()
-            w0, w1, w2 = v["worley_weights"]
-            comb = COMBINATIONS.get(v["combination"], -1) if isinstance(v["combination"], str) else -1
-            code = int(base_shape_settings_codes(v["size"], v["perlin_octaves"], v["perlin_frequency"],
-                                                 v["worley_cells"], w0, w1, w2, comb, v["gamma"], device=device))
-            return None if code == 0 else BASE_SHAPE_FIELDS[code - 1]
-
-        return call
-
-    return factory if impl == "warp" else (lambda eq: factory(eq, None))
-
-
-# --- whole textures (the generators' work; pywarp.clouds.textures adds the interface and the cache) ----------------
-
-_C_TYPES = {"base_shape": "ccl_base_shape_settings", "detail_shape": "ccl_detail_shape_settings",
-            "curl_noise": "ccl_curl_noise_settings", "weather_map": "ccl_weather_map_settings"}
-
-
-def settings_struct(kind: str, values: dict):
-    """A cffi ``ccl_<kind>_settings *`` holding ``values`` (dataclass field -> value), without Python validation:
-    a value that does not fit its C type raises ValueError/TypeError naming the field."""
-    from ..core.binding import ffi
-
-    f = ffi()
-    st = f.new(f"{_C_TYPES[kind]} *")
-    for name, v in values.items():
-        try:
-            if name == "worley_weights":
-                w = list(v)
-                if len(w) != 3:
-                    raise ValueError(f"worley_weights must hold 3 weights, got {len(w)}")
-                for i in range(3):
-                    st.worley_weights[i] = w[i]
-            elif name == "combination":
-                if v not in COMBINATIONS:
-                    raise ValueError(f"combination must be one of {', '.join(map(repr, COMBINATIONS))}, got {v!r}")
-                st.combination = COMBINATIONS[v]
-            else:
-                setattr(st, name, v)
-        except OverflowError:
-            raise ValueError(f"{name} is out of range of its C type, got {v!r}") from None
-        except TypeError as exc:
-            raise TypeError(f"{name}: {exc}") from None
-    return st
-
-
-def generate(kind: str, s, impl: str = "warp", device: str | None = None, launcher=None) -> np.ndarray:
-    """Texture ``kind`` ('base_shape', 'detail_shape', 'curl_noise', 'weather_map') of the settings dataclass ``s``
-    (validated when it was built; pywarp.clouds.settings) as a new float32 array of ``s.shape``. ``impl="warp"``:
-    the tile kernels through ``launcher`` (default the process-wide TileLauncher of ``device``: row bands on every
-    core); ``impl="c"``: ``ccl_texgen_<kind>``, one thread. pywarp.clouds.textures adds the generator interface and
-    the cache."""
-    if kind not in _C_TYPES:
-        raise ValueError(f"kind must be one of {', '.join(map(repr, _C_TYPES))}, got {kind!r}")
-    if impl == "c":
-        return _generate_c(kind, s)
-    if impl != "warp":
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    return _generate_warp(kind, s, device, launcher)
-
-
-def _generate_c(kind: str, s) -> np.ndarray:
-    from ..core.binding import ffi, lib, status_error
-
-    st = settings_struct(kind, asdict(s))
-    out = np.empty(s.shape, dtype=np.float32)
-    status = getattr(lib(), f"ccl_texgen_{kind}")(st, ffi().from_buffer("float[]", out), out.size)
-    status_error(status, f"ccl_texgen_{kind}")
-    return out
-
-
-def _generate_warp(kind: str, s, device, launcher) -> np.ndarray:
-    from ..core.runtime import launcher as shared_launcher
-
-    lau = launcher if launcher is not None else shared_launcher(device)
-    dev = lau.device
-    n = s.size
-    if kind == "base_shape":
-        w0, w1, w2 = s.worley_weights
-        out = wp.empty((n, n, n), dtype=wp.vec4, device=dev)
-        lau.launch(_base_shape_kernel, n * n, n,
-                   [n, s.seed, s.perlin_octaves, s.perlin_frequency, s.worley_cells, w0, w1, w2, s.gamma,
-                    COMBINATIONS[s.combination], perm_array(s.seed, dev)], [out])
-    elif kind == "detail_shape":
-        w0, w1, w2 = s.worley_weights
-        out = wp.empty((n, n, n), dtype=wp.vec3, device=dev)
-        lau.launch(_detail_shape_kernel, n * n, n, [n, s.seed, s.worley_cells, w0, w1, w2, s.gamma], [out])
-    elif kind == "curl_noise":
-        out = wp.empty((n, n), dtype=wp.vec2, device=dev)
-        lau.launch(_curl_noise_kernel, n, n, [n, s.frequency, s.fd_step, perm_array(s.seed, dev)], [out])
-    else:
-        out = wp.empty((n, n), dtype=wp.vec4, device=dev)
-        seeds = [(s.seed + i) & 0xFFFFFFFF for i in range(3)]
-        lau.launch(_weather_map_kernel, n, n,
-                   [n, s.seed, s.perlin_frequency, s.perlin_octaves, s.perlin_contrast, s.worley_cells,
-                    s.worley_octaves, COMBINATIONS[s.combination], s.coverage, s.precipitation, s.cloud_type,
-                    s.cloud_type_variation, *(perm_array(x, dev) for x in seeds)], [out])
-    return np.array(out.numpy(), dtype=np.float32, copy=True).reshape(s.shape)
-
-
 # --- vc-4.6 -----------------------------------------------------------------------------------------------------------
 
 # powf of two libms (glibc, Warp's runtime), each within 1 ulp of the exact value: <= 2 ulp apart (the default bound)
@@ -412,7 +271,8 @@ def texgen_detail_shape_texel(ix: int, iy: int, iz: int, size: int, seed: wp.uin
 
 
 # A whole texture from a settings object (not element-wise): custom evaluators through pywarp.clouds.textures.
-@declare("vc-A11", c="ccl_texgen_curl_noise", name="texgen_curl_noise", make_warp=_curl_warp, make_c=_curl_c,
+@declare("vc-A11", c="ccl_texgen_curl_noise", name="texgen_curl_noise",
+         make_warp="pywarp.clouds.texgen:curl_noise_warp", make_c="pywarp.clouds.texgen:curl_noise_c",
          outputs=("curl",),
          summary="The 2-D curl-noise texture, generated (the thesis loads a shipped file): texel (ix, iy) = "
                  "noise_curl2 = (dpsi/dy, -dpsi/dx) of Perlin noise psi at (u, v) * frequency with period = "
@@ -431,8 +291,9 @@ def texgen_curl_noise_texel(ix: int, iy: int, size: int, frequency: int, fd_step
 
 
 # A whole texture from a settings object (not element-wise): custom evaluators through pywarp.clouds.textures.
-@declare("vc-A12", c="ccl_texgen_weather_map", name="texgen_weather_map", make_warp=_weather_warp,
-         make_c=_weather_c, outputs=("weather",),
+@declare("vc-A12", c="ccl_texgen_weather_map", name="texgen_weather_map",
+         make_warp="pywarp.clouds.texgen:weather_map_warp", make_c="pywarp.clouds.texgen:weather_map_c",
+         outputs=("weather",),
          summary="Procedural weather map (the thesis loads a shipped file): R = coverage = clamp(remap(n, 1 - c, 1, "
                  "0, 1)) of a tileable Perlin-Worley noise n and the global coverage c; G = precipitation (the "
                  "spec's reading of the 'blue twice' erratum) from an independent Perlin fBm; B = cloud type = "
@@ -474,8 +335,8 @@ def _lattice_ok(base: int, octaves: int) -> int:
 # A settings object (a struct in C), not element-wise values: custom evaluators. The Warp twin checks the fields in
 # the order of the C check; pywarp.clouds.settings builds the settings dataclasses (vc-A13) and their defaults.
 @declare("vc-A13", c="ccl_texgen_base_shape_settings_check", name="texgen_base_shape_settings_check",
-         make_warp=_settings_check_make("warp"),
-         make_c=_settings_check_make("c"), outputs=("field",),
+         make_warp="pywarp.clouds.texgen:settings_check_warp", make_c="pywarp.clouds.texgen:settings_check_c",
+         outputs=("field",),
          summary="Validation of the base-shape generator settings (BaseShapeSettings of vc-A13; the thesis gives no "
                  "values -- the documented defaults are in pywarp.clouds.settings and ccl_texgen_<kind>_settings_"
                  "default): texgen_base_shape_settings_check(settings) returns the name of the first invalid field "
@@ -579,9 +440,9 @@ def texgen_sample_trilinear_wrap(tex: wp.array3d(dtype=wp.vec4), size_mask: int,
 # --- tile kernels (row0 first; TileLauncher) ------------------------------------------------------------------------
 
 @wp.kernel
-def _base_shape_kernel(row0: int, size: int, seed: wp.uint32, perlin_octaves: int, perlin_frequency: int,
-                       worley_cells: int, worley_w0: float, worley_w1: float, worley_w2: float, gamma: float,
-                       combination: int, perm: wp.array(dtype=wp.int32), out: wp.array3d(dtype=wp.vec4)):
+def base_shape_kernel(row0: int, size: int, seed: wp.uint32, perlin_octaves: int, perlin_frequency: int,
+                      worley_cells: int, worley_w0: float, worley_w1: float, worley_w2: float, gamma: float,
+                      combination: int, perm: wp.array(dtype=wp.int32), out: wp.array3d(dtype=wp.vec4)):
     i, j = wp.tid()
     row = row0 + i
     iz = row // size
@@ -591,8 +452,8 @@ def _base_shape_kernel(row0: int, size: int, seed: wp.uint32, perlin_octaves: in
 
 
 @wp.kernel
-def _detail_shape_kernel(row0: int, size: int, seed: wp.uint32, worley_cells: int, worley_w0: float,
-                         worley_w1: float, worley_w2: float, gamma: float, out: wp.array3d(dtype=wp.vec3)):
+def detail_shape_kernel(row0: int, size: int, seed: wp.uint32, worley_cells: int, worley_w0: float,
+                        worley_w1: float, worley_w2: float, gamma: float, out: wp.array3d(dtype=wp.vec3)):
     i, j = wp.tid()
     row = row0 + i
     iz = row // size
@@ -601,19 +462,19 @@ def _detail_shape_kernel(row0: int, size: int, seed: wp.uint32, worley_cells: in
 
 
 @wp.kernel
-def _curl_noise_kernel(row0: int, size: int, frequency: int, fd_step: float, perm: wp.array(dtype=wp.int32),
-                       out: wp.array2d(dtype=wp.vec2)):
+def curl_noise_kernel(row0: int, size: int, frequency: int, fd_step: float, perm: wp.array(dtype=wp.int32),
+                      out: wp.array2d(dtype=wp.vec2)):
     i, j = wp.tid()
     iy = row0 + i
     out[iy, j] = texgen_curl_noise_texel(j, iy, size, frequency, fd_step, perm)
 
 
 @wp.kernel
-def _weather_map_kernel(row0: int, size: int, seed: wp.uint32, perlin_frequency: int, perlin_octaves: int,
-                        perlin_contrast: float, worley_cells: int, worley_octaves: int, combination: int,
-                        coverage: float, precipitation: float, cloud_type: float, cloud_type_variation: float,
-                        perm0: wp.array(dtype=wp.int32), perm1: wp.array(dtype=wp.int32),
-                        perm2: wp.array(dtype=wp.int32), out: wp.array2d(dtype=wp.vec4)):
+def weather_map_kernel(row0: int, size: int, seed: wp.uint32, perlin_frequency: int, perlin_octaves: int,
+                       perlin_contrast: float, worley_cells: int, worley_octaves: int, combination: int,
+                       coverage: float, precipitation: float, cloud_type: float, cloud_type_variation: float,
+                       perm0: wp.array(dtype=wp.int32), perm1: wp.array(dtype=wp.int32),
+                       perm2: wp.array(dtype=wp.int32), out: wp.array2d(dtype=wp.vec4)):
     i, j = wp.tid()
     iy = row0 + i
     out[iy, j] = texgen_weather_map_texel(j, iy, size, seed, perlin_frequency, perlin_octaves, perlin_contrast,
@@ -622,86 +483,28 @@ def _weather_map_kernel(row0: int, size: int, seed: wp.uint32, perlin_frequency:
 
 
 @wp.kernel
-def _sample_kernel(tex: wp.array3d(dtype=wp.vec4), size_mask: int, p: wp.array(dtype=wp.vec3),
-                   out: wp.array(dtype=wp.vec4)):
+def sample_kernel(tex: wp.array3d(dtype=wp.vec4), size_mask: int, p: wp.array(dtype=wp.vec3),
+                  out: wp.array(dtype=wp.vec4)):
     i = wp.tid()
     out[i] = texgen_sample_trilinear_wrap(tex, size_mask, p[i])
 
 
 @wp.kernel
-def _settings_code_kernel(size: wp.array(dtype=wp.int32), perlin_octaves: wp.array(dtype=wp.int32),
-                          perlin_frequency: wp.array(dtype=wp.int32), worley_cells: wp.array(dtype=wp.int32),
-                          worley_w0: wp.array(dtype=float), worley_w1: wp.array(dtype=float),
-                          worley_w2: wp.array(dtype=float), combination: wp.array(dtype=wp.int32),
-                          gamma: wp.array(dtype=float), out: wp.array(dtype=wp.int32)):
+def settings_code_kernel(size: wp.array(dtype=wp.int32), perlin_octaves: wp.array(dtype=wp.int32),
+                         perlin_frequency: wp.array(dtype=wp.int32), worley_cells: wp.array(dtype=wp.int32),
+                         worley_w0: wp.array(dtype=float), worley_w1: wp.array(dtype=float),
+                         worley_w2: wp.array(dtype=float), combination: wp.array(dtype=wp.int32),
+                         gamma: wp.array(dtype=float), out: wp.array(dtype=wp.int32)):
     # the settings check over arrays of settings, for base_shape_settings_codes (vc-A13 is not element-wise)
     i = wp.tid()
     out[i] = texgen_base_shape_settings_code(size[i], perlin_octaves[i], perlin_frequency[i], worley_cells[i],
                                              worley_w0[i], worley_w1[i], worley_w2[i], combination[i], gamma[i])
 
 
-# --- NumPy-level helpers ----------------------------------------------------------------------------------------------
+# --- argument check of the size entries ------------------------------------------------------------------------------
 
 def is_pow2(n) -> np.ndarray:
     n = np.asarray(n, dtype=np.int64)
     return (n > 0) & ((n & (n - 1)) == 0)
 
 
-def base_shape_settings_codes(size, perlin_octaves, perlin_frequency, worley_cells, worley_w0, worley_w1, worley_w2,
-                              combination, gamma, device=None) -> np.ndarray:
-    """Evaluate :func:`texgen_base_shape_settings_code` on NumPy arrays (no validation: any values; int32/float32)."""
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-    ints = [np.asarray(v, dtype=np.int32) for v in (size, perlin_octaves, perlin_frequency, worley_cells)]
-    flts = [np.asarray(v, dtype=np.float32) for v in (worley_w0, worley_w1, worley_w2)]
-    comb, gam = np.asarray(combination, dtype=np.int32), np.asarray(gamma, dtype=np.float32)
-    shape = np.broadcast_shapes(*(a.shape for a in (*ints, *flts, comb, gam)))
-    flat = [np.ascontiguousarray(np.broadcast_to(a, shape).ravel()) for a in (*ints, *flts, comb, gam)]
-    n = int(math.prod(shape))
-    out = wp.zeros(max(n, 1), dtype=wp.int32, device=dev)
-    if n:
-        wp.launch(_settings_code_kernel, dim=n, inputs=[wp.array(a, device=dev) for a in flat],
-                  outputs=[out], device=dev)
-    return out.numpy()[:n].reshape(shape)
-
-
-def sample_trilinear_wrap_np(tex, p, impl: str = "warp", device=None) -> np.ndarray:
-    """Sample an RGBA volume ``tex`` of shape (n, n, n, 4) (n a power of two, indexed [z, y, x, c]) at texture
-    coordinates ``p`` of shape (..., 3) with :func:`texgen_sample_trilinear_wrap` (``impl="warp"``) or
-    ``ccl_texgen_sample_trilinear_wrap`` (``impl="c"``). Returns float32 (..., 4)."""
-    tex = np.ascontiguousarray(tex, dtype=np.float32)
-    if tex.ndim != 4 or tex.shape[3] != 4 or not (tex.shape[0] == tex.shape[1] == tex.shape[2]):
-        raise ValueError(f"tex must have shape (n, n, n, 4), got {tex.shape}")
-    n = tex.shape[0]
-    if not is_pow2(n):
-        raise ValueError(f"tex size must be a power of two, got {n}")
-    p = np.asarray(p, dtype=np.float32)
-    if p.shape[-1:] != (3,):
-        raise ValueError(f"p must have shape (..., 3), got {p.shape}")
-    if not np.all(np.isfinite(p)) or np.any(np.abs(p.astype(np.float64)) * n >= 2.0 ** 23):
-        raise ValueError("p must be finite with |p| * size < 2^23")
-    flat = np.ascontiguousarray(p.reshape(-1, 3))
-    if impl == "c":
-        from ..core.binding import ffi, lib
-
-        f, lb = ffi(), lib()
-        buf = f.from_buffer("float[]", tex)
-        outs = f.new("float[4]")
-        res = np.empty((flat.shape[0], 4), dtype=np.float32)
-        for k, (x, y, z) in enumerate(flat.tolist()):
-            lb.ccl_texgen_sample_trilinear_wrap(buf, n - 1, x, y, z, outs, outs + 1, outs + 2, outs + 3)
-            res[k] = (outs[0], outs[1], outs[2], outs[3])
-    elif impl == "warp":
-        from ..core.runtime import resolve_device
-
-        dev = resolve_device(device)
-        t = wp.array(tex, dtype=wp.vec4, device=dev)
-        out = wp.empty(max(flat.shape[0], 1), dtype=wp.vec4, device=dev)
-        if flat.shape[0]:
-            wp.launch(_sample_kernel, dim=flat.shape[0], inputs=[t, n - 1, wp.array(flat, dtype=wp.vec3, device=dev)],
-                      outputs=[out], device=dev)
-        res = out.numpy()[:flat.shape[0]]
-    else:
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    return res.reshape(p.shape[:-1] + (4,))

@@ -28,7 +28,6 @@ noise (:mod:`pywarp.kernels.noise`).
 """
 from __future__ import annotations
 
-import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, Option, declare
@@ -359,39 +358,3 @@ def octave_seed(seed: int, octave: int) -> int:
     return (hash_pcg_py(int(seed) & 0xFFFFFFFF) + int(octave)) & 0xFFFFFFFF
 
 
-def octave_image(size: int = 256, base: int = 16, octaves: int = 5, persistence: float = 0.5, seed: int = 0,
-                 smoothing: str = "elias", interpolation: str = "linear", variant: str = "corrected",
-                 value_range: str = "unit", impl: str = "warp"):
-    """The 2-D procedure of §5.1.1 on a ``size`` x ``size`` image: layer i is the smoothed lattice of
-    ``base * 2^i`` cells per image edge up-sampled to the final resolution (``interpolation="linear"``: bilinear, as
-    the text), pixel (px, py) at lattice coordinate (px, py) * base * 2^i / size; the layers are weighted by
-    valuenoise_amplitude and summed, divided by the amplitude sum. Defaults: 16 x 16 -> 256 x 256 = 5 layers
-    (16, 32, 64, 128, 256), persistence 0.5. Returns ``(layers, amplitudes, total)``: the unweighted layers (list of
-    float32 (size, size) arrays indexed [py, px]), the amplitudes, and the sum -- equal to valuenoise_fbm (dims 2)
-    at (px, py) * base / size."""
-    from ..core.registry import equation
-
-    for name, v, lo in (("size", size, 2), ("base", base, 1), ("octaves", octaves, 1)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
-            raise ValueError(f"{name} must be an integer >= {lo}, got {v!r}")
-    if octaves > MAX_OCTAVES:
-        raise ValueError(f"octaves must be <= {MAX_OCTAVES}, got {octaves}")
-    if size > 4096:
-        raise ValueError(f"size must be <= 4096, got {size}")
-    if base * (size - 1) / size * 2 ** (octaves - 1) > MAX_COORD:
-        raise ValueError(f"base * 2^(octaves - 1) must be <= {MAX_COORD}, got {base * 2 ** (octaves - 1)}")
-    amp_fn = equation("oc-5.1.2.2", impl=impl)
-    noise_fn = equation("oc-5.1.4", impl=impl)
-    amps = [np.float32(amp_fn(i, persistence, variant=variant)) for i in range(octaves)]
-    px = np.arange(size, dtype=np.float32) * np.float32(base) / np.float32(size)
-    xx, yy = np.meshgrid(px, px)
-    layers, total, norm = [], np.zeros((size, size), np.float32), np.float32(0.0)
-    freq = np.float32(1.0)
-    for i in range(octaves):
-        layer = np.asarray(noise_fn(xx * freq, yy * freq, 0.0, octave_seed(seed, i), 2, smoothing=smoothing,
-                                    interpolation=interpolation, value_range=value_range), np.float32)
-        layers.append(layer)
-        total = (total + amps[i] * layer).astype(np.float32)
-        norm = np.float32(norm + amps[i])
-        freq = np.float32(freq * 2)
-    return layers, amps, (total / norm).astype(np.float32)

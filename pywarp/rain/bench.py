@@ -20,7 +20,7 @@ def bench_drops(width: int = 640, height: int = 360, repeat: int = 3, workers=No
     """Best-of-``repeat`` frame time (ms) per drop count and mode; the particles advance one 1/30 s step per frame,
     the background is cached (the text's measurements include its scene; ours is rendered once). The drop size is the
     text's measurement default, 0.5 mm (§6.1). ``masks``: also time the 512^2 mask builds (sphere, outline, exact)."""
-    from ..kernels import particles as P
+    from . import particles as P
     from .settings import RainSettings
     from .technique import RainTechnique, _build_mask
 
@@ -51,7 +51,7 @@ def bench_drops(width: int = 640, height: int = 360, repeat: int = 3, workers=No
         if n in TABLE_6_2:
             row["table_6_2_fps"] = TABLE_6_2[n]
         rows.append(row)
-    from ..kernels import rain as R
+    from . import drops as R
 
     mask_ms = {}
     for method in ("sphere", "outline", "exact") if masks else ():

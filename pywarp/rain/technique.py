@@ -4,7 +4,7 @@
   the built-in analytic :class:`Panorama`; rendered twice and cached -- the view at the output size and the
   wide-angle capture (FBOBJECT, rr-alg-3.1.2: the viewer's pose, FOVy 150 deg, 512 x 512);
 * DROP: the refraction mask of the chosen shape (rr-alg-3.1.1, ``pywarp.kernels.rain``), built once per shape;
-* RAIN PARTICLE: :class:`pywarp.kernels.particles.ParticleSystem` (rr-code-5.2.2), advanced by the time field;
+* RAIN PARTICLE: :class:`pywarp.rain.particles.ParticleSystem` (rr-code-5.2.2), advanced by the time field;
 * SHADER + POST OBJECT: the particles projected to billboards (drops, or streaks, rr-alg-3.2.3) and composited over
   the view by the refraction / persistence shaders (rr-code-5.2.3 / 5.2.4) in one multi-core Warp pass over the
   screen tiles that hold drops;
@@ -28,7 +28,7 @@ from ..core.runtime import init, launcher as shared_launcher
 
 init()
 
-from ..kernels import particles as P  # noqa: E402
+from . import particles as P  # noqa: E402
 from .settings import PANORAMA, RainSettings  # noqa: E402
 
 
@@ -155,7 +155,7 @@ def drop_mask(shape: str, method: str, size: int) -> tuple[np.ndarray, float, np
 
 
 def _build_mask(a: float, method: str, size: int) -> tuple[np.ndarray, float, np.ndarray]:
-    from ..kernels import rain as R
+    from . import drops as R
 
     m, normals = R.drop_mask(size, a, method=method, normals=True)
     extent = 1.0 if method == "sphere" else float(np.asarray(R.drop_extent(a)).ravel()[0]) / a
@@ -163,7 +163,7 @@ def _build_mask(a: float, method: str, size: int) -> tuple[np.ndarray, float, np
 
 
 def sphere_mask(size: int, n_water: float = 1.33) -> np.ndarray:
-    """A sphere's refraction mask in NumPy float64 (an independent check of ``pywarp.kernels.rain.drop_mask``) (rays along +z through both surfaces; (0, 0, 0) where the exit
+    """A sphere's refraction mask in NumPy float64 (an independent check of ``pywarp.rain.drops.drop_mask``) (rays along +z through both surfaces; (0, 0, 0) where the exit
     is totally reflected), the encoding of ``ccl_rain_mask``: row 0 the top, (x, y, z) the exit direction (x right,
     y up, z away from the viewer), a the inside flag."""
     j = np.arange(size)

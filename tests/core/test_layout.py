@@ -71,3 +71,20 @@ def test_layers_only_import_downwards():
             if len(dp) >= 2 and dp[1] in LAYER and LAYER[dp[1]] > LAYER[parts[1]]:
                 bad.append(f"{m} -> {d}")
     assert not bad, "imports from a higher layer: " + ", ".join(sorted(bad))
+
+
+def test_the_kernels_load_no_scene_package():
+    """Importing every topic module of pywarp/kernels (and registering its entries) in a fresh interpreter loads no
+    scene package, viewer or CLI: the host evaluators some entries name ("module:function") are imported only when
+    such an entry is evaluated."""
+    import subprocess
+    import sys
+
+    code = ("import sys, pywarp.kernels as k; k.load_all(); "
+            "print(' '.join(m for m in sys.modules if m.startswith('pywarp.')))")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
+    assert res.returncode == 0, res.stderr
+    loaded = res.stdout.split()
+    assert any(m.startswith("pywarp.kernels.") for m in loaded), loaded  # the probe saw the topic modules
+    above = [m for m in loaded if m.split(".")[1] in LAYER and LAYER[m.split(".")[1]] > LAYER["kernels"]]
+    assert not above, "pywarp.kernels loads " + ", ".join(above)

@@ -80,6 +80,25 @@ def test_equation_lookup_errors():
         pywarp.equation(cid)
 
 
+def test_string_evaluators_resolve_lazily_and_fail_clearly():
+    """make_warp/make_c as "module:function" (host evaluators outside pywarp.kernels): imported on first use; a
+    malformed string is refused at declaration, a missing module or function names the entry and the reference."""
+    from pywarp.core.registry import Equation, declare, evaluator
+
+    eq = Equation("xx-1", "xx", None, None, make_warp="pywarp.core.registry:registry", make_c=len)
+    assert evaluator(eq, "warp") is registry and evaluator(eq, "c") is len
+    with pytest.raises(ImportError, match=r"xx-1: make_warp 'pywarp\.no_such:f': module 'pywarp\.no_such'"):
+        evaluator(Equation("xx-1", "xx", None, None, make_warp="pywarp.no_such:f"), "warp")
+    with pytest.raises(AttributeError, match=r"xx-1: make_c 'pywarp\.core\.registry:no_such'.* no function"):
+        evaluator(Equation("xx-1", "xx", None, None, make_c="pywarp.core.registry:no_such"), "c")
+    for bad in ("pywarp.core.registry.registry", "pywarp.core.registry:", ":registry", "pywarp..core:f"):
+        with pytest.raises(ValueError, match="xx-2: make_warp must be a callable or a 'module:function' string"):
+            declare("xx-2", c=None, make_warp=bad)
+    # the entries that name their host evaluator this way resolve to the scene package's function
+    sim = registry()["rr-code-5.2.2"]
+    assert isinstance(sim.make_warp, str) and callable(evaluator(sim, "warp")) and callable(evaluator(sim, "c"))
+
+
 def test_missing_lists_exactly_the_unregistered_ids():
     reg = set(registry())
     ids = catalogue()["ids"]

@@ -53,7 +53,7 @@ def test_preview_settings():
 
 
 def test_cloud_fields_mirror_the_cloud_array_settings():
-    from pywarp.kernels.voxel import CloudArraySettings
+    from pywarp.flight.clouds import CloudArraySettings
 
     theirs = {p.name: p for p in specs(CloudArraySettings)}
     ours = {p.name: p for p in specs(FlightSettings)}

@@ -14,13 +14,14 @@ from helpers import ulp_distance
 from pywarp.core.binding import ffi, lib
 from pywarp.core.registry import get, warp_parameters
 from pywarp.kernels import camera as CAM
-from pywarp.kernels import flight as F
+from pywarp.flight import model as F
 from pywarp.kernels import noise
 from pywarp.kernels import particles as PT
 from pywarp.kernels import rain as R
 from pywarp.kernels import sky as sky_mod
 from pywarp.kernels import terrain as K
 from pywarp.kernels import volume as V
+from pywarp.flight import volumes as VS
 from pywarp.kernels.noise import perm_array
 from pywarp.rain.settings import RainSettings
 from pywarp.terrain.settings import TerrainSettings
@@ -231,7 +232,7 @@ def test_volume_check_refuses_extents_outside_the_length_range(extent):
     assert lib().ccl_volume_light(p, g, ffi().from_buffer("float[]", out), out.size) != 0
     assert np.all(out == -5.0)
     with pytest.raises(ValueError, match=r"^extent must be in \[1e-06, 1e\+06\] m on every axis"):
-        V.PlacedVolume(np.full((2, 2, 4), 200, np.uint8), (0.0, 0.0, 0.0), extent)
+        VS.PlacedVolume(np.full((2, 2, 4), 200, np.uint8), (0.0, 0.0, 0.0), extent)
     del keep
 
 
@@ -241,10 +242,10 @@ def test_volume_light_in_unit_range_at_the_extent_limits(extent):
     vals = V.default_values()
     dens = np.zeros((3, 4, 5), np.uint8)
     dens[1:, :, 2:] = 255
-    v = V.PlacedVolume(dens, (0.0, 0.0, 0.0), extent)
-    vs = V.VolumeSet([v])
+    v = VS.PlacedVolume(dens, (0.0, 0.0, 0.0), extent)
+    vs = VS.VolumeSet([v])
     vs.compute_light(vals)
-    c = V.light_c(vals, v)
+    c = VS.light_c(vals, v)
     for a in (vs.light[0], c):
         assert np.all((a >= 0.0) & (a <= 1.0)), a
     np.testing.assert_allclose(vs.light[0], c, rtol=2e-6, atol=1e-7)
@@ -277,7 +278,7 @@ def test_volume_pixels_finite_with_colours_at_the_limit():
     fw, rt, up = F.axes(0.3, 0.09, 0.35)
     vals.update(aircraft=1, aircraft_position=(0.0, 100.0, -60.0), aircraft_forward=fw, aircraft_right=rt,
                 aircraft_up=up, g=0.999)
-    vs = V.VolumeSet([V.PlacedVolume(np.full((8, 8, 8), 255, np.uint8), (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))])
+    vs = VS.VolumeSet([VS.PlacedVolume(np.full((8, 8, 8), 255, np.uint8), (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))])
     vs.compute_light(vals)
     w, c = _volume_pixels_both(vals, vs)
     assert np.all(np.isfinite(w)) and np.all(np.isfinite(c))
@@ -289,8 +290,8 @@ def _volume_pixels_both(vals: dict, vs) -> tuple:
     cam = CAM.camera_look_at(np.array([0.0, 104.0, 0.0]), np.array([0.0, 100.0, -100.0]), (0.0, 1.0, 0.0),
                              math.radians(60.0), 16 / 9, 0.1, 1e5)
     xs, ys = np.meshgrid(np.arange(0, 64, 3), np.arange(0, 36, 3))
-    return (V.pixels_warp(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36),
-            V.pixels_c(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36))
+    return (VS.pixels_warp(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36),
+            VS.pixels_c(vals, vs, cam, xs.ravel(), ys.ravel(), 64, 36))
 
 
 def test_volume_colour_and_length_limits_are_the_c_constants():
@@ -327,10 +328,10 @@ def test_volume_light_and_pixels_finite_with_optical_depths_and_steps_at_the_lim
     vals.update(tau_per_voxel=1e6, light_tau_per_voxel=1e6, step_voxels=1e6, light_step_voxels=1e6)
     dens = np.zeros((4, 4, 4), np.uint8)
     dens[1:3, 1:3, 1:3] = 255
-    v = V.PlacedVolume(dens, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
-    vs = V.VolumeSet([v])
+    v = VS.PlacedVolume(dens, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
+    vs = VS.VolumeSet([v])
     vs.compute_light(vals)
-    c = V.light_c(vals, v)
+    c = VS.light_c(vals, v)
     for a in (vs.light[0], c):
         assert np.all((a >= 0.0) & (a <= 1.0)), a
     np.testing.assert_array_equal(vs.light[0], c)

@@ -1,5 +1,5 @@
 """Differential property test of the depth-aware reprojection pass (``ccl_reproj_frame_depth`` and its Warp twin
-:func:`pywarp.kernels.reproj.reproj_frame_depth`): tiny frames (1..9 px a side, 1, 3 or 4 channels), colours from
+:func:`pywarp.clouds.reproj.reproj_frame_depth`): tiny frames (1..9 px a side, 1, 3 or 4 channels), colours from
 -1e30 to 1e30, depths that are unknown (0, negative, NaN), near, far, the sky's and infinite, cameras that move a
 little or far, turn or look away, every filter, iteration count, neighbourhood and history. ``fuzz_reproj`` covers
 the C side alone; here the two must agree within 2 ulp (as ``tests/kernels/test_reproj_depth.py`` expects on
@@ -19,6 +19,7 @@ from hypothesis import strategies as st  # noqa: E402
 
 from pywarp.kernels import camera as cm  # noqa: E402
 from pywarp.kernels import reproj as rp  # noqa: E402
+from pywarp.clouds import reproj as crp  # noqa: E402
 
 SETTINGS = differential_settings(100)
 
@@ -51,8 +52,8 @@ def test_c_and_warp_agree_at_the_edges(w, h, channels, frame, eye, look, step, t
     prev_eye = tuple(e - d for e, d in zip(eye, step))
     pcam = cm.camera_look_at(prev_eye, tuple(e + d for e, d in zip(prev_eye, prev_look)), fov_y=fov, aspect=w / h)
     kw = dict(filter=flt, iterations=iterations, neighbourhood=neighbourhood, history=history)
-    a_img, a_dep = rp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, **kw)
-    b_img, b_dep = rp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, impl="c", **kw)
+    a_img, a_dep = crp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, **kw)
+    b_img, b_dep = crp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, impl="c", **kw)
     # colours: finite, within the inputs' range (the filters are clamped) to a relative 1e-5 as fuzz_reproj checks
     # it: the n x n mean is a float32 sum of up to 81 samples times 1 / n^2, which rounds beyond the range by a few
     # ulp (81 samples of 1e-30 average to 1.0000011e-30); the twins equal to 2 ulp

@@ -22,8 +22,9 @@ from hypothesis import strategies as st  # noqa: E402
 
 from pywarp.core.binding import ffi, lib  # noqa: E402
 from pywarp.kernels import camera as CAM  # noqa: E402
-from pywarp.kernels import flight as F  # noqa: E402
+from pywarp.flight import model as F  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
+from pywarp.flight import volumes as VS  # noqa: E402
 
 SETTINGS = differential_settings(100)
 F32_MAX = float(np.finfo(np.float32).max)
@@ -51,7 +52,7 @@ EXTENTS = [(80.0, 60.0, 80.0), (1e-6, 1e-6, 1e-6), (1e6, 1e6, 1e6), (1e-6, 1e6, 
            (1.0, 2e6, 1.0)]
 
 
-def _grid(v: V.PlacedVolume, light: np.ndarray):
+def _grid(v: VS.PlacedVolume, light: np.ndarray):
     f = ffi()
     d = v.density
     skip = np.zeros(d.size, np.uint8)
@@ -66,7 +67,7 @@ def _grid(v: V.PlacedVolume, light: np.ndarray):
     return g, (light, skip, bd, bl, bs)
 
 
-def _c_refuses(values: dict, v: V.PlacedVolume) -> str | None:
+def _c_refuses(values: dict, v: VS.PlacedVolume) -> str | None:
     g, keep = _grid(v, np.ones(v.density.shape, np.float32))
     out = ffi().new("const char **")
     st_ = lib().ccl_volume_check(V.c_params(values), g, 1, out)
@@ -82,7 +83,7 @@ def _python_refuses(values: dict, extent) -> tuple[bool, bool]:
     except ValueError:
         params = True
     try:
-        V.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), extent)
+        VS.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), extent)
         box = False
     except ValueError:
         box = True
@@ -111,8 +112,8 @@ def test_python_and_c_refuse_alike_and_accepted_sets_render_finite_and_equal(sca
     # the parameters with a box both accept, and the box with the default parameters: each refused alike (which
     # field a check names first when several are bad depends on its order, which the two need not share)
     py_params, py_box = _python_refuses(values, extent)
-    ok_box = V.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
-    box = V.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
+    ok_box = VS.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
+    box = VS.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
     box.extent = tuple(float(e) for e in extent)  # (the C check must see the extent itself)
     c_params, c_box = _c_refuses(values, ok_box), _c_refuses(V.default_values(), box)
     assert py_params == (c_params is not None), (scalars, colours, aircraft, c_params)
@@ -121,10 +122,10 @@ def test_python_and_c_refuse_alike_and_accepted_sets_render_finite_and_equal(sca
         assert c_box == "extent"
     if py_params or py_box:
         return
-    v = V.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), extent)
-    vs = V.VolumeSet([v])
+    v = VS.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), extent)
+    vs = VS.VolumeSet([v])
     vs.compute_light(values)
-    light_c = V.light_c(values, v)
+    light_c = VS.light_c(values, v)
     for a in (vs.light[0], light_c):
         assert np.all((a >= 0.0) & (a <= 1.0)), (scalars, extent)
     np.testing.assert_allclose(vs.light[0], light_c, rtol=2e-6, atol=1e-7)
@@ -132,7 +133,7 @@ def test_python_and_c_refuse_alike_and_accepted_sets_render_finite_and_equal(sca
                              math.radians(60.0), 16 / 9, 0.1, 1e5)
     rng = np.random.default_rng(seed)
     xs, ys = rng.integers(0, 64, 16), rng.integers(0, 36, 16)
-    w = V.pixels_warp(values, vs, cam, xs, ys, 64, 36)
-    cp = V.pixels_c(values, vs, cam, xs, ys, 64, 36)
+    w = VS.pixels_warp(values, vs, cam, xs, ys, 64, 36)
+    cp = VS.pixels_c(values, vs, cam, xs, ys, 64, 36)
     assert np.all(np.isfinite(w)) and np.all(np.isfinite(cp)), (scalars, colours, extent)
     np.testing.assert_allclose(w, cp, rtol=1e-5, atol=1e-6, err_msg=f"{scalars} {colours} {extent}")

@@ -10,7 +10,7 @@ import pytest
 
 import pywarp
 from helpers import assert_twins_agree
-from pywarp.kernels import flight as F
+from pywarp.flight import model as F
 
 
 # --- oc-6.1.1 ------------------------------------------------------------------------------------------------------------

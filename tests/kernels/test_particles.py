@@ -1,6 +1,7 @@
-"""Topic tests of pywarp.kernels.particles (rr-code-5.2.2, rr-alg-3.2.3, rr-alg-3.1.2, rr-code-5.2.3/5.2.4): particle
-counts of both variants, determinism, spawn box and sizes, terminal speeds from Table 2.2, frame-rate independence,
-streak geometry, the capture lookup, the compositing (uniform capture, Warp tiles vs the C reference)."""
+"""Topic tests of pywarp.kernels.particles and its host side pywarp.rain.particles (rr-code-5.2.2, rr-alg-3.2.3,
+rr-alg-3.1.2, rr-code-5.2.3/5.2.4): particle counts of both variants, determinism, spawn box and sizes, terminal speeds
+from Table 2.2, frame-rate independence, streak geometry, the capture lookup, the compositing (uniform capture, Warp
+tiles vs the C reference)."""
 from __future__ import annotations
 
 import math
@@ -10,7 +11,7 @@ import pytest
 from helpers import assert_twins_agree
 
 import pywarp
-from pywarp.kernels import particles as P
+from pywarp.rain import particles as P
 
 sim_w = pywarp.equation("rr-code-5.2.2")
 sim_c = pywarp.equation("rr-code-5.2.2", impl="c")
@@ -241,7 +242,7 @@ def test_packed_mask_holds_the_shader_quotients_column_major(rng):
 # --- the light-drop model in the frame (rr-A1..rr-CF) --------------------------------------------------------------
 
 def _lit_inputs(rng, streaks):
-    from pywarp.kernels import rain as R
+    from pywarp.rain import drops as R
 
     bg, cap, _, sp = _scene(rng, h=30, w=48, n=25, streaks=streaks)
     mask, normals = R.drop_mask(32, 1.0, method="sphere", normals=True)

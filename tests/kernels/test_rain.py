@@ -10,6 +10,7 @@ import pytest
 import pywarp
 from helpers import assert_twins_agree
 from pywarp.kernels import rain
+from pywarp.rain import drops
 
 N_W = 1.33
 # Table 2.1 of the text (c_n x 1e4), typed here independently of the code
@@ -66,7 +67,7 @@ def test_rain_drop_radius_interpolation_is_an_explicit_option():
 def test_rain_drop_surface_points_and_normals():
     th, ph = np.meshgrid(np.linspace(0.01, 3.13, 40), np.linspace(0, 2 * np.pi, 24))
     for a in TABLE:
-        P, N = rain.drop_surface(th, ph, a)
+        P, N = drops.drop_surface(th, ph, a)
         np.testing.assert_allclose(np.linalg.norm(P, axis=-1), r64(th, a), rtol=3e-6)
         np.testing.assert_allclose(P[..., 1], -r64(th, a) * np.cos(th), atol=5e-6 * a)  # theta = 0 points down
         np.testing.assert_allclose(np.linalg.norm(N, axis=-1), 1.0, atol=3e-7)
@@ -82,7 +83,7 @@ def test_rain_drop_surface_points_and_normals():
             cos = np.sum(N * t, -1) / np.maximum(np.linalg.norm(t, axis=-1), 1e-12)
             assert np.abs(cos).max() < 2e-5
         assert np.all(np.sum(N * P, -1) > 0)  # outward
-        Pc, Nc = rain.drop_surface(th[:3], ph[:3], a, impl="c")
+        Pc, Nc = drops.drop_surface(th[:3], ph[:3], a, impl="c")
         np.testing.assert_allclose(Pc, P[:3], rtol=0, atol=4e-7 * a)
         np.testing.assert_allclose(Nc, N[:3], atol=4e-7)
 
@@ -94,16 +95,16 @@ def test_rain_drop_volume_and_axis_ratio_against_float64():
         r = r64(th, a)
         vol = 2 * np.pi / 3 * np.trapezoid(r ** 3 * np.sin(th), th)
         ratio = (r[0] + r[-1]) / (2 * np.max(r * np.sin(th)))
-        assert rain.drop_volume(a) == pytest.approx(vol, rel=2e-6)
-        assert rain.drop_volume(a) == pytest.approx(4 / 3 * np.pi * a ** 3, rel=2e-3)  # a: equal-volume radius
-        assert rain.drop_axis_ratio(a) == pytest.approx(ratio, rel=3e-6)
-        assert rain.drop_volume(a, impl="c") == pytest.approx(rain.drop_volume(a), rel=2e-6)
-        assert rain.drop_axis_ratio(a, impl="c") == pytest.approx(rain.drop_axis_ratio(a), rel=1e-6)
+        assert drops.drop_volume(a) == pytest.approx(vol, rel=2e-6)
+        assert drops.drop_volume(a) == pytest.approx(4 / 3 * np.pi * a ** 3, rel=2e-3)  # a: equal-volume radius
+        assert drops.drop_axis_ratio(a) == pytest.approx(ratio, rel=3e-6)
+        assert drops.drop_volume(a, impl="c") == pytest.approx(drops.drop_volume(a), rel=2e-6)
+        assert drops.drop_axis_ratio(a, impl="c") == pytest.approx(drops.drop_axis_ratio(a), rel=1e-6)
         # the extent bounds the drop and is tight to the sampling bound
-        ext = rain.drop_extent(a)
+        ext = drops.drop_extent(a)
         assert r.max() <= ext <= r.max() * 1.0013
-        assert rain.drop_extent(a, impl="c") == pytest.approx(ext, rel=1e-6)
-    ratios = rain.drop_axis_ratio(np.array([0.5, 1.0, 3.0, 4.5]))
+        assert drops.drop_extent(a, impl="c") == pytest.approx(ext, rel=1e-6)
+    ratios = drops.drop_axis_ratio(np.array([0.5, 1.0, 3.0, 4.5]))
     np.testing.assert_allclose(ratios, [0.9837, 0.9259, 0.6409, 0.5113], atol=1e-4)
     assert np.all(np.diff(ratios) < 0)  # bigger drops are flatter
 
@@ -149,7 +150,7 @@ def sphere_exit64(u, v, n=N_W):
 @pytest.mark.spec("rr-alg-3.1.1")
 def test_rain_mask_sphere_against_analytic_refraction():
     size = 128
-    m = rain.drop_mask(size)
+    m = drops.drop_mask(size)
     assert m.shape == (size, size, 4) and m.dtype == np.float32
     j, i = np.meshgrid(np.arange(size), np.arange(size))
     u, v = 2 * (j + 0.5) / size - 1, 1 - 2 * (i + 0.5) / size
@@ -197,12 +198,12 @@ def test_rain_mask_exact_shape_reduces_to_sphere_as_coefficients_vanish(rng):
 def test_rain_mask_outline_and_exact_share_the_silhouette_and_differ_inside():
     size = 96
     for a in (1.0, 3.0, 4.5):
-        ex = rain.drop_mask(size, a, method="exact")
-        ol = rain.drop_mask(size, a, method="outline")
+        ex = drops.drop_mask(size, a, method="exact")
+        ol = drops.drop_mask(size, a, method="outline")
         np.testing.assert_array_equal(ex[..., 3], ol[..., 3])
         # the silhouette is the meridian profile r(theta) (a body of revolution seen from the side)
         j, i = np.meshgrid(np.arange(size), np.arange(size))
-        L = rain.drop_extent(a)
+        L = drops.drop_extent(a)
         x, y = (2 * (j + 0.5) / size - 1) * L, (1 - 2 * (i + 0.5) / size) * L
         rho, theta = np.hypot(x, y), np.arctan2(np.abs(x), -y)
         sure = np.abs(rho - r64(theta, a)) > 1e-3 * a
@@ -215,8 +216,8 @@ def test_rain_mask_outline_and_exact_share_the_silhouette_and_differ_inside():
             assert np.median(diff) > 3.0  # flattened drops refract visibly differently from the text's sphere
     # the two implementations compute the same mask
     for method in ("sphere", "outline", "exact"):
-        w = rain.drop_mask(48, 3.0, method=method)
-        c = rain.drop_mask(48, 3.0, method=method, impl="c")
+        w = drops.drop_mask(48, 3.0, method=method)
+        c = drops.drop_mask(48, 3.0, method=method, impl="c")
         np.testing.assert_allclose(w, c, atol=2e-5)
     assert_twins_agree("rr-alg-3.1.1", np.linspace(-0.9, 0.9, 19)[:, None], np.linspace(-0.9, 0.9, 19), 4.5,
                        method="exact")
@@ -224,17 +225,17 @@ def test_rain_mask_outline_and_exact_share_the_silhouette_and_differ_inside():
 
 @pytest.mark.spec("rr-alg-3.1.1")
 def test_rain_drop_mask_is_cached_read_only_and_validated():
-    a = rain.drop_mask(32, 1.0, method="outline")
-    assert rain.drop_mask(32, 1.0, method="outline") is a
+    a = drops.drop_mask(32, 1.0, method="outline")
+    assert drops.drop_mask(32, 1.0, method="outline") is a
     assert not a.flags.writeable
-    m, n = rain.drop_mask(32, 1.0, method="outline", normals=True)
+    m, n = drops.drop_mask(32, 1.0, method="outline", normals=True)
     assert m is a and n.shape == (32, 32, 3)
     with pytest.raises(ValueError, match=r"\bmethod\b"):
-        rain.drop_mask(32, method="cone")
+        drops.drop_mask(32, method="cone")
     with pytest.raises(ValueError, match=r"\ba\b"):
-        rain.drop_mask(32, 2.0, method="exact")
+        drops.drop_mask(32, 2.0, method="exact")
     with pytest.raises(ValueError, match=r"\bsize\b"):
-        rain.drop_mask(0)
+        drops.drop_mask(0)
 
 
 # --- drop pixel colour -------------------------------------------------------------------------------------------------
@@ -269,7 +270,7 @@ def _capture(h=96, w=96):
 
 @pytest.mark.spec("rr-alg-3.1", "rr-alg-3.1.3")
 def test_rain_shade_drop_uniform_background_and_inverted_image():
-    mask = rain.drop_mask(64)
+    mask = drops.drop_mask(64)
     uni = np.full((32, 48, 3), 0.25, np.float32)
     out = pywarp.rain_shade_drop(uni, mask, [0.0, 0.0, -1.0], out_size=32)
     inside = out[..., 3] > 0

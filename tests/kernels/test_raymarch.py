@@ -10,6 +10,7 @@ import pytest
 from helpers import assert_twins_agree
 
 import pywarp
+from pywarp.clouds import raymarch as crm
 from pywarp.kernels import raymarch as rm
 
 EPS32 = float(np.finfo(np.float32).eps)
@@ -331,7 +332,7 @@ def test_ray_jitter_offsets_are_uniform():
 @pytest.mark.parametrize("impl", IMPLS)
 def test_march_volume_sphere_and_box(impl):
     mv = pywarp.equation("vc-A35", impl=impl)
-    box = lambda *a, **k: rm.march_box(*a, impl=impl, **k)  # noqa: E731
+    box = lambda *a, **k: crm.march_box(*a, impl=impl, **k)  # noqa: E731
     pts, dt = mv([0, 0, -5], [0, 0, 2], (0, 0, 0), 1.0, 4)  # any direction length: normalized
     np.testing.assert_array_equal(pts[:, 2], [-0.75, -0.25, 0.25, 0.75])
     assert dt == 0.5
@@ -430,6 +431,29 @@ def test_vc_constants_agree_with_the_named_defaults():
     assert k.schlick_fit == (float(np.float32(1.55)), float(np.float32(0.55)))
 
 
+@pytest.mark.spec("vc-A36")
+def test_vc_constants_table_is_the_c_table():
+    """VC_CONSTANTS, the one Python statement of vc-A36 (the Warp struct, its constructor and the host record are
+    derived from it), holds the fields of ccl_vc_constant_table in the C order, with the C values (float32) and
+    the C shapes (int, float, float[n] as an n-tuple)."""
+    from pywarp.core.binding import ffi, lib
+
+    ct = ffi().typeof("ccl_vc_constant_table")
+    assert list(rm.VC_CONSTANTS) == [name for name, _ in ct.fields]
+    c = lib().ccl_raymarch_vc_constants()
+    for name, field in ct.fields:
+        v = rm.VC_CONSTANTS[name]
+        if field.type.kind == "array":
+            assert isinstance(v, tuple) and len(v) == field.type.length, name
+            assert [float(np.float32(x)) for x in v] == list(getattr(c, name)), name
+        elif field.type.cname == "int":
+            assert type(v) is int and v == getattr(c, name), name
+        else:
+            assert field.type.cname == "float" and type(v) is float, name
+            assert float(np.float32(v)) == getattr(c, name), name
+    assert list(rm.VcConstantTable.vars) == list(rm.VC_CONSTANTS)
+
+
 # --- C vs Warp --------------------------------------------------------------------------------------------------------
 
 @pytest.mark.spec("vc-A14", "vc-A18", "vc-A19", "vc-A21", "vc-A23", "vc-A24", "vc-A35")
@@ -459,8 +483,8 @@ def test_raymarch_c_and_warp_agree_on_random_inputs(rng):
             w = pywarp.equation("vc-A35")(o, d, kw["centre"], kw["radius"], 8)
             cc = pywarp.equation("vc-A35", impl="c")(o, d, kw["centre"], kw["radius"], 8)
         else:
-            w = rm.march_box(o, d, kw["box_min"], kw["box_max"], 8)
-            cc = rm.march_box(o, d, kw["box_min"], kw["box_max"], 8, impl="c")
+            w = crm.march_box(o, d, kw["box_min"], kw["box_max"], 8)
+            cc = crm.march_box(o, d, kw["box_min"], kw["box_max"], 8, impl="c")
         for a, b in zip(w, cc):  # the march is not element-wise: compare its arrays directly
             np.testing.assert_array_equal(np.isnan(a), np.isnan(b))
             assert np.array_equal(a[~np.isnan(a)], b[~np.isnan(b)]), kw
@@ -525,4 +549,4 @@ def test_raymarch_bad_input_raises_value_error_naming_parameter(impl):
     with pytest.raises(ValueError, match=r"^offset must be in \[0, 1\)"):
         eq("vc-A35")(o, (0, 0, 1), o, 1.0, 4, offset=1.0)
     with pytest.raises(ValueError, match=r"^box_min must be <= box_max"):
-        rm.march_box(o, (0, 0, 1), (1, 0, 0), (0, 1, 1), 4, impl=impl)
+        crm.march_box(o, (0, 0, 1), (1, 0, 0), (0, 1, 1), 4, impl=impl)

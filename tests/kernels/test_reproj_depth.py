@@ -18,6 +18,7 @@ from pywarp.core.runtime import TileLauncher
 from pywarp.kernels import camera as cm
 from pywarp.kernels import raymarch as rm
 from pywarp.kernels import reproj as rp
+from pywarp.clouds import reproj as crp
 
 IMPLS = ["warp", "c"]
 R_E = 6371.0
@@ -76,7 +77,7 @@ def test_surface_depth_is_cloud_else_ground_else_sky(impl):
     up = np.array([0.0, math.sin(0.3), -math.cos(0.3)])
     d = np.stack([up, down, up, down, up])
     md = np.array([2.5, 1.75, 0.0, 0.0, np.nan], np.float32)
-    out = rp.surface_depth(md, eye, d, impl=impl)
+    out = crp.surface_depth(md, eye, d, impl=impl)
     # the ground: |eye + t d - c| = R_E in float64 (the near root)
     oc = eye - np.array([0.0, -R_E, 0.0])
     b = down @ oc
@@ -86,7 +87,7 @@ def test_surface_depth_is_cloud_else_ground_else_sky(impl):
     # the ground ahead (1.5 km), to the float32 resolution of the Earth-centred radii (ulp(6371 km) = 0.5 m, a few)
     assert out[3] == pytest.approx(t_ground, abs=2e-3)
     assert np.isnan(out[4])
-    assert np.isnan(rp.surface_depth(0.0, (0.0, np.nan, 0.0), up, impl=impl))
+    assert np.isnan(crp.surface_depth(0.0, (0.0, np.nan, 0.0), up, impl=impl))
 
 
 def test_surface_depth_c_and_warp_agree(rng):
@@ -94,8 +95,8 @@ def test_surface_depth_c_and_warp_agree(rng):
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     md = rng.choice(np.array([0.0, -1.0, 0.25, 3.0, 40.0, np.nan], np.float32), 2000)
     for eye in ((0.0, 0.3, 0.0), (5.0, 0.0, -3.0), (0.0, 2.5, 0.0), (0.0, 7.0, 1.0)):
-        a = rp.surface_depth(md, eye, d)
-        b = rp.surface_depth(md, eye, d, impl="c")
+        a = crp.surface_depth(md, eye, d)
+        b = crp.surface_depth(md, eye, d, impl="c")
         assert np.array_equal(np.isnan(a), np.isnan(b))
         assert max_ulp_diff(a[~np.isnan(a)], b[~np.isnan(b)]) == 0
 
@@ -121,7 +122,7 @@ def test_uv_depth_plane_sideways_step_is_exact(impl, k):
     d_prev = rays64(view(prev_eye), fov, w, h, x, y)
     prev_depth = ((np.float32(prev_eye[2]) - (-z_plane)) / -d_prev[..., 2]).astype(np.float32)
     inside = x + k <= w - 1  # seen by the previous frame
-    ok, u, v, t = rp.reproj_uv_depth_at(x, y, cam, pcam, prev_depth, impl=impl)
+    ok, u, v, t = crp.reproj_uv_depth_at(x, y, cam, pcam, prev_depth, impl=impl)
     assert np.all(ok[inside] == 1)
     # tolerance: float32 round-off of the camera matrices and of the projection (~1e-4 px at this size)
     np.testing.assert_allclose((u * w - 0.5)[inside], (x + k)[inside], atol=1e-3)
@@ -130,10 +131,10 @@ def test_uv_depth_plane_sideways_step_is_exact(impl, k):
     # 2 refinements leave 6e-5 of it here, where the first lookup lands k pixels off; the position is then already
     # exact to 2e-4 px)
     d_cur = rays64(view(cur_eye), fov, w, h, x, y)
-    t = rp.reproj_uv_depth_at(x, y, cam, pcam, prev_depth, iterations=4, impl=impl)[3]
+    t = crp.reproj_uv_depth_at(x, y, cam, pcam, prev_depth, iterations=4, impl=impl)[3]
     np.testing.assert_allclose(t[inside], ((cur_eye[2] + z_plane) / -d_cur[..., 2])[inside], rtol=2e-5)
     # the thesis's point (the layer base, 100+ km away along these rays) has almost no parallax: off by ~k pixels
-    ok0, u0, v0, t0 = rp.reproj_uv_depth_at(x, y, cam, pcam, prev_depth, iterations=0, impl=impl)
+    ok0, u0, v0, t0 = crp.reproj_uv_depth_at(x, y, cam, pcam, prev_depth, iterations=0, impl=impl)
     err0 = np.abs((u0 * w - 0.5) - (x + k))[inside & (ok0 == 1)]
     assert np.median(err0) > 0.9 * k
 
@@ -163,13 +164,13 @@ def test_uv_depth_sphere_of_known_radius_is_exact(impl, step):
     """A previous depth of 2 km everywhere (a sphere around the previous eye) and any camera step: the iteration
     converges onto the ray-sphere hit, and the reprojected position is its projection into the previous camera."""
     cam, pcam, depth, x, y, xp, yp, t_hit = sphere_case(np.array(step), 2.0, 160, 90)
-    ok, u, v, t = rp.reproj_uv_depth_at(x, y, cam, pcam, depth, impl=impl)
+    ok, u, v, t = crp.reproj_uv_depth_at(x, y, cam, pcam, depth, impl=impl)
     vis = (xp > 0) & (xp < 159) & (yp > 0) & (yp < 89)
     assert vis.mean() > 0.7 and np.all(ok[vis] == 1)
     np.testing.assert_allclose((u * 160 - 0.5)[vis], xp[vis], atol=2e-3)  # float32 round-off, < 1e-3 px measured
     np.testing.assert_allclose((v * 90 - 0.5)[vis], yp[vis], atol=2e-3)
     # the distance, converged (the default 2 refinements leave up to 6e-5 of it for the larger step)
-    t = rp.reproj_uv_depth_at(x, y, cam, pcam, depth, iterations=4, impl=impl)[3]
+    t = crp.reproj_uv_depth_at(x, y, cam, pcam, depth, iterations=4, impl=impl)[3]
     np.testing.assert_allclose(t[vis], t_hit[vis], rtol=1e-5)
 
 
@@ -180,7 +181,7 @@ def test_uv_depth_converges_in_the_default_iterations():
     sel = (slice(20, 340, 7), slice(20, 620, 7))
     errs = []
     for n in range(4):
-        ok, u, v, t = rp.reproj_uv_depth_at(x[sel], y[sel], cam, pcam, depth, iterations=n)
+        ok, u, v, t = crp.reproj_uv_depth_at(x[sel], y[sel], cam, pcam, depth, iterations=n)
         assert np.all(ok == 1)
         errs.append(float(np.max(np.hypot(u * 640 - 0.5 - xp[sel], v * 360 - 0.5 - yp[sel]))))
     assert errs[0] > 1.0  # the inner sphere (1.2 km above the camera) is the wrong depth: parallax error > 1 px
@@ -188,7 +189,7 @@ def test_uv_depth_converges_in_the_default_iterations():
     assert rp.DEPTH_ITERATIONS == 2
     # and a step ten times larger (200 m) still converges by the default count
     cam, pcam, depth, x, y, xp, yp, _ = sphere_case(np.array([0.0, 0.0, -0.2]), 2.0)
-    ok, u, v, t = rp.reproj_uv_depth_at(x[sel], y[sel], cam, pcam, depth)
+    ok, u, v, t = crp.reproj_uv_depth_at(x[sel], y[sel], cam, pcam, depth)
     assert np.max(np.hypot(u * 640 - 0.5 - xp[sel], v * 360 - 0.5 - yp[sel])) < 0.01
 
 
@@ -199,10 +200,10 @@ def test_uv_depth_without_iterations_or_depth_is_the_inner_sphere_point(impl, rn
     w, h = 64, 36
     cam, pcam = cams(((0.0, 0.3, 0.0), (0.2, 0.6, -1.0)), ((0.03, 0.3, 0.05), (0.23, 0.6, -0.95)), 1.1, w, h)
     x, y = grid(w, h)
-    ref = rp.reproj_uv_depth_at(x, y, cam, pcam, np.full((h, w), 0.0, np.float32), iterations=0, impl=impl)
+    ref = crp.reproj_uv_depth_at(x, y, cam, pcam, np.full((h, w), 0.0, np.float32), iterations=0, impl=impl)
     for depth, n in ((rng.uniform(0.5, 9.0, (h, w)), 0), (np.zeros((h, w)), 3), (np.full((h, w), -1.0), 3),
                      (np.full((h, w), np.nan), 3)):
-        out = rp.reproj_uv_depth_at(x, y, cam, pcam, depth.astype(np.float32), iterations=n, impl=impl)
+        out = crp.reproj_uv_depth_at(x, y, cam, pcam, depth.astype(np.float32), iterations=n, impl=impl)
         for a, b in zip(out, ref):
             np.testing.assert_array_equal(a, b)
     # the distance: the inner sphere's far root (the camera is inside it) along the pixel's ray, the same float32
@@ -227,7 +228,7 @@ def test_frame_depth_thesis_settings_equal_reproj_frame(impl, rng):
     for kw in ({}, {"neighbourhood": 3}, {"history": False}):
         for frame in (0, 6, 13):
             ref = pywarp.equation("vc-A26", impl=impl)(cur, prev, red, frame, cam, pcam, **kw)
-            out, _ = rp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, iterations=0,
+            out, _ = crp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, iterations=0,
                                            filter="bilinear", impl=impl, **kw)
             np.testing.assert_array_equal(out, ref)
 
@@ -242,7 +243,7 @@ def test_frame_depth_static_camera_returns_previous_frame_exactly(impl, flt, rng
     dep = rng.uniform(0.5, 9.0, (h, w)).astype(np.float32)
     pdep = rng.choice(np.array([0.7, 2.0, 3.5, rp.SKY_DEPTH_KM], np.float32), (h, w))
     for frame in (0, 7, 100):
-        out, od = rp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, cam, filter=flt, impl=impl)
+        out, od = crp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, cam, filter=flt, impl=impl)
         upd = updated_mask(w, h, frame)
         np.testing.assert_array_equal(out[upd], cur[upd])
         np.testing.assert_array_equal(out[~upd], prev[~upd])
@@ -261,7 +262,7 @@ def test_frame_depth_moving_camera_fetches_the_closed_form_position(impl, flt):
     prev = coordinate_frame(w, h)
     cur = np.full((h, w, 2), -7.0, np.float32)
     red = np.full((14, 24, 2), -9.0, np.float32)
-    out, od = rp.reproj_frame_depth(cur, np.full((h, w), 5.0), prev, depth, red, 3, cam, pcam, filter=flt,
+    out, od = crp.reproj_frame_depth(cur, np.full((h, w), 5.0), prev, depth, red, 3, cam, pcam, filter=flt,
                                     iterations=4, impl=impl)  # converged depths (the default 2: positions alike)
     upd = updated_mask(w, h, 3)
     # away from the borders (the filters clamp to the edge; Catmull-Rom reads one pixel further)
@@ -290,7 +291,7 @@ def resample_twice(flt, img):
         d = rays64(view(src), fov, w, h, x, y)
         depth = ((np.float32(src[2]) + 2.0) / -d[..., 2]).astype(np.float32)
         # frame 0 renders (0, 0) of every block: keep the test on the reprojected pixels only
-        out, _ = rp.reproj_frame_depth(out, depth, out, depth, np.zeros((h // 4, w // 4, img.shape[2])), 0, cam,
+        out, _ = crp.reproj_frame_depth(out, depth, out, depth, np.zeros((h // 4, w // 4, img.shape[2])), 0, cam,
                                        pcam, filter=flt, history=True)
     return out
 
@@ -320,9 +321,9 @@ def test_catmull_rom_never_overshoots_the_bilinear_footprint(impl, rng):
     depth = rng.uniform(0.8, 3.0, (h, w)).astype(np.float32)
     x, y = grid(w, h)
     for prev in ((x > 30).astype(np.float32)[..., None], rng.random((h, w, 1), np.float32)):
-        out, _ = rp.reproj_frame_depth(np.zeros_like(prev), depth, prev, depth, np.full((10, 16, 1), -5.0), 2, cam,
+        out, _ = crp.reproj_frame_depth(np.zeros_like(prev), depth, prev, depth, np.full((10, 16, 1), -5.0), 2, cam,
                                        pcam, impl=impl)
-        ok, u, v, _ = rp.reproj_uv_depth_at(x, y, cam, pcam, depth, impl=impl)
+        ok, u, v, _ = crp.reproj_uv_depth_at(x, y, cam, pcam, depth, impl=impl)
         sel = (ok == 1) & ~updated_mask(w, h, 2)
         # the position the pass samples: snapped to a pixel centre within SNAP_PX
         xs, ys = u[sel] * w - 0.5, v[sel] * h - 0.5
@@ -352,17 +353,17 @@ def test_frame_depth_fallback_depth_interpolates_the_marched_depths(impl):
     cam = cm.camera_look_at((0, 0.3, 0), (0, 0.7, -1), aspect=w / h)
     cur = np.zeros((h, w, 1), np.float32)
     red = np.zeros((4, 7, 1), np.float32)
-    _, od = rp.reproj_frame_depth(cur, depth, cur, np.full((h, w), 9.0), red, frame, cam, cam, history=False,
+    _, od = crp.reproj_frame_depth(cur, depth, cur, np.full((h, w), 9.0), red, frame, cam, cam, history=False,
                                   impl=impl)
     np.testing.assert_allclose(od, 1.0 + 0.5 * ex + 0.25 * ey, atol=1e-6)
     # a 2-pixel-wide frame in a cycle frame that renders no column: previous (history) or current depth as is
     tiny = np.zeros((8, 2, 1), np.float32)
     tcam = cm.camera_look_at((0, 0.3, 0), (0, 0.7, -1), aspect=0.25)
     away = cm.camera_look_at((0, 0.3, 0), (0, 0.7, 1), aspect=0.25)
-    _, od = rp.reproj_frame_depth(tiny, np.full((8, 2), 1.0), tiny, np.full((8, 2), 2.0), np.zeros((2, 1, 1)), 9,
+    _, od = crp.reproj_frame_depth(tiny, np.full((8, 2), 1.0), tiny, np.full((8, 2), 2.0), np.zeros((2, 1, 1)), 9,
                                   tcam, away, impl=impl)
     assert np.all(od == 2.0)
-    _, od = rp.reproj_frame_depth(tiny, np.full((8, 2), 1.0), tiny, np.full((8, 2), 2.0), np.zeros((2, 1, 1)), 9,
+    _, od = crp.reproj_frame_depth(tiny, np.full((8, 2), 1.0), tiny, np.full((8, 2), 2.0), np.zeros((2, 1, 1)), 9,
                                   tcam, tcam, history=False, impl=impl)
     assert np.all(od == 1.0)
 
@@ -380,12 +381,12 @@ def test_frame_depth_c_and_warp_agree(rng):
     for kw in ({}, {"filter": "bilinear"}, {"iterations": 1}, {"iterations": rp.MAX_DEPTH_ITERATIONS},
                {"neighbourhood": 3}, {"history": False}):
         for frame in (0, 9):
-            a = rp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, **kw)
-            b = rp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, impl="c", **kw)
+            a = crp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, **kw)
+            b = crp.reproj_frame_depth(cur, dep, prev, pdep, red, frame, cam, pcam, impl="c", **kw)
             assert max_ulp_diff(a[0], b[0]) <= 2 and max_ulp_diff(a[1], b[1]) <= 2, kw
     x, y = grid(w, h)
-    a = rp.reproj_uv_depth_at(x, y, cam, pcam, pdep)
-    b = rp.reproj_uv_depth_at(x, y, cam, pcam, pdep, impl="c")
+    a = crp.reproj_uv_depth_at(x, y, cam, pcam, pdep)
+    b = crp.reproj_uv_depth_at(x, y, cam, pcam, pdep, impl="c")
     np.testing.assert_array_equal(a[0], b[0])
     for p, q in zip(a[1:], b[1:]):
         assert np.array_equal(np.isnan(p), np.isnan(q)) and max_ulp_diff(p[~np.isnan(p)], q[~np.isnan(q)]) <= 2
@@ -397,7 +398,7 @@ def test_frame_depth_kernel_tile_parallel_equals_single_band(rng):
     cur, prev = rng.random((h, w, 3), np.float32), rng.random((h, w, 3), np.float32)
     red = rng.random((8, 10, 3), np.float32)
     dep, pdep = (rng.uniform(0.5, 5.0, (h, w)).astype(np.float32) for _ in range(2))
-    ref, ref_d = rp.reproj_frame_depth(cur, dep, prev, pdep, red, 11, cam, pcam)
+    ref, ref_d = crp.reproj_frame_depth(cur, dep, prev, pdep, red, 11, cam, pcam)
     layer = rm.CloudLayer()
     for workers in (1, 3):
         with TileLauncher(workers=workers, bands_per_worker=3) as tl:
@@ -426,7 +427,7 @@ def test_frame_depth_bad_input_raises_naming_parameter(impl):
         args = dict(current=cur, depth=dep, previous=cur, previous_depth=dep, reduced=red, frame=0, camera=cam,
                     prev_camera=cam, impl=impl)
         args.update(kw)
-        return rp.reproj_frame_depth(**args)
+        return crp.reproj_frame_depth(**args)
 
     with pytest.raises(ValueError, match=r"^depth must have shape \(height, width\) = \(8, 16\), got \(8, 15\)"):
         call(depth=dep[:, :15])
@@ -449,9 +450,9 @@ def test_frame_depth_bad_input_raises_naming_parameter(impl):
     with pytest.raises(ValueError, match=r"^impl must be 'warp' or 'c'"):
         call(impl="cuda")
     with pytest.raises(ValueError, match=r"^x, y must be pixels of the 16x8 frame"):
-        rp.reproj_uv_depth_at(16, 0, cam, cam, dep, impl=impl)
+        crp.reproj_uv_depth_at(16, 0, cam, cam, dep, impl=impl)
     with pytest.raises(ValueError, match=r"^iterations must be in \[0, 16\], got 99"):
-        rp.reproj_uv_depth_at(0, 0, cam, cam, dep, iterations=99, impl=impl)
+        crp.reproj_uv_depth_at(0, 0, cam, cam, dep, iterations=99, impl=impl)
 
 
 def test_c_frame_depth_rejects_invalid_arguments_and_allows_in_place_outputs(rng):

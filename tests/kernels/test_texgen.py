@@ -22,8 +22,10 @@ from helpers import assert_twins_agree
 
 import pywarp
 from pywarp.core import binding as _cclouds
+from pywarp.clouds import texgen as TG
 from pywarp.clouds import textures as T
 from pywarp.kernels import texgen as K
+from pywarp.kernels.noise import COMBINATIONS
 
 EPS32 = float(np.finfo(np.float32).eps)
 
@@ -186,7 +188,7 @@ def test_texel_entries_c_and_warp_agree(rng):
     cells = rng.integers(1, 9, n)
     w0, w1, w2 = rng.uniform(0.1, 1.0, (3, n)).astype(np.float32)
     gamma = rng.uniform(0.4, 2.5, n).astype(np.float32)
-    for combination in K.COMBINATIONS:
+    for combination in COMBINATIONS:
         assert_twins_agree("vc-A9", ix, iy, iz, size, seed, octaves, freq, cells, w0, w1, w2, gamma,
                            combination=combination, ulp=TEXTURE_ULP)
     assert_twins_agree("vc-A10", ix, iy, iz, size, seed, cells, w0, w1, w2, gamma, ulp=TEXTURE_ULP)
@@ -303,14 +305,14 @@ def test_sample_trilinear_wrap_matches_float64_reference(impl, rng):
     n = 8
     tex = rng.uniform(0, 1, (n, n, n, 4)).astype(np.float32)
     p = rng.uniform(-3, 3, (2000, 3)).astype(np.float32)
-    got = K.sample_trilinear_wrap_np(tex, p, impl=impl)
+    got = TG.sample_trilinear_wrap_np(tex, p, impl=impl)
     # float32: p * n is exact (n a power of two); the weight frac +- 0.5 is rounded once (<= eps/4); each of the 3
     # lerp levels a + (b - a) t on values in [0, 1] adds <= 1.5 ulp of 1: bound 6 eps
     np.testing.assert_allclose(got, ref_trilinear(tex, p), rtol=0, atol=6 * EPS32)
     # at texel centres the sample is the texel, exactly
     idx = rng.integers(0, n, (200, 3))
     centres = ((idx + 0.5) / n).astype(np.float32)
-    np.testing.assert_array_equal(K.sample_trilinear_wrap_np(tex, centres, impl=impl), tex[idx[:, 2], idx[:, 1],
+    np.testing.assert_array_equal(TG.sample_trilinear_wrap_np(tex, centres, impl=impl), tex[idx[:, 2], idx[:, 1],
                                                                                               idx[:, 0]])
 
 
@@ -322,13 +324,13 @@ def test_sample_trilinear_wrap_c_and_warp_agree_and_are_shift_invariant(rng):
     p1 = rng.uniform(1, 2, (1500, 3)).astype(np.float32)  # in [1, 2): p1 - 1 and p1 - 3 are exact
     p0 = p1 - np.float32(1)
     pm = p1 - np.float32(3)
-    w1 = K.sample_trilinear_wrap_np(tex, p1)
-    np.testing.assert_array_equal(w1, K.sample_trilinear_wrap_np(tex, p0))
-    np.testing.assert_array_equal(w1, K.sample_trilinear_wrap_np(tex, pm))
+    w1 = TG.sample_trilinear_wrap_np(tex, p1)
+    np.testing.assert_array_equal(w1, TG.sample_trilinear_wrap_np(tex, p0))
+    np.testing.assert_array_equal(w1, TG.sample_trilinear_wrap_np(tex, pm))
     mixed = np.stack([p0[:, 0], p1[:, 1], pm[:, 2]], axis=1)
-    np.testing.assert_array_equal(w1, K.sample_trilinear_wrap_np(tex, mixed))
-    c1 = K.sample_trilinear_wrap_np(tex, p1, impl="c")
-    np.testing.assert_array_equal(c1, K.sample_trilinear_wrap_np(tex, p0, impl="c"))
+    np.testing.assert_array_equal(w1, TG.sample_trilinear_wrap_np(tex, mixed))
+    c1 = TG.sample_trilinear_wrap_np(tex, p1, impl="c")
+    np.testing.assert_array_equal(c1, TG.sample_trilinear_wrap_np(tex, p0, impl="c"))
     # same float32 lerps in the same order: bit-identical up to operation contraction (allow 2 ulp)
     assert ulp_diff(w1, c1) <= 2
 
@@ -633,7 +635,7 @@ def test_settings_validation_python_c_and_warp_agree_on_random_settings(rng):
                 w2=rng.choice([0.0, 0.25, -0.1], n, p=[0.3, 0.65, 0.05]),
                 combination=rng.integers(0, 7, n), gamma=rng.choice([1.0, 2.2, 0.0, -1.0, np.inf], n,
                                                                       p=[0.4, 0.4, 0.1, 0.05, 0.05]))
-    codes = K.base_shape_settings_codes(cols["size"], cols["perlin_octaves"], cols["perlin_frequency"],
+    codes = TG.base_shape_settings_codes(cols["size"], cols["perlin_octaves"], cols["perlin_frequency"],
                                         cols["worley_cells"], cols["w0"], cols["w1"], cols["w2"], cols["combination"],
                                         cols["gamma"])
     names = list(T.COMBINATIONS)

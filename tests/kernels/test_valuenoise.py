@@ -11,7 +11,8 @@ import pytest
 import pywarp
 from helpers import assert_twins_agree
 from pywarp.kernels.hash import hash_pcg_py
-from pywarp.kernels.valuenoise import INTERPOLATIONS, SMOOTHINGS, octave_image, octave_seed
+from pywarp.flight.clouds import octave_image
+from pywarp.kernels.valuenoise import INTERPOLATIONS, SMOOTHINGS, octave_seed
 
 lattice = pywarp.equation("oc-5.1.2")
 smooth = pywarp.equation("oc-5.1.3")

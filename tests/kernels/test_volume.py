@@ -13,8 +13,9 @@ import pywarp
 from helpers import assert_twins_agree
 from pywarp.core.runtime import TileLauncher
 from pywarp.kernels import camera as CAM
-from pywarp.kernels import flight as F
+from pywarp.flight import model as F
 from pywarp.kernels import volume as V
+from pywarp.flight import volumes as VS
 
 
 def ball(n=24, radius=9.0, soft=40.0):
@@ -25,9 +26,9 @@ def ball(n=24, radius=9.0, soft=40.0):
 
 def scene(aircraft=True):
     vals = V.default_values()
-    vs = V.VolumeSet([V.PlacedVolume(ball(), (-60.0, 80.0, -300.0), (120.0, 90.0, 120.0)),
-                      V.PlacedVolume(ball(16, 6.0), (40.0, 120.0, -420.0), (160.0, 60.0, 100.0)),
-                      V.PlacedVolume(ball(20, 7.0)[:, :, :], (-200.0, 60.0, -500.0), (90.0, 90.0, 90.0))])
+    vs = VS.VolumeSet([VS.PlacedVolume(ball(), (-60.0, 80.0, -300.0), (120.0, 90.0, 120.0)),
+                      VS.PlacedVolume(ball(16, 6.0), (40.0, 120.0, -420.0), (160.0, 60.0, 100.0)),
+                      VS.PlacedVolume(ball(20, 7.0)[:, :, :], (-200.0, 60.0, -500.0), (90.0, 90.0, 90.0))])
     vs.compute_light(vals)
     if aircraft:
         # banked 20 deg to the right, nose 5 deg up
@@ -42,22 +43,22 @@ def scene(aircraft=True):
 def test_light_volume_warp_vs_c_and_closed_forms():
     vals = V.default_values()
     vals["sun"] = (0.0, 1.0, 0.0)
-    v = V.PlacedVolume(ball(), (0, 0, 0), (24, 24, 24))
-    vs = V.VolumeSet([v])
+    v = VS.PlacedVolume(ball(), (0, 0, 0), (24, 24, 24))
+    vs = VS.VolumeSet([v])
     vs.compute_light(vals)
     w = vs.light[0]
-    c = V.light_c(vals, v)
+    c = VS.light_c(vals, v)
     np.testing.assert_allclose(w, c, rtol=2e-6, atol=1e-7)
     # above the ball the sun is unattenuated; under it darker than on top
     assert np.all(w[:, -1, :] == 1.0)
     assert w[12, 4, 12] < w[12, 18, 12] < 1.0
     # an empty volume lets all light through
-    e = V.VolumeSet([V.PlacedVolume(np.zeros((8, 8, 8), np.uint8), (0, 0, 0), (1, 1, 1))])
+    e = VS.VolumeSet([VS.PlacedVolume(np.zeros((8, 8, 8), np.uint8), (0, 0, 0), (1, 1, 1))])
     e.compute_light(vals)
     assert np.all(e.light[0] == 1.0)
     # a uniform slab of density 255 along the sun: exp(-light_tau * k) after k voxels (independent value)
-    slab = V.PlacedVolume(np.full((4, 10, 4), 255, np.uint8), (0, 0, 0), (4, 10, 4))
-    s = V.VolumeSet([slab])
+    slab = VS.PlacedVolume(np.full((4, 10, 4), 255, np.uint8), (0, 0, 0), (4, 10, 4))
+    s = VS.VolumeSet([slab])
     s.compute_light(vals)
     # voxel y = j sees the samples at j + 1, ..., 9 inside (the one at 10 + 0.5 is outside the box)
     for j in range(10):
@@ -71,8 +72,8 @@ def test_pixels_warp_vs_c():
     w_, h_ = 320, 180
     xs = np.concatenate([rng.integers(0, w_, 300), np.arange(150, 170)])
     ys = np.concatenate([rng.integers(0, h_, 300), np.full(20, 95)])
-    w = V.pixels_warp(vals, vs, cam, xs, ys, w_, h_)
-    c = V.pixels_c(vals, vs, cam, xs, ys, w_, h_)
+    w = VS.pixels_warp(vals, vs, cam, xs, ys, w_, h_)
+    c = VS.pixels_c(vals, vs, cam, xs, ys, w_, h_)
     np.testing.assert_allclose(w, c, rtol=1e-5, atol=1e-6)
     # the samples cover the three kinds of background and the clouds
     assert np.isfinite(w).all()
@@ -99,7 +100,7 @@ def test_skipping_changes_no_pixel():
     """The skip distances (jumps over cubes of empty bricks), one brick per jump, and no skipping at all (a skip map
     of zeros) give the same image."""
     vals, vs, cam = scene()
-    assert V.skip_distance(vs.volumes[0].density).max() > 1
+    assert VS.skip_distance(vs.volumes[0].density).max() > 1
     imgs = []
     for cap in (255, 1, 0):
         vs.set_skip_cap(max(cap, 1))
@@ -123,9 +124,9 @@ def test_occupancy_numpy_vs_c_and_conservative():
     rng = np.random.default_rng(11)
     for shape in [(8, 8, 8), (9, 13, 6), (24, 24, 24)]:
         d = np.where(rng.random(shape) < 0.02, 200, 0).astype(np.uint8)
-        occ = V.occupancy(d)
-        vs = V.VolumeSet([V.PlacedVolume(d, (0, 0, 0), (1, 1, 1))], [np.zeros(shape, np.float32)])
-        arr, keep = V.c_grids(vs)
+        occ = VS.occupancy(d)
+        vs = VS.VolumeSet([VS.PlacedVolume(d, (0, 0, 0), (1, 1, 1))], [np.zeros(shape, np.float32)])
+        arr, keep = VS.c_grids(vs)
         out = np.zeros(occ.shape, np.uint8)
         assert lib().ccl_volume_occupancy(arr, ffi().from_buffer("unsigned char[]", out), out.size) == 0
         np.testing.assert_array_equal(occ, out)
@@ -138,7 +139,7 @@ def test_occupancy_numpy_vs_c_and_conservative():
             if x % B == 0 and x >= B:
                 assert occ[z // B, y // B, x // B - 1] == 1
         # skip distances: NumPy = C, and each one the Chebyshev distance to the nearest occupied brick (brute force)
-        sk = V.skip_distance(d)
+        sk = VS.skip_distance(d)
         out = np.zeros(occ.shape, np.uint8)
         assert lib().ccl_volume_skip(arr, ffi().from_buffer("unsigned char[]", out), out.size) == 0
         np.testing.assert_array_equal(sk, out)
@@ -150,39 +151,39 @@ def test_occupancy_numpy_vs_c_and_conservative():
     # one voxel in a 24^3 volume: the distance grows by one per brick away from it (Chebyshev)
     d = np.zeros((24, 24, 24), np.uint8)
     d[3, 3, 3] = 90
-    sk = V.skip_distance(d)
-    b = np.argwhere(V.occupancy(d) > 0)
+    sk = VS.skip_distance(d)
+    b = np.argwhere(VS.occupancy(d) > 0)
     idx = np.stack(np.meshgrid(*[np.arange(n) for n in sk.shape], indexing="ij"), -1)
     want = np.abs(idx[..., None, :] - b).max(-1).min(-1)
     np.testing.assert_array_equal(sk, want)
     assert sk.max() > 5
     # no brick occupied: 255 everywhere
-    assert np.all(V.skip_distance(np.zeros((6, 6, 6), np.uint8)) == 255)
+    assert np.all(VS.skip_distance(np.zeros((6, 6, 6), np.uint8)) == 255)
 
 
 def test_empty_scene_and_opaque_cloud():
     vals, vs, cam = scene(aircraft=False)
     xs, ys = np.array([160]), np.array([90])
-    empty = V.VolumeSet([])
-    bg = V.pixels_warp(vals, empty, cam, xs, ys, 320, 180)
-    bg_c = V.pixels_c(vals, empty, cam, xs, ys, 320, 180)
+    empty = VS.VolumeSet([])
+    bg = VS.pixels_warp(vals, empty, cam, xs, ys, 320, 180)
+    bg_c = VS.pixels_c(vals, empty, cam, xs, ys, 320, 180)
     np.testing.assert_array_equal(bg, bg_c)
     # a dense cube filling the view hides the background entirely: the pixel no longer depends on it
-    cube = V.VolumeSet([V.PlacedVolume(np.full((8, 8, 8), 255, np.uint8), (-500, -400, -900), (1000, 1000, 500))])
+    cube = VS.VolumeSet([VS.PlacedVolume(np.full((8, 8, 8), 255, np.uint8), (-500, -400, -900), (1000, 1000, 500))])
     cube.compute_light(vals)
-    a = V.pixels_warp(vals, cube, cam, xs, ys, 320, 180)
+    a = VS.pixels_warp(vals, cube, cam, xs, ys, 320, 180)
     vals2 = dict(vals, sky_zenith=(1.0, 0.0, 0.0), sky_horizon=vals["sky_horizon"])
-    b = V.pixels_warp(vals2, cube, cam, xs, ys, 320, 180)
+    b = VS.pixels_warp(vals2, cube, cam, xs, ys, 320, 180)
     np.testing.assert_allclose(a, b, atol=1e-6)
 
 
 def test_bad_input_is_refused():
     with pytest.raises(ValueError, match="density"):
-        V.PlacedVolume(np.zeros((4, 4, 4), np.float32), (0, 0, 0), (1, 1, 1))
+        VS.PlacedVolume(np.zeros((4, 4, 4), np.float32), (0, 0, 0), (1, 1, 1))
     with pytest.raises(ValueError, match="extent"):
-        V.PlacedVolume(np.zeros((4, 4, 4), np.uint8), (0, 0, 0), (1, 0, 1))
+        VS.PlacedVolume(np.zeros((4, 4, 4), np.uint8), (0, 0, 0), (1, 0, 1))
     with pytest.raises(ValueError, match="at most"):
-        V.VolumeSet([V.PlacedVolume(np.zeros((2, 2, 2), np.uint8), (0, 0, 0), (1, 1, 1))] * 17)
+        VS.VolumeSet([VS.PlacedVolume(np.zeros((2, 2, 2), np.uint8), (0, 0, 0), (1, 1, 1))] * 17)
     vals = V.default_values()
     with pytest.raises(ValueError, match="g must be"):
         V.check_values(dict(vals, g=1.0))

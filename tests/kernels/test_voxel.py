@@ -13,7 +13,7 @@ import pytest
 import pywarp
 from helpers import assert_twins_agree
 from pywarp.core.runtime import TileLauncher
-from pywarp.kernels.voxel import (CloudArraySettings, bench_cloud_array, cloud_volume, noise_volume, scale_volume,
+from pywarp.flight.clouds import (CloudArraySettings, bench_cloud_array, cloud_volume, noise_volume, scale_volume,
                                   scaled_shape)
 
 filt = pywarp.equation("oc-5.2.2")

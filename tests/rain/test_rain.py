@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from pywarp.core.scenes import scene
-from pywarp.kernels import particles as P
+from pywarp.rain import particles as P
 from pywarp.rain.settings import CONTROLS, RainSettings
 from pywarp.rain.technique import Panorama, RainPose, RainTechnique, sphere_mask
 
@@ -40,7 +40,7 @@ def test_settings_refuse_bad_values():
 
 @pytest.mark.spec("rr-alg-3.1.1")
 def test_scene_mask_matches_an_independent_sphere():
-    from pywarp.kernels import rain as R
+    from pywarp.rain import drops as R
 
     m = np.asarray(R.drop_mask(64, 1.0, method="sphere"))
     ref = sphere_mask(64)

@@ -230,7 +230,7 @@ def test_flight_keys_fly_the_aircraft_as_the_table_says(flight):
 
 def test_flight_controls_fly_the_path_of_the_flight_model(flight):
     from pywarp.flight.script import DT
-    from pywarp.kernels.flight import simulate
+    from pywarp.flight.model import simulate
 
     s = flight_settings(flight)
     ctl = flight.make_controls(s)

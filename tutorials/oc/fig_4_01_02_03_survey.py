@@ -13,7 +13,7 @@ of the box) with the texturing function 0.5 + n (clamped to [0, 1]; n the same f
 width, seed 5: Perlin-type noise, as the text's OpenGL version of Gardner's sums of sines) and Gardner's translucency
 (pywarp.equation("oc-4.3"), T1 = 0.25, D = 0.25). Fig. 4.3 (oc-4.3): five such ellipsoids joined (the largest opacity
 wins). Every volume is uint8 (0 .. 255) and rendered by the volume renderer of the flight scene
-(pywarp.kernels.volume.render: emission-absorption raymarch, light volume towards a sun 35 deg high at azimuth 110 deg,
+(pywarp.flight.volumes.render: emission-absorption raymarch, light volume towards a sun 35 deg high at azimuth 110 deg,
 from the right; optical depth 0.3 per voxel, so the texture's holes read as holes).
 Outputs: figures/oc/fig-4.1.png, figures/oc/fig-4.2.png, figures/oc/fig-4.3.png.
 """
@@ -45,6 +45,7 @@ import numpy as np  # noqa: E402
 import pywarp  # noqa: E402
 from pywarp.kernels import camera as CAM  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
+from pywarp.flight import volumes as VS  # noqa: E402
 
 EXTENT = (100.0, 60.0, 100.0)  # box of every volume [m]; the camera looks at it from about 120 m
 SQUASH = 0.6  # the box's height / width: box-unit y times this is isotropic in metres
@@ -108,12 +109,12 @@ def render_volume(density: np.ndarray, width: int, height: int) -> np.ndarray:
     values["sun"] = V.sun_direction(35.0, 110.0)
     values["field_size"] = 30.0
     values["tau_per_voxel"] = 0.3  # a little thinner than the flight scene's 0.35: holes and turrets read
-    vs = V.VolumeSet([V.PlacedVolume(density, (-EXTENT[0] / 2, 40.0, -EXTENT[2] / 2), EXTENT)])
+    vs = VS.VolumeSet([VS.PlacedVolume(density, (-EXTENT[0] / 2, 40.0, -EXTENT[2] / 2), EXTENT)])
     vs.compute_light(values)
     eye = np.array([0.0, 80.0, 118.0])
     cam = CAM.camera_look_at(eye, np.array([0.0, 68.0, 0.0]), (0.0, 1.0, 0.0), math.radians(45.0), width / height,
                              0.1, 1e5)
-    return V.render(vs, values, cam, width, height)
+    return VS.render(vs, values, cam, width, height)
 
 
 def save(img: np.ndarray, title: str, path: Path) -> Path:

@@ -4,7 +4,7 @@ to the final resolution, and their sum.
 The text's procedure (oc-5.1.1): start with a 16 x 16 image, double the frequency (oc-5.1.2.1) and the resolution up
 to 256 x 256 (16, 32, 64, 128, 256: 5 layers), interpolate every layer to 256 x 256 with bilinear interpolation
 (oc-5.1.4, oc-5.1.4.1), weight by the persistence (oc-5.1.2.2, p = 0.5 -- the text gives none) and sum.
-pywarp.kernels.valuenoise.octave_image does exactly this with the lattice noise of oc-5.1.2 smoothed by Elias's
+pywarp.flight.clouds.octave_image does exactly this with the lattice noise of oc-5.1.2 smoothed by Elias's
 weights (oc-5.1.3), seed 7. The last panel is the printed persistence squaring (erratum 3). Output:
 figures/oc/fig-5.2.png.
 """
@@ -26,7 +26,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.kernels.valuenoise import octave_image  # noqa: E402  (the 2-D layer procedure of §5.1.1)
+from pywarp.flight.clouds import octave_image  # noqa: E402  (the 2-D layer procedure of §5.1.1)
 
 
 def main(out_dir, quick: bool = False) -> list[Path]:

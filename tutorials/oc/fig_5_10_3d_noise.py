@@ -1,7 +1,7 @@
 """Figure oc-fig-5.10: creation of 3-D noise -- a size/8 array of random noise, interpolated up level by level with new
 noise of lower amplitude added, until the full size.
 
-The cloud array of oc-5.2.1 (pywarp.kernels.voxel.noise_volume, 64^3, 4 levels 8 -> 16 -> 32 -> 64, trilinear
+The cloud array of oc-5.2.1 (pywarp.flight.clouds.noise_volume, 64^3, 4 levels 8 -> 16 -> 32 -> 64, trilinear
 up-sampling, persistence 0.5 (oc-5.1.2.2), Elias smoothing (oc-5.1.3), zero border (oc-5.2.3.2), seed 1 -- the text
 gives no values). Top row: the middle slice (z = size/2) of the array after each level; bottom row: the noise added
 at that level, a_l N_l (pywarp.valuenoise_smooth). Output: figures/oc/fig-5.10.png.
@@ -26,7 +26,7 @@ import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
 from pywarp.kernels.valuenoise import octave_seed  # noqa: E402
-from pywarp.kernels.voxel import CloudArraySettings, noise_volume  # noqa: E402
+from pywarp.flight.clouds import CloudArraySettings, noise_volume  # noqa: E402
 
 SEED = 1
 

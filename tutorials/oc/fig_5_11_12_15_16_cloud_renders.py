@@ -2,7 +2,7 @@
 without filtering (5.11), filtered without the border fix (5.12, the border problem; cover 112 there), noise + filter + larger array
 (5.15), and several clouds, scaled per axis, in one scene (5.16).
 
-The arrays are the library's (pywarp.kernels.voxel): oc-5.2.1 (size/8 -> size up-sampling with added noise), the
+The arrays are the library's (pywarp.flight.clouds): oc-5.2.1 (size/8 -> size up-sampling with added noise), the
 filter oc-5.2.2 (cover 128, sharpness 0.96 -- the text gives no values), border 'none' (oc-5.2.3), 'sin' (the
 rejected rounding oc-5.2.3.1, beside 5.12) and 'zero' (the larger array, oc-5.2.3.2), per-axis scaling oc-5.2.3-scale.
 The text displays them with SimVoleon; here a small orthographic emission-absorption raymarch written in this
@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 import pywarp  # noqa: E402
 from scipy import ndimage  # noqa: E402
 
-from pywarp.kernels.voxel import CloudArraySettings, cloud_volume, noise_volume, scale_volume  # noqa: E402
+from pywarp.flight.clouds import CloudArraySettings, cloud_volume, noise_volume, scale_volume  # noqa: E402
 
 
 def render(vol, size=200, steps=160, tau=20.0, yaw=35.0, pitch=25.0, zoom=1.0, aspect=1.0):

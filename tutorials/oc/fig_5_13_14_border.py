@@ -5,7 +5,7 @@ Fig. 5.13 (oc-5.2.3): one row of pixels up-sampled 4 -> 8 -> 16 -> 32 by linear 
 (the up-sampling of the cloud array, oc-5.2.1; oc-5.1.4.1 as the blend): the random border pixel "1" is carried
 toward the interior, and the end of the row keeps a non-zero value -- nothing lies beyond it to interpolate toward.
 With a zero border cell (the larger array, oc-5.2.3.2) the row falls to 0 at both ends. Fig. 5.14 (oc-5.2.3.2): the
-scheme on the middle slices of a real build (pywarp.kernels.voxel.noise_volume, 32^3, 4 levels, seed 5): the border
+scheme on the middle slices of a real build (pywarp.flight.clouds.noise_volume, 32^3, 4 levels, seed 5): the border
 cells of every level (outlined) stay 0 and are never filled, neither by interpolation nor by the added noise.
 Outputs: figures/oc/fig-5.13.png, figures/oc/fig-5.14.png.
 """
@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.kernels.voxel import CloudArraySettings, noise_volume  # noqa: E402
+from pywarp.flight.clouds import CloudArraySettings, noise_volume  # noqa: E402
 
 
 def _upsample_row(row, n):

@@ -2,7 +2,7 @@
 
 The text's plane is a 3DS model converted to Open Inventor (oc-6.1); none ships with the text, so the procedural
 light aircraft of pywarp.equation("oc-6.1") (ccl_flight_aircraft: fuselage, low wing of 12 m span, tail, canopy)
-stands in, drawn by the volume renderer of the flight scene (pywarp.kernels.volume.render, no clouds). The height
+stands in, drawn by the volume renderer of the flight scene (pywarp.flight.volumes.render, no clouds). The height
 points (oc-6.1.1; their positions are not given: the catalogue's reading) are A = nose (0, 0, -3.75), B = tail
 (0, 0, +3.75), C = left wing tip (-6, 0, 0), D = right wing tip (+6, 0, 0), E = centre of gravity (0, 0, 0) in the
 model frame (x right, y up, z tail), projected with the camera. Left: level flight. Right: after the down arrow held
@@ -31,8 +31,9 @@ import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
 from pywarp.kernels import camera as CAM  # noqa: E402
-from pywarp.kernels import flight as F  # noqa: E402
+from pywarp.flight import model as F  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
+from pywarp.flight import volumes as VS  # noqa: E402
 
 MODEL = F.FlightModel()
 POINTS = {"A": (0.0, 0.0, -MODEL.length / 2), "B": (0.0, 0.0, MODEL.length / 2), "C": (-MODEL.span / 2, 0.0, 0.0),
@@ -51,7 +52,7 @@ def panel(nose: float, wing: float, width: int, height: int):
                   aircraft_right=r, aircraft_up=u)
     eye = POS + np.array([-9.0, 6.5, -11.0])  # in front, to the left and above
     cam = CAM.camera_look_at(eye, POS, (0.0, 1.0, 0.0), math.radians(50.0), width / height, 0.1, 1e5)
-    img = V.render(V.VolumeSet([]), values, cam, width, height)
+    img = VS.render(VS.VolumeSet([]), values, cam, width, height)
     pts = {}
     for name, (x, y, z) in POINTS.items():
         w = POS + x * np.asarray(r) + y * np.asarray(u) - z * np.asarray(f)

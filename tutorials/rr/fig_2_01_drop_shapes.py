@@ -30,6 +30,7 @@ import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
 from pywarp.kernels import rain  # noqa: E402
+from pywarp.rain import drops  # noqa: E402
 
 
 def profile(a, n, interp="table"):
@@ -52,8 +53,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     # %%
     radii = np.array(rain.SHAPE_RADII)
-    volume = rain.drop_volume(radii)
-    ratio = rain.drop_axis_ratio(radii)
+    volume = drops.drop_volume(radii)
+    ratio = drops.drop_axis_ratio(radii)
 
     fig = plt.figure(figsize=(16, 6.6), dpi=80 if quick else 120)
     gs = fig.add_gridspec(2, 5, width_ratios=(1.2, 1.2, 1, 1, 1))
@@ -93,7 +94,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         ax = fig.add_subplot(gs[k, 4], projection="3d")
         th, ph = np.meshgrid(np.linspace(0, np.float32(np.pi), 24 if quick else 48),
                              np.linspace(0, 2 * np.pi, 32 if quick else 64))
-        P, N = rain.drop_surface(th, ph, a)
+        P, N = drops.drop_surface(th, ph, a)
         shade = np.clip(N @ np.array([0.4, 0.7, 0.6]) / np.linalg.norm([0.4, 0.7, 0.6]), 0, 1)
         ax.plot_surface(P[..., 0], P[..., 2], P[..., 1], facecolors=plt.cm.Blues(0.35 + 0.6 * shade), linewidth=0,
                         shade=False)

@@ -32,7 +32,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.kernels import rain  # noqa: E402
+from pywarp.rain import drops  # noqa: E402
 from pywarp.tutorial import billboard_frame, environment, pinhole_directions  # noqa: E402
 
 FOV_CAPTURE = 150.0  # the capture camera's FOVy: the text's contract (rr-der-3.2.1, variant 'thesis')
@@ -79,7 +79,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     closeups = []
     for label, method, a, f, ar in DROPS:
         f = np.asarray(f, float) / np.linalg.norm(f)
-        mask = rain.drop_mask(mask_size, a, method=method)
+        mask = drops.drop_mask(mask_size, a, method=method)
         n = int(4 * np.tan(ar) * px_per_tan)
         rgba = pywarp.rain_shade_drop(capture, mask, f, angular_radius=ar, fov_y_deg=FOV_CAPTURE, out_size=n)
         composite(composed, dirs, rgba, f, ar)

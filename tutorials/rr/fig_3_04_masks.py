@@ -7,7 +7,7 @@ example radius, coefficients interpolated: an assumption). Output: figures/rr/fi
 # A drop on screen is a small billboard. For each of its pixels the shader needs two things: is the pixel inside the
 # drop, and in which direction does the view ray leave the drop after refracting twice? Both are precomputed once,
 # into a 512 x 512 mask: xyz = exit direction (x right, y up, z along the view), a = inside flag
-# (`pywarp.kernels.rain.drop_mask`). Here the direction is shown as colour, 0.5 + 0.5 (x, y, z).
+# (`pywarp.rain.drops.drop_mask`). Here the direction is shown as colour, 0.5 + 0.5 (x, y, z).
 #
 # * **sphere** (the text): a spherical drop, two refractions at a sphere (rr-snell). The text calls the exact shape
 #   "very expensive" and keeps the sphere even when a flattened drop is chosen.
@@ -32,6 +32,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from pywarp.kernels import rain  # noqa: E402
+from pywarp.rain import drops  # noqa: E402
 
 #: the figure prints the mask build times (measurements): not compared pixel for pixel
 DETERMINISTIC = False
@@ -52,7 +53,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         masks, times = {}, {}
         for method in ("sphere", "outline", "exact"):
             t0 = time.perf_counter()
-            masks[method] = rain.drop_mask(size, a, method=method, interp=interp)
+            masks[method] = drops.drop_mask(size, a, method=method, interp=interp)
             times[method] = time.perf_counter() - t0
         rows.append((a, interp, masks, times))
 
@@ -81,7 +82,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         ax = fig.add_subplot(gs[r, 4], projection="3d")
         th, ph = np.meshgrid(np.linspace(0, np.float32(np.pi), 24 if quick else 48),
                              np.linspace(0, 2 * np.pi, 32 if quick else 64))
-        P, N = rain.drop_surface(th, ph, a, interp=interp)
+        P, N = drops.drop_surface(th, ph, a, interp=interp)
         shade = np.clip(N @ np.array([0.4, 0.7, 0.6]) / np.linalg.norm([0.4, 0.7, 0.6]), 0, 1)
         ax.plot_surface(P[..., 0], P[..., 2], P[..., 1], facecolors=plt.cm.Blues(0.35 + 0.6 * shade), linewidth=0,
                         shade=False)

@@ -34,6 +34,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
+from pywarp.rain import drops  # noqa: E402
 from pywarp.tutorial import billboard_frame, environment  # noqa: E402
 
 N_WATER = 1.33
@@ -167,7 +168,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
                   fontsize=10)
 
     n_out = 96 if quick else 400
-    mask = pywarp.kernels.rain.drop_mask(128 if quick else 512, 1.0, method="sphere")
+    mask = drops.drop_mask(128 if quick else 512, 1.0, method="sphere")
     drop = pywarp.rain_shade_drop(cap, mask, f, angular_radius=ar, out_size=n_out)
     axc = fig.add_subplot(gs[2])
     shown = np.where(drop[..., 3:] > 0, drop[..., :3], 0.15)

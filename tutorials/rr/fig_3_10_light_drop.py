@@ -26,7 +26,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.kernels import rain  # noqa: E402
+from pywarp.rain import drops  # noqa: E402
 
 LIGHTS = ((np.array([-2.5, 2.5, -3.0]), np.array([1.0, 0.75, 0.45])),
           (np.array([3.0, 0.5, 1.0]), np.array([0.45, 0.65, 1.0])))
@@ -58,7 +58,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     fig, axes = plt.subplots(2, 5, figsize=(17, 7.4), dpi=80 if quick else 110)
     for row, (label, method, a) in enumerate((("sphere", "sphere", 1.0), ("4.5 mm Beard-Chuang (exact mask)",
                                                                           "exact", 4.5))):
-        mask, normals = rain.drop_mask(size, a, method=method, normals=True)
+        mask, normals = drops.drop_mask(size, a, method=method, normals=True)
         inside = mask[..., 3] > 0
 
         # %% [markdown]
