@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.kernels.rain import drop_mask  # noqa: E402
+from pywarp.rain.drops import drop_mask  # noqa: E402
 from pywarp.rain.settings import RainSettings  # noqa: E402
 from pywarp.rain.technique import RainTechnique  # noqa: E402
 
