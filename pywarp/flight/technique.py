@@ -56,7 +56,7 @@ class FlightTechnique:
     (:class:`pywarp.kernels.flight.Trajectory`)."""
 
     def __init__(self, settings: FlightSettings | None = None, script=None):
-        self.settings = (settings or FlightSettings()).validate()
+        self.settings = settings or FlightSettings()
         self.script = tuple(script) if script is not None else S.DEFAULT_SCRIPT
         self.launcher = shared_launcher(self.settings.device, self.settings.threads)
         self.device = self.launcher.device
@@ -90,8 +90,9 @@ class FlightTechnique:
         self.volumes.compute_light(self.settings.volume_values())
 
     def update(self, **changes) -> None:
-        """Change settings; what each change invalidates comes from the specs: ``textures`` (clouds, flight) rebuilds
-        the flight and the clouds, ``sky`` (sun, light) the light volumes, ``size`` the frame buffer."""
+        """Change settings; what each change invalidates comes from the specs (``FlightSettings.INVALIDATES``):
+        ``flight`` simulates the flight again and rebuilds the clouds placed along it, ``clouds`` the clouds, ``light``
+        (sun, light) the light volumes, ``size`` the frame buffer."""
         old = self.settings
         new = replace(old, **changes)
         stale = new.invalidated(old)
@@ -99,10 +100,11 @@ class FlightTechnique:
         if "device" in stale:
             self.launcher = shared_launcher(new.device, new.threads)
             self.device = self.launcher.device
-        if stale & {"textures", "device"}:
+        if stale & {"flight", "device"}:
             self._build_flight()
+        if stale & {"flight", "clouds", "device"}:
             self._build_clouds()
-        if stale & {"textures", "device", "sky"}:
+        if stale & {"flight", "clouds", "device", "light"}:
             self._build_light()
         if stale & {"size", "device"}:
             self.resize(new.width, new.height)

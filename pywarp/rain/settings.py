@@ -54,6 +54,10 @@ class RainSettings(Settings):
     """Every parameter of a rain frame, with its unit, default and the reason for it. Immutable: change with
     ``dataclasses.replace`` or :meth:`pywarp.rain.technique.RainTechnique.update`."""
 
+    #: ``background``: the background scene is rebuilt (and its frames cached again); ``mask``: the refraction mask
+    #: is computed again
+    INVALIDATES = Settings.INVALIDATES + ("background", "mask")
+
     width: int = param(640, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group=_G_IMAGE,
                        doc="image width", reason="640 x 360: the issue's benchmark frame")
     height: int = param(360, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group=_G_IMAGE,
@@ -65,10 +69,10 @@ class RainSettings(Settings):
                        doc="requested number of drops (G/H keys)",
                        reason="3000: heavy rain at 640 x 360 that still lets the background through; Table 6.2 "
                               "measures 0 - 50 000")
-    shape: str = param("1.0", choices=SHAPES, invalidates="textures", group=_G_RAIN,
+    shape: str = param("1.0", choices=SHAPES, invalidates="mask", group=_G_RAIN,
                        doc="drop shape: the Table 2.1 radius a (mm) whose Beard-Chuang outline the mask takes (T key)",
                        reason="1.0: the typical drop of the text's §3.1 (1 mm radius ~ 10 px)")
-    mask: str = param("outline", choices=MASKS, invalidates="textures", group=_G_RAIN,
+    mask: str = param("outline", choices=MASKS, invalidates="mask", group=_G_RAIN,
                       doc="refraction mask: sphere, outline (the application: the shape's outline, a sphere's "
                           "refraction) or exact (rays traced through the Beard-Chuang drop)",
                       reason="outline: what the application did (rr-alg-3.1.1, spec erratum 12)")
@@ -144,7 +148,7 @@ class RainSettings(Settings):
     capture_fov_deg: float = param(150.0, unit="deg", lo=1.0, hi=170.0, group=_G_LOOK, cli="--capture-fov",
                                    doc="vertical FOV of the capture camera (rr-der-3.2.1)",
                                    reason="150: the text's contract (the exact drop FOV is 165 deg, rr-der-3.2.1)")
-    mask_size: int = param(512, unit="px", kind="int", lo=8, hi=4096, invalidates="textures", group=_G_LOOK,
+    mask_size: int = param(512, unit="px", kind="int", lo=8, hi=4096, invalidates="mask", group=_G_LOOK,
                            doc="edge of the refraction mask", reason="512: the text's (rr-alg-3.1.1)")
     light1_pos: tuple = param((0.5, 0.45, -1.6), unit="units", length=3, group=_G_LIGHT,
                               doc="position of point light 1 (rr-A1..rr-CF), camera-relative scene units (x right, y "
@@ -179,13 +183,13 @@ class RainSettings(Settings):
                                     reason="2: the horizon across the frame, so drops show sky and ground upside down")
     fov_y_deg: float = param(60.0, unit="deg", lo=1.0, hi=170.0, group=_G_CAM, cli="--fov",
                              doc="vertical field of view of the view", reason="60: a natural view")
-    background: str = param("clouds", check=_check_background, invalidates="sky", group=_G_BG,
+    background: str = param("clouds", check=_check_background, invalidates="background", group=_G_BG,
                             doc="background: 'panorama' (built-in analytic sky and ground) or any registered scene "
                                 "(its settings' width, height, fov_y_deg, camera_yaw_deg and camera_pitch_deg are set "
                                 "from ours)",
                             reason="clouds: the vc cloudscape, a real rendered background")
     background_options: dict = param({"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05}, cli=None,
-                                     invalidates="sky", group=_G_BG,
+                                     invalidates="background", group=_G_BG,
                                      doc="settings of the background scene by name",
                                      reason="clouds: an overcast, dark rain sky seen from 50 m")
     device: str = param("cpu", invalidates="device", group=_G_RUN, doc="Warp device: cpu, or cuda:N where present",

@@ -238,7 +238,7 @@ class RainTechnique:
     pays for them once)."""
 
     def __init__(self, settings: RainSettings | None = None):
-        self.settings = (settings or RainSettings()).validate()
+        self.settings = settings or RainSettings()
         self.background = None
         self._cache: dict = {}
         self._device_cache: dict = {}
@@ -270,10 +270,10 @@ class RainTechnique:
         if "device" in stale:
             self.init()
             return
-        if "sky" in stale:
+        if "background" in stale:
             self.background = make_background(new)
             self._cache.clear()
-        if "textures" in stale:
+        if "mask" in stale:
             self.mask, self.extent, self.normals = drop_mask(new.shape, new.mask, new.mask_size)
         particle_fields = {"size_mm", "size_spread_mm", "size_samples", "slowdown", "metres_per_unit", "wind_x",
                            "wind_z", "seed", "variant", "warm_start"}

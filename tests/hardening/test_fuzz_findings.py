@@ -475,14 +475,13 @@ def test_cloudscape_far_light_factor_bounded_and_finite_at_the_limit():
     distance, their product x 5, is 1.5 km), but its weight (light_far_factor - 1) x 5 x light_step_km overflowed to
     Inf in the first product, and Inf x a density of 0 made the pixel NaN."""
     from pywarp.clouds.cloudscape import CloudscapeTechnique, render_pixels_c, render_pixels_warp
-    from pywarp.clouds.cparams import check_params, param_values
     from pywarp.clouds.settings import CloudscapeSettings
 
     finding = {"light_far_factor": 3.0e38, "light_step_km": 1.0e-39}
     with pytest.raises(ValueError, match=r"^light_far_factor is out of range: it must be in \[1, 10\^6\] "):
         CloudscapeSettings(advanced=finding)
     with pytest.raises(ValueError, match=r"^light_far_factor is out of range"):  # the C check itself
-        check_params({**param_values(CloudscapeSettings()), **finding})
+        CloudscapeSettings().c_params({**CloudscapeSettings().c_values(), **finding})
     # at the limit, a far sample 5 km away with a weight of 5 km: finite pixels, the twins equal
     s = CloudscapeSettings(width=16, height=9, base_size=16, detail_size=32, curl_size=16, weather_size=512,
                            samples_min=8, samples_max=16,
