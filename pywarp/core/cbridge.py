@@ -61,17 +61,16 @@ class CStruct:
                 raise ValueError(f"unknown {self.name} field {name!r}")
             owner, attr = places[name]
             cur = getattr(owner, attr)
-            if hasattr(cur, "x") or _is_array(cur):
-                vals = [float(a) for a in v]
-                comps = ("x", "y", "z")[:len(vals)] if hasattr(cur, "x") else range(len(cur))
-                if len(vals) != (len(_vec(cur)) if hasattr(cur, "x") else len(cur)):
-                    raise ValueError(f"{name} must hold {len(_vec(cur)) if hasattr(cur, 'x') else len(cur)} "
-                                     f"numbers, got {v!r}")
-                for comp, a in zip(comps, vals):
+            if hasattr(cur, "x") or _is_array(cur):  # a ccl_vec2/3 or an array: a sequence of its length
+                n = len(_vec(cur)) if hasattr(cur, "x") else len(cur)
+                items = list(v)
+                if len(items) != n:
+                    raise ValueError(f"{name} must hold {n} numbers, got {v!r}")
+                for i, a in enumerate(items):
                     if hasattr(cur, "x"):
-                        setattr(cur, comp, a)
+                        setattr(cur, "xyz"[i], float(a))
                     else:
-                        cur[comp] = a
+                        cur[i] = a
             else:
                 setattr(owner, attr, v)
         return c
@@ -183,3 +182,11 @@ def _value(v):
     if _is_array(v):
         return tuple(v)
     return v
+
+
+# --- the parameter structs of the scenes (the cloudscape's, with its error domains: pywarp.clouds.settings) ----------
+
+TERRAIN_PARAMS = CStruct("ccl_terrain_params", "ccl_terrain_params_check", "pywarp.kernels.terrain:TerrainParams")
+VOLUME_PARAMS = CStruct("ccl_volume_params", "ccl_volume_check", "pywarp.kernels.volume:VolumeParams")
+PARTICLES_PARAMS = CStruct("ccl_particles_params", "ccl_particles_params_check",
+                           "pywarp.kernels.particles:ParticlesParams")

@@ -28,6 +28,7 @@ import math
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import TERRAIN_PARAMS
 from ..core.registry import VARIANT, Arg, Option, declare
 from .noise import _check_seed, noise_fbm_perlin2, noise_perlin2, perm_array
 
@@ -632,10 +633,6 @@ class TerrainParams:
     samples_per_axis: int
 
 
-#: the fields of ccl_terrain_params / TerrainParams, in order (perm excluded)
-PARAM_FIELDS = tuple(TerrainParams.vars)
-
-
 @wp.func
 def _hmax(p: TerrainParams) -> float:
     """The slab's hmax: the bound of the marched height (|fbm| <= 2 (1 - 0.5^octaves) for |noise| <= 1; 10 for the
@@ -802,71 +799,6 @@ def _water_normal_kernel(x: wp.array(dtype=float), z: wp.array(dtype=float), tim
     out[k] = terrain_water_normal_perm(x[k], z[k], time, wave_scale, wave_strength, perm)
 
 
-# --- parameters: one dict of values for Warp and C --------------------------------------------------------------------------
-
-def params_default() -> dict:
-    """The values of ``ccl_terrain_params_default`` (the C defaults) as a dict of Python values."""
-    from ..core.binding import ffi, lib
-
-    c = ffi().new("ccl_terrain_params *")
-    lib().ccl_terrain_params_default(c)
-    return {name: _from_c(getattr(c, name)) for name in PARAM_FIELDS}
-
-
-def _from_c(v):
-    if hasattr(v, "z"):
-        return (float(v.x), float(v.y), float(v.z))
-    if hasattr(v, "y"):
-        return (float(v.x), float(v.y))
-    return v
-
-
-def c_params(values: dict):
-    """A checked ``ccl_terrain_params`` (cffi) for ``values`` (missing fields: the C defaults); ValueError naming
-    the first invalid field (``ccl_terrain_params_check``), the perm table filled."""
-    from ..core.binding import ffi, lib
-
-    f = ffi()
-    c = f.new("ccl_terrain_params *")
-    lib().ccl_terrain_params_default(c)
-    for name, v in values.items():
-        if name not in PARAM_FIELDS:
-            raise ValueError(f"unknown terrain parameter {name!r}")
-        cur = getattr(c, name)
-        if hasattr(cur, "x"):
-            comps = "xyz" if hasattr(cur, "z") else "xy"
-            vals = [float(a) for a in v]
-            if len(vals) != len(comps):
-                raise ValueError(f"{name} must hold {len(comps)} numbers, got {v!r}")
-            for comp, a in zip(comps, vals):
-                setattr(cur, comp, a)
-        else:
-            setattr(c, name, v)
-    field = f.new("const char **")
-    if lib().ccl_terrain_params_check(c, field) != 0:
-        name = f.string(field[0]).decode()
-        raise ValueError(f"{name} is out of range (ccl_terrain_params_check), got {values.get(name, getattr(c, name))!r}")
-    return c
-
-
-def warp_params(values: dict) -> TerrainParams:
-    """The :class:`TerrainParams` of ``values`` (checked by the C check first, so both twins see the same values)."""
-    c = c_params(values)
-    s = TerrainParams()
-    for name in PARAM_FIELDS:
-        v = _from_c(getattr(c, name))
-        t = TerrainParams.vars[name].type
-        if t in (int, wp.int32):
-            setattr(s, name, int(v))
-        elif t is wp.uint32:
-            setattr(s, name, wp.uint32(int(v)))
-        elif t in (float, wp.float32):
-            setattr(s, name, float(v))
-        else:
-            setattr(s, name, t(*v))
-    return s
-
-
 # --- NumPy-level helpers and the custom evaluators -------------------------------------------------------------------------
 
 def height(x, z, octaves: int = 4, height_scale: float = 12.0, horizontal_scale: float = 24.0, seed: int = 0,
@@ -952,9 +884,8 @@ def _warp_shade(eq, device):
     def terrain_shade(ro, rd, params: dict | None = None):
         """Colours (..., 3) (unclamped) and view-march steps (...) of rays (ro, rd) (pt-code-7.3)."""
         ros, rds, shape = _rays(ro, rd)
-        values = dict(params or {})
-        p = warp_params(values)
-        seed = int(c_params(values).seed)
+        c = TERRAIN_PARAMS.checked(dict(params or {}))
+        p, seed = TERRAIN_PARAMS.warp_struct(c), int(c.seed)
         n = ros.shape[0]
         out = wp.empty(n, dtype=wp.vec3, device=dev)
         steps = wp.empty(n, dtype=wp.int32, device=dev)
@@ -973,7 +904,7 @@ def _c_shade(eq):
     def terrain_shade(ro, rd, params: dict | None = None):
         """Colours (..., 3) and view-march steps of rays (ro, rd) by ccl_terrain_shade."""
         ros, rds, shape = _rays(ro, rd)
-        c = c_params(dict(params or {}))
+        c = TERRAIN_PARAMS.checked(dict(params or {}))
         f = ffi()
         st = f.new("int *")
         out = np.empty((ros.shape[0], 3), np.float32)
@@ -1001,9 +932,8 @@ def _warp_pixel(eq, device):
     def terrain_pixel(x, y, width, height, camera, params: dict | None = None):
         """Pixel colours (..., 3) in [0, 1] and summed view-march steps at pixels (x, y) (pt-alg-7.1.6)."""
         xs, ys, shape, width, height, camera = _pixel_args(x, y, width, height, camera)
-        values = dict(params or {})
-        p = warp_params(values)
-        seed = int(c_params(values).seed)
+        c = TERRAIN_PARAMS.checked(dict(params or {}))
+        p, seed = TERRAIN_PARAMS.warp_struct(c), int(c.seed)
         out = wp.empty(xs.size, dtype=wp.vec3, device=dev)
         steps = wp.empty(xs.size, dtype=wp.int32, device=dev)
         if xs.size:
@@ -1022,7 +952,7 @@ def _c_pixel(eq):
     def terrain_pixel(x, y, width, height, camera, params: dict | None = None):
         """Pixel colours (..., 3) and summed steps by the C reference ccl_terrain_pixel."""
         xs, ys, shape, width, height, camera = _pixel_args(x, y, width, height, camera)
-        c = c_params(dict(params or {}))
+        c = TERRAIN_PARAMS.checked(dict(params or {}))
         f = ffi()
         m = f.new("float[16]", camera.column_major("inv_view_proj_rot").tolist())
         eye = tuple(float(v) for v in camera.eye)
@@ -1049,7 +979,7 @@ declare("pt-code-7.3", "pt-alg-7.3.4", "pt-alg-7.3-material", c="ccl_terrain_sha
                 "by normal (Obrazok 7.10 stages heightmap, materials, atmosphere, final), shadow, eq 7.1 light, "
                 "water (7.3.4: the plane y = water_level in front of underwater terrain, wave normal from noise + "
                 "sines, reflection of sky + clouds only, mix(reflection, tint * underwater colour, eq 7.4)), clouds "
-                "and fog. params: a dict of ccl_terrain_params fields (pywarp.terrain.TerrainSettings.params()).",
+                "and fog. params: a dict of ccl_terrain_params fields (pywarp.terrain.TerrainSettings.c_values()).",
         references=_REF)(terrain_shade)
 
 # Not element-wise: the scene parameters and the camera (ccl_camera) are struct arguments shared by every pixel.
@@ -1061,9 +991,9 @@ declare("pt-alg-7.1.6", c="ccl_terrain_pixel", make_warp=_warp_pixel, make_c=_c_
         references=_REF)(terrain_pixel)
 
 
-__all__ = ["HEIGHTMAPS", "MARCH_METHODS", "SHADOW_KINDS", "STAGES", "PARAM_FIELDS", "TerrainParams", "c_params",
-           "fbm_perm", "height", "params_default", "render_kernel", "terrain_clouds", "terrain_fog",
+__all__ = ["HEIGHTMAPS", "MARCH_METHODS", "SHADOW_KINDS", "STAGES", "TerrainParams",
+           "fbm_perm", "height", "render_kernel", "terrain_clouds", "terrain_fog",
            "terrain_height_perm", "terrain_lighting", "terrain_march_bisect", "terrain_march_dynamic",
            "terrain_march_fixed", "terrain_normal", "terrain_normal_octaves", "terrain_pixel",
            "terrain_pixel_position", "terrain_shade", "terrain_shadow_hard", "terrain_shadow_soft", "terrain_sky",
-           "terrain_water_normal_perm", "terrain_water_weight", "warp_params", "water_normal"]
+           "terrain_water_normal_perm", "terrain_water_weight", "water_normal"]

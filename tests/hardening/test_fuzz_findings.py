@@ -12,6 +12,7 @@ import warp as wp
 import pywarp
 from helpers import ulp_distance
 from pywarp.core.binding import ffi, lib
+from pywarp.core.cbridge import TERRAIN_PARAMS, VOLUME_PARAMS
 from pywarp.core.registry import get, warp_parameters
 from pywarp.kernels import camera as CAM
 from pywarp.kernels import flight as F
@@ -374,7 +375,7 @@ def test_terrain_check_refuses_tiny_noise_scales(field, value):
     """Before: the domains were (0, max]; horizontal_scale 1.02e-38 overflowed x / scale and ccl_terrain_shade
     returned NaN (cloud_scale and wave_scale alike, found by the strict harness)."""
     with pytest.raises(ValueError, match=rf"^{field} is out of range \(ccl_terrain_params_check\)"):
-        K.c_params({field: value})
+        TERRAIN_PARAMS.checked({field: value})
     with pytest.raises(ValueError, match=field):
         TerrainSettings(**{field: value})
 
@@ -385,8 +386,8 @@ def test_terrain_shade_nan_case_of_the_finding_is_refused_and_the_limit_is_finit
     rays in every direction."""
     base = dict(heightmap=1, march_octaves=1, step_size=3.14, precision=1.001, max_steps=1)
     with pytest.raises(ValueError, match=r"^horizontal_scale"):
-        K.c_params(dict(base, horizontal_scale=1.02e-38))
-    p = K.c_params(dict(base, horizontal_scale=K.MIN_SCALE, cloud_scale=K.MIN_SCALE, wave_scale=K.MIN_SCALE))
+        TERRAIN_PARAMS.checked(dict(base, horizontal_scale=1.02e-38))
+    p = TERRAIN_PARAMS.checked(dict(base, horizontal_scale=K.MIN_SCALE, cloud_scale=K.MIN_SCALE, wave_scale=K.MIN_SCALE))
     rng = np.random.default_rng(3)
     steps = ffi().new("int *")
     for _ in range(200):
@@ -415,9 +416,9 @@ def test_terrain_min_scale_is_the_c_check_limit():
     """The Python limit is the C one: the C check accepts MIN_SCALE and refuses the float below it."""
     below = float(np.nextafter(np.float32(K.MIN_SCALE), np.float32(0)))
     for field in ("horizontal_scale", "cloud_scale", "wave_scale"):
-        K.c_params({field: K.MIN_SCALE})
+        TERRAIN_PARAMS.checked({field: K.MIN_SCALE})
         with pytest.raises(ValueError, match=field):
-            K.c_params({field: below})
+            TERRAIN_PARAMS.checked({field: below})
 
 
 # --- property-test findings: rr-tab-2.2 slowdown, rr-alg-3.1.3 tan_half_fov / aspect ----------------------------------
