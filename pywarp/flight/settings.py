@@ -83,24 +83,24 @@ class FlightSettings(Settings):
     sun_azimuth_deg: float = param(150.0, unit="deg", invalidates="light", group="lighting", cli="--sun-azimuth",
                                    doc="sun azimuth, 0 = -z (the start heading), positive towards +x",
                                    reason="150: behind the aircraft's right: the clouds ahead are lit from the front")
-    tau_per_voxel: float = param(0.35, lo=0.0, hi=50.0, group="lighting", cli="--tau",
+    tau_per_voxel: float = param(0.35, lo=0.0, hi=50.0, c="tau_per_voxel", group="lighting", cli="--tau",
                                  doc="optical depth of one voxel length at density 255 along the view",
                                  reason="0.35: a core of 255 is opaque after about 13 voxels, the edges stay soft "
                                         "(ccl_volume_params_default)")
-    light_tau_per_voxel: float = param(0.25, lo=0.0, hi=50.0, invalidates="light", group="lighting", cli="--light-tau",
+    light_tau_per_voxel: float = param(0.25, lo=0.0, hi=50.0, invalidates="light", c="light_tau_per_voxel", group="lighting", cli="--light-tau",
                                        doc="optical depth per voxel towards the sun (the light volume)",
                                        reason="0.25: less than the view's, for the light scattered forward through "
                                               "the cloud (ccl_volume_params_default)")
-    g: float = param(0.3, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, group="lighting", cli="--phase-g",
+    g: float = param(0.3, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, c="g", group="lighting", cli="--phase-g",
                      doc="Henyey-Greenstein asymmetry of the cloud's phase function",
                      reason="0.3: mild forward scattering, bright edges towards the sun (ccl_volume_params_default)")
-    fog_distance_m: float = param(6000.0, unit="m", lo=1.0, hi=1e7, group="lighting", cli="--fog-distance",
+    fog_distance_m: float = param(6000.0, unit="m", lo=1.0, hi=1e7, c="fog_distance", group="lighting", cli="--fog-distance",
                                   doc="e-folding distance of the aerial fog", reason="6000: a hazy summer day")
     # --- quality ---
-    step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, group="quality", cli="--step",
+    step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, c="step_voxels", group="quality", cli="--step",
                                doc="view-ray step in voxel lengths",
                                reason="1: one sample per voxel, no detail skipped (ccl_volume_params_default)")
-    light_step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, invalidates="light", group="quality",
+    light_step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, invalidates="light", c="light_step_voxels", group="quality",
                                      cli="--light-step", doc="light-ray step of the light volume in voxel lengths",
                                      reason="1: one sample per voxel (ccl_volume_params_default)")
     preview_scale: float = param(0.5, lo=0.05, hi=1.0, group="quality", cli="--preview-scale",
@@ -186,15 +186,14 @@ class FlightSettings(Settings):
         h = max(16, int(round(self.height * self.preview_scale)))
         return dataclasses.replace(self, width=w, height=h, step_voxels=self.preview_step_voxels)
 
-    def volume_values(self) -> dict:
-        """The ``ccl_volume_params`` values of this scene (aircraft fields excepted)."""
+    def c_values(self) -> dict:
+        """The ``ccl_volume_params`` values of this scene (:mod:`pywarp.core.cbridge`): the C defaults, the fields
+        the specs name and the sun direction (the aircraft's fields are the view's)."""
+        from ..core.cbridge import VOLUME_PARAMS, settings_values
         from ..kernels import volume as V
 
-        v = V.default_values()
-        v.update(sun=V.sun_direction(self.sun_elevation_deg, self.sun_azimuth_deg), tau_per_voxel=self.tau_per_voxel,
-                 light_tau_per_voxel=self.light_tau_per_voxel, g=self.g, fog_distance=self.fog_distance_m,
-                 step_voxels=self.step_voxels, light_step_voxels=self.light_step_voxels)
-        return v
+        return {**VOLUME_PARAMS.defaults(), **settings_values(self),
+                "sun": V.sun_direction(self.sun_elevation_deg, self.sun_azimuth_deg)}
 
     def flight_model(self):
         from ..kernels.flight import FlightModel

@@ -15,6 +15,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import VOLUME_PARAMS
 from ..core.runtime import init, launcher as shared_launcher
 
 init()
@@ -87,7 +88,7 @@ class FlightTechnique:
         self.volumes = V.VolumeSet(vols, device=self.device)
 
     def _build_light(self) -> None:
-        self.volumes.compute_light(self.settings.volume_values())
+        self.volumes.compute_light(self.settings.c_values())
 
     def update(self, **changes) -> None:
         """Change settings; what each change invalidates comes from the specs (``FlightSettings.INVALIDATES``):
@@ -131,7 +132,7 @@ class FlightTechnique:
         a = getattr(pose, "aircraft", None) or self.aircraft(pose.time_s)  # the viewer's live flight carries it
         f, r, u = F.axes(a.heading, a.pitch, a.roll)
         pos = np.asarray(a.position, dtype=np.float64)
-        values = s.volume_values()
+        values = s.c_values()
         aspect = s.width / s.height
         fov = math.radians(s.fov_y_deg)
         if pose.view == "chase":
@@ -159,8 +160,9 @@ class FlightTechnique:
         grids, count, dens, light, occ = self.volumes.warp()
         h, w = s.height, s.width
         band_done = None if progress is None else (lambda n: progress(n / h))
+        p = VOLUME_PARAMS.warp_struct(V.checked_params(values))
         self.launcher.launch(V.render_kernel, h, w,
-                             [V.warp_params(values), grids, count, dens, light, occ, cam.mat44("inv_view_proj_rot"),
+                             [p, grids, count, dens, light, occ, cam.mat44("inv_view_proj_rot"),
                               cam.eye_vec3(), w, h], [self._out], progress=band_done)
         return self._out.numpy().copy()
 

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import VOLUME_PARAMS
 from ..core.registry import Arg, declare
 from .camera import camera_ray
 from .colour import colour_srgb_encode
@@ -41,7 +42,6 @@ LENGTH_RANGE = 1.0e6
 #: product overflowed to Inf, and Inf x a density of 0 gave NaN light).
 MAX_TAU = 1.0e6
 MAX_STEP = 1.0e6
-_COLOUR_FIELDS = ("sun_colour", "ambient_top", "ambient_bottom", "sky_zenith", "sky_horizon", "ground_a", "ground_b")
 AIRCRAFT_STEPS = wp.constant(64)  # CCL_VOLUME_AIRCRAFT_STEPS
 AIRCRAFT_BOUND = wp.constant(6.3)
 BRICK = 2  # CCL_VOLUME_BRICK
@@ -100,26 +100,6 @@ class VolumeParams:
     aircraft_scale: float
 
 
-_VEC_FIELDS = {"sun", "sun_colour", "ambient_top", "ambient_bottom", "sky_zenith", "sky_horizon", "ground_a",
-               "ground_b", "aircraft_position", "aircraft_forward", "aircraft_right", "aircraft_up"}
-_INT_FIELDS = {"max_steps", "jitter", "aircraft"}
-
-
-def default_values() -> dict:
-    """The defaults of ``ccl_volume_params_default`` (the values and reasons are in cclouds/src/volume.c; the flight
-    scene's settings expose them with the same reasons)."""
-    # the sun of the C default, elevation 35 deg and azimuth 150 deg, with its float32 constants and operations
-    return {"sun": (float(np.float32(0.81915206) * np.float32(0.5)), float(np.float32(0.57357645)),
-                    float(-(np.float32(0.81915206) * np.float32(-0.8660254)))),
-            "sun_colour": (1.0, 0.96, 0.88), "ambient_top": (0.42, 0.47, 0.56), "ambient_bottom": (0.22, 0.24, 0.29),
-            "sky_zenith": (0.16, 0.33, 0.65), "sky_horizon": (0.62, 0.72, 0.85), "ground_a": (0.16, 0.27, 0.10),
-            "ground_b": (0.36, 0.33, 0.18), "sun_glow": 0.6, "sun_glow_power": 64.0, "field_size": 180.0,
-            "fog_distance": 6000.0, "tau_per_voxel": 0.35, "light_tau_per_voxel": 0.25, "step_voxels": 1.0,
-            "light_step_voxels": 1.0, "exit_transmittance": 0.01, "max_steps": 512, "g": 0.3, "jitter": 1,
-            "aircraft": 0, "aircraft_position": (0.0, 0.0, 0.0), "aircraft_forward": (0.0, 0.0, -1.0),
-            "aircraft_right": (1.0, 0.0, 0.0), "aircraft_up": (0.0, 1.0, 0.0), "aircraft_scale": 1.0}
-
-
 def sun_direction(elevation_deg: float, azimuth_deg: float) -> tuple:
     """Unit vector towards the sun: azimuth 0 = -z, positive towards +x (the cloudscape's convention), float32
     operations as the C default."""
@@ -128,65 +108,12 @@ def sun_direction(elevation_deg: float, azimuth_deg: float) -> tuple:
     return (float(ce * sa), float(se), float(-(ce * ca)))
 
 
-def check_values(values: dict) -> None:
-    """Validate a parameter dict with ``ccl_volume_check``'s rules (no grids); ValueError naming the field."""
-    for name, v in values.items():
-        if name in _VEC_FIELDS:
-            a = np.asarray(v, dtype=np.float64)
-            if a.shape != (3,) or not np.all(np.isfinite(a)):
-                raise ValueError(f"{name} must be 3 finite numbers, got {v!r}")
-        elif not (isinstance(v, (int, float)) and math.isfinite(v)):
-            raise ValueError(f"{name} must be a finite number, got {v!r}")
-    for name in _COLOUR_FIELDS:
-        a = np.asarray(values[name], dtype=np.float64)
-        if np.any(a < 0.0) or np.any(a > MAX_COLOUR):
-            raise ValueError(f"{name} must have components in [0, {MAX_COLOUR:g}], got {values[name]!r}")
-    for name in ("sun",) + (("aircraft_forward", "aircraft_right", "aircraft_up") if values.get("aircraft") else ()):
-        n = float(np.linalg.norm(np.asarray(values[name], dtype=np.float64)))
-        if abs(n - 1.0) > 1e-3:
-            raise ValueError(f"{name} must be a unit vector, got |v| = {n:.6g}")
-    rules = {"sun_glow": (0.0, MAX_COLOUR, False), "sun_glow_power": (0.0, None, True), "field_size": (0.0, None, True),
-             "fog_distance": (0.0, None, True), "tau_per_voxel": (0.0, MAX_TAU, False),
-             "light_tau_per_voxel": (0.0, MAX_TAU, False), "step_voxels": (0.05, MAX_STEP, False),
-             "light_step_voxels": (0.05, MAX_STEP, False), "max_steps": (1, 100000, False)}
-    for name, (lo, hi, open_lo) in rules.items():
-        v = values[name]
-        if (v <= lo if open_lo else v < lo) or (hi is not None and v > hi):
-            dom = f"{'(' if open_lo else '['}{lo:g}, {'inf)' if hi is None else f'{hi:g}]'}"
-            raise ValueError(f"{name} must be in {dom}, got {v!r}")
-    if not 0.0 <= values["exit_transmittance"] < 1.0:
-        raise ValueError(f"exit_transmittance must be in [0, 1), got {values['exit_transmittance']!r}")
-    if not -1.0 < values["g"] < 1.0:
-        raise ValueError(f"g must be in (-1, 1), got {values['g']!r}")
-    if values["aircraft"] and not values["aircraft_scale"] > 0:
-        raise ValueError(f"aircraft_scale must be in (0, inf), got {values['aircraft_scale']!r}")
-
-
-def warp_params(values: dict) -> VolumeParams:
-    s = VolumeParams()
-    for name, v in values.items():
-        if name in _VEC_FIELDS:
-            setattr(s, name, wp.vec3(*[float(x) for x in v]))
-        elif name in _INT_FIELDS:
-            setattr(s, name, int(v))
-        else:
-            setattr(s, name, float(v))
-    return s
-
-
-def c_params(values: dict):
+def checked_params(values: dict):
+    """``values`` (``ccl_volume_params`` fields; the others the C defaults) checked by ``ccl_volume_check`` without
+    grids (:mod:`pywarp.core.cbridge`): the cffi struct; ValueError naming the first bad field."""
     from ..core.binding import ffi
 
-    p = ffi().new("ccl_volume_params *")
-    for name, v in values.items():
-        if name in _VEC_FIELDS:
-            vec = getattr(p, name)
-            vec.x, vec.y, vec.z = (float(x) for x in v)
-        elif name in _INT_FIELDS:
-            setattr(p, name, int(v))
-        else:
-            setattr(p, name, float(v))
-    return p
+    return VOLUME_PARAMS.checked(values, ffi().NULL, 0)
 
 
 # --- sampling -----------------------------------------------------------------------------------------------------------
@@ -810,8 +737,7 @@ class VolumeSet:
 
     def compute_light(self, values: dict, launcher=None) -> None:
         """The light volume of every grid (Warp, one thread per voxel); ``values`` validated first."""
-        check_values(values)
-        p = warp_params(values)
+        p = VOLUME_PARAMS.warp_struct(checked_params(values))
         self.light = []
         for v, rec in zip(self.volumes, self.records()):
             rec.offset = 0
@@ -872,7 +798,7 @@ def light_c(values: dict, volume: PlacedVolume) -> np.ndarray:
     vs = VolumeSet([volume], [np.zeros(volume.density.shape, np.float32)])
     arr, keep = c_grids(vs)
     out = np.empty(volume.density.shape, np.float32)
-    status_error(lb.ccl_volume_light(c_params(values), arr, f.from_buffer("float[]", out), out.size),
+    status_error(lb.ccl_volume_light(VOLUME_PARAMS.to_c(values), arr, f.from_buffer("float[]", out), out.size),
                  "ccl_volume_light")
     del keep
     return out
@@ -895,7 +821,7 @@ def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: 
     from ..core.binding import ffi, lib
 
     f, lb = ffi(), lib()
-    params = c_params(values)
+    params = VOLUME_PARAMS.to_c(values)
     arr, keep = c_grids(vset)
     fld = f.new("const char **")
     if lb.ccl_volume_check(params, arr, len(vset.volumes), fld) != 0:
@@ -918,7 +844,7 @@ def pixels_warp(values: dict, vset: VolumeSet, camera, xs, ys, width: int, heigh
     xa = wp.array(np.asarray(xs, np.int32), dtype=wp.int32, device=dev)
     ya = wp.array(np.asarray(ys, np.int32), dtype=wp.int32, device=dev)
     out = wp.zeros((len(xs), 3), dtype=float, device=dev)
-    wp.launch(pixels_kernel, dim=len(xs), inputs=[warp_params(values), grids, count, dens, light, occ,
+    wp.launch(pixels_kernel, dim=len(xs), inputs=[VOLUME_PARAMS.warp_struct(values), grids, count, dens, light, occ,
                                                   camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), xa, ya,
                                                   width, height], outputs=[out], device=dev)
     return out.numpy()
@@ -930,7 +856,7 @@ def render(vset: VolumeSet, values: dict, camera, width: int, height: int, launc
     :class:`pywarp.core.runtime.TileLauncher` of the set's device)."""
     from ..core.runtime import launcher as shared_launcher
 
-    check_values(values)
+    p = VOLUME_PARAMS.warp_struct(checked_params(values))
     for name, v in (("width", width), ("height", height)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not 1 <= v <= 16384:
             raise ValueError(f"{name} must be an integer in [1, 16384], got {v!r}")
@@ -940,6 +866,6 @@ def render(vset: VolumeSet, values: dict, camera, width: int, height: int, launc
     grids, count, dens, light, occ = vset.warp()
     out = wp.zeros((height, width, 3), dtype=wp.uint8, device=vset.device)
     lau.launch(render_kernel, height, width,
-               [warp_params(values), grids, count, dens, light, occ, camera.mat44("inv_view_proj_rot"),
+               [p, grids, count, dens, light, occ, camera.mat44("inv_view_proj_rot"),
                 camera.eye_vec3(), int(width), int(height)], [out])
     return out.numpy()
