@@ -72,7 +72,11 @@ class CStruct:
                     else:
                         cur[i] = a
             else:
-                setattr(owner, attr, v)
+                try:
+                    setattr(owner, attr, v)
+                except (TypeError, OverflowError) as exc:  # a float for an int field, a seed beyond uint32, ...
+                    raise (TypeError if isinstance(exc, TypeError) else ValueError)(
+                        f"{name} does not fit the C field ({exc}), got {v!r}") from None
         return c
 
     def checked(self, values: dict, *check_args, settings=None, overrides=()):

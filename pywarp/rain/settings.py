@@ -76,21 +76,21 @@ class RainSettings(Settings):
                       doc="refraction mask: sphere, outline (the application: the shape's outline, a sphere's "
                           "refraction) or exact (rays traced through the Beard-Chuang drop)",
                       reason="outline: what the application did (rr-alg-3.1.1, spec erratum 12)")
-    size_mm: float = param(1.3, unit="mm", lo=0.1, hi=4.5, group=_G_RAIN, cli="--size",
+    size_mm: float = param(1.3, unit="mm", lo=0.1, hi=4.5, c="size_mean_mm", group=_G_RAIN, cli="--size",
                            doc="mean drop radius of the particle sizes, Gauss(1, 1.3, 8)'s 1.3 (B/N keys)",
                            reason="1.3: the text's mean size (rr-code-5.2.2), read as a radius (Table 2.2 is indexed "
                                   "by radius)")
-    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, group=_G_RAIN, cli="--size-spread",
+    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, c="size_spread_mm", group=_G_RAIN, cli="--size-spread",
                                   doc="Gauss(1, 1.3, 8)'s 1, read as the width of the averaged uniforms: radii in "
                                       "size +- spread/2, standard deviation spread / sqrt(12 samples)",
                                   reason="1: the printed argument; with 8 samples sigma = 0.10 mm, so ~68 % of the "
                                          "drops are within 0.1 mm of 1.3 mm (the text's ~66 %)")
-    size_samples: int = param(8, kind="int", lo=1, hi=64, group=_G_RAIN,
+    size_samples: int = param(8, kind="int", lo=1, hi=64, c="size_samples", group=_G_RAIN,
                               doc="Gauss(1, 1.3, 8)'s 8, read as the number of uniforms averaged (Irwin-Hall)",
                               reason="8: the printed argument")
-    slowdown: float = param(4.0, lo=0.015625, hi=1000.0, group=_G_RAIN,
+    slowdown: float = param(4.0, lo=0.015625, hi=1000.0, c="slowdown", group=_G_RAIN,
                             doc="terminal speeds of Table 2.2 divided by this", reason="4: the application's")
-    metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, group=_G_RAIN,
+    metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, c="metres_per_unit", group=_G_RAIN,
                                    doc="one scene unit in metres (speeds in m/s become units/s)",
                                    reason="1: not given (spec erratum 17); the 2 x 0.25 x 3 box is then a few metres "
                                           "around the viewer")
@@ -108,7 +108,7 @@ class RainSettings(Settings):
                          doc="particle counter of rr-code-5.2.2: corrected (+1 per frame) or thesis (the printed "
                              "decrement: no drop is ever created)",
                          reason="corrected: the listing's evident intent")
-    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, group=_G_RAIN,
+    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, c="seed", group=_G_RAIN,
                       doc="seed of every particle draw; the same seed gives the same rain", reason="0")
     time_s: float = param(0.0, unit="s", lo=0.0, hi=1e6, group=_G_RAIN, cli="--time",
                           doc="simulated time since the start (animate advances it; dt = its change, scaled by "
@@ -204,12 +204,13 @@ class RainSettings(Settings):
         return dict(l1=self.light1_pos, c_l1=self.light1_colour, l2=self.light2_pos, c_l2=self.light2_colour,
                     ambient=self.light_ambient, r_half=self.light_r_half, variant=self.light_variant)
 
-    def particle_values(self) -> dict:
-        """The particle-system parameters (``pywarp.kernels.particles.DEFAULTS`` fields) of these settings."""
-        return dict(size_mean_mm=self.size_mm, size_spread_mm=self.size_spread_mm, size_samples=self.size_samples,
-                    slowdown=self.slowdown, metres_per_unit=self.metres_per_unit,
-                    wind=(self.wind_x / self.metres_per_unit, 0.0, self.wind_z / self.metres_per_unit),
-                    seed=self.seed)
+    def c_values(self) -> dict:
+        """The ``ccl_particles_params`` values of these settings (:mod:`pywarp.core.cbridge`): the C defaults, the
+        fields the specs name and the wind in scene units per second."""
+        from ..core.cbridge import PARTICLES_PARAMS, settings_values
+
+        return {**PARTICLES_PARAMS.defaults(), **settings_values(self),
+                "wind": (self.wind_x / self.metres_per_unit, 0.0, self.wind_z / self.metres_per_unit)}
 
 
 #: rr-tab-A: the controls of the application (Appendix A.1), as data: key -> (action, the settings field it changes,

@@ -256,7 +256,7 @@ class RainTechnique:
     def _reset_particles(self) -> None:
         s = self.settings
         self.system = P.ParticleSystem(max(s.drops, 1), device=self.device, variant=s.variant,
-                                       **s.particle_values())
+                                       **s.c_values())
         if s.warm_start:
             self.system.fill(s.drops)
         self.t = 0.0
