@@ -97,7 +97,9 @@ class CStruct:
         by_c = {p.c: p for p in specs(settings) if p.c not in overrides} if settings is not None else {}
         if c_name in by_c:
             p = by_c[c_name]
-            return ValueError(f"{p.name} is out of range: it must be {p.domain()} ({self.check}), "
+            dom = p.domain()
+            dom = dom if dom.startswith(("one of", "a ", "an ", "True")) else "in " + dom
+            return ValueError(f"{p.name} is out of range: it must be {dom} ({self.check}), "
                               f"got {getattr(settings, p.name)!r}")
         shown = values.get(c_name, values.get(c_name.split(".")[0], read(c).get(c_name)))
         if c_name in self.domains:

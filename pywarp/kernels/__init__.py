@@ -9,9 +9,14 @@ from __future__ import annotations
 
 import importlib
 
+from ..core.cbridge import c_constant
 from ..core.runtime import init as _init
 
 _init()
+
+#: ``ccl_variant`` (common.h): the formula of the original source, or as printed in the text
+VARIANT_CORRECTED = c_constant("CCL_VARIANT_CORRECTED", 0)
+VARIANT_THESIS = c_constant("CCL_VARIANT_THESIS", 1)
 
 #: Topic modules, in the order of the C umbrella header.
 TOPICS = ("camera", "phase", "media", "hash", "interp", "noise", "texgen", "clouds",

@@ -24,15 +24,18 @@ import math
 import numpy as np
 import warp as wp
 
-from ..core.cbridge import PARTICLES_PARAMS, read
+from ..core.cbridge import PARTICLES_PARAMS, c_constant, read
 from ..core.registry import VARIANT, Arg, Option, declare
+from . import VARIANT_CORRECTED
 from .hash import hash_pcg, hash_unit
 from .rain import rain_light_colour, rain_terminal_speed
 
 MAX_SIZE_SAMPLES = 64  # CCL_PARTICLES_MAX_SIZE_SAMPLES
 STREAK_TAPS = 7  # CCL_PARTICLES_STREAK_TAPS
 MAX_COUNT = 1000000  # CCL_PARTICLES_MAX_COUNT
-FILTERS = {"nearest": 0, "linear": 1}  # ccl_particles_filter
+NEAREST = c_constant("CCL_PARTICLES_NEAREST", 0)  # ccl_particles_filter
+LINEAR = c_constant("CCL_PARTICLES_LINEAR", 1)
+FILTERS = {"nearest": NEAREST, "linear": LINEAR}
 SPRITE_FIELDS = ("cx", "cy", "radius", "half_height", "tap_offset", "depth")  # ccl_particles_sprite
 _U3 = wp.constant(wp.uint32(3))
 _U1 = wp.constant(wp.uint32(1))
@@ -186,7 +189,7 @@ class ParticleSystem:
         """Warm start (corrected variant, empty system): ``requested`` particles spawned with y uniform between the
         respawn level and the box top."""
         requested = self._check_requested(requested)
-        if self.variant == 0 and self.count == 0 and requested:
+        if self.variant == VARIANT_CORRECTED and self.count == 0 and requested:
             wp.launch(spawn_kernel, dim=requested, inputs=[self.params, 0, 1],
                       outputs=[self.pos, self.radius, self.speed, self.generation], device=self.device)
             self.count = requested
@@ -195,7 +198,7 @@ class ParticleSystem:
         """One frame of SimulateParticleSystem."""
         requested = self._check_requested(requested)
         dt = self._check_dt(dt)
-        if self.variant == 0:
+        if self.variant == VARIANT_CORRECTED:
             if self.count > requested:
                 self.count = requested
             if self.count < requested:
@@ -361,7 +364,7 @@ def _texel(img: wp.array(dtype=float), size: int, x: int, y: int) -> wp.vec3:
 @wp.func
 def particles_fetch(img: wp.array(dtype=float), size: int, u: float, v: float, filt: int) -> wp.vec3:
     """Capture fetch at (u, v), clamped to the edge: nearest (0) or bilinear (1), as the C ``fetch``."""
-    if filt == 1:
+    if filt == LINEAR:
         fx = u * float(size) - 0.5
         fy = v * float(size) - 0.5
         x0f = wp.floor(fx)

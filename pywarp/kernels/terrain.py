@@ -28,14 +28,28 @@ import math
 import numpy as np
 import warp as wp
 
-from ..core.cbridge import TERRAIN_PARAMS
+from ..core.cbridge import TERRAIN_PARAMS, c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
+from . import VARIANT_THESIS
 from .noise import _check_seed, noise_fbm_perlin2, noise_perlin2, perm_array
 
-HEIGHTMAPS = {"test": 0, "fbm": 1}
-MARCH_METHODS = {"fixed": 0, "dynamic": 1, "bisect": 2}
-SHADOW_KINDS = {"none": 0, "hard": 1, "soft": 2}
-STAGES = {"heightmap": 0, "materials": 1, "atmosphere": 2, "final": 3}
+HEIGHTMAP_TEST = c_constant("CCL_TERRAIN_TEST", 0)
+HEIGHTMAP_FBM = c_constant("CCL_TERRAIN_FBM", 1)
+MARCH_FIXED = c_constant("CCL_TERRAIN_MARCH_FIXED", 0)
+MARCH_DYNAMIC = c_constant("CCL_TERRAIN_MARCH_DYNAMIC", 1)
+MARCH_BISECT = c_constant("CCL_TERRAIN_MARCH_BISECT", 2)
+SHADOWS_NONE = c_constant("CCL_TERRAIN_SHADOWS_NONE", 0)
+SHADOWS_HARD = c_constant("CCL_TERRAIN_SHADOWS_HARD", 1)
+SHADOWS_SOFT = c_constant("CCL_TERRAIN_SHADOWS_SOFT", 2)
+STAGE_HEIGHTMAP = c_constant("CCL_TERRAIN_STAGE_HEIGHTMAP", 0)
+STAGE_MATERIALS = c_constant("CCL_TERRAIN_STAGE_MATERIALS", 1)
+STAGE_ATMOSPHERE = c_constant("CCL_TERRAIN_STAGE_ATMOSPHERE", 2)
+STAGE_FINAL = c_constant("CCL_TERRAIN_STAGE_FINAL", 3)
+HEIGHTMAPS = {"test": HEIGHTMAP_TEST, "fbm": HEIGHTMAP_FBM}
+MARCH_METHODS = {"fixed": MARCH_FIXED, "dynamic": MARCH_DYNAMIC, "bisect": MARCH_BISECT}
+SHADOW_KINDS = {"none": SHADOWS_NONE, "hard": SHADOWS_HARD, "soft": SHADOWS_SOFT}
+STAGES = {"heightmap": STAGE_HEIGHTMAP, "materials": STAGE_MATERIALS, "atmosphere": STAGE_ATMOSPHERE,
+          "final": STAGE_FINAL}
 MAX_FIXED_STEPS = 1000000  # CCL_TERRAIN_MAX_FIXED_STEPS
 
 _MAX_FIXED = wp.constant(MAX_FIXED_STEPS)
@@ -129,7 +143,7 @@ def fbm_perm(x: float, z: float, octaves: int, perm: wp.array(dtype=wp.int32)) -
 def terrain_height_perm(x: float, z: float, octaves: int, height_scale: float, horizontal_scale: float,
                         perm: wp.array(dtype=wp.int32), heightmap: int) -> float:
     """Terrain height h(x, z) (units) of ``heightmap`` (0 test, 1 fbm): the map of Kod 7.4."""
-    if heightmap == 0:
+    if heightmap == HEIGHTMAP_TEST:
         return 10.0 * wp.sin(0.1 * x) * wp.sin(0.1 * z)
     return height_scale * fbm_perm(x / horizontal_scale, z / horizontal_scale, octaves, perm)
 
@@ -478,7 +492,7 @@ def terrain_normal_octaves(t: float, octaves_max: int, octaves_min: int, lod_dis
          references=_REF)
 @wp.func
 def terrain_fog(d: float, rho: float, variant: int) -> float:
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         f = wp.exp(rho * d) - 1.0
         if f > 1.0:
             f = 1.0
@@ -512,7 +526,7 @@ def clouds_perm(colour: wp.vec3, ro: wp.vec3, rd: wp.vec3, cloud_height: float, 
     if not (rd[1] != 0.0):
         return colour
     t = (cloud_height - ro[1]) / rd[1]
-    if variant != 1 and not (t > 0.0):
+    if variant != VARIANT_THESIS and not (t > 0.0):
         return colour
     qx = ro[0] + rd[0] * t + wind[0] * time
     qz = ro[2] + rd[2] * t + wind[1] * time
@@ -644,7 +658,7 @@ def _hmax(p: TerrainParams) -> float:
     for _i in range(p.march_octaves):
         bound += a
         a *= 0.5
-    if p.heightmap == 0:
+    if p.heightmap == HEIGHTMAP_TEST:
         return 10.0
     return p.height_scale * bound
 
@@ -654,15 +668,15 @@ def _terrain_colour(p: TerrainParams, perm: wp.array(dtype=wp.int32), pos: wp.ve
     octn = terrain_normal_octaves(t, p.normal_octaves_max, p.normal_octaves_min, p.lod_distance)
     n, _g = _normal(pos, p.normal_h, octn, p.height_scale, p.horizontal_scale, perm, p.heightmap)
     c = p.colour_rock
-    if p.stage >= 1:
+    if p.stage >= STAGE_MATERIALS:
         c = _mix3(p.colour_low, p.colour_rock, _smoothstep(p.material_low, p.material_high, pos[1]))
-    if p.stage >= 2:
+    if p.stage >= STAGE_ATMOSPHERE:
         c = _mix3(c, p.colour_grass, _smoothstep(p.grass_min_normal_y, p.grass_min_normal_y + p.grass_band, n[1]))
     shadow = float(1.0)
-    if p.shadows != 0:
+    if p.shadows != SHADOWS_NONE:
         origin = wp.vec3(pos[0], terrain_height_perm(pos[0], pos[2], p.march_octaves, p.height_scale,
                                                      p.horizontal_scale, perm, p.heightmap) + p.shadow_bias, pos[2])
-        if p.shadows == 1:
+        if p.shadows == SHADOWS_HARD:
             shadow = _shadow_hard(origin, p.sun, p.shadow_t0_hard, p.shadow_max_t, p.precision, p.max_steps,
                                   p.march_octaves, p.height_scale, p.horizontal_scale, perm, p.heightmap, _hmax(p))
         else:
@@ -679,10 +693,10 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
     t = float(0.0)
     steps = int(0)
     hmax = _hmax(p)
-    if p.march_method == 0:
+    if p.march_method == MARCH_FIXED:
         hit, t, steps = _march_fixed(ro, rd, p.max_t, p.step_size, p.precision, p.march_octaves, p.height_scale,
                                      p.horizontal_scale, perm, p.heightmap, hmax)
-    elif p.march_method == 2:
+    elif p.march_method == MARCH_BISECT:
         hit, t, steps = _march_bisect(ro, rd, p.max_t, p.precision, p.max_steps, p.step_scale, p.bisect_threshold,
                                       p.bisect_steps, p.march_octaves, p.height_scale, p.horizontal_scale, perm,
                                       p.heightmap, hmax)
@@ -692,7 +706,7 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
                                        p.precision_per_unit)
     sky = terrain_sky(rd, p.sun, p.sky_colour, p.sun_colour, p.sun_power)
     background = sky
-    if p.stage >= 2:
+    if p.stage >= STAGE_ATMOSPHERE:
         background = clouds_perm(sky, ro, rd, p.cloud_height, p.wind, p.time, p.cloud_scale, p.cloud_colour, perm,
                                  p.cloud_variant)
     if hit == 0:
@@ -700,7 +714,7 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
     pos = _along(ro, rd, t)
     colour = _terrain_colour(p, perm, pos, t)
     dist = t
-    if p.stage >= 3 and pos[1] < p.water_level and rd[1] < 0.0 and ro[1] > p.water_level:
+    if p.stage >= STAGE_FINAL and pos[1] < p.water_level and rd[1] < 0.0 and ro[1] > p.water_level:
         tw = (p.water_level - ro[1]) / rd[1]
         wpos = _along(ro, rd, tw)
         n = terrain_water_normal_perm(wpos[0], wpos[2], p.time, p.wave_scale, p.wave_strength, perm)
@@ -716,7 +730,7 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
         under = wp.vec3(colour[0] * p.water_tint[0], colour[1] * p.water_tint[1], colour[2] * p.water_tint[2])
         colour = _mix3(reflected, under, f)
         dist = tw
-    if p.stage >= 2:
+    if p.stage >= STAGE_ATMOSPHERE:
         colour = _mix3(colour, sky, terrain_fog(dist, p.fog_density, p.fog_variant))
     return colour, steps
 
