@@ -342,16 +342,19 @@ class CloudscapeSettings(Settings):
     precipitation: float = inherit(WeatherMapSettings, "precipitation")
     cloud_type: float = inherit(WeatherMapSettings, "cloud_type")
     cloud_type_variation: float = inherit(WeatherMapSettings, "cloud_type_variation")
-    coverage_threshold: str = param("one_minus_coverage", choices=COVERAGE_THRESHOLD_NAMES, c="coverage_threshold", c_enum=COVERAGE_THRESHOLD_ENUM, group="clouds",
+    coverage_threshold: str = param("one_minus_coverage", choices=COVERAGE_THRESHOLD_NAMES, c="coverage_threshold",
+                                    c_enum=COVERAGE_THRESHOLD_ENUM, group="clouds",
                                     doc="reading of the undefined threshold C of vc-2.29: one_minus_coverage "
                                         "(C = 1 - D_h) or coverage (C = D_h, the literal reading: clouds survive only "
                                         "as rings around covered areas)",
                                     reason="one_minus_coverage: more coverage gives more cloud (ccl_cloudscape_"
                                            "params_default; see cclouds/cloudscape.c)")
-    beer: bool = param(True, c="beer", group="clouds", doc="Beer's-law term of the lighting energy vc-2.31 (off: replaced by 1)",
+    beer: bool = param(True, c="beer", group="clouds",
+                       doc="Beer's-law term of the lighting energy vc-2.31 (off: replaced by 1)",
                        reason="on: the formula as printed (ccl_cloudscape_params_default)")
-    powder: bool = param(False, c="powder", group="clouds", doc="powder term of the lighting energy vc-2.31 (off: replaced by 1; "
-                                                    "on: the formula as printed, the thesis's renderer)",
+    powder: bool = param(False, c="powder", group="clouds",
+                         doc="powder term of the lighting energy vc-2.31 (off: replaced by 1; "
+                             "on: the formula as printed, the thesis's renderer)",
                          reason="off: measured against the path-traced reference (tools/tune_lighting.py), the mean "
                                 "CIEDE2000 of three scenes falls from 13.4 to 9.0 and the dark rims along the clouds' "
                                 "sunward edges (thin crease lines) go (ccl_cloudscape_params_default)")
@@ -492,7 +495,8 @@ class CloudscapeSettings(Settings):
     g: float = param(0.2, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, c="g", group="clouds", cli="--phase-g",
                      doc="Henyey-Greenstein asymmetry g of vc-2.31",
                      reason="0.2: ccl_cloudscape_params_default (see cclouds/cloudscape.c)")
-    sigma_per_km: float = param(30.0, unit="1/km", lo=0.0, hi=1000.0, lo_open=True, c="sigma", group="clouds", cli="--sigma",
+    sigma_per_km: float = param(30.0, unit="1/km", lo=0.0, hi=1000.0, lo_open=True, c="sigma", group="clouds",
+                                cli="--sigma",
                                 doc="extinction per unit density",
                                 reason="30: ccl_cloudscape_params_default (see cclouds/cloudscape.c)")
     lighting: str = param("sky", choices=LIGHTING_NAMES[::-1], c="lighting", c_enum=LIGHTING_ENUM, group="lighting",
@@ -507,7 +511,8 @@ class CloudscapeSettings(Settings):
                                      "sun colour is this times the atmosphere's transmittance towards the sun)",
                                  reason="16: at the default sun (35 deg) the sun's red channel is ~12, the thesis "
                                         "constant's (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
-    ground_albedo: tuple = param((0.04, 0.05, 0.03), lo=0.0, hi=1.0, check=_albedo_check, c="ground_albedo", group="lighting",
+    ground_albedo: tuple = param((0.04, 0.05, 0.03), lo=0.0, hi=1.0, check=_albedo_check, c="ground_albedo",
+                                 group="lighting",
                                  doc="sky lighting: Lambertian albedo of the ground (RGB)",
                                  reason="(0.04, 0.05, 0.03): vegetation (0.1-0.2) scaled by the ~3.5 times too "
                                         "bright sun that exposes the dim clouds of vc-2.31, so the sunlit ground stays "
@@ -518,7 +523,8 @@ class CloudscapeSettings(Settings):
                                  "ground-level air (see aerial_height_km)",
                              reason="30: a visual range of ~117 km (Koschmieder 3.912 x 30), a clear day; the "
                                     "horizon band of clouds fades into the sky (ccl_cloudscape_params_default)")
-    aerial_height_km: float = param(2.0, unit="km", lo=0.0, hi=1e6, c="aerial_height_km", group="lighting", cli="--aerial-height",
+    aerial_height_km: float = param(2.0, unit="km", lo=0.0, hi=1e6, c="aerial_height_km", group="lighting",
+                                    cli="--aerial-height",
                                     doc="sky lighting: scale height of the haze (its density falls as e^(-altitude "
                                         "/ H)); 0 = a homogeneous fog",
                                     reason="2: the haze is mostly aerosol in the lowest kilometres (scale heights "

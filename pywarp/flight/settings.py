@@ -87,20 +87,23 @@ class FlightSettings(Settings):
                                  doc="optical depth of one voxel length at density 255 along the view",
                                  reason="0.35: a core of 255 is opaque after about 13 voxels, the edges stay soft "
                                         "(ccl_volume_params_default)")
-    light_tau_per_voxel: float = param(0.25, lo=0.0, hi=50.0, invalidates="light", c="light_tau_per_voxel", group="lighting", cli="--light-tau",
+    light_tau_per_voxel: float = param(0.25, lo=0.0, hi=50.0, invalidates="light", c="light_tau_per_voxel",
+                                       group="lighting", cli="--light-tau",
                                        doc="optical depth per voxel towards the sun (the light volume)",
                                        reason="0.25: less than the view's, for the light scattered forward through "
                                               "the cloud (ccl_volume_params_default)")
     g: float = param(0.3, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, c="g", group="lighting", cli="--phase-g",
                      doc="Henyey-Greenstein asymmetry of the cloud's phase function",
                      reason="0.3: mild forward scattering, bright edges towards the sun (ccl_volume_params_default)")
-    fog_distance_m: float = param(6000.0, unit="m", lo=1.0, hi=1e7, c="fog_distance", group="lighting", cli="--fog-distance",
+    fog_distance_m: float = param(6000.0, unit="m", lo=1.0, hi=1e7, c="fog_distance", group="lighting",
+                                  cli="--fog-distance",
                                   doc="e-folding distance of the aerial fog", reason="6000: a hazy summer day")
     # --- quality ---
     step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, c="step_voxels", group="quality", cli="--step",
                                doc="view-ray step in voxel lengths",
                                reason="1: one sample per voxel, no detail skipped (ccl_volume_params_default)")
-    light_step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, invalidates="light", c="light_step_voxels", group="quality",
+    light_step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, invalidates="light", c="light_step_voxels",
+                                     group="quality",
                                      cli="--light-step", doc="light-ray step of the light volume in voxel lengths",
                                      reason="1: one sample per voxel (ccl_volume_params_default)")
     preview_scale: float = param(0.5, lo=0.05, hi=1.0, group="quality", cli="--preview-scale",

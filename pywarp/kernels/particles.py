@@ -269,7 +269,8 @@ def _simulate_c(eq):
         speed = np.zeros(n, np.float32)
         gen = np.zeros(n, np.uint32)
         count = f.new("int *", 0)
-        st = lib().ccl_particles_simulate(PARTICLES_PARAMS.checked(values), requested, dt, frames, int(warm), v, capacity,
+        st = lib().ccl_particles_simulate(PARTICLES_PARAMS.checked(values), requested, dt, frames, int(warm), v,
+                                          capacity,
                                           f.cast("ccl_vec3 *", f.from_buffer("float[]", pos)),
                                           f.from_buffer("float[]", radius), f.from_buffer("float[]", speed),
                                           f.from_buffer("uint32_t[]", gen), count)

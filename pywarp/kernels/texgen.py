@@ -34,8 +34,8 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import Arg, Equation, declare
-from .noise import (COMBINATION, COMBINATIONS, PW_AVERAGE, PW_THESIS, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3, noise_perlin_worley,
-                    noise_worley3, perm_array)
+from .noise import (COMBINATION, COMBINATIONS, PW_AVERAGE, PW_THESIS, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3,
+                    noise_perlin_worley, noise_worley3, perm_array)
 
 # Field order of the settings validation codes (1-based; 0 = valid), as checked by ccl_texgen_base_shape_settings_check.
 BASE_SHAPE_FIELDS = ("size", "perlin_octaves", "perlin_frequency", "worley_cells", "worley_weights", "combination",

@@ -80,7 +80,8 @@ class RainSettings(Settings):
                            doc="mean drop radius of the particle sizes, Gauss(1, 1.3, 8)'s 1.3 (B/N keys)",
                            reason="1.3: the text's mean size (rr-code-5.2.2), read as a radius (Table 2.2 is indexed "
                                   "by radius)")
-    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, c="size_spread_mm", group=_G_RAIN, cli="--size-spread",
+    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, c="size_spread_mm", group=_G_RAIN,
+                                  cli="--size-spread",
                                   doc="Gauss(1, 1.3, 8)'s 1, read as the width of the averaged uniforms: radii in "
                                       "size +- spread/2, standard deviation spread / sqrt(12 samples)",
                                   reason="1: the printed argument; with 8 samples sigma = 0.10 mm, so ~68 % of the "

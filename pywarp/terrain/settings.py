@@ -141,12 +141,14 @@ class TerrainSettings(Settings):
                               doc="factor on the dynamic step (1: Kod 7.5 as printed; 0.5: 'halve the step', 7.1.3)",
                               reason="0.5: the text's remedy -- the vertical gap overshoots the fBm's steeper "
                                      "slopes (holes in ridges at 1)")
-    bisect_threshold: float = param(0.25, unit="units", lo=0.0, hi=100.0, lo_open=True, c="bisect_threshold", group="march",
+    bisect_threshold: float = param(0.25, unit="units", lo=0.0, hi=100.0, lo_open=True, c="bisect_threshold",
+                                    group="march",
                                     doc="bisect: step below which the march switches to threshold steps + "
                                         "bisection (ch. 9)",
                                     reason="0.25: 25 x PRECISION, where the dynamic march starts crawling; "
                                            "0.25 / 2^6 = 0.004 < PRECISION after the bisection")
-    bisect_steps: int = param(6, kind="int", lo=0, hi=64, c="bisect_steps", group="march", doc="bisect: halvings of the bracket",
+    bisect_steps: int = param(6, kind="int", lo=0, hi=64, c="bisect_steps", group="march",
+                              doc="bisect: halvings of the bracket",
                               reason="6: threshold / 2^6 = 0.004 units, below PRECISION (0.01)")
     slab: bool = param(True, c="slab", group="march",
                        doc="clip the view and shadow rays to the slab y <= bound + PRECISION that holds the terrain "
@@ -169,7 +171,8 @@ class TerrainSettings(Settings):
                                     doc="fBm octaves of the normals near the camera (7.3: many)",
                                     reason="9: the finest octave (24/256 units ~ 0.1) is the size of a pixel at "
                                            "~lod_distance at 960 px")
-    normal_octaves_min: int = param(4, kind="int", lo=1, hi=16, check=_octaves_min_check, c="normal_octaves_min", group="normals",
+    normal_octaves_min: int = param(4, kind="int", lo=1, hi=16, check=_octaves_min_check, c="normal_octaves_min",
+                                    group="normals",
                                     doc="fBm octaves of the normals far away (at least the march's)",
                                     reason="4: the march's octaves, so a far normal still matches its surface")
     lod_distance: float = param(15.0, unit="units", lo=0.0, hi=1e4, lo_open=True, c="lod_distance", group="normals",
@@ -183,7 +186,8 @@ class TerrainSettings(Settings):
                          reason="'soft': the final demo")
     shadow_t0_hard: float = param(0.2, unit="units", lo=0.0, hi=100.0, c="shadow_t0_hard", group="shadows",
                                   doc="start offset of the hard shadow ray", reason="0.2: Kod 7.6")
-    shadow_t0_soft: float = param(0.02, unit="units", lo=0.0, hi=100.0, lo_open=True, c="shadow_t0_soft", group="shadows",
+    shadow_t0_soft: float = param(0.02, unit="units", lo=0.0, hi=100.0, lo_open=True, c="shadow_t0_soft",
+                                  group="shadows",
                                   doc="start offset of the soft shadow ray", reason="0.02: Kod 7.7")
     shadow_k: float = param(4.0, lo=0.0, hi=1000.0, lo_open=True, c="shadow_k", group="shadows",
                             doc="softness factor k of Kod 7.7 (larger = harder)", reason="4: Kod 7.7")
@@ -210,11 +214,13 @@ class TerrainSettings(Settings):
                                  "a warm grey of weathered rock", "materials", c="colour_rock")
     colour_low: tuple = _colour((0.62, 0.55, 0.42), "colour of the low ground (sand, dirt)",
                                 "the pale brown of dry soil and beach sand", "materials", c="colour_low")
-    colour_grass: tuple = _colour((0.24, 0.40, 0.13), "grass colour", "a summer meadow green", "materials", c="colour_grass")
+    colour_grass: tuple = _colour((0.24, 0.40, 0.13), "grass colour", "a summer meadow green", "materials",
+                                  c="colour_grass")
     material_low: float = param(-6.0, unit="units", lo=-1e4, hi=1e4, c="material_low", group="materials",
                                 doc="height where the gradient leaves colour_low",
                                 reason="-6: just above the water level (-5 minus a beach)")
-    material_high: float = param(10.0, unit="units", lo=-1e4, hi=1e4, check=_material_high_check, c="material_high", group="materials",
+    material_high: float = param(10.0, unit="units", lo=-1e4, hi=1e4, check=_material_high_check, c="material_high",
+                                 group="materials",
                                  doc="height where the gradient reaches colour_rock",
                                  reason="10: the upper hills are rock")
     grass_min_normal_y: float = param(0.85, lo=0.0, hi=1.0, c="grass_min_normal_y", group="materials",
@@ -228,11 +234,13 @@ class TerrainSettings(Settings):
                      doc="fog of eq 7.3: thesis min(e^(rho d) - 1, 1) as printed, or corrected 1 - e^(-rho d)",
                      reason="'thesis': the printed form reaches full fog at ln 2 / rho, so the terrain fades "
                             "completely into the sky before MAX_T -- what 7.3.1 wants it for")
-    fog_density: float = param(0.0018, unit="1/units", lo=0.0, hi=100.0, lo_open=True, c="fog_density", group="atmosphere",
+    fog_density: float = param(0.0018, unit="1/units", lo=0.0, hi=100.0, lo_open=True, c="fog_density",
+                               group="atmosphere",
                                doc="fog density rho",
                                reason="0.0018: full fog (printed form) at ln 2 / 0.0018 = 385 units, just inside "
                                       "MAX_T = 400")
-    sky_colour: tuple = _colour((0.45, 0.62, 0.85), "skyColor of Kod 7.10", "a clear-day blue", "atmosphere", c="sky_colour")
+    sky_colour: tuple = _colour((0.45, 0.62, 0.85), "skyColor of Kod 7.10", "a clear-day blue", "atmosphere",
+                                c="sky_colour")
     sun_colour: tuple = _colour((1.0, 0.8, 0.55), "sunColor of Kod 7.10 (added to the sky, not clamped)",
                                 "a warm low-sun glow", "atmosphere", c="sun_colour")
     sun_power: float = param(80.0, lo=0.0, hi=1e4, lo_open=True, c="sun_power", group="atmosphere",
@@ -266,7 +274,8 @@ class TerrainSettings(Settings):
     wave_scale: float = param(2.0, unit="units", lo=0.015625, hi=1e4, c="wave_scale", group="water",
                               doc="size of the waves (units per noise unit)",
                               reason="2: ripples a fraction of a hiker's height")
-    wave_strength: float = param(0.08, lo=0.0, hi=10.0, c="wave_strength", group="water", doc="slope amplitude of the wave normals",
+    wave_strength: float = param(0.08, lo=0.0, hi=10.0, c="wave_strength", group="water",
+                                 doc="slope amplitude of the wave normals",
                                  reason="0.08: a calm lake, reflections rippled but recognisable")
     water_tint: tuple = _colour((0.55, 0.75, 0.8), "factor on the underwater colour ((1, 1, 1): the text's plain "
                                                    "blend)", "a blue-green tint so shallow water reads as water",

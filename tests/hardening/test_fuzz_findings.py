@@ -386,7 +386,8 @@ def test_terrain_shade_nan_case_of_the_finding_is_refused_and_the_limit_is_finit
     base = dict(heightmap=1, march_octaves=1, step_size=3.14, precision=1.001, max_steps=1)
     with pytest.raises(ValueError, match=r"^horizontal_scale"):
         TERRAIN_PARAMS.checked(dict(base, horizontal_scale=1.02e-38))
-    p = TERRAIN_PARAMS.checked(dict(base, horizontal_scale=K.MIN_SCALE, cloud_scale=K.MIN_SCALE, wave_scale=K.MIN_SCALE))
+    p = TERRAIN_PARAMS.checked(dict(base, horizontal_scale=K.MIN_SCALE, cloud_scale=K.MIN_SCALE,
+    wave_scale=K.MIN_SCALE))
     rng = np.random.default_rng(3)
     steps = ffi().new("int *")
     for _ in range(200):
