@@ -618,7 +618,7 @@ class CloudscapeSettings(Settings):
         detail = (-1.5 * dx * dist, -0.1 * dist, -1.5 * dz * dist)
         return weather, detail
 
-    # --- the C and Warp parameters (pywarp.core.cbridge) ---------------------------------------------------------------
+    # --- the C and Warp parameters (pywarp.core.cbridge) --------------------------------------------------------------
     def c_values(self) -> dict:
         """The ``ccl_cloudscape_params`` values of these settings: the C defaults, the fields the specs name, the
         layer, the wind offsets, ``sigma_light`` = ``sigma``, then the ``advanced`` overrides (unchecked)."""

@@ -55,8 +55,8 @@ class RainSettings(Settings):
     ``dataclasses.replace`` or :meth:`pywarp.rain.technique.RainTechnique.update`."""
 
     #: ``background``: the background scene is rebuilt (and its frames cached again); ``mask``: the refraction mask
-    #: is computed again
-    INVALIDATES = Settings.INVALIDATES + ("background", "mask")
+    #: is computed again; ``particles``: the particle system starts again
+    INVALIDATES = Settings.INVALIDATES + ("background", "mask", "particles")
 
     width: int = param(640, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group=_G_IMAGE,
                        doc="image width", reason="640 x 360: the issue's benchmark frame")
@@ -76,40 +76,42 @@ class RainSettings(Settings):
                       doc="refraction mask: sphere, outline (the application: the shape's outline, a sphere's "
                           "refraction) or exact (rays traced through the Beard-Chuang drop)",
                       reason="outline: what the application did (rr-alg-3.1.1, spec erratum 12)")
-    size_mm: float = param(1.3, unit="mm", lo=0.1, hi=4.5, c="size_mean_mm", group=_G_RAIN, cli="--size",
+    size_mm: float = param(1.3, unit="mm", lo=0.1, hi=4.5, c="size_mean_mm", invalidates="particles", group=_G_RAIN,
+                           cli="--size",
                            doc="mean drop radius of the particle sizes, Gauss(1, 1.3, 8)'s 1.3 (B/N keys)",
                            reason="1.3: the text's mean size (rr-code-5.2.2), read as a radius (Table 2.2 is indexed "
                                   "by radius)")
-    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, c="size_spread_mm", group=_G_RAIN,
-                                  cli="--size-spread",
+    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, c="size_spread_mm",
+                                  invalidates="particles", group=_G_RAIN, cli="--size-spread",
                                   doc="Gauss(1, 1.3, 8)'s 1, read as the width of the averaged uniforms: radii in "
                                       "size +- spread/2, standard deviation spread / sqrt(12 samples)",
                                   reason="1: the printed argument; with 8 samples sigma = 0.10 mm, so ~68 % of the "
                                          "drops are within 0.1 mm of 1.3 mm (the text's ~66 %)")
-    size_samples: int = param(8, kind="int", lo=1, hi=64, c="size_samples", group=_G_RAIN,
+    size_samples: int = param(8, kind="int", lo=1, hi=64, c="size_samples", invalidates="particles", group=_G_RAIN,
                               doc="Gauss(1, 1.3, 8)'s 8, read as the number of uniforms averaged (Irwin-Hall)",
                               reason="8: the printed argument")
-    slowdown: float = param(4.0, lo=0.015625, hi=1000.0, c="slowdown", group=_G_RAIN,
+    slowdown: float = param(4.0, lo=0.015625, hi=1000.0, c="slowdown", invalidates="particles", group=_G_RAIN,
                             doc="terminal speeds of Table 2.2 divided by this", reason="4: the application's")
-    metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, c="metres_per_unit", group=_G_RAIN,
+    metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, c="metres_per_unit",
+                                   invalidates="particles", group=_G_RAIN,
                                    doc="one scene unit in metres (speeds in m/s become units/s)",
                                    reason="1: not given (spec erratum 17); the 2 x 0.25 x 3 box is then a few metres "
                                           "around the viewer")
-    wind_x: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, group=_G_RAIN, cli="--wind-x",
+    wind_x: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, invalidates="particles", group=_G_RAIN, cli="--wind-x",
                           doc="horizontal wind along x (our extension; drops drift and wrap in the box)",
                           reason="0: the text has no wind")
-    wind_z: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, group=_G_RAIN, cli="--wind-z",
+    wind_z: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, invalidates="particles", group=_G_RAIN, cli="--wind-z",
                           doc="horizontal wind along z (our extension)", reason="0: the text has no wind")
-    warm_start: bool = param(True, group=_G_RAIN,
+    warm_start: bool = param(True, invalidates="particles", group=_G_RAIN,
                              doc="start with every requested drop in the air (off: one drop added per frame, as the "
                                  "listing)",
                              reason="on: a single image shows the requested count (the listing needs `drops` frames "
                                     "to fill the box)")
-    variant: str = param("corrected", choices=("corrected", "thesis"), group=_G_RAIN,
+    variant: str = param("corrected", choices=("corrected", "thesis"), invalidates="particles", group=_G_RAIN,
                          doc="particle counter of rr-code-5.2.2: corrected (+1 per frame) or thesis (the printed "
                              "decrement: no drop is ever created)",
                          reason="corrected: the listing's evident intent")
-    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, c="seed", group=_G_RAIN,
+    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, c="seed", invalidates="particles", group=_G_RAIN,
                       doc="seed of every particle draw; the same seed gives the same rain", reason="0")
     time_s: float = param(0.0, unit="s", lo=0.0, hi=1e6, group=_G_RAIN, cli="--time",
                           doc="simulated time since the start (animate advances it; dt = its change, scaled by "

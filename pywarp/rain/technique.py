@@ -265,7 +265,6 @@ class RainTechnique:
         old = self.settings
         new = replace(old, **changes)
         self.settings = new
-        changed = new.changed(old)
         stale = new.invalidated(old)
         if "device" in stale:
             self.init()
@@ -275,9 +274,7 @@ class RainTechnique:
             self._cache.clear()
         if "mask" in stale:
             self.mask, self.extent, self.normals = drop_mask(new.shape, new.mask, new.mask_size)
-        particle_fields = {"size_mm", "size_spread_mm", "size_samples", "slowdown", "metres_per_unit", "wind_x",
-                           "wind_z", "seed", "variant", "warm_start"}
-        if changed & particle_fields or new.drops > self.system.capacity:
+        if "particles" in stale or new.drops > self.system.capacity:
             self._reset_particles()
         if stale & {"size"}:
             self.resize(new.width, new.height)
