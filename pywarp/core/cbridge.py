@@ -3,10 +3,12 @@ the values the scene computes) -> the C check -> the Warp struct.
 
 A settings field that reaches the pixel names its C field in its spec (``param(..., c="fog_density")``); a field with
 choices maps them to C enum constants by ``c_enum`` ({choice: "CCL_..."}: names, looked up in the library, so the
-table is pinned to the C values by the binding itself). A settings class names its struct with :class:`CStruct`
-(``c_struct`` class attribute). The C check is the one check of the values: its error names the field by its Python
-name and domain where a setting carries it, by its C name and ``CStruct.domains`` otherwise. The Warp struct is read
-back from the checked C struct, so both twins see the same float32 values.
+table is pinned to the C values by the binding itself). Each parameter struct is a :class:`CStruct` (below; the
+cloudscape's, with the domains of its error messages, in :mod:`pywarp.clouds.settings`); a settings class's
+``c_values()`` is the C defaults, :func:`settings_values` and the values the scene computes. The C check is the one
+check of the values: its error names the field by its Python name and domain where a setting carries it, by its C
+name (and ``CStruct.domains``) otherwise. The Warp struct is read back from the checked C struct, so both twins see
+the same float32 values.
 
 Kernels name C enum values with :func:`c_constant` (a Warp constant recorded in :data:`C_CONSTANTS`, which
 ``tests/core/test_cbridge.py`` pins to the library)."""
@@ -61,13 +63,13 @@ class CStruct:
                 raise ValueError(f"unknown {self.name} field {name!r}")
             owner, attr = places[name]
             cur = getattr(owner, attr)
-            if hasattr(cur, "x") or _is_array(cur):  # a ccl_vec2/3 or an array: a sequence of its length
-                n = len(_vec(cur)) if hasattr(cur, "x") else len(cur)
+            vec = hasattr(cur, "x")
+            if vec or _is_array(cur):  # a ccl_vec2/3 or an array: a sequence of its length
                 items = list(v)
-                if len(items) != n:
-                    raise ValueError(f"{name} must hold {n} numbers, got {v!r}")
+                if len(items) != (len(_vec(cur)) if vec else len(cur)):
+                    raise ValueError(f"{name} must hold {len(_vec(cur)) if vec else len(cur)} numbers, got {v!r}")
                 for i, a in enumerate(items):
-                    if hasattr(cur, "x"):
+                    if vec:
                         setattr(cur, "xyz"[i], float(a))
                     else:
                         cur[i] = a
@@ -101,7 +103,7 @@ class CStruct:
             dom = dom if dom.startswith(("one of", "a ", "an ", "True")) else "in " + dom
             return ValueError(f"{p.name} is out of range: it must be {dom} ({self.check}), "
                               f"got {getattr(settings, p.name)!r}")
-        shown = values.get(c_name, values.get(c_name.split(".")[0], read(c).get(c_name)))
+        shown = values.get(c_name, read(c).get(c_name))
         if c_name in self.domains:
             return ValueError(f"{c_name} is out of range: it must be {self.domains[c_name]} ({self.check}), "
                               f"got {shown!r}")
@@ -112,8 +114,8 @@ class CStruct:
         read from the C field of its name, so that both twins see the same float32 values."""
         import warp as wp
 
-        module, name = self.warp.split(":")
-        cls = getattr(importlib.import_module(module), name)
+        module, cls_name = self.warp.split(":")
+        cls = getattr(importlib.import_module(module), cls_name)
         values = read(self.to_c(c) if isinstance(c, dict) else c)
         s = cls()
         for name, var in cls.vars.items():
