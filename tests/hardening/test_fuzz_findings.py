@@ -17,7 +17,6 @@ from pywarp.core.registry import get, warp_parameters
 from pywarp.kernels import camera as CAM
 from pywarp.kernels import flight as F
 from pywarp.kernels import noise
-from pywarp.kernels import particles as PT
 from pywarp.kernels import rain as R
 from pywarp.kernels import sky as sky_mod
 from pywarp.kernels import terrain as K

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from pywarp.core.cbridge import TERRAIN_PARAMS, settings_values
-from pywarp.kernels import terrain as K
 from pywarp.terrain.settings import PREVIEW, TEST_HEIGHTMAP, TerrainSettings
 from pywarp.terrain.technique import (TerrainPose, TerrainTechnique, render_pixels_c, render_pixels_warp,
                                       ground_height, walk_path)
