@@ -35,9 +35,9 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
 from . import VARIANT_THESIS
-from ..core.cbridge import c_constant
 from .interp import interp_remap
 from .phase import phase_hg
 
