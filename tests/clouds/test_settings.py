@@ -73,14 +73,13 @@ def test_cloudscape_defaults_equal_ccl_cloudscape_params_default():
 
 
 def test_constants_mirror_the_c_headers_and_the_kernels():
-    from pywarp.kernels import cloudscape as K
     from pywarp.kernels import noise, raymarch, texgen
 
     for name in ("MIN_SIZE", "MAX_SIZE_3D", "MAX_SIZE_2D", "MAX_OCTAVES", "MAX_LATTICE"):
         assert getattr(S, name) == getattr(lib(), f"CCL_TEXGEN_{name}") == getattr(texgen, name)
     assert [noise.COMBINATIONS[n] for n in S.COMBINATION_NAMES] == list(range(len(S.COMBINATION_NAMES)))
     assert [getattr(lib(), f"CCL_PW_{n.upper()}") for n in S.COMBINATION_NAMES] == list(range(5))
-    assert [getattr(K, f"JITTER_{n.upper()}") for n in S.JITTER_NAMES] == [0, 1, 2]
+    assert [raymarch.JITTER_MODES[n] for n in S.JITTER_NAMES] == [0, 1, 2]
     assert (S.EARTH_RADIUS_KM, S.LAYER_BASE_KM, S.LAYER_TOP_KM) == (
         raymarch.EARTH_RADIUS_KM, raymarch.LAYER_BASE_KM, raymarch.LAYER_TOP_KM)
     assert S.CurlNoiseSettings().fd_step == 1.0 / lib().CCL_NOISE_FD_STEP_INV
