@@ -228,7 +228,7 @@ def measure_sky(tech, repeat: int = 2) -> dict:
     buf = tech._buffers["current"]
     out = {}
     for kind in ("gradient", "preetham"):
-        sky = make_sky(replace(s, sky=kind).validate())
+        sky = make_sky(replace(s, sky=kind))
         res = {}
         for name, rep in (("full", False), ("reprojection", True)):
             res[name] = _timed(lambda: sky.render(buf, cam, 0, rep, tech.params, tech.launcher), repeat)

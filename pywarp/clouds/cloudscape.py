@@ -35,9 +35,7 @@ from ..kernels import cloudscape as K  # noqa: E402
 from ..kernels import reproj as RP  # noqa: E402
 from ..kernels import sky as S  # noqa: E402
 from . import textures as T  # noqa: E402
-from .settings import SKIES, CloudscapeSettings  # noqa: E402,F401  (re-exported)
-from .cparams import (COVERAGE_THRESHOLDS, JITTERS, c_params, check_params, checked_values,  # noqa: E402,F401
-                      param_values)
+from .settings import CLOUDSCAPE_PARAMS, SKIES, CloudscapeSettings  # noqa: E402,F401  (re-exported)
 
 
 
@@ -243,22 +241,7 @@ def half_values(a: np.ndarray, what: str) -> np.ndarray:
     return a.astype(np.float16).astype(np.float32)
 
 
-# --- parameters shared by Warp and C --------------------------------------------------------------------------------------
-
-
-
-def warp_params(values: dict) -> K.CloudscapeParams:
-    s = K.CloudscapeParams()
-    for name, v in values.items():
-        t = K.CloudscapeParams.vars[name].type
-        if t in (int, wp.int32):
-            setattr(s, name, int(v))
-        elif t in (float, wp.float32):
-            setattr(s, name, float(v))
-        else:
-            setattr(s, name, t(*[float(x) for x in v]))
-    return s
-
+# --- the per-frame lighting setup ------------------------------------------------------------------------------------
 
 #: The fields ccl_cloudscape_light / cloudscape_light fill from the sky model (sky lighting).
 LIGHT_FIELDS = ("sun_colour", "ambient_top", "ambient_bottom", "ambient_ground")
@@ -299,7 +282,7 @@ class CloudscapeTechnique:
 
     def __init__(self, settings: CloudscapeSettings | None = None, generator=None, sky: SkyModel | None = None,
                  textures: RenderTextures | None = None):
-        self.settings = (settings or CloudscapeSettings()).validate()
+        self.settings = settings or CloudscapeSettings()
         self.launcher = shared_launcher(self.settings.device, self.settings.threads)
         self.device = self.launcher.device
         self.generator = generator
@@ -316,7 +299,7 @@ class CloudscapeTechnique:
             self.textures = RenderTextures.generate(self.settings, self.generator)
         if self.sky is None:
             self.sky = make_sky(self.settings)
-        self.params = light_params(warp_params(checked_values(self.settings)), self.sky, self.device)
+        self.params = light_params(self.settings.warp_params(), self.sky, self.device)
         self.resize(self.settings.width, self.settings.height)
 
     def update(self, **changes) -> None:
@@ -337,7 +320,7 @@ class CloudscapeTechnique:
                 self.sky = make_sky(new)  # the sky kind may have changed
             else:
                 self.sky.update(new)  # a user's own sky model
-        self.params = light_params(warp_params(checked_values(new)), self.sky, self.device)
+        self.params = light_params(new.warp_params(), self.sky, self.device)
         if stale & {"size", "device"}:
             self.resize(new.width, new.height)
 
@@ -553,9 +536,9 @@ def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, 
     from ..core.binding import ffi, lib
 
     f, lb = ffi(), lib()
-    s = settings.validate()
+    s = settings
     pose = pose or CameraPose.from_settings(s)
-    params = c_params(param_values(s))
+    params = CLOUDSCAPE_PARAMS.to_c(s.c_values())
     tex = c_textures(textures, s.half_base())
     sky = c_sky(s)
     cam = c_camera(pose.camera(s.width, s.height))
@@ -619,9 +602,9 @@ def render_frame_c(settings: CloudscapeSettings, textures: RenderTextures, pose:
     from ..core.binding import ffi, lib, status_error
 
     f, lb = ffi(), lib()
-    s = settings.validate()
+    s = settings
     pose = pose or CameraPose.from_settings(s)
-    params = c_params(param_values(s))
+    params = CLOUDSCAPE_PARAMS.to_c(s.c_values())
     tex = c_textures(textures, s.half_base())
     out = np.empty((s.height, s.width, 3), dtype=np.float32)
     status = lb.ccl_cloudscape_render(params, tex, c_sky(s), c_camera(pose.camera(s.width, s.height)), s.width,

@@ -87,7 +87,6 @@ from ..kernels.phase import phase_hg  # noqa: E402
 from ..kernels.raymarch import raymarch_ray_sphere  # noqa: E402
 from ..kernels.sky import Preetham, SkyGradient  # noqa: E402
 from .cloudscape import CameraPose, CloudscapeTechnique, RenderTextures  # noqa: E402
-from .cparams import checked_values  # noqa: E402
 from .settings import CloudscapeSettings  # noqa: E402
 
 #: Samples per pixel: at least 1; at most 2^16 (the noise then is 1/256 of one sample's; more is never needed for an
@@ -702,7 +701,7 @@ class ReferenceRenderer:
                                max_steps=max_steps, pixel_filter=pixel_filter, density=density,
                                slab_density=slab_density, sky=sky, ground_albedo=ground_albedo, majorant=majorant,
                                threads=threads)
-        self.settings = (settings or CloudscapeSettings()).validate()
+        self.settings = settings or CloudscapeSettings()
         s = self.settings
         if getattr(s, "accumulate", 1) != 1:
             raise ValueError(f"accumulate must be 1 with the reference (it averages its spp paths per pixel "
@@ -722,7 +721,8 @@ class ReferenceRenderer:
         self.density = density
         self.slab_density = _float_in("slab_density", slab_density, 0.0, DENSITY_BOUND)
         self.sky_on = bool(sky)
-        self.values = checked_values(s)
+        self.values = s.c_values()
+        s.c_params(self.values)  # ccl_cloudscape_check at the texture sizes
         if int(self.values["gradient_clamp"]) != 1:
             raise ValueError("gradient_clamp must be 1 for the reference (the density bound of the majorant needs "
                              f"clamped height gradients), got {self.values['gradient_clamp']!r}")

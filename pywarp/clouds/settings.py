@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.cbridge import CStruct
 from ..core.params import Settings, inherit, param
 
 # cclouds/texgen.h limits (pinned to the C macros and pywarp.kernels.texgen by the tests)
@@ -50,11 +51,15 @@ SKIES = ("preetham", "gradient")
 JITTER_NAMES = ("tilt", "offset", "none")  # ccl_jitter_mode order
 COVERAGE_THRESHOLD_NAMES = ("coverage", "one_minus_coverage")  # ccl_coverage_threshold order
 LIGHTING_NAMES = ("thesis", "sky")  # ccl_lighting order
+JITTER_ENUM = {"tilt": "CCL_JITTER_TILT", "offset": "CCL_JITTER_OFFSET", "none": "CCL_JITTER_NONE"}
+COVERAGE_THRESHOLD_ENUM = {"coverage": "CCL_COVERAGE_SAME", "one_minus_coverage": "CCL_COVERAGE_ONE_MINUS"}
+LIGHTING_ENUM = {"thesis": "CCL_LIGHTING_THESIS", "sky": "CCL_LIGHTING_SKY"}
 REPROJECTION_DEPTHS = ("clouds", "inner_sphere")  # pywarp.kernels.reproj: DEPTH_ITERATIONS (2) / 0
 BASE_PRECISIONS = ("half", "single")  # RenderTextures: how the renderer stores the base-shape texture
 REPROJECTION_FILTERS = ("catmull_rom", "bilinear")  # pywarp.kernels.reproj.FILTERS (ccl_reproj_filter)
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
 MARCH_NAMES = ("fast", "textbook")  # ccl_cloudscape_march_kind order
+MARCH_ENUM = {"fast": "CCL_CLOUDSCAPE_MARCH_FAST", "textbook": "CCL_CLOUDSCAPE_MARCH_TEXTBOOK"}
 
 
 # --- checks shared by the texture settings ---------------------------------------------------------------------------
@@ -115,6 +120,8 @@ class BaseShapeSettings(Settings):
     gamma) but gives no values; each default says where it comes from. Mirrors ``ccl_base_shape_settings``; fields are
     checked in the order of its C check."""
 
+    INVALIDATES = Settings.INVALIDATES + ("textures",)  # the texture is regenerated
+
     size: int = _size(128, MAX_SIZE_3D, "128: the 128^3 of vc-A9")
     seed: int = _seed("0: the Perlin part then uses Ken Perlin's reference permutation")
     perlin_octaves: int = _octaves(3, "octaves of the Perlin fBm",
@@ -147,6 +154,8 @@ class DetailShapeSettings(Settings):
     """Settings of the detail (erosion) texture (vc-A10, vc-A13 ``DetailShapeSettings``: fBm weights, base frequency,
     gamma; values not given in the thesis). Mirrors ``ccl_detail_shape_settings``."""
 
+    INVALIDATES = Settings.INVALIDATES + ("textures",)  # the texture is regenerated
+
     size: int = _size(32, MAX_SIZE_3D, "32: the 32^3 of vc-A10")
     seed: int = _seed("0", "seed of the Worley feature points (layer j uses seed + j)")
     worley_cells: int = param(2, unit="cells", kind="int", lo=1, hi=MAX_LATTICE, invalidates="textures",
@@ -167,6 +176,8 @@ class DetailShapeSettings(Settings):
 class CurlNoiseSettings(Settings):
     """Settings of the generated 2-D curl-noise texture (vc-A11; the thesis ships a file and states only that it holds
     curl noise of Perlin noise). Mirrors ``ccl_curl_noise_settings``."""
+
+    INVALIDATES = Settings.INVALIDATES + ("textures",)  # the texture is regenerated
 
     size: int = _size(128, MAX_SIZE_2D, "128: not given; 128^2 x 2 floats samples the default 4 cells with 32 texels "
                                         "per cell, far finer than the swirls")
@@ -193,6 +204,8 @@ class WeatherMapSettings(Settings):
     B = cloud type, A = 0 (free). See ``cclouds/texgen.h`` for the formulas. The one declaration of the weather-map
     parameters: :class:`CloudscapeSettings` takes its weather fields from here. Fields are checked in the order of
     ``ccl_texgen_weather_map_settings_check``."""
+
+    INVALIDATES = Settings.INVALIDATES + ("textures",)  # the texture is regenerated
 
     _validation_order = ("size", "seed", "perlin_octaves", "perlin_frequency", "perlin_contrast", "worley_octaves",
                          "worley_cells")
@@ -254,9 +267,36 @@ def _albedo_check(obj, name, v):
 
 def _advanced_check(obj, name, v):
     if v:
-        from .cparams import checked_values  # the C check of ccl_cloudscape_params, at the texture sizes
+        obj.c_params()  # the C check of ccl_cloudscape_params, at the texture sizes
 
-        checked_values(obj)
+
+#: ``ccl_cloudscape_params`` (:mod:`pywarp.core.cbridge`). ``domains``: the valid values of the fields no setting
+#: carries that ccl_cloudscape_check bounds by a plain range, as the check states them (for the error of an
+#: ``advanced`` override); the other fields are bounded by the texture coordinates they produce.
+CLOUDSCAPE_PARAMS = CStruct(
+    "ccl_cloudscape_params", "ccl_cloudscape_check", "pywarp.kernels.cloudscape:CloudscapeParams",
+    note=": texture coordinates must stay below 2^23 texels at the texture sizes",
+    domains={
+        "sigma": "> 0 and finite", "sigma_light": ">= 0 and finite", "absorption_base": ">= 0 and finite",
+        "absorption_precip": ">= 0 and finite", "g": "in (-1, 1)", "sun_colour": ">= 0 and finite per channel",
+        "ambient_bottom": ">= 0 and finite per channel", "ambient_top": ">= 0 and finite per channel",
+        "ground_colour": ">= 0 and finite per channel", "samples_min": "in [1, samples_max]",
+        "samples_max": "in [samples_min, 4096]", "exit_eps": "in (0, 1)", "exit_fill": "0 or 1",
+        "light_interp": ">= 0 and finite", "light_step_km": "> 0 and finite",
+        "light_cone_angle": "in [0, pi/2) rad",
+        "light_far_factor": "in [1, 10^6] (CCL_CLOUDSCAPE_MAX_LIGHT_FAR_FACTOR), with light_far_factor x 5 x "
+                            "light_step_km <= 10^6 km (CCL_CLOUDSCAPE_MAX_LIGHT_KM)",
+        "jitter_mode": "0 (tilt), 1 (offset) or 2 (none)", "jitter_amount": ">= 0 and finite",
+        "detail_direction": "0 or 1", "coverage_threshold": "0 or 1", "beer": "0 or 1", "powder": "0 or 1",
+        "lighting": "0 (thesis) or 1 (sky)", "sun_intensity": ">= 0 and finite", "ambient_bottom_ratio": "in [0, 1]",
+        "ambient_ground": ">= 0 and finite per channel", "ground_albedo": "in [0, 1] per channel",
+        "aerial_km": ">= 0 and finite", "aerial_height_km": ">= 0 and finite",
+        "ms_octaves": f"in [1, {MAX_MS_OCTAVES}]", "ms_a": "in [0, 1]", "ms_b": "in [0, 1]", "ms_c": "in [0, 1]",
+        "silver_g": "in (-1, 1)", "silver_weight": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
+        "lod_bias": "in [-4, 4]", "refine_step_km": ">= 0 and finite", "refine_max": "in [1, 64]",
+    })
+#: the layer's fields: computed from the settings (earth_radius_km, layer_base_km, layer_top_km), never ``advanced``
+_LAYER_FIELDS = ("centre", "r_earth", "r_inner", "r_outer")
 
 
 _NOTHING = "nothing"
@@ -268,6 +308,9 @@ class CloudscapeSettings(Settings):
     values for any of them (spec vc-A36, "Not given"). Immutable: change with ``dataclasses.replace`` (validated) or
     :meth:`pywarp.clouds.cloudscape.CloudscapeTechnique.update`. An invalid value raises ValueError (TypeError for a
     wrong type) naming the field, in the registry's wording."""
+
+    #: ``textures``: the noise textures are regenerated; ``sky``: the sky model is rebuilt
+    INVALIDATES = Settings.INVALIDATES + ("sky", "textures")
 
     width: int = param(960, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group="image",
                        doc="image width", reason="960 x 540: a quarter of the thesis' Full HD, fast on a laptop CPU")
@@ -287,7 +330,7 @@ class CloudscapeSettings(Settings):
                                    doc="sun azimuth, 0 = -z (straight ahead of the default camera), positive towards "
                                        "+x" + _ANGLE_DOC,
                                    reason="150: behind the viewer's right shoulder")
-    turbidity: float = param(2.5, lo=2.0, hi=10.0, invalidates="sky", group="sky",
+    turbidity: float = param(2.5, lo=2.0, hi=10.0, invalidates="sky", c="turbidity", group="sky",
                              doc="Preetham turbidity (the range of Preetham's fit)", reason="2.5: a clear day")
     sky_variant: str = param("corrected", choices=("corrected", "thesis"), invalidates="sky", group="sky",
                              doc="errata of the sky chain (vc-2.39, 4.4, 4.5)",
@@ -301,30 +344,33 @@ class CloudscapeSettings(Settings):
     precipitation: float = inherit(WeatherMapSettings, "precipitation")
     cloud_type: float = inherit(WeatherMapSettings, "cloud_type")
     cloud_type_variation: float = inherit(WeatherMapSettings, "cloud_type_variation")
-    coverage_threshold: str = param("one_minus_coverage", choices=COVERAGE_THRESHOLD_NAMES, group="clouds",
+    coverage_threshold: str = param("one_minus_coverage", choices=COVERAGE_THRESHOLD_NAMES, c="coverage_threshold",
+                                    c_enum=COVERAGE_THRESHOLD_ENUM, group="clouds",
                                     doc="reading of the undefined threshold C of vc-2.29: one_minus_coverage "
                                         "(C = 1 - D_h) or coverage (C = D_h, the literal reading: clouds survive only "
                                         "as rings around covered areas)",
                                     reason="one_minus_coverage: more coverage gives more cloud (ccl_cloudscape_"
                                            "params_default; see cclouds/cloudscape.c)")
-    beer: bool = param(True, group="clouds", doc="Beer's-law term of the lighting energy vc-2.31 (off: replaced by 1)",
+    beer: bool = param(True, c="beer", group="clouds",
+                       doc="Beer's-law term of the lighting energy vc-2.31 (off: replaced by 1)",
                        reason="on: the formula as printed (ccl_cloudscape_params_default)")
-    powder: bool = param(False, group="clouds", doc="powder term of the lighting energy vc-2.31 (off: replaced by 1; "
-                                                    "on: the formula as printed, the thesis's renderer)",
+    powder: bool = param(False, c="powder", group="clouds",
+                         doc="powder term of the lighting energy vc-2.31 (off: replaced by 1; "
+                             "on: the formula as printed, the thesis's renderer)",
                          reason="off: measured against the path-traced reference (tools/tune_lighting.py), the mean "
                                 "CIEDE2000 of three scenes falls from 13.4 to 9.0 and the dark rims along the clouds' "
                                 "sunward edges (thin crease lines) go (ccl_cloudscape_params_default)")
-    lod: bool = param(True, group="clouds",
+    lod: bool = param(True, c="lod", group="clouds",
                       doc="level of detail: the base and detail noise sampled at the mip level of each sample's "
                           "footprint (the pixel's width at the sample; the light samples at least the light step); "
                           "off: full resolution everywhere, as the thesis",
                       reason="on: without it the steps and pixels near the horizon undersample 25-50 m texels and "
                              "the distant clouds turn into salt-and-pepper noise that changes every frame "
                              "(ccl_cloudscape_params_default)")
-    lod_bias: float = param(0.0, lo=-4.0, hi=4.0, group="clouds",
+    lod_bias: float = param(0.0, lo=-4.0, hi=4.0, c="lod_bias", group="clouds",
                             doc="added to every mip level of the level of detail (> 0 blurs, < 0 sharpens)",
                             reason="0: one texel per footprint, the usual mip-mapping criterion")
-    refine_step_km: float = param(0.1, unit="km", lo=0.0, hi=10.0, group="clouds",
+    refine_step_km: float = param(0.1, unit="km", lo=0.0, hi=10.0, c="refine_step_km", group="clouds",
                                   doc="refinement: view steps longer than this are split into sub-steps of at most "
                                       "this length where a coarse base-shape test finds cloud; view steps already "
                                       "this short are grouped (up to refine_max steps, at most 2 x this long) and "
@@ -342,12 +388,12 @@ class CloudscapeSettings(Settings):
                                 reason="half: the 128^3 base texture no longer overflows the CPU's cache; measured "
                                        "(pywarp bench clouds speed) 5-9 % off a frame, and a random base lookup "
                                        "108 -> 38 ns; the frame changes by at most 1 level in about 1 % of pixels")
-    weather_detile: bool = param(True, group="clouds",
+    weather_detile: bool = param(True, c="weather_detile", group="clouds",
                                  doc="the weather map does not tile visibly: blended with a rotated, scaled copy by "
                                      "the coverage of a much larger copy (ccl_cloudscape_weather); off: one periodic "
                                      "lookup, the thesis",
                                  reason="on: one 32 km map repeats visibly from a few km up")
-    refine_max: int = param(8, lo=1, hi=64, group="clouds",
+    refine_max: int = param(8, lo=1, hi=64, c="refine_max", group="clouds",
                             doc="most sub-steps per view step of the refinement, and view steps per group of "
                                 "short steps; with refinement on, no view "
                                 "step is longer than refine_step_km x refine_max (a longer segment takes more steps, "
@@ -396,10 +442,10 @@ class CloudscapeSettings(Settings):
                               "form and dissolve within an hour), and 3 hours at the highest wind speed keep the "
                               "texture coordinates inside ccl_cloudscape_check's bound (2^23 texels)",
                           reason="0: the weather map as generated")
-    adaptive_samples: bool = param(True, group="quality",
+    adaptive_samples: bool = param(True, c="adaptive_samples", group="quality",
                                    doc="adaptive view-sample count, 64 at the zenith to 128 at the horizon (vc-A18)",
                                    reason="on: the thesis' optimisation (fig 4.17)")
-    early_exit: bool = param(True, group="quality", doc="early ray termination when opaque (vc-A21)",
+    early_exit: bool = param(True, c="early_exit", group="quality", doc="early ray termination when opaque (vc-A21)",
                              reason="on: the thesis' optimisation (fig 4.17)")
     reprojection: bool = param(False, group="quality",
                                doc="temporal reprojection (vc-A26): one pixel per 4x4 block raymarched per frame",
@@ -425,17 +471,17 @@ class CloudscapeSettings(Settings):
                                      reason="'catmull_rom': a pixel is resampled up to 15 times before it is marched "
                                             "again; bilinear resampling blurs it every time, and the sharp fresh "
                                             "pixel of each 4x4 block then stands out as a dot grid")
-    jitter: str = param("offset", choices=JITTER_NAMES, group="quality",
+    jitter: str = param("offset", choices=JITTER_NAMES, c="jitter_mode", c_enum=JITTER_ENUM, group="quality",
                         doc="ray jitter against banding (vc-A23): offset (the first sample's position along the "
                             "ray), tilt (the thesis: the ray's direction) or none",
                         reason="'offset': the thesis' tilt of up to 0.002 rad per axis moves the ray by more than a "
                                "pixel (0.0019 rad at 960x540), so far clouds changed from frame to frame (the "
                                "flickering horizon: 6.2 grey levels between frames against 0.77 with offset) and "
                                "near ones looked out of focus (ccl_cloudscape_params_default)")
-    light_detail: bool = param(True, group="quality",
+    light_detail: bool = param(True, c="light_detail", group="quality",
                                doc="light samples with the detail erosion (off: the base shape only, cheaper)",
                                reason="on: the thesis' density (ccl_cloudscape_params_default)")
-    march: str = param("fast", choices=MARCH_NAMES, group="quality",
+    march: str = param("fast", choices=MARCH_NAMES, c="march", c_enum=MARCH_ENUM, group="quality",
                        doc="the loop of the cloud march: fast (refinement of long steps, grouping and skipping of "
                            "empty ones, light interpolation, level of detail) or textbook (vc-A18..A21 as the thesis "
                            "prints the loop, ccl_cloudscape_march_textbook: for reading beside the text)",
@@ -459,61 +505,64 @@ class CloudscapeSettings(Settings):
     detail_size: int = inherit(DetailShapeSettings, "size", group="textures")
     curl_size: int = inherit(CurlNoiseSettings, "size", group="textures")
     weather_size: int = inherit(WeatherMapSettings, "size", group="textures")
-    g: float = param(0.2, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, group="clouds", cli="--phase-g",
+    g: float = param(0.2, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, c="g", group="clouds", cli="--phase-g",
                      doc="Henyey-Greenstein asymmetry g of vc-2.31",
                      reason="0.2: ccl_cloudscape_params_default (see cclouds/cloudscape.c)")
-    sigma_per_km: float = param(30.0, unit="1/km", lo=0.0, hi=1000.0, lo_open=True, group="clouds", cli="--sigma",
+    sigma_per_km: float = param(30.0, unit="1/km", lo=0.0, hi=1000.0, lo_open=True, c="sigma", group="clouds",
+                                cli="--sigma",
                                 doc="extinction per unit density",
                                 reason="30: ccl_cloudscape_params_default (see cclouds/cloudscape.c)")
-    lighting: str = param("sky", choices=LIGHTING_NAMES[::-1], group="lighting",
+    lighting: str = param("sky", choices=LIGHTING_NAMES[::-1], c="lighting", c_enum=LIGHTING_ENUM, group="lighting",
                           doc="sky: sun colour and ambient from the sky model (the sun's elevation through the "
                               "atmosphere, the sky's mean radiance), a lit ground with cloud shadows, aerial "
                               "perspective, multiple scattering and the silver-lining lobe; thesis: the thesis's "
                               "constant sun and ambient, flat ground, one octave, one HG lobe (its images exactly)",
                           reason="'sky': clouds take the colour of the light around them (a sunset lights them "
                                  "orange); ccl_cloudscape_params_default")
-    sun_intensity: float = param(16.0, lo=0.0, hi=1000.0, group="lighting",
+    sun_intensity: float = param(16.0, lo=0.0, hi=1000.0, c="sun_intensity", group="lighting",
                                  doc="sky lighting: sun irradiance above the atmosphere (display-linear units; the "
                                      "sun colour is this times the atmosphere's transmittance towards the sun)",
                                  reason="16: at the default sun (35 deg) the sun's red channel is ~12, the thesis "
                                         "constant's (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
-    ground_albedo: tuple = param((0.04, 0.05, 0.03), lo=0.0, hi=1.0, check=_albedo_check, group="lighting",
+    ground_albedo: tuple = param((0.04, 0.05, 0.03), lo=0.0, hi=1.0, check=_albedo_check, c="ground_albedo",
+                                 group="lighting",
                                  doc="sky lighting: Lambertian albedo of the ground (RGB)",
                                  reason="(0.04, 0.05, 0.03): vegetation (0.1-0.2) scaled by the ~3.5 times too "
                                         "bright sun that exposes the dim clouds of vc-2.31, so the sunlit ground stays "
                                         "darker than the sky (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
-    aerial_km: float = param(30.0, unit="km", lo=0.0, hi=1e6, group="lighting", cli="--aerial",
+    aerial_km: float = param(30.0, unit="km", lo=0.0, hi=1e6, c="aerial_km", group="lighting", cli="--aerial",
                              doc="sky lighting: aerial-perspective e-folding distance L at the ground (0 = off): "
                                  "colour = C e^(-t/L) + horizon sky (1 - e^(-t/L)), t the path's length of "
                                  "ground-level air (see aerial_height_km)",
                              reason="30: a visual range of ~117 km (Koschmieder 3.912 x 30), a clear day; the "
                                     "horizon band of clouds fades into the sky (ccl_cloudscape_params_default)")
-    aerial_height_km: float = param(2.0, unit="km", lo=0.0, hi=1e6, group="lighting", cli="--aerial-height",
+    aerial_height_km: float = param(2.0, unit="km", lo=0.0, hi=1e6, c="aerial_height_km", group="lighting",
+                                    cli="--aerial-height",
                                     doc="sky lighting: scale height of the haze (its density falls as e^(-altitude "
                                         "/ H)); 0 = a homogeneous fog",
                                     reason="2: the haze is mostly aerosol in the lowest kilometres (scale heights "
                                            "1-2 km); a view from above sees the ground veiled, not fogged "
                                            "(ccl_cloudscape_params_default)")
-    ms_octaves: int = param(4, kind="int", lo=1, hi=MAX_MS_OCTAVES, group="lighting",
+    ms_octaves: int = param(4, kind="int", lo=1, hi=MAX_MS_OCTAVES, c="ms_octaves", group="lighting",
                             doc="sky lighting: multiple-scattering octaves (Wrenninge et al. 2013; 1 = single "
                                 "scattering); octave i scales the optical depth, contribution and phase eccentricity "
                                 "by 0.5^i (ms_a, ms_b, ms_c through `advanced`)",
                             reason="4 (with 0.5 per octave, ccl_cloudscape_params_default): measured against the "
                                    "path-traced reference (tools/tune_lighting.py, mean CIEDE2000 of three scenes): 1 "
                                    "octave 12.2, 2: 10.3, 3: 9.4, 4: 9.0, 8: 8.7 -- the fewest within 0.5 of the best")
-    silver_g: float = param(0.8, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, group="lighting",
+    silver_g: float = param(0.8, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, c="silver_g", group="lighting",
                             doc="sky lighting: asymmetry of the second Henyey-Greenstein lobe (silver lining)",
                             reason="0.8: a narrow forward lobe (ccl_cloudscape_params_default); used when "
                                    "silver_weight > 0")
-    silver_weight: float = param(0.0, lo=0.0, hi=1.0, group="lighting",
+    silver_weight: float = param(0.0, lo=0.0, hi=1.0, c="silver_weight", group="lighting",
                                  doc="sky lighting: weight w of the second lobe, phase = (1 - w) HG(g) + w "
                                      "HG(silver_g); 0 = one lobe",
                                  reason="0: measured against the path-traced reference (tools/tune_lighting.py): "
                                         "every weight raises the error in every scene (mean CIEDE2000 9.0 at 0, 9.3 "
                                         "at 0.15) -- the medium's phase function is one HG lobe; the lobe is an option")
-    samples_min: int = param(64, kind="int", lo=1, hi=4096, group="quality",
+    samples_min: int = param(64, kind="int", lo=1, hi=4096, c="samples_min", group="quality",
                              doc="view samples at the zenith (vc-A18)", reason="64: the thesis (vc-A18)")
-    samples_max: int = param(128, kind="int", lo=1, hi=4096, check=_samples_max_check, group="quality",
+    samples_max: int = param(128, kind="int", lo=1, hi=4096, check=_samples_max_check, c="samples_max", group="quality",
                              doc="view samples at the horizon (vc-A18), >= samples_min",
                              reason="128: the thesis (vc-A18)")
     # --- the path-traced ground truth (pywarp.clouds.reference; pywarp render clouds --reference) ---
@@ -581,3 +630,78 @@ class CloudscapeSettings(Settings):
         weather = (-dx * dist, -dz * dist)
         detail = (-1.5 * dx * dist, -0.1 * dist, -1.5 * dz * dist)
         return weather, detail
+
+    # --- the C and Warp parameters (pywarp.core.cbridge) --------------------------------------------------------------
+    def c_values(self) -> dict:
+        """The ``ccl_cloudscape_params`` values of these settings: the C defaults, the fields the specs name, the
+        layer, the wind offsets, ``sigma_light`` = ``sigma``, then the ``advanced`` overrides (unchecked)."""
+        from ..core.cbridge import settings_values
+
+        layer = self.layer()
+        weather_off, detail_off = self.wind_offsets()
+        v = CLOUDSCAPE_PARAMS.defaults()
+        v.update(settings_values(self), centre=layer.centre, r_earth=layer.r_earth, r_inner=layer.r_inner,
+                 r_outer=layer.r_outer, weather_offset=weather_off, detail_offset=detail_off,
+                 sigma_light=self.sigma_per_km)
+        if self.lighting == "thesis":  # the thesis's model entirely: one octave, one HG lobe
+            v.update(ms_octaves=1, silver_weight=0.0)
+        for name, value in self.advanced.items():
+            if name not in v or name in _LAYER_FIELDS:
+                known = sorted(set(v) - set(_LAYER_FIELDS))
+                raise ValueError(f"advanced: unknown parameter {name!r}; known: {', '.join(known)}")
+            if isinstance(v[name], tuple) != isinstance(value, (tuple, list)) or (
+                    isinstance(value, (tuple, list)) and len(value) != len(v[name])):
+                raise ValueError(f"advanced: {name} must be like {v[name]!r}, got {value!r}")
+            if isinstance(value, (tuple, list)):
+                v[name] = tuple(_c_float(f"advanced: {name}", x) for x in value)
+            elif isinstance(v[name], int):
+                v[name] = _c_int(f"advanced: {name}", value)
+            else:
+                v[name] = _c_float(f"advanced: {name}", value)
+        return v
+
+    def c_params(self, values: dict | None = None):
+        """The ``ccl_cloudscape_params`` (cffi) of :meth:`c_values` (or ``values``), checked by ccl_cloudscape_check
+        at the settings' texture sizes (the texture-coordinate bound depends on them); ValueError names the first bad
+        field."""
+        from ..core.binding import ffi, lib
+
+        f = ffi()
+        dummy = np.zeros(4, dtype=np.float32)  # the check reads no texel: one dummy stands for every texture
+        tex = f.new("ccl_cloud_textures *")
+        for name, size in (("base", self.base_size), ("detail", self.detail_size), ("curl", self.curl_size),
+                           ("weather", self.weather_size)):
+            setattr(tex, name, f.cast("const float *", f.from_buffer("float[]", dummy)))
+            setattr(tex, f"{name}_size", size)
+        sky = f.new("ccl_cloudscape_sky *")  # a valid sky: the check of the sky is not the settings'
+        sky.kind = lib().CCL_SKY_GRADIENT
+        sky.sun[1] = 1.0
+        return CLOUDSCAPE_PARAMS.checked(self.c_values() if values is None else values, tex, sky, settings=self,
+                                         overrides=tuple(self.advanced))
+
+    def warp_params(self):
+        """The Warp ``CloudscapeParams`` of the checked :meth:`c_params` (before the per-sky lighting setup,
+        ``pywarp.clouds.cloudscape.light_params``)."""
+        return CLOUDSCAPE_PARAMS.warp_struct(self.c_params())
+
+
+_F32_MAX = float(np.finfo(np.float32).max)
+
+
+def _c_int(name: str, value) -> int:
+    """A value for a C ``int`` field, validated before any conversion (no bool, no 3.5, no OverflowError)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {value!r}")
+    if not -(2 ** 31) <= int(value) <= 2 ** 31 - 1:
+        raise ValueError(f"{name} must be in [-2147483648, 2147483647] (int32), got {value!r}")
+    return int(value)
+
+
+def _c_float(name: str, value) -> float:
+    """A value for a C ``float`` field: a finite number within the float32 range."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a number, got {value!r}")
+    x = float(value)
+    if not math.isfinite(x) or abs(x) > _F32_MAX:
+        raise ValueError(f"{name} must be finite and within the float32 range, got {value!r}")
+    return x

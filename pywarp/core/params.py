@@ -17,7 +17,12 @@ From the spec come:
   the domain ``ValueError``; integers must fit their C type (int32 or uint32), floats the float32 range;
 * the command-line options and their ``--help`` (:func:`add_options`, :func:`from_options`): unit, default, range
   or choices are shown, never a bare ``STR``;
-* :func:`specs` lists them (the viewer's panels and the docs' settings tables are built from it).
+* :func:`specs` lists them (the viewer's panels and the docs' settings tables are built from it);
+* the C parameter a field reaches (``c="fog_density"``; choices by ``c_enum``, {choice: C enum name}):
+  :mod:`pywarp.core.cbridge` builds the C struct, its check and the Warp struct from these.
+
+What a change of a field makes stale (``invalidates``) is one of the names its class declares in ``INVALIDATES``
+(each scene's technique acts on its own names).
 """
 from __future__ import annotations
 
@@ -28,11 +33,6 @@ from dataclasses import dataclass
 from typing import Any, Callable
 
 import numpy as np
-
-#: What a change of a field makes stale. ``textures``: the noise textures are regenerated; ``sky``: the sky model is
-#: rebuilt; ``size``: the frame buffers are reallocated (and the reprojection history dropped); ``device``: everything
-#: is rebuilt on the new device; ``nothing``: the next frame simply uses the new value.
-INVALIDATES = ("nothing", "sky", "textures", "size", "device")
 
 #: Kinds of values: ``int`` (int32), ``uint32``, ``float`` (float32), ``bool``, ``str``, ``floats`` (a fixed-length
 #: tuple of float32), ``mapping`` (a dict; never a command-line option).
@@ -77,6 +77,10 @@ class Param:
     default_text: str = ""
     #: group of related fields (the help's sections, the viewer's panels)
     group: str = ""
+    #: the C struct field this value is written to (:mod:`pywarp.core.cbridge`); "" if none
+    c: str = ""
+    #: choices -> C enum constant names (a field with choices and ``c``)
+    c_enum: dict | None = None
     name: str = ""
 
     # --- the domain ----------------------------------------------------------------------------------------------
@@ -227,6 +231,11 @@ class Settings:
     #: invalid field as the C check it mirrors
     _validation_order: tuple = ()
 
+    #: What a change of a field can make stale (its spec's ``invalidates``): ``nothing`` (the next frame simply uses
+    #: the new value), ``size`` (the frame buffers are reallocated), ``device`` (everything is rebuilt on the new
+    #: device); a class adds its own (e.g. ``textures``, ``sky``), which its technique acts on.
+    INVALIDATES: tuple = ("nothing", "size", "device")
+
     def __post_init__(self):
         by_name = {p.name: p for p in specs(type(self))}
         order = list(self._validation_order) + [n for n in by_name if n not in self._validation_order]
@@ -241,16 +250,13 @@ class Settings:
     def _check(self) -> None:
         """Cross-field constraints of the class beyond the per-field hooks (override; raise ValueError)."""
 
-    def validate(self):
-        """Settings are validated on construction; kept so that ``s.validate()`` reads as before. Returns self."""
-        return self
-
     def changed(self, other) -> set[str]:
         """Names of the fields whose values differ from ``other`` (same class)."""
         return {f.name for f in dataclasses.fields(self) if getattr(self, f.name) != getattr(other, f.name)}
 
     def invalidated(self, other) -> set[str]:
-        """What a change from ``other`` to ``self`` invalidates (values of :data:`INVALIDATES` except 'nothing')."""
+        """What a change from ``other`` to ``self`` invalidates (names of the class's ``INVALIDATES`` except
+        'nothing')."""
         by_name = {p.name: p for p in specs(type(self))}
         return {by_name[n].invalidates for n in self.changed(other) if n in by_name} - {"nothing"}
 
@@ -258,11 +264,11 @@ class Settings:
 def param(default, *, unit: str = "", doc: str, reason: str, invalidates: str = "nothing", kind: str | None = None,
           lo=None, hi=None, lo_open: bool = False, hi_open: bool = False, choices=None, optional: bool = False,
           pow2: bool = False, odd: bool = False, length: int | None = None, check: Callable | None = None,
-          convert: Callable | None = None, cli: str | None = "", default_text: str = "", group: str = ""):
+          convert: Callable | None = None, cli: str | None = "", default_text: str = "", group: str = "",
+          c: str = "", c_enum: dict | None = None):
     """A dataclass field carrying a :class:`Param` (see the module docstring). ``kind`` is taken from the default
-    (``bool``, ``int``, ``float``, ``str``, ``tuple`` -> ``floats``, ``dict`` -> ``mapping``) unless given."""
-    if invalidates not in INVALIDATES:
-        raise ValueError(f"invalidates must be one of {', '.join(map(repr, INVALIDATES))}, got {invalidates!r}")
+    (``bool``, ``int``, ``float``, ``str``, ``tuple`` -> ``floats``, ``dict`` -> ``mapping``) unless given.
+    ``invalidates`` is checked against the class's ``INVALIDATES`` by :func:`specs`."""
     if kind is None:
         kind = ("bool" if isinstance(default, bool) else "int" if isinstance(default, int)
                 else "float" if isinstance(default, float) else "str" if isinstance(default, str)
@@ -273,10 +279,12 @@ def param(default, *, unit: str = "", doc: str, reason: str, invalidates: str = 
         raise ValueError("every parameter needs a doc and the reason for its default")
     if kind == "floats" and length is None:
         length = len(default)
+    if c_enum is not None and (not c or choices is None or set(c_enum) != set(choices)):
+        raise ValueError(f"c_enum must map every choice {tuple(choices or ())} of a field with c=, got {c_enum!r}")
     p = Param(default=default, unit=unit, doc=doc, reason=reason, invalidates=invalidates, kind=kind, lo=lo, hi=hi,
               lo_open=lo_open, hi_open=hi_open, choices=None if choices is None else tuple(choices),
               optional=optional, pow2=pow2, odd=odd, length=length, check=check, convert=convert, cli=cli,
-              default_text=default_text, group=group)
+              default_text=default_text, group=group, c=c, c_enum=None if c_enum is None else dict(c_enum))
     if kind == "mapping":
         return dataclasses.field(default_factory=lambda: dict(default), metadata={"param": p})
     return dataclasses.field(default=default, metadata={"param": p})
@@ -299,6 +307,11 @@ def specs(cls) -> tuple[Param, ...]:
         return cached
     out = tuple(dataclasses.replace(f.metadata["param"], name=f.name) for f in dataclasses.fields(cls)
                 if "param" in f.metadata)
+    names = getattr(cls, "INVALIDATES", Settings.INVALIDATES)
+    for p in out:
+        if p.invalidates not in names:
+            raise ValueError(f"{cls.__name__}.{p.name}: invalidates must be one of {', '.join(map(repr, names))}, "
+                             f"got {p.invalidates!r}")
     setattr(cls, "_specs_cache", out)
     return out
 

@@ -44,6 +44,7 @@ class CloudArraySettings(Settings):
     order of ``ccl_voxel_settings_check``. The text gives no values: each default says where it comes from."""
 
     _validation_order = ("levels", "size")
+    INVALIDATES = Settings.INVALIDATES + ("textures",)  # the cloud array is regenerated
 
     size: int = param(64, unit="voxels", kind="int", lo=MIN_BASE, hi=MAX_SIZE, check=_check_size,
                       invalidates="textures", group="cloud array",

@@ -25,6 +25,10 @@ class FlightSettings(Settings):
     """Every parameter of the flight scene. Immutable: change with ``dataclasses.replace`` (validated) or
     :meth:`pywarp.flight.technique.FlightTechnique.update`."""
 
+    #: ``clouds``: the cloud arrays are rebuilt (and their light); ``flight``: the scripted flight is simulated again
+    #: (the clouds are placed along it: they and their light follow); ``light``: the light volumes are recomputed
+    INVALIDATES = Settings.INVALIDATES + ("clouds", "flight", "light")
+
     _validation_order = ("flight_duration_s",)
 
     # --- image ---
@@ -34,69 +38,72 @@ class FlightSettings(Settings):
     height: int = param(360, unit="px", kind="int", lo=16, hi=8192, invalidates="size", group="image",
                         doc="image height", reason="640 x 360 (16:9)")
     # --- the clouds (oc-5.2) ---
-    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, invalidates="textures", group="clouds",
+    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, invalidates="clouds", group="clouds",
                       doc="seed of the cloud arrays and of their placement; the same seed gives the same flight "
                           "images", reason="0: any; reproducible")
-    cloud_count: int = param(9, kind="int", lo=1, hi=16, invalidates="textures", group="clouds",
+    cloud_count: int = param(9, kind="int", lo=1, hi=16, invalidates="clouds", group="clouds",
                              doc="number of cloud volumes (the first is on the flight path, the others beside and "
                                  "ahead of it)",
                              reason="9: one to fly through, others to fly around and in view during the turns")
-    cloud_size: int = param(64, unit="voxels", kind="int", lo=32, hi=256, check=_size_check, invalidates="textures",
+    cloud_size: int = param(64, unit="voxels", kind="int", lo=32, hi=256, check=_size_check, invalidates="clouds",
                             group="clouds", cli="--cloud-size", doc="edge of each cloud array (oc-5.2.1)",
                             reason="64: the noise64 of the filter listing (oc-5.2.2)")
     # the four fields below mirror pywarp.flight.clouds.CloudArraySettings (cover, sharpness, persistence,
     # interpolation), declared here so that registering the scene imports no Warp (tests/flight check they agree)
-    cloud_cover: float = param(128.0, unit="0..255", lo=0.0, hi=255.0, invalidates="textures", group="clouds",
+    cloud_cover: float = param(128.0, unit="0..255", lo=0.0, hi=255.0, invalidates="clouds", group="clouds",
                                cli="--cloud-cover",
                                doc="cloudCover of the filter (oc-5.2.2): a LARGER cover gives LESS cloud",
                                reason="128: compact clouds with clear sky around them inside their boxes (the cloud "
                                       "array's own default 96 fills about half of its box: a cloud mass)")
-    cloud_sharpness: float = param(0.96, lo=0.0, hi=1.0, lo_open=True, hi_open=True, invalidates="textures",
+    cloud_sharpness: float = param(0.96, lo=0.0, hi=1.0, lo_open=True, hi_open=True, invalidates="clouds",
                                    group="clouds", cli="--cloud-sharpness",
                                    doc="cloudSharpness of the filter (oc-5.2.2) in (0, 1): near 0 hard edges",
                                    reason="0.96: the cloud array's default (soft but visible edges)")
-    cloud_persistence: float = param(0.5, lo=0.0, lo_open=True, hi=1.0, invalidates="textures", group="clouds",
+    cloud_persistence: float = param(0.5, lo=0.0, lo_open=True, hi=1.0, invalidates="clouds", group="clouds",
                                      cli="--cloud-persistence", doc="persistence of the cloud array (oc-5.1.2.2)",
                                      reason="0.5: the cloud array's default (Elias's value)")
-    cloud_interpolation: str = param("linear", choices=("linear", "cosine", "cubic"), invalidates="textures",
+    cloud_interpolation: str = param("linear", choices=("linear", "cosine", "cubic"), invalidates="clouds",
                                      group="clouds", cli="--cloud-interpolation",
                                      doc="up-sampling interpolant of the cloud array (oc-5.1.4)",
                                      reason="'linear': the cloud array's default (trilinear, 'for real time')")
-    cloud_width_m: float = param(700.0, unit="m", lo=10.0, hi=20000.0, invalidates="textures", group="clouds",
+    cloud_width_m: float = param(700.0, unit="m", lo=10.0, hi=20000.0, invalidates="clouds", group="clouds",
                                  doc="horizontal size of a cloud's box (oc-5.2.3-scale: the per-axis scale), varied "
                                      "by up to +-25 %% per cloud",
                                  reason="700: a fair-weather cumulus, about 12 s of flight at full speed")
-    cloud_height_m: float = param(320.0, unit="m", lo=10.0, hi=20000.0, invalidates="textures", group="clouds",
+    cloud_height_m: float = param(320.0, unit="m", lo=10.0, hi=20000.0, invalidates="clouds", group="clouds",
                                   doc="vertical size of a cloud's box (oc-5.2.3-scale), varied by up to +-20 %%",
                                   reason="320: flattened to about half the width, as fair-weather cumulus are")
-    cloud_altitude_m: float = param(600.0, unit="m", lo=0.0, hi=20000.0, invalidates="textures", group="clouds",
+    cloud_altitude_m: float = param(600.0, unit="m", lo=0.0, hi=20000.0, invalidates="clouds", group="clouds",
                                     doc="altitude of the clouds' centres beside the path",
                                     reason="600: low clouds (the low level: up to 2 km, §2.1.2), the flight level")
     # --- lighting (volume.h) ---
-    sun_elevation_deg: float = param(35.0, unit="deg", lo=1.0, hi=90.0, invalidates="sky", group="lighting",
+    sun_elevation_deg: float = param(35.0, unit="deg", lo=1.0, hi=90.0, invalidates="light", group="lighting",
                                      cli="--sun-elevation", doc="sun elevation",
                                      reason="35: a mid-morning sun, sunlit cloud sides and shaded bases")
-    sun_azimuth_deg: float = param(150.0, unit="deg", invalidates="sky", group="lighting", cli="--sun-azimuth",
+    sun_azimuth_deg: float = param(150.0, unit="deg", invalidates="light", group="lighting", cli="--sun-azimuth",
                                    doc="sun azimuth, 0 = -z (the start heading), positive towards +x",
                                    reason="150: behind the aircraft's right: the clouds ahead are lit from the front")
-    tau_per_voxel: float = param(0.35, lo=0.0, hi=50.0, group="lighting", cli="--tau",
+    tau_per_voxel: float = param(0.35, lo=0.0, hi=50.0, c="tau_per_voxel", group="lighting", cli="--tau",
                                  doc="optical depth of one voxel length at density 255 along the view",
                                  reason="0.35: a core of 255 is opaque after about 13 voxels, the edges stay soft "
                                         "(ccl_volume_params_default)")
-    light_tau_per_voxel: float = param(0.25, lo=0.0, hi=50.0, invalidates="sky", group="lighting", cli="--light-tau",
+    light_tau_per_voxel: float = param(0.25, lo=0.0, hi=50.0, invalidates="light", c="light_tau_per_voxel",
+                                       group="lighting", cli="--light-tau",
                                        doc="optical depth per voxel towards the sun (the light volume)",
                                        reason="0.25: less than the view's, for the light scattered forward through "
                                               "the cloud (ccl_volume_params_default)")
-    g: float = param(0.3, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, group="lighting", cli="--phase-g",
+    g: float = param(0.3, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, c="g", group="lighting", cli="--phase-g",
                      doc="Henyey-Greenstein asymmetry of the cloud's phase function",
                      reason="0.3: mild forward scattering, bright edges towards the sun (ccl_volume_params_default)")
-    fog_distance_m: float = param(6000.0, unit="m", lo=1.0, hi=1e7, group="lighting", cli="--fog-distance",
+    fog_distance_m: float = param(6000.0, unit="m", lo=1.0, hi=1e7, c="fog_distance", group="lighting",
+                                  cli="--fog-distance",
                                   doc="e-folding distance of the aerial fog", reason="6000: a hazy summer day")
     # --- quality ---
-    step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, group="quality", cli="--step",
+    step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, c="step_voxels", group="quality", cli="--step",
                                doc="view-ray step in voxel lengths",
                                reason="1: one sample per voxel, no detail skipped (ccl_volume_params_default)")
-    light_step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, invalidates="sky", group="quality",
+    light_step_voxels: float = param(1.0, unit="voxels", lo=0.05, hi=16.0, invalidates="light", c="light_step_voxels",
+                                     group="quality",
                                      cli="--light-step", doc="light-ray step of the light volume in voxel lengths",
                                      reason="1: one sample per voxel (ccl_volume_params_default)")
     preview_scale: float = param(0.5, lo=0.05, hi=1.0, group="quality", cli="--preview-scale",
@@ -114,7 +121,7 @@ class FlightSettings(Settings):
                                               "the step (alpha = 1 - exp(-tau rho step)), so the clouds keep their "
                                               "density, and the jittered start hides the coarser slicing in motion")
     # --- the flight (oc-6.1.1) ---
-    flight_duration_s: float = param(32.0, unit="s", lo=1.0, hi=3600.0, invalidates="textures", group="flight",
+    flight_duration_s: float = param(32.0, unit="s", lo=1.0, hi=3600.0, invalidates="flight", group="flight",
                                      cli="--duration", doc="length of the scripted flight (animate spreads its "
                                                            "frames over it)",
                                      reason="32: the default script (pywarp.flight.script): a bank, a climb through "
@@ -122,21 +129,21 @@ class FlightSettings(Settings):
     time_s: float = param(4.0, unit="s", lo=0.0, check=_time_check, group="flight", cli="--time",
                           doc="moment of the flight that `render` shows",
                           reason="4: the aircraft climbing into the first cloud")
-    start_altitude_m: float = param(560.0, unit="m", lo=10.0, hi=20000.0, invalidates="textures", group="flight",
+    start_altitude_m: float = param(560.0, unit="m", lo=10.0, hi=20000.0, invalidates="flight", group="flight",
                                     cli="--start-altitude", doc="altitude of the aircraft at t = 0",
                                     reason="560: just below the cloud level; the script's climb enters the first "
                                            "cloud")
-    start_speed_mps: float = param(40.0, unit="m/s", lo=0.0, hi=1000.0, invalidates="textures", group="flight",
+    start_speed_mps: float = param(40.0, unit="m/s", lo=0.0, hi=1000.0, invalidates="flight", group="flight",
                                    cli="--start-speed", doc="speed at t = 0 (<= max speed)",
                                    reason="40: cruising; W brings it to the maximum")
-    max_speed_mps: float = param(60.0, unit="m/s", lo=0.0, lo_open=True, hi=1000.0, invalidates="textures",
+    max_speed_mps: float = param(60.0, unit="m/s", lo=0.0, lo_open=True, hi=1000.0, invalidates="flight",
                                  group="flight", cli="--max-speed", doc="the 'defined maximum' speed of W (§6.1.2)",
                                  reason="60 m/s = 216 km/h: a light aircraft (ccl_flight_params_default)")
-    point_rate_mps: float = param(1.0, unit="m/s", lo=0.0, hi=100.0, invalidates="textures", group="flight",
+    point_rate_mps: float = param(1.0, unit="m/s", lo=0.0, hi=100.0, invalidates="flight", group="flight",
                                   cli="--point-rate",
                                   doc="rise/sink speed of a height point while its arrow key is held (oc-6.1.1)",
                                   reason="1: a 1 s press tilts the nose by 15 deg (ccl_flight_params_default)")
-    turn_rate: float = param(0.8, unit="rad/s", lo=0.0, hi=10.0, invalidates="textures", group="flight",
+    turn_rate: float = param(0.8, unit="rad/s", lo=0.0, hi=10.0, invalidates="flight", group="flight",
                              cli="--turn-rate", doc="heading rate at 90 deg bank and full speed",
                              reason="0.8: at 30 deg bank a full circle in 16 s (ccl_flight_params_default)")
     # --- camera ---
@@ -182,15 +189,14 @@ class FlightSettings(Settings):
         h = max(16, int(round(self.height * self.preview_scale)))
         return dataclasses.replace(self, width=w, height=h, step_voxels=self.preview_step_voxels)
 
-    def volume_values(self) -> dict:
-        """The ``ccl_volume_params`` values of this scene (aircraft fields excepted)."""
+    def c_values(self) -> dict:
+        """The ``ccl_volume_params`` values of this scene (:mod:`pywarp.core.cbridge`): the C defaults, the fields
+        the specs name and the sun direction (the aircraft's fields are the view's)."""
+        from ..core.cbridge import VOLUME_PARAMS, settings_values
         from ..kernels import volume as V
 
-        v = V.default_values()
-        v.update(sun=V.sun_direction(self.sun_elevation_deg, self.sun_azimuth_deg), tau_per_voxel=self.tau_per_voxel,
-                 light_tau_per_voxel=self.light_tau_per_voxel, g=self.g, fog_distance=self.fog_distance_m,
-                 step_voxels=self.step_voxels, light_step_voxels=self.light_step_voxels)
-        return v
+        return {**VOLUME_PARAMS.defaults(), **settings_values(self),
+                "sun": V.sun_direction(self.sun_elevation_deg, self.sun_azimuth_deg)}
 
     def flight_model(self):
         from .model import FlightModel

@@ -15,6 +15,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import VOLUME_PARAMS
 from ..core.runtime import init, launcher as shared_launcher
 
 init()
@@ -56,7 +57,7 @@ class FlightTechnique:
     (:class:`pywarp.flight.model.Trajectory`)."""
 
     def __init__(self, settings: FlightSettings | None = None, script=None):
-        self.settings = (settings or FlightSettings()).validate()
+        self.settings = settings or FlightSettings()
         self.script = tuple(script) if script is not None else S.DEFAULT_SCRIPT
         self.launcher = shared_launcher(self.settings.device, self.settings.threads)
         self.device = self.launcher.device
@@ -87,11 +88,12 @@ class FlightTechnique:
         self.volumes = V.VolumeSet(vols, device=self.device)
 
     def _build_light(self) -> None:
-        self.volumes.compute_light(self.settings.volume_values())
+        self.volumes.compute_light(self.settings.c_values())
 
     def update(self, **changes) -> None:
-        """Change settings; what each change invalidates comes from the specs: ``textures`` (clouds, flight) rebuilds
-        the flight and the clouds, ``sky`` (sun, light) the light volumes, ``size`` the frame buffer."""
+        """Change settings; what each change invalidates comes from the specs (``FlightSettings.INVALIDATES``):
+        ``flight`` simulates the flight again and rebuilds the clouds placed along it, ``clouds`` the clouds, ``light``
+        (sun, light) the light volumes, ``size`` the frame buffer."""
         old = self.settings
         new = replace(old, **changes)
         stale = new.invalidated(old)
@@ -99,10 +101,11 @@ class FlightTechnique:
         if "device" in stale:
             self.launcher = shared_launcher(new.device, new.threads)
             self.device = self.launcher.device
-        if stale & {"textures", "device"}:
+        if stale & {"flight", "device"}:
             self._build_flight()
+        if stale & {"flight", "clouds", "device"}:
             self._build_clouds()
-        if stale & {"textures", "device", "sky"}:
+        if stale & {"flight", "clouds", "device", "light"}:
             self._build_light()
         if stale & {"size", "device"}:
             self.resize(new.width, new.height)
@@ -129,7 +132,7 @@ class FlightTechnique:
         a = getattr(pose, "aircraft", None) or self.aircraft(pose.time_s)  # the viewer's live flight carries it
         f, r, u = F.axes(a.heading, a.pitch, a.roll)
         pos = np.asarray(a.position, dtype=np.float64)
-        values = s.volume_values()
+        values = s.c_values()
         aspect = s.width / s.height
         fov = math.radians(s.fov_y_deg)
         if pose.view == "chase":
@@ -157,8 +160,9 @@ class FlightTechnique:
         grids, count, dens, light, occ = self.volumes.warp()
         h, w = s.height, s.width
         band_done = None if progress is None else (lambda n: progress(n / h))
+        p = VOLUME_PARAMS.warp_struct(V.checked_params(values))
         self.launcher.launch(V.render_kernel, h, w,
-                             [V.warp_params(values), grids, count, dens, light, occ, cam.mat44("inv_view_proj_rot"),
+                             [p, grids, count, dens, light, occ, cam.mat44("inv_view_proj_rot"),
                               cam.eye_vec3(), w, h], [self._out], progress=band_done)
         return self._out.numpy().copy()
 

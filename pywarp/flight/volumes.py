@@ -10,8 +10,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import warp as wp
 
-from ..kernels.volume import (BRICK, LENGTH_RANGE, MAX_GRIDS, VolumeGrid, c_params, check_values, light_kernel,
-                              pixels_kernel, render_kernel, warp_params)
+from ..core.cbridge import VOLUME_PARAMS
+from ..kernels.volume import (BRICK, LENGTH_RANGE, MAX_GRIDS, VolumeGrid, checked_params, light_kernel, pixels_kernel,
+                              render_kernel)
 
 
 @dataclass
@@ -124,8 +125,7 @@ class VolumeSet:
 
     def compute_light(self, values: dict, launcher=None) -> None:
         """The light volume of every grid (Warp, one thread per voxel); ``values`` validated first."""
-        check_values(values)
-        p = warp_params(values)
+        p = VOLUME_PARAMS.warp_struct(checked_params(values))
         self.light = []
         for v, rec in zip(self.volumes, self.records()):
             rec.offset = 0
@@ -186,7 +186,7 @@ def light_c(values: dict, volume: PlacedVolume) -> np.ndarray:
     vs = VolumeSet([volume], [np.zeros(volume.density.shape, np.float32)])
     arr, keep = c_grids(vs)
     out = np.empty(volume.density.shape, np.float32)
-    status_error(lb.ccl_volume_light(c_params(values), arr, f.from_buffer("float[]", out), out.size),
+    status_error(lb.ccl_volume_light(VOLUME_PARAMS.to_c(values), arr, f.from_buffer("float[]", out), out.size),
                  "ccl_volume_light")
     del keep
     return out
@@ -209,7 +209,7 @@ def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: 
     from ..core.binding import ffi, lib
 
     f, lb = ffi(), lib()
-    params = c_params(values)
+    params = VOLUME_PARAMS.to_c(values)
     arr, keep = c_grids(vset)
     fld = f.new("const char **")
     if lb.ccl_volume_check(params, arr, len(vset.volumes), fld) != 0:
@@ -232,7 +232,7 @@ def pixels_warp(values: dict, vset: VolumeSet, camera, xs, ys, width: int, heigh
     xa = wp.array(np.asarray(xs, np.int32), dtype=wp.int32, device=dev)
     ya = wp.array(np.asarray(ys, np.int32), dtype=wp.int32, device=dev)
     out = wp.zeros((len(xs), 3), dtype=float, device=dev)
-    wp.launch(pixels_kernel, dim=len(xs), inputs=[warp_params(values), grids, count, dens, light, occ,
+    wp.launch(pixels_kernel, dim=len(xs), inputs=[VOLUME_PARAMS.warp_struct(values), grids, count, dens, light, occ,
                                                   camera.mat44("inv_view_proj_rot"), camera.eye_vec3(), xa, ya,
                                                   width, height], outputs=[out], device=dev)
     return out.numpy()
@@ -244,7 +244,7 @@ def render(vset: VolumeSet, values: dict, camera, width: int, height: int, launc
     :class:`pywarp.core.runtime.TileLauncher` of the set's device)."""
     from ..core.runtime import launcher as shared_launcher
 
-    check_values(values)
+    p = VOLUME_PARAMS.warp_struct(checked_params(values))
     for name, v in (("width", width), ("height", height)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not 1 <= v <= 16384:
             raise ValueError(f"{name} must be an integer in [1, 16384], got {v!r}")
@@ -254,6 +254,6 @@ def render(vset: VolumeSet, values: dict, camera, width: int, height: int, launc
     grids, count, dens, light, occ = vset.warp()
     out = wp.zeros((height, width, 3), dtype=wp.uint8, device=vset.device)
     lau.launch(render_kernel, height, width,
-               [warp_params(values), grids, count, dens, light, occ, camera.mat44("inv_view_proj_rot"),
+               [p, grids, count, dens, light, occ, camera.mat44("inv_view_proj_rot"),
                 camera.eye_vec3(), int(width), int(height)], [out])
     return out.numpy()

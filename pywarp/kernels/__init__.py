@@ -9,9 +9,14 @@ from __future__ import annotations
 
 import importlib
 
+from ..core.cbridge import c_constant
 from ..core.runtime import init as _init
 
 _init()
+
+#: ``ccl_variant`` (common.h): the formula of the original source, or as printed in the text
+VARIANT_CORRECTED = c_constant("CCL_VARIANT_CORRECTED", 0)
+VARIANT_THESIS = c_constant("CCL_VARIANT_THESIS", 1)
 
 #: Topic modules, in the order of the C umbrella header ``cclouds/cclouds.h`` (``common.h`` aside: its types are
 #: Warp's own; ``common.py`` holds the helpers of ``src/internal.h``). tests/core/test_binding.py pins the list to

@@ -35,10 +35,16 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
 from .common import clamp01
+from . import VARIANT_THESIS
 from .interp import interp_remap
 from .phase import phase_hg
+
+#: ``ccl_detail_direction``: M as the formula vc-2.30 prints it, or as the prose describes it
+DETAIL_FORMULA = c_constant("CCL_DETAIL_FORMULA", 0)
+DETAIL_PROSE = c_constant("CCL_DETAIL_PROSE", 1)
 
 DEFAULT_G = 0.2
 DEFAULT_SUN_INTENSITY = 1.0
@@ -138,7 +144,7 @@ def clouds_detail_erosion(B_D: float, C_R: float, C_G: float, C_B: float, h_rel:
     """vc-2.30: H = 0.625 C_R + 0.25 C_G + 0.125 C_B, M = H (1 - h) + (1 - H) h, C = remap(B_D, 0.2 M, 1, 0, 1);
     detail_direction 1 replaces H by 1 - H; clamp != 0 clamps negatives to 0."""
     h_fbm = 0.625 * C_R + 0.25 * C_G + 0.125 * C_B
-    if detail_direction == 1:
+    if detail_direction == DETAIL_PROSE:
         h_fbm = 1.0 - h_fbm
     m = h_fbm * (1.0 - h_rel) + (1.0 - h_fbm) * h_rel
     c = interp_remap(B_D, 0.2 * m, 1.0, 0.0, 1.0)
@@ -236,7 +242,7 @@ def _radii_samples(rng, n):
 def clouds_relative_height(r: float, r_inner: float, r_outer: float, variant: int) -> float:
     """vc-A15: (r - R_inner) / (R_outer - R_inner); variant 1 = the printed (R_outer - r)/(R_outer - R_inner) - 1."""
     thickness = r_outer - r_inner
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         return (r_outer - r) / thickness - 1.0
     return (r - r_inner) / thickness
 

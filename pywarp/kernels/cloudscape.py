@@ -29,6 +29,7 @@ from .clouds import (
     clouds_relative_height,
     clouds_height_gradient,
 )
+from ..core.cbridge import c_constant
 from .colour import colour_srgb_encode
 from .interp import interp_fade_cubic
 from .phase import phase_hg
@@ -48,21 +49,20 @@ from .reproj import reproj_pixel, reproj_surface_depth
 from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb, sky_sun_attenuation
 from .texgen import trilinear_axis, trilinear_lerp, trilinear_scale
 
-SKY_GRADIENT = 0
-SKY_PREETHAM = 1
-JITTER_TILT = 0
-JITTER_OFFSET = 1
-JITTER_NONE = 2
-LIGHTING_THESIS = 0  # ccl_lighting
-LIGHTING_SKY = 1
+SKY_GRADIENT = c_constant("CCL_SKY_GRADIENT", 0)
+SKY_PREETHAM = c_constant("CCL_SKY_PREETHAM", 1)
+LIGHTING_THESIS = c_constant("CCL_LIGHTING_THESIS", 0)
+LIGHTING_SKY = c_constant("CCL_LIGHTING_SKY", 1)
+COVERAGE_SAME = c_constant("CCL_COVERAGE_SAME", 0)
+COVERAGE_ONE_MINUS = c_constant("CCL_COVERAGE_ONE_MINUS", 1)
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
 COARSE_MAX_FACTOR = wp.constant(4)  # CCL_CLOUDSCAPE_COARSE_MAX_FACTOR (the reason is in cloudscape.h)
 GROUP_SPAN = wp.constant(2.0)  # CCL_CLOUDSCAPE_GROUP_SPAN (the reason is in cloudscape.h)
 GROUND_SHADOW_SAMPLES = wp.constant(12)  # CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES
 SKY_THETA_CELLS = wp.constant(8)  # CCL_CLOUDSCAPE_SKY_THETA_CELLS
 SKY_PHI_CELLS = wp.constant(16)  # CCL_CLOUDSCAPE_SKY_PHI_CELLS
-MARCH_FAST = wp.constant(0)  # ccl_cloudscape_march_kind: cloudscape_march's own loop (the default)
-MARCH_TEXTBOOK = wp.constant(1)  # the thesis's loop: cloudscape_march_textbook
+MARCH_FAST = c_constant("CCL_CLOUDSCAPE_MARCH_FAST", 0)  # cloudscape_march's own loop (the default)
+MARCH_TEXTBOOK = c_constant("CCL_CLOUDSCAPE_MARCH_TEXTBOOK", 1)  # the thesis's loop: cloudscape_march_textbook
 
 
 @wp.struct
@@ -478,7 +478,7 @@ def cloudscape_density_lod(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3
         if w[0] > 0.0:
             d_v = clouds_height_gradient(h, w[2], p.gradient_clamp)
             c_thr = 1.0 - w[0]
-            if p.coverage_threshold == 0:
+            if p.coverage_threshold == COVERAGE_SAME:
                 c_thr = w[0]
             # (Warp only) B <= base_bound everywhere: where D_v base_bound <= C, B D_v <= C and B_D = 0 (vc-2.29)
             # without the base lookup -- the same density, bit for bit (a NaN bound or C compares false: looked up)
@@ -894,7 +894,7 @@ def pixel_angle(inv_view_proj_rot: wp.mat44, x: int, y: int, width: int, height:
 
 @wp.func
 def sky_colour(sky_kind: int, d: wp.vec3, sun: wp.vec3, preetham: Preetham, gradient: SkyGradient) -> wp.vec3:
-    if sky_kind == 1:
+    if sky_kind == SKY_PREETHAM:
         return sky_preetham_rgb(d, sun, preetham)
     return sky_gradient_rgb(d, sun, gradient)
 

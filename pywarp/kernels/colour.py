@@ -22,6 +22,7 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, declare
+from . import VARIANT_THESIS
 
 SRGB_LINEAR_LIMIT = wp.constant(0.0031308)  # IEC 61966-2-1: end of the linear segment (linear side)
 
@@ -94,7 +95,7 @@ def colour_xyY_to_XYZ(xyY: wp.vec3) -> wp.vec3:
 def colour_XYZ_to_linear_srgb(XYZ: wp.vec3, variant: int) -> wp.vec3:
     """vc-4.4: Lindbloom's XYZ -> linear sRGB (D65); variant 1 = -0.9392660 as printed. Returns (R, G, B)."""
     m10 = float(-0.9692660)
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         m10 = float(-0.9392660)
     X = XYZ[0]
     Y = XYZ[1]
@@ -118,7 +119,7 @@ def colour_XYZ_to_linear_srgb(XYZ: wp.vec3, variant: int) -> wp.vec3:
 @wp.func
 def colour_tonemap_exp(c_hdr: float, exposure: float, variant: int) -> float:
     """vc-4.5: 1 - exp(-k C_hdr); variant 1 = 1 - exp(+k C_hdr) as printed."""
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         return 1.0 - wp.exp(exposure * c_hdr)
     return 1.0 - wp.exp(-exposure * c_hdr)
 

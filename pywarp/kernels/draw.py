@@ -15,7 +15,9 @@ from __future__ import annotations
 
 import warp as wp
 
+from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
+from . import VARIANT_THESIS
 from .noise import _PERM, noise_fbm_perlin2
 
 #: Colour indices of draw_curves (Kod 3.1 draw order: red, blue, yellow; later curves overwrite earlier ones).
@@ -33,7 +35,9 @@ WARP_STRENGTH_QUILEZ = 4.0
 #: 1.5 Hz: 6 beats per loop).
 BUTTERFLY_PERIOD = 4.0
 
-ASPECT = Option("aspect", {"none": 0, "x": 1}, "none",
+ASPECT_NONE = c_constant("CCL_DRAW_ASPECT_NONE", 0)
+ASPECT_X = c_constant("CCL_DRAW_ASPECT_X", 1)
+ASPECT = Option("aspect", {"none": ASPECT_NONE, "x": ASPECT_X}, "none",
                 "'none': p = 2 uv - 1 as pt-alg-3.3 / Kod 3.1; 'x': p.x *= width / height as Kod 7.1")
 
 _TWO_PI = wp.constant(6.28318530717958647692)
@@ -57,7 +61,7 @@ def draw_coords(frag: wp.vec2, resolution: wp.vec2, aspect: int) -> tuple[wp.vec
     uv = wp.vec2(frag[0] / resolution[0], frag[1] / resolution[1])
     px = 2.0 * uv[0] - 1.0
     py = 2.0 * uv[1] - 1.0
-    if aspect == 1:
+    if aspect == ASPECT_X:
         px = px * (resolution[0] / resolution[1])
     return uv, wp.vec2(px, py), wp.vec2(wp.sqrt(px * px + py * py), wp.atan2(py, px))
 
@@ -150,7 +154,7 @@ def draw_warp(p: wp.vec2, depth: int, octaves: int, strength: float, perm: wp.ar
     for k in range(d):
         bx = p[0] + strength * qx
         by = p[1] + strength * qy
-        if variant == 1:
+        if variant == VARIANT_THESIS:
             q = _fbm(wp.vec2(bx, by), octaves, perm)
             qx = q
             qy = q

@@ -18,10 +18,17 @@ from __future__ import annotations
 
 import warp as wp
 
+from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
+from . import VARIANT_THESIS
 
-MAPS = {"poly": 0, "exp": 1}
-EXAMPLES = {"x5": 0, "x2": 1, "exp": 2}
+MAP_POLY = c_constant("CCL_FRACTAL_POLY", 0)
+MAP_EXP = c_constant("CCL_FRACTAL_EXP", 1)
+JULIA_X5 = c_constant("CCL_JULIA_X5", 0)
+JULIA_X2 = c_constant("CCL_JULIA_X2", 1)
+JULIA_EXP = c_constant("CCL_JULIA_EXP", 2)
+MAPS = {"poly": MAP_POLY, "exp": MAP_EXP}
+EXAMPLES = {"x5": JULIA_X5, "x2": JULIA_X2, "exp": JULIA_EXP}
 #: The constants of Obrazok 3.8: f(x) = x^5 + 0.544, x^2 + 0.285 + 0.01i, e^x - 0.65.
 EXAMPLE_MAPS = {"x5": ("poly", 5, (0.544, 0.0)), "x2": ("poly", 2, (0.285, 0.01)), "exp": ("exp", 1, (-0.65, 0.0))}
 #: Escape radius of the polynomial examples: 2 already proves escape for both (R >= max(|c|, 2^(1/(d-1)))); 16 makes
@@ -69,7 +76,7 @@ def _julia_iter(z0: wp.vec2, c: wp.vec2, power: int, max_iter: int, escape: floa
     n = int(0)
     escaped = int(0)
     while n < max_iter:
-        if map == 1:
+        if map == MAP_EXP:
             if z[0] > escape:
                 escaped = 1
                 break
@@ -86,7 +93,7 @@ def _julia_iter(z0: wp.vec2, c: wp.vec2, power: int, max_iter: int, escape: floa
         n += 1
     smooth = float(max_iter)
     if escaped == 1:
-        if map == 1:
+        if map == MAP_EXP:
             s = wp.log(z[0]) / escape
             s = wp.min(wp.max(s, 0.0), 1.0)
             smooth = float(n) + 1.0 - s
@@ -124,9 +131,9 @@ def fractal_julia(z0: wp.vec2, c: wp.vec2, power: int, max_iter: int, escape: fl
 @wp.func
 def fractal_julia_example(z0: wp.vec2, max_iter: int, example: int) -> tuple[int, float]:
     """pt-u-julia: escape count of z0 for one of the three printed maps."""
-    if example == 0:
+    if example == JULIA_X5:
         return _julia_iter(z0, wp.vec2(0.544, 0.0), 5, max_iter, 16.0, 0)
-    if example == 1:
+    if example == JULIA_X2:
         return _julia_iter(z0, wp.vec2(0.285, 0.01), 2, max_iter, 16.0, 0)
     return _julia_iter(z0, wp.vec2(-0.65, 0.0), 1, max_iter, 50.0, 1)
 
@@ -145,7 +152,7 @@ def fractal_julia_example(z0: wp.vec2, max_iter: int, example: int) -> tuple[int
 def fractal_quadratic(z: wp.vec2, mu: wp.vec2, variant: int) -> wp.vec2:
     """pt-3.2: z^2 - mu (thesis) or z^2 + mu (corrected)."""
     r = _cmul(z, z)
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         return wp.vec2(r[0] - mu[0], r[1] - mu[1])
     return wp.vec2(r[0] + mu[0], r[1] + mu[1])
 

@@ -16,6 +16,7 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, declare
+from . import VARIANT_THESIS
 
 TWO_PI = wp.constant(6.28318530717958647692)  # 2 pi
 
@@ -101,7 +102,7 @@ def media_transmittance(optical_depth: float) -> float:
 @wp.func
 def media_transmittance_compose(t_a: float, t_b: float, variant: int) -> float:
     """vc-2.7: T(x, x'') = T(x, x') T(x', x''); variant 1 = the printed sum T(x, x') + T(x', x'')."""
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         return t_a + t_b
     return t_a * t_b
 
@@ -215,7 +216,7 @@ def media_volume_render(sigma_a: wp.array2d(dtype=float), sigma_s: wp.array2d(dt
     L = float(0.0)
     for k in range(n):
         j = k
-        if variant == 1:
+        if variant == VARIANT_THESIS:
             j = 0
         source = sigma_a[row, j] * L_e[row, j] + sigma_s[row, k] * L_i[row, j]
         L = L + wp.exp(-tau) * source * dt
@@ -240,7 +241,7 @@ def media_raymarch(sigma_t: wp.array2d(dtype=float), sigma_s: wp.array2d(dtype=f
     L = float(0.0)
     for k in range(n):
         j = k
-        if variant == 1:
+        if variant == VARIANT_THESIS:
             j = 0
         L = L + wp.exp(-tau) * sigma_s[row, k] * L_i[row, j] * dt
         tau = tau + sigma_t[row, k] * dt

@@ -26,7 +26,9 @@ from functools import lru_cache
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
+from . import VARIANT_THESIS
 from .hash import hash_pcg, hash_pcg_py
 from .interp import interp_fade_cubic, interp_fade_quintic, interp_lerp, interp_remap
 
@@ -58,9 +60,21 @@ FD_STEP = 1.0 / 256.0
 CURL_OFFSET_1 = (100.25, -57.75, 33.5)
 CURL_OFFSET_2 = (-41.5, 88.25, -119.75)
 
-INTERP = {"quintic": 0, "cubic": 1, "linear": 2, "cosine": 3}
-METRICS = {"euclidean": 0, "manhattan": 1}
-COMBINATIONS = {"thesis": 0, "gpu_pro_7": 1, "hillaire": 2, "product": 3, "average": 4}
+INTERP_QUINTIC = c_constant("CCL_INTERP_QUINTIC", 0)
+INTERP_CUBIC = c_constant("CCL_INTERP_CUBIC", 1)
+INTERP_LINEAR = c_constant("CCL_INTERP_LINEAR", 2)
+INTERP_COSINE = c_constant("CCL_INTERP_COSINE", 3)
+WORLEY_EUCLIDEAN = c_constant("CCL_WORLEY_EUCLIDEAN", 0)
+WORLEY_MANHATTAN = c_constant("CCL_WORLEY_MANHATTAN", 1)
+INTERP = {"quintic": INTERP_QUINTIC, "cubic": INTERP_CUBIC, "linear": INTERP_LINEAR, "cosine": INTERP_COSINE}
+METRICS = {"euclidean": WORLEY_EUCLIDEAN, "manhattan": WORLEY_MANHATTAN}
+PW_THESIS = c_constant("CCL_PW_THESIS", 0)
+PW_GPU_PRO_7 = c_constant("CCL_PW_GPU_PRO_7", 1)
+PW_HILLAIRE = c_constant("CCL_PW_HILLAIRE", 2)
+PW_PRODUCT = c_constant("CCL_PW_PRODUCT", 3)
+PW_AVERAGE = c_constant("CCL_PW_AVERAGE", 4)
+COMBINATIONS = {"thesis": PW_THESIS, "gpu_pro_7": PW_GPU_PRO_7, "hillaire": PW_HILLAIRE, "product": PW_PRODUCT,
+                "average": PW_AVERAGE}
 
 _PI = wp.constant(3.14159265358979323846)
 _FLOOR_LIM = wp.constant(1073741824.0)  # 2^30
@@ -366,11 +380,11 @@ def noise_perlin3_tiled(x: float, y: float, z: float, period: int, perm: wp.arra
 
 @wp.func
 def _interp_weight(t: float, interp: int) -> float:
-    if interp == 1:
+    if interp == INTERP_CUBIC:
         return interp_fade_cubic(t)
-    if interp == 2:
+    if interp == INTERP_LINEAR:
         return t
-    if interp == 3:
+    if interp == INTERP_COSINE:
         return (1.0 - wp.cos(_PI * t)) * 0.5
     return interp_fade_quintic(t)
 
@@ -458,14 +472,14 @@ def noise_worley3(x: float, y: float, z: float, cells: int, seed: wp.uint32, met
                 ddy = (float(dy) + o[1]) - ty
                 ddz = (float(dz) + o[2]) - tz
                 d = float(0.0)
-                if metric == 1:
+                if metric == WORLEY_MANHATTAN:
                     d = wp.abs(ddx) + wp.abs(ddy) + wp.abs(ddz)
                 else:
                     d = ddx * ddx + ddy * ddy + ddz * ddz
                 if d < best:
                     best = d
     f1 = best
-    if metric != 1:
+    if metric != WORLEY_MANHATTAN:
         f1 = wp.sqrt(best)
     if f1 > 1.0:
         f1 = 1.0
@@ -520,14 +534,14 @@ def noise_worley3_bruteforce(x: float, y: float, z: float, cells: int, seed: wp.
                             ddy = (float(j + cy * c) + o[1]) - qy
                             ddz = (float(k + cz * c) + o[2]) - qz
                             d = float(0.0)
-                            if metric == 1:
+                            if metric == WORLEY_MANHATTAN:
                                 d = wp.abs(ddx) + wp.abs(ddy) + wp.abs(ddz)
                             else:
                                 d = ddx * ddx + ddy * ddy + ddz * ddz
                             if d < best:
                                 best = d
     f1 = best
-    if metric != 1:
+    if metric != WORLEY_MANHATTAN:
         f1 = wp.sqrt(best)
     if f1 > 1.0:
         f1 = 1.0
@@ -822,7 +836,7 @@ def noise_curl_property(x: float, y: float, z: float, perm: wp.array(dtype=wp.in
     j02 = (vp[0] - vm[0]) / d2
     j12 = (vp[1] - vm[1]) / d2
     j22 = (vp[2] - vm[2]) / d2
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         cx = j21 - j12
         cy = j02 - j20
         cz = j10 - j01
@@ -860,7 +874,7 @@ def noise_curl2(x: float, y: float, perm: wp.array(dtype=wp.int32), period: int,
 def noise_perlin_worley(p: float, w: float, combination: int) -> float:
     """vc-A8: 0 thesis remap(P,0,1,W,1)^2, 1 gpu_pro_7 clamp(remap(P,W,1,0,1)), 2 hillaire remap(P,0,1,W,1),
     3 product P W, 4 average (P + W)/2."""
-    if combination == 1:
+    if combination == PW_GPU_PRO_7:
         if w >= 1.0:
             return 0.0
         r = interp_remap(p, w, 1.0, 0.0, 1.0)
@@ -869,11 +883,11 @@ def noise_perlin_worley(p: float, w: float, combination: int) -> float:
         if r > 1.0:
             return 1.0
         return r
-    if combination == 2:
+    if combination == PW_HILLAIRE:
         return interp_remap(p, 0.0, 1.0, w, 1.0)
-    if combination == 3:
+    if combination == PW_PRODUCT:
         return p * w
-    if combination == 4:
+    if combination == PW_AVERAGE:
         return (p + w) * 0.5
     r = interp_remap(p, 0.0, 1.0, w, 1.0)
     return r * r

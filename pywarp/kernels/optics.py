@@ -10,6 +10,7 @@ from __future__ import annotations
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, declare
+from . import VARIANT_THESIS
 
 #: refractive index of water used by the text (rr §3.2.1)
 WATER_INDEX = 1.33
@@ -90,7 +91,7 @@ def optics_drop_fov(n: float, variant: int) -> tuple[float, float, float, float]
     theta_t = wp.asin(1.0 / n) * DEG_PER_RAD
     e = float(0.0)
     x = float(90.0)
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         theta_t = wp.floor(theta_t)
         e = 2.0 * theta_t - 90.0
         x = wp.floor(wp.asin(wp.min(n * wp.sin(theta_t * RAD_PER_DEG), 1.0)) * DEG_PER_RAD)

@@ -24,14 +24,17 @@ import math
 import numpy as np
 import warp as wp
 
-from ..core.registry import VARIANT, Arg, Option, declare
+from ..core.cbridge import c_constant
+from ..core.registry import VARIANT, Arg, declare
 from .hash import hash_pcg, hash_unit
-from .rain import MIN_SLOWDOWN, rain_light_colour, rain_terminal_speed
+from .rain import rain_light_colour, rain_terminal_speed
 
 MAX_SIZE_SAMPLES = 64  # CCL_PARTICLES_MAX_SIZE_SAMPLES
 STREAK_TAPS = 7  # CCL_PARTICLES_STREAK_TAPS
 MAX_COUNT = 1000000  # CCL_PARTICLES_MAX_COUNT
-FILTERS = {"nearest": 0, "linear": 1}  # ccl_particles_filter
+NEAREST = c_constant("CCL_PARTICLES_NEAREST", 0)  # ccl_particles_filter
+LINEAR = c_constant("CCL_PARTICLES_LINEAR", 1)
+FILTERS = {"nearest": NEAREST, "linear": LINEAR}
 SPRITE_FIELDS = ("cx", "cy", "radius", "half_height", "tap_offset", "depth")  # ccl_particles_sprite
 _U3 = wp.constant(wp.uint32(3))
 _U1 = wp.constant(wp.uint32(1))
@@ -39,7 +42,7 @@ _U1 = wp.constant(wp.uint32(1))
 
 @wp.struct
 class ParticlesParams:
-    """Warp twin of ``ccl_particles_params`` (field by field; see :func:`params`)."""
+    """Warp twin of ``ccl_particles_params`` (field by field; built by :mod:`pywarp.core.cbridge`)."""
 
     box_min: wp.vec3
     box_max: wp.vec3
@@ -51,77 +54,6 @@ class ParticlesParams:
     metres_per_unit: float
     wind: wp.vec3
     seed: wp.uint32
-
-
-#: The text's values (ccl_particles_params_default); each field's reason is in the C header.
-DEFAULTS = dict(box_min=(-1.0, 1.0, -1.5), box_max=(1.0, 1.25, 1.5), respawn_y=-1.0, size_mean_mm=1.3,
-                size_spread_mm=1.0, size_samples=8, slowdown=4.0, metres_per_unit=1.0, wind=(0.0, 0.0, 0.0), seed=0)
-
-
-def check_params(values: dict) -> dict:
-    """``values`` (the fields of :data:`DEFAULTS`, missing ones defaulted) checked as ``ccl_particles_params_check``
-    does, in its order; ValueError naming the first bad field."""
-    v = {**DEFAULTS, **values}
-    unknown = set(values) - set(DEFAULTS)
-    if unknown:
-        raise ValueError(f"unknown particle parameter(s) {sorted(unknown)}; known: {sorted(DEFAULTS)}")
-    f32 = lambda x: np.float32(x)  # noqa: E731  the C check sees float32 values
-    lo = np.asarray(v["box_min"], np.float64)
-    hi = np.asarray(v["box_max"], np.float64)
-    for name, a in (("box_min", lo), ("box_max", hi), ("wind", np.asarray(v["wind"], np.float64))):
-        if a.shape != (3,) or not np.all(np.isfinite(a)):
-            raise ValueError(f"{name} must be 3 finite numbers, got {v[name]!r}")
-    if not np.all(lo.astype(np.float32) < hi.astype(np.float32)):
-        raise ValueError(f"box_max must be > box_min on every axis, got {tuple(hi)} vs {tuple(lo)}")
-    if not (math.isfinite(v["respawn_y"]) and f32(v["respawn_y"]) < f32(lo[1])):
-        raise ValueError(f"respawn_y must be < box_min y ({lo[1]:g}), got {v['respawn_y']!r}")
-    if not (math.isfinite(v["size_spread_mm"]) and v["size_spread_mm"] >= 0.0):
-        raise ValueError(f"size_spread_mm must be >= 0, got {v['size_spread_mm']!r}")
-    m, s = f32(v["size_mean_mm"]), f32(v["size_spread_mm"])
-    if not (math.isfinite(m) and m - f32(0.5) * s >= f32(0.1) and m + f32(0.5) * s <= f32(4.5)):
-        raise ValueError(f"size_mean_mm +- size_spread_mm/2 must lie in [0.1, 4.5] mm (Tables 2.1, 2.2), got "
-                         f"{v['size_mean_mm']!r} +- {v['size_spread_mm']!r}/2")
-    n = v["size_samples"]
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= MAX_SIZE_SAMPLES:
-        raise ValueError(f"size_samples must be an integer in [1, {MAX_SIZE_SAMPLES}], got {n!r}")
-    if not (math.isfinite(v["slowdown"]) and MIN_SLOWDOWN <= v["slowdown"] <= 1000.0):
-        raise ValueError(f"slowdown must be in [{MIN_SLOWDOWN:g}, 1000] (rr-tab-2.2), got {v['slowdown']!r}")
-    if not (math.isfinite(v["metres_per_unit"]) and v["metres_per_unit"] > 0.0):
-        raise ValueError(f"metres_per_unit must be > 0, got {v['metres_per_unit']!r}")
-    if v["wind"][1] != 0.0:
-        raise ValueError(f"wind must be horizontal (y = 0), got {tuple(v['wind'])!r}")
-    seed = v["seed"]
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2 ** 32:
-        raise ValueError(f"seed must be an integer in [0, 2^32 - 1], got {seed!r}")
-    return v
-
-
-def params(**values) -> ParticlesParams:
-    """A checked :class:`ParticlesParams` (fields of :data:`DEFAULTS`)."""
-    v = check_params(values)
-    p = ParticlesParams()
-    p.box_min, p.box_max, p.wind = (wp.vec3(*map(float, v[k])) for k in ("box_min", "box_max", "wind"))
-    for k in ("respawn_y", "size_mean_mm", "size_spread_mm", "slowdown", "metres_per_unit"):
-        setattr(p, k, float(v[k]))
-    p.size_samples = int(v["size_samples"])
-    p.seed = wp.uint32(int(v["seed"]))
-    return p
-
-
-def c_params(**values):
-    """The same parameters as a cffi ``ccl_particles_params *``."""
-    from ..core.binding import ffi
-
-    v = check_params(values)
-    c = ffi().new("ccl_particles_params *")
-    for k in ("box_min", "box_max", "wind"):
-        vec = getattr(c, k)
-        vec.x, vec.y, vec.z = (float(x) for x in v[k])
-    for k in ("respawn_y", "size_mean_mm", "size_spread_mm", "slowdown", "metres_per_unit"):
-        setattr(c, k, float(v[k]))
-    c.size_samples = int(v["size_samples"])
-    c.seed = int(v["seed"])
-    return c
 
 
 # --- rr-code-5.2.2: the particle system ---------------------------------------------------------------------------------
@@ -228,7 +160,7 @@ declare("rr-code-5.2.2", c="ccl_particles_simulate", name="particles_simulate",
                 "y = -1, radius Gauss(1, 1.3, 8) read as the mean of 8 uniforms on 1.3 +- 0.5 mm, speed = Table 2.2 / "
                 "4, y -= dt speed. variant='corrected' adds one particle per frame up to `requested` and removes the "
                 "surplus when it drops; 'thesis' keeps the printed decrement (count = -frames, no particle). "
-                "params: the fields of pywarp.kernels.particles.DEFAULTS (wind = horizontal drift, our extension).",
+                "params: fields of ccl_particles_params (wind = horizontal drift, our extension).",
         references=("Rousseau, Jolivet & Ghazanfarpour, Realistic real-time rain rendering, Computers & Graphics 30, "
                     "2006",))(particles_simulate_frame)
 
@@ -288,7 +220,7 @@ def _texel(img: wp.array(dtype=float), size: int, x: int, y: int) -> wp.vec3:
 @wp.func
 def particles_fetch(img: wp.array(dtype=float), size: int, u: float, v: float, filt: int) -> wp.vec3:
     """Capture fetch at (u, v), clamped to the edge: nearest (0) or bilinear (1), as the C ``fetch``."""
-    if filt == 1:
+    if filt == LINEAR:
         fx = u * float(size) - 0.5
         fy = v * float(size) - 0.5
         x0f = wp.floor(fx)
@@ -649,5 +581,5 @@ declare("rr-code-5.2.3", "rr-code-5.2.4", c="ccl_particles_composite", name="par
     particles_shade_sprite)
 
 
-__all__ = ["ParticlesParams", "DEFAULTS", "params", "c_params", "check_params", "ParticlesLights", "LIGHT_DEFAULTS",
+__all__ = ["ParticlesParams", "ParticlesLights", "LIGHT_DEFAULTS",
            "check_lights", "lights_on", "light_params", "c_lights", "FILTERS", "SPRITE_FIELDS", "STREAK_TAPS"]

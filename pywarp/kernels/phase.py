@@ -8,6 +8,7 @@ from __future__ import annotations
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, declare
+from . import VARIANT_THESIS
 
 INV_4PI = wp.constant(0.0795774715459476679)  # 1 / (4 pi)
 
@@ -61,7 +62,7 @@ def phase_hg(cos_theta: float, g: float) -> float:
 def phase_schlick(cos_theta: float, k: float, variant: int) -> float:
     """vc-2.15: Schlick, p = (1 - k^2) / (4 pi (1 - k cos theta)^2); variant 1 = as printed, (1 + k cos theta)^2."""
     s = 1.0 - k * cos_theta
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         s = 1.0 + k * cos_theta
     return INV_4PI * (1.0 - k * k) / (s * s)
 

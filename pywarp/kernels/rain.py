@@ -36,7 +36,9 @@ import math
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
+from . import VARIANT_THESIS
 from .optics import optics_snell
 
 # --- constants ---------------------------------------------------------------------------------------------------------
@@ -83,17 +85,26 @@ _STEPS = wp.constant(TRACE_STEPS)
 _BISECT = wp.constant(TRACE_BISECTIONS)
 _MAXREFL = wp.constant(MAX_REFLECTIONS)
 
-INTERP = Option("interp", {"table": 0, "linear": 1}, "table",
+INTERP_TABLE = c_constant("CCL_RAIN_INTERP_TABLE", 0)
+INTERP_LINEAR = c_constant("CCL_RAIN_INTERP_LINEAR", 1)
+MAPPING_OFFSET = c_constant("CCL_RAIN_MAPPING_OFFSET", 0)
+MAPPING_PROJECT = c_constant("CCL_RAIN_MAPPING_PROJECT", 1)
+INTERP = Option("interp", {"table": INTERP_TABLE, "linear": INTERP_LINEAR}, "table",
                 "'table': only the tabulated radii a = 0.5, 1, 3, 4.5 mm; 'linear': coefficients linear in a between "
                 "rows, a in [0.5, 4.5] (an assumption: Table 2.1 has no 1.5-2.5 mm rows)")
-METHOD = Option("method", {"sphere": 0, "outline": 1, "exact": 2}, "sphere",
+MASK_SPHERE = c_constant("CCL_RAIN_MASK_SPHERE", 0)
+MASK_OUTLINE = c_constant("CCL_RAIN_MASK_OUTLINE", 1)
+MASK_EXACT = c_constant("CCL_RAIN_MASK_EXACT", 2)
+FILTER_NEAREST = c_constant("CCL_RAIN_FILTER_NEAREST", 0)
+FILTER_LINEAR = c_constant("CCL_RAIN_FILTER_LINEAR", 1)
+METHOD = Option("method", {"sphere": MASK_SPHERE, "outline": MASK_OUTLINE, "exact": MASK_EXACT}, "sphere",
                 "'sphere': a spherical drop (the text's refraction); 'outline': the application -- Beard-Chuang "
                 "outline, sphere refraction stretched onto it; 'exact': rays traced through both surfaces of the "
                 "Beard-Chuang drop (beyond the text)")
-MAPPING = Option("mapping", {"offset": 0, "project": 1}, "offset",
+MAPPING = Option("mapping", {"offset": MAPPING_OFFSET, "project": MAPPING_PROJECT}, "offset",
                  "'offset': the shader's P_c = P_o + refract.xy / refract.z (scaled to capture uv); 'project': the "
                  "exit direction rotated into camera space and projected (exact for any drop position)")
-FILTER = Option("filter", {"nearest": 0, "linear": 1}, "nearest",
+FILTER = Option("filter", {"nearest": FILTER_NEAREST, "linear": FILTER_LINEAR}, "nearest",
                 "capture filtering: 'nearest' (rr §3.1.2: sufficient) or 'linear' (the FBO code's GL_LINEAR)")
 
 _REFS_SHAPE = ("Beard & Chuang, A new model for the equilibrium shape of raindrops, J. Atmos. Sci. 44 (1987) "
@@ -125,12 +136,12 @@ _A = Arg("a", "drop radius of Table 2.1 [mm]: 0.5, 1, 3 or 4.5 (interp='table'),
 
 @wp.func
 def _interp_ok(a: float, interp: int) -> int:
-    if interp == 0:
+    if interp == INTERP_TABLE:
         for k in range(4):
             if a == _BC_A[k]:
                 return 1
         return 0
-    if interp == 1:
+    if interp == INTERP_LINEAR:
         if a >= 0.5 and a <= 4.5:
             return 1
     return 0
@@ -147,7 +158,7 @@ def rain_drop_coefficient(n: int, a: float, interp: int) -> float:
     """rr-tab-2.1: C_n of the row a (or linearly interpolated between rows with interp 1)."""
     if n < 0 or n > 10 or _interp_ok(a, interp) == 0:
         return wp.nan
-    if interp == 0:
+    if interp == INTERP_TABLE:
         for k in range(4):
             if a == _BC_A[k]:
                 return _BC_C[k, n] * 1e-4
@@ -397,9 +408,9 @@ def rain_mask_texel(u: float, v: float, a: float, deform: float, n_water: float,
     x = u
     y = v
     sphere = int(1)
-    if method == 2:
+    if method == MASK_EXACT:
         sphere = 0
-    if method == 0:
+    if method == MASK_SPHERE:
         if x * x + y * y > 1.0:
             return zero, zero, 0
     else:
@@ -413,7 +424,7 @@ def rain_mask_texel(u: float, v: float, a: float, deform: float, n_water: float,
             s, ds = _shape_eval(c, -y / rho, wp.abs(x) / rho)
         if rho > s:
             return zero, zero, 0
-        if method == 1:
+        if method == MASK_OUTLINE:
             x = x / s
             y = y / s
     p = wp.vec3(0.0, 0.0, 0.0)
@@ -507,7 +518,7 @@ def rain_refracted_uv(view_dir: wp.vec3, exit_dir: wp.vec3, tan_half_fov: float,
         return zero, zero, 0
     po = wp.vec2(0.5 + sx * (f[0] / -f[2]), 0.5 - sy * (f[1] / -f[2]))
     pc = zero
-    if mapping == 0:
+    if mapping == MAPPING_OFFSET:
         pc = wp.vec2(po[0] + sx * (exit_dir[0] / exit_dir[2]), po[1] - sy * (exit_dir[1] / exit_dir[2]))
     else:
         rt, uu = _billboard_frame(f)
@@ -529,7 +540,7 @@ def rain_sample_capture(rgb: wp.array2d(dtype=wp.vec3), uv: wp.vec2, filter: int
     """Capture colour at uv (v down), nearest or bilinear (texel centres at (j + 0.5)/width), edges clamped."""
     height = rgb.shape[0]
     width = rgb.shape[1]
-    if filter == 0:
+    if filter == FILTER_NEAREST:
         return rgb[_floor_clamped(uv[1] * float(height), 0, height - 1),
                    _floor_clamped(uv[0] * float(width), 0, width - 1)]
     x = wp.min(wp.max(uv[0] * float(width) - 0.5, -1.0), float(width))
@@ -646,7 +657,7 @@ def rain_light_a1(c_l: wp.vec3, dist: float, v_pe: wp.vec3, v_n: wp.vec3, r_half
     q = dist / r_half
     dist_fact = 1.0 / (1.0 + q * q)
     cosv = wp.dot(v_pe, v_n)
-    if variant != 1:
+    if variant != VARIANT_THESIS:
         cosv = wp.max(cosv, 0.0)
     return c_l * (dist_fact * cosv)
 

@@ -36,6 +36,7 @@ from dataclasses import dataclass, make_dataclass
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import c_constant
 from ..core.registry import Arg, Option, declare
 from .camera import _finite_float
 from .hash import hash_pcg, hash_unit
@@ -72,7 +73,10 @@ _K = [wp.constant(wp.vec3(*map(float, k))) for k in LIGHT_CONE_KERNEL]
 _K0, _K1, _K2, _K3, _K4, _K5 = _K
 
 #: Jitter modes of :func:`raymarch_jitter` (``ccl_jitter_mode``).
-JITTER_MODES = {"tilt": 0, "offset": 1, "none": 2}
+JITTER_TILT = c_constant("CCL_JITTER_TILT", 0)
+JITTER_OFFSET = c_constant("CCL_JITTER_OFFSET", 1)
+JITTER_NONE = c_constant("CCL_JITTER_NONE", 2)
+JITTER_MODES = {"tilt": JITTER_TILT, "offset": JITTER_OFFSET, "none": JITTER_NONE}
 
 
 # --- Python-side objects: the cloud layer -----------------------------------------------------------------------------
@@ -449,9 +453,9 @@ def raymarch_jitter(direction: wp.vec3, x: wp.uint32, y: wp.uint32, frame: wp.ui
     """vc-A23: (direction to march, start offset) for a jitter mode (0 tilt, 1 offset, 2 none)."""
     d = direction
     offset = float(0.5)
-    if mode == 0:
+    if mode == JITTER_TILT:
         d = raymarch_jitter_tilt(direction, x, y, frame, amount)
-    elif mode == 1:
+    elif mode == JITTER_OFFSET:
         offset = raymarch_jitter_offset(x, y, frame)
     return d, offset
 

@@ -16,12 +16,22 @@ from __future__ import annotations
 
 import warp as wp
 
+from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
+from . import VARIANT_THESIS
 from .noise import _PERM, noise_perlin3
 
 #: Demonstration scenes (layouts are this library's choice; the text gives none), see cclouds/sdf.h.
-SCENES = {"primitives": 0, "union": 1, "intersection": 2, "subtraction": 3, "repetition": 4, "displacement": 5,
-          "smooth_union": 6}
+SCENE_PRIMITIVES = c_constant("CCL_SDF_SCENE_PRIMITIVES", 0)
+SCENE_UNION = c_constant("CCL_SDF_SCENE_UNION", 1)
+SCENE_INTERSECTION = c_constant("CCL_SDF_SCENE_INTERSECTION", 2)
+SCENE_SUBTRACTION = c_constant("CCL_SDF_SCENE_SUBTRACTION", 3)
+SCENE_REPETITION = c_constant("CCL_SDF_SCENE_REPETITION", 4)
+SCENE_DISPLACEMENT = c_constant("CCL_SDF_SCENE_DISPLACEMENT", 5)
+SCENE_SMOOTH_UNION = c_constant("CCL_SDF_SCENE_SMOOTH_UNION", 6)
+SCENES = {"primitives": SCENE_PRIMITIVES, "union": SCENE_UNION, "intersection": SCENE_INTERSECTION,
+          "subtraction": SCENE_SUBTRACTION, "repetition": SCENE_REPETITION, "displacement": SCENE_DISPLACEMENT,
+          "smooth_union": SCENE_SMOOTH_UNION}
 #: Displacement scene (Obrazok 4.2 e; amplitude and frequency not printed): d = (|p| - 1 - A N(F p)) / (1 + A F G),
 #: with G = 4 a bound of |grad N| for Perlin's improved noise (lattice units^-1), so the scene stays a distance bound.
 DISP_AMPLITUDE = 0.12
@@ -123,7 +133,7 @@ def _glsl_mod(x: float, y: float) -> float:
 def sdf_repeat(p: wp.vec3, c: wp.vec3, variant: int) -> wp.vec3:
     """Kod 4.2 repeat: thesis mod(p, c) - c/2; corrected mod(p + c/2, c) - c/2."""
     q = p
-    if variant != 1:
+    if variant != VARIANT_THESIS:
         q = wp.vec3(p[0] + 0.5 * c[0], p[1] + 0.5 * c[1], p[2] + 0.5 * c[2])
     return wp.vec3(_glsl_mod(q[0], c[0]) - 0.5 * c[0], _glsl_mod(q[1], c[1]) - 0.5 * c[1],
                    _glsl_mod(q[2], c[2]) - 0.5 * c[2])
@@ -156,21 +166,21 @@ def sdf_operators(d1: float, d2: float, k: float, p: wp.vec3, c: wp.vec3,
 @wp.func
 def _scene(p: wp.vec3, perm: wp.array(dtype=wp.int32), scene: int) -> float:
     cube = wp.vec3(0.7, 0.7, 0.7)
-    if scene == 0:
+    if scene == SCENE_PRIMITIVES:
         d = sdf_sphere(wp.vec3(p[0] + 3.75, p[1], p[2]), 0.8)
         d = sdf_union(d, sdf_box(wp.vec3(p[0] + 1.25, p[1], p[2]), cube))
         d = sdf_union(d, sdf_torus(wp.vec3(p[0] - 1.25, p[1], p[2]), wp.vec2(0.7, 0.25)))
         return sdf_union(d, sdf_ellipsoid(wp.vec3(p[0] - 3.75, p[1], p[2]), wp.vec3(0.9, 0.6, 0.45)))
-    if scene == 1:
+    if scene == SCENE_UNION:
         return sdf_union(sdf_box(p, cube), sdf_sphere(p, 0.9))
-    if scene == 2:
+    if scene == SCENE_INTERSECTION:
         return sdf_intersect(sdf_box(p, cube), sdf_sphere(p, 0.9))
-    if scene == 3:
+    if scene == SCENE_SUBTRACTION:
         return sdf_subtract(sdf_box(p, cube), sdf_sphere(p, 0.9))
-    if scene == 4:
+    if scene == SCENE_REPETITION:
         q = sdf_repeat(p, wp.vec3(1.2, 1.2, 1.2), 1)
         return sdf_sphere(wp.vec3(q[0], p[1], q[2]), 0.35)
-    if scene == 5:
+    if scene == SCENE_DISPLACEMENT:
         n = noise_perlin3(_F * p[0], _F * p[1], _F * p[2], perm, 0)
         return (sdf_sphere(p, 1.0) - _A * n) / (1.0 + _A * _F * _G)
     return sdf_smooth_union(sdf_ellipsoid(wp.vec3(p[0] + 0.5, p[1], p[2]), wp.vec3(1.0, 0.5, 0.6)),

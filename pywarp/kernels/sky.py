@@ -26,6 +26,7 @@ import numpy as np
 import warp as wp
 
 from ..core.registry import VARIANT, Arg, Option, declare
+from . import VARIANT_CORRECTED, VARIANT_THESIS
 from .colour import (
     TONEMAP_EXPOSURE,
     colour_srgb_encode,
@@ -175,7 +176,7 @@ def sky_perez_cie(theta: float, gamma: float, A: float, B: float, C: float, D: f
     ct = _clamp_cos_theta(wp.cos(theta))
     cg = wp.cos(gamma)
     sub = wp.exp(D * HALF_PI)
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         sub = wp.exp(D * gamma * HALF_PI)
     return (1.0 + A * wp.exp(B / ct)) * (1.0 + C * (wp.exp(D * gamma) - sub) + E * cg * cg)
 
@@ -208,7 +209,7 @@ def sky_perez_normalized(theta: float, gamma: float, theta_s: float, Y_z: float,
 @wp.func
 def _zenith_Y(T: float, theta_s: float, variant: int) -> float:
     k = float(4.0453)
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         k = float(6.0453)
     chi = (4.0 / 9.0 - T / 120.0) * (PI - 2.0 * theta_s)
     return (k * T - 4.9710) * wp.tan(chi) - 0.2155 * T + 2.4192
@@ -363,7 +364,7 @@ def sky_preetham_rgb(d: wp.vec3, sun: wp.vec3, p: Preetham) -> wp.vec3:
     (a colour outside the sRGB gamut, e.g. the horizon's blue under a setting sun) to 0: 1 - exp(-k C) of a negative C
     is negative and reaches -Inf for a large exposure k (twin of ``ccl_sky_preetham_rgb``)."""
     c = sky_preetham_hdr(d, sun, p)
-    if p.variant == 0:  # CCL_VARIANT_CORRECTED
+    if p.variant == VARIANT_CORRECTED:
         c = wp.vec3(wp.where(c[0] < 0.0, 0.0, c[0]), wp.where(c[1] < 0.0, 0.0, c[1]),
                     wp.where(c[2] < 0.0, 0.0, c[2]))  # (a NaN stays NaN)
     return wp.vec3(colour_tonemap_exp(c[0], p.exposure, p.variant), colour_tonemap_exp(c[1], p.exposure, p.variant),

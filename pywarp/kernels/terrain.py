@@ -28,14 +28,29 @@ import math
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import TERRAIN_PARAMS, c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
 from .common import clamp01, mix3
+from . import VARIANT_THESIS
 from .noise import _check_seed, noise_fbm_perlin2, noise_perlin2, perm_array
 
-HEIGHTMAPS = {"test": 0, "fbm": 1}
-MARCH_METHODS = {"fixed": 0, "dynamic": 1, "bisect": 2}
-SHADOW_KINDS = {"none": 0, "hard": 1, "soft": 2}
-STAGES = {"heightmap": 0, "materials": 1, "atmosphere": 2, "final": 3}
+HEIGHTMAP_TEST = c_constant("CCL_TERRAIN_TEST", 0)
+HEIGHTMAP_FBM = c_constant("CCL_TERRAIN_FBM", 1)
+MARCH_FIXED = c_constant("CCL_TERRAIN_MARCH_FIXED", 0)
+MARCH_DYNAMIC = c_constant("CCL_TERRAIN_MARCH_DYNAMIC", 1)
+MARCH_BISECT = c_constant("CCL_TERRAIN_MARCH_BISECT", 2)
+SHADOWS_NONE = c_constant("CCL_TERRAIN_SHADOWS_NONE", 0)
+SHADOWS_HARD = c_constant("CCL_TERRAIN_SHADOWS_HARD", 1)
+SHADOWS_SOFT = c_constant("CCL_TERRAIN_SHADOWS_SOFT", 2)
+STAGE_HEIGHTMAP = c_constant("CCL_TERRAIN_STAGE_HEIGHTMAP", 0)
+STAGE_MATERIALS = c_constant("CCL_TERRAIN_STAGE_MATERIALS", 1)
+STAGE_ATMOSPHERE = c_constant("CCL_TERRAIN_STAGE_ATMOSPHERE", 2)
+STAGE_FINAL = c_constant("CCL_TERRAIN_STAGE_FINAL", 3)
+HEIGHTMAPS = {"test": HEIGHTMAP_TEST, "fbm": HEIGHTMAP_FBM}
+MARCH_METHODS = {"fixed": MARCH_FIXED, "dynamic": MARCH_DYNAMIC, "bisect": MARCH_BISECT}
+SHADOW_KINDS = {"none": SHADOWS_NONE, "hard": SHADOWS_HARD, "soft": SHADOWS_SOFT}
+STAGES = {"heightmap": STAGE_HEIGHTMAP, "materials": STAGE_MATERIALS, "atmosphere": STAGE_ATMOSPHERE,
+          "final": STAGE_FINAL}
 MAX_FIXED_STEPS = 1000000  # CCL_TERRAIN_MAX_FIXED_STEPS
 
 _MAX_FIXED = wp.constant(MAX_FIXED_STEPS)
@@ -114,7 +129,7 @@ def fbm_perm(x: float, z: float, octaves: int, perm: wp.array(dtype=wp.int32)) -
 def terrain_height_perm(x: float, z: float, octaves: int, height_scale: float, horizontal_scale: float,
                         perm: wp.array(dtype=wp.int32), heightmap: int) -> float:
     """Terrain height h(x, z) (units) of ``heightmap`` (0 test, 1 fbm): the map of Kod 7.4."""
-    if heightmap == 0:
+    if heightmap == HEIGHTMAP_TEST:
         return 10.0 * wp.sin(0.1 * x) * wp.sin(0.1 * z)
     return height_scale * fbm_perm(x / horizontal_scale, z / horizontal_scale, octaves, perm)
 
@@ -467,7 +482,7 @@ def terrain_normal_octaves(t: float, octaves_max: int, octaves_min: int, lod_dis
          references=_REF)
 @wp.func
 def terrain_fog(d: float, rho: float, variant: int) -> float:
-    if variant == 1:
+    if variant == VARIANT_THESIS:
         f = wp.exp(rho * d) - 1.0
         if f > 1.0:
             f = 1.0
@@ -501,7 +516,7 @@ def clouds_perm(colour: wp.vec3, ro: wp.vec3, rd: wp.vec3, cloud_height: float, 
     if not (rd[1] != 0.0):
         return colour
     t = (cloud_height - ro[1]) / rd[1]
-    if variant != 1 and not (t > 0.0):
+    if variant != VARIANT_THESIS and not (t > 0.0):
         return colour
     qx = ro[0] + rd[0] * t + wind[0] * time
     qz = ro[2] + rd[2] * t + wind[1] * time
@@ -622,10 +637,6 @@ class TerrainParams:
     samples_per_axis: int
 
 
-#: the fields of ccl_terrain_params / TerrainParams, in order (perm excluded)
-PARAM_FIELDS = tuple(TerrainParams.vars)
-
-
 @wp.func
 def _hmax(p: TerrainParams) -> float:
     """The slab's hmax: the bound of the marched height (|fbm| <= 2 (1 - 0.5^octaves) for |noise| <= 1; 10 for the
@@ -637,7 +648,7 @@ def _hmax(p: TerrainParams) -> float:
     for _i in range(p.march_octaves):
         bound += a
         a *= 0.5
-    if p.heightmap == 0:
+    if p.heightmap == HEIGHTMAP_TEST:
         return 10.0
     return p.height_scale * bound
 
@@ -647,15 +658,15 @@ def _terrain_colour(p: TerrainParams, perm: wp.array(dtype=wp.int32), pos: wp.ve
     octn = terrain_normal_octaves(t, p.normal_octaves_max, p.normal_octaves_min, p.lod_distance)
     n, _g = _normal(pos, p.normal_h, octn, p.height_scale, p.horizontal_scale, perm, p.heightmap)
     c = p.colour_rock
-    if p.stage >= 1:
+    if p.stage >= STAGE_MATERIALS:
         c = mix3(p.colour_low, p.colour_rock, _smoothstep(p.material_low, p.material_high, pos[1]))
-    if p.stage >= 2:
+    if p.stage >= STAGE_ATMOSPHERE:
         c = mix3(c, p.colour_grass, _smoothstep(p.grass_min_normal_y, p.grass_min_normal_y + p.grass_band, n[1]))
     shadow = float(1.0)
-    if p.shadows != 0:
+    if p.shadows != SHADOWS_NONE:
         origin = wp.vec3(pos[0], terrain_height_perm(pos[0], pos[2], p.march_octaves, p.height_scale,
                                                      p.horizontal_scale, perm, p.heightmap) + p.shadow_bias, pos[2])
-        if p.shadows == 1:
+        if p.shadows == SHADOWS_HARD:
             shadow = _shadow_hard(origin, p.sun, p.shadow_t0_hard, p.shadow_max_t, p.precision, p.max_steps,
                                   p.march_octaves, p.height_scale, p.horizontal_scale, perm, p.heightmap, _hmax(p))
         else:
@@ -672,10 +683,10 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
     t = float(0.0)
     steps = int(0)
     hmax = _hmax(p)
-    if p.march_method == 0:
+    if p.march_method == MARCH_FIXED:
         hit, t, steps = _march_fixed(ro, rd, p.max_t, p.step_size, p.precision, p.march_octaves, p.height_scale,
                                      p.horizontal_scale, perm, p.heightmap, hmax)
-    elif p.march_method == 2:
+    elif p.march_method == MARCH_BISECT:
         hit, t, steps = _march_bisect(ro, rd, p.max_t, p.precision, p.max_steps, p.step_scale, p.bisect_threshold,
                                       p.bisect_steps, p.march_octaves, p.height_scale, p.horizontal_scale, perm,
                                       p.heightmap, hmax)
@@ -685,7 +696,7 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
                                        p.precision_per_unit)
     sky = terrain_sky(rd, p.sun, p.sky_colour, p.sun_colour, p.sun_power)
     background = sky
-    if p.stage >= 2:
+    if p.stage >= STAGE_ATMOSPHERE:
         background = clouds_perm(sky, ro, rd, p.cloud_height, p.wind, p.time, p.cloud_scale, p.cloud_colour, perm,
                                  p.cloud_variant)
     if hit == 0:
@@ -693,7 +704,7 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
     pos = _along(ro, rd, t)
     colour = _terrain_colour(p, perm, pos, t)
     dist = t
-    if p.stage >= 3 and pos[1] < p.water_level and rd[1] < 0.0 and ro[1] > p.water_level:
+    if p.stage >= STAGE_FINAL and pos[1] < p.water_level and rd[1] < 0.0 and ro[1] > p.water_level:
         tw = (p.water_level - ro[1]) / rd[1]
         wpos = _along(ro, rd, tw)
         n = terrain_water_normal_perm(wpos[0], wpos[2], p.time, p.wave_scale, p.wave_strength, perm)
@@ -709,7 +720,7 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
         under = wp.vec3(colour[0] * p.water_tint[0], colour[1] * p.water_tint[1], colour[2] * p.water_tint[2])
         colour = mix3(reflected, under, f)
         dist = tw
-    if p.stage >= 2:
+    if p.stage >= STAGE_ATMOSPHERE:
         colour = mix3(colour, sky, terrain_fog(dist, p.fog_density, p.fog_variant))
     return colour, steps
 
@@ -790,71 +801,6 @@ def _water_normal_kernel(x: wp.array(dtype=float), z: wp.array(dtype=float), tim
                          wave_strength: float, perm: wp.array(dtype=wp.int32), out: wp.array(dtype=wp.vec3)):
     k = wp.tid()
     out[k] = terrain_water_normal_perm(x[k], z[k], time, wave_scale, wave_strength, perm)
-
-
-# --- parameters: one dict of values for Warp and C --------------------------------------------------------------------------
-
-def params_default() -> dict:
-    """The values of ``ccl_terrain_params_default`` (the C defaults) as a dict of Python values."""
-    from ..core.binding import ffi, lib
-
-    c = ffi().new("ccl_terrain_params *")
-    lib().ccl_terrain_params_default(c)
-    return {name: _from_c(getattr(c, name)) for name in PARAM_FIELDS}
-
-
-def _from_c(v):
-    if hasattr(v, "z"):
-        return (float(v.x), float(v.y), float(v.z))
-    if hasattr(v, "y"):
-        return (float(v.x), float(v.y))
-    return v
-
-
-def c_params(values: dict):
-    """A checked ``ccl_terrain_params`` (cffi) for ``values`` (missing fields: the C defaults); ValueError naming
-    the first invalid field (``ccl_terrain_params_check``), the perm table filled."""
-    from ..core.binding import ffi, lib
-
-    f = ffi()
-    c = f.new("ccl_terrain_params *")
-    lib().ccl_terrain_params_default(c)
-    for name, v in values.items():
-        if name not in PARAM_FIELDS:
-            raise ValueError(f"unknown terrain parameter {name!r}")
-        cur = getattr(c, name)
-        if hasattr(cur, "x"):
-            comps = "xyz" if hasattr(cur, "z") else "xy"
-            vals = [float(a) for a in v]
-            if len(vals) != len(comps):
-                raise ValueError(f"{name} must hold {len(comps)} numbers, got {v!r}")
-            for comp, a in zip(comps, vals):
-                setattr(cur, comp, a)
-        else:
-            setattr(c, name, v)
-    field = f.new("const char **")
-    if lib().ccl_terrain_params_check(c, field) != 0:
-        name = f.string(field[0]).decode()
-        raise ValueError(f"{name} is out of range (ccl_terrain_params_check), got {values.get(name, getattr(c, name))!r}")
-    return c
-
-
-def warp_params(values: dict) -> TerrainParams:
-    """The :class:`TerrainParams` of ``values`` (checked by the C check first, so both twins see the same values)."""
-    c = c_params(values)
-    s = TerrainParams()
-    for name in PARAM_FIELDS:
-        v = _from_c(getattr(c, name))
-        t = TerrainParams.vars[name].type
-        if t in (int, wp.int32):
-            setattr(s, name, int(v))
-        elif t is wp.uint32:
-            setattr(s, name, wp.uint32(int(v)))
-        elif t in (float, wp.float32):
-            setattr(s, name, float(v))
-        else:
-            setattr(s, name, t(*v))
-    return s
 
 
 # --- NumPy-level helpers and the custom evaluators -------------------------------------------------------------------------
@@ -942,9 +888,8 @@ def _warp_shade(eq, device):
     def terrain_shade(ro, rd, params: dict | None = None):
         """Colours (..., 3) (unclamped) and view-march steps (...) of rays (ro, rd) (pt-code-7.3)."""
         ros, rds, shape = _rays(ro, rd)
-        values = dict(params or {})
-        p = warp_params(values)
-        seed = int(c_params(values).seed)
+        c = TERRAIN_PARAMS.checked(dict(params or {}))
+        p, seed = TERRAIN_PARAMS.warp_struct(c), int(c.seed)
         n = ros.shape[0]
         out = wp.empty(n, dtype=wp.vec3, device=dev)
         steps = wp.empty(n, dtype=wp.int32, device=dev)
@@ -963,7 +908,7 @@ def _c_shade(eq):
     def terrain_shade(ro, rd, params: dict | None = None):
         """Colours (..., 3) and view-march steps of rays (ro, rd) by ccl_terrain_shade."""
         ros, rds, shape = _rays(ro, rd)
-        c = c_params(dict(params or {}))
+        c = TERRAIN_PARAMS.checked(dict(params or {}))
         f = ffi()
         st = f.new("int *")
         out = np.empty((ros.shape[0], 3), np.float32)
@@ -991,9 +936,8 @@ def _warp_pixel(eq, device):
     def terrain_pixel(x, y, width, height, camera, params: dict | None = None):
         """Pixel colours (..., 3) in [0, 1] and summed view-march steps at pixels (x, y) (pt-alg-7.1.6)."""
         xs, ys, shape, width, height, camera = _pixel_args(x, y, width, height, camera)
-        values = dict(params or {})
-        p = warp_params(values)
-        seed = int(c_params(values).seed)
+        c = TERRAIN_PARAMS.checked(dict(params or {}))
+        p, seed = TERRAIN_PARAMS.warp_struct(c), int(c.seed)
         out = wp.empty(xs.size, dtype=wp.vec3, device=dev)
         steps = wp.empty(xs.size, dtype=wp.int32, device=dev)
         if xs.size:
@@ -1012,7 +956,7 @@ def _c_pixel(eq):
     def terrain_pixel(x, y, width, height, camera, params: dict | None = None):
         """Pixel colours (..., 3) and summed steps by the C reference ccl_terrain_pixel."""
         xs, ys, shape, width, height, camera = _pixel_args(x, y, width, height, camera)
-        c = c_params(dict(params or {}))
+        c = TERRAIN_PARAMS.checked(dict(params or {}))
         f = ffi()
         m = f.new("float[16]", camera.column_major("inv_view_proj_rot").tolist())
         eye = tuple(float(v) for v in camera.eye)
@@ -1039,7 +983,7 @@ declare("pt-code-7.3", "pt-alg-7.3.4", "pt-alg-7.3-material", c="ccl_terrain_sha
                 "by normal (Obrazok 7.10 stages heightmap, materials, atmosphere, final), shadow, eq 7.1 light, "
                 "water (7.3.4: the plane y = water_level in front of underwater terrain, wave normal from noise + "
                 "sines, reflection of sky + clouds only, mix(reflection, tint * underwater colour, eq 7.4)), clouds "
-                "and fog. params: a dict of ccl_terrain_params fields (pywarp.terrain.TerrainSettings.params()).",
+                "and fog. params: a dict of ccl_terrain_params fields (pywarp.terrain.TerrainSettings.c_values()).",
         references=_REF)(terrain_shade)
 
 # Not element-wise: the scene parameters and the camera (ccl_camera) are struct arguments shared by every pixel.
@@ -1051,9 +995,9 @@ declare("pt-alg-7.1.6", c="ccl_terrain_pixel", make_warp=_warp_pixel, make_c=_c_
         references=_REF)(terrain_pixel)
 
 
-__all__ = ["HEIGHTMAPS", "MARCH_METHODS", "SHADOW_KINDS", "STAGES", "PARAM_FIELDS", "TerrainParams", "c_params",
-           "fbm_perm", "height", "params_default", "render_kernel", "terrain_clouds", "terrain_fog",
+__all__ = ["HEIGHTMAPS", "MARCH_METHODS", "SHADOW_KINDS", "STAGES", "TerrainParams",
+           "fbm_perm", "height", "render_kernel", "terrain_clouds", "terrain_fog",
            "terrain_height_perm", "terrain_lighting", "terrain_march_bisect", "terrain_march_dynamic",
            "terrain_march_fixed", "terrain_normal", "terrain_normal_octaves", "terrain_pixel",
            "terrain_pixel_position", "terrain_shade", "terrain_shadow_hard", "terrain_shadow_soft", "terrain_sky",
-           "terrain_water_normal_perm", "terrain_water_weight", "warp_params", "water_normal"]
+           "terrain_water_normal_perm", "terrain_water_weight", "water_normal"]

@@ -33,8 +33,8 @@ import warp as wp
 
 from ..core.registry import Arg, declare
 from .common import clamp01
-from .noise import (COMBINATION, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3, noise_perlin_worley,
-                    noise_worley3, perm_array)
+from .noise import (COMBINATION, PW_AVERAGE, PW_THESIS, noise_curl2, noise_fbm_perlin3, noise_fbm_worley3,
+                    noise_perlin_worley, noise_worley3, perm_array)
 
 # Field order of the settings validation codes (1-based; 0 = valid), as checked by ccl_texgen_base_shape_settings_check.
 BASE_SHAPE_FIELDS = ("size", "perlin_octaves", "perlin_frequency", "worley_cells", "worley_weights", "combination",
@@ -361,7 +361,7 @@ def texgen_base_shape_settings_code(size: int, perlin_octaves: int, perlin_frequ
         return 5
     if worley_w0 <= 0.0 or worley_w1 < 0.0 or worley_w2 < 0.0:
         return 5
-    if combination < 0 or combination > 4:
+    if combination < PW_THESIS or combination > PW_AVERAGE:
         return 6
     if not (wp.isfinite(gamma) and gamma > 0.0):
         return 7

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import VOLUME_PARAMS
 from ..core.registry import Arg, declare
 from .camera import camera_ray
 from .colour import colour_srgb_encode
@@ -42,7 +43,6 @@ LENGTH_RANGE = 1.0e6
 #: product overflowed to Inf, and Inf x a density of 0 gave NaN light).
 MAX_TAU = 1.0e6
 MAX_STEP = 1.0e6
-_COLOUR_FIELDS = ("sun_colour", "ambient_top", "ambient_bottom", "sky_zenith", "sky_horizon", "ground_a", "ground_b")
 AIRCRAFT_STEPS = wp.constant(64)  # CCL_VOLUME_AIRCRAFT_STEPS
 AIRCRAFT_BOUND = wp.constant(6.3)
 BRICK = 2  # CCL_VOLUME_BRICK
@@ -101,26 +101,6 @@ class VolumeParams:
     aircraft_scale: float
 
 
-_VEC_FIELDS = {"sun", "sun_colour", "ambient_top", "ambient_bottom", "sky_zenith", "sky_horizon", "ground_a",
-               "ground_b", "aircraft_position", "aircraft_forward", "aircraft_right", "aircraft_up"}
-_INT_FIELDS = {"max_steps", "jitter", "aircraft"}
-
-
-def default_values() -> dict:
-    """The defaults of ``ccl_volume_params_default`` (the values and reasons are in cclouds/src/volume.c; the flight
-    scene's settings expose them with the same reasons)."""
-    # the sun of the C default, elevation 35 deg and azimuth 150 deg, with its float32 constants and operations
-    return {"sun": (float(np.float32(0.81915206) * np.float32(0.5)), float(np.float32(0.57357645)),
-                    float(-(np.float32(0.81915206) * np.float32(-0.8660254)))),
-            "sun_colour": (1.0, 0.96, 0.88), "ambient_top": (0.42, 0.47, 0.56), "ambient_bottom": (0.22, 0.24, 0.29),
-            "sky_zenith": (0.16, 0.33, 0.65), "sky_horizon": (0.62, 0.72, 0.85), "ground_a": (0.16, 0.27, 0.10),
-            "ground_b": (0.36, 0.33, 0.18), "sun_glow": 0.6, "sun_glow_power": 64.0, "field_size": 180.0,
-            "fog_distance": 6000.0, "tau_per_voxel": 0.35, "light_tau_per_voxel": 0.25, "step_voxels": 1.0,
-            "light_step_voxels": 1.0, "exit_transmittance": 0.01, "max_steps": 512, "g": 0.3, "jitter": 1,
-            "aircraft": 0, "aircraft_position": (0.0, 0.0, 0.0), "aircraft_forward": (0.0, 0.0, -1.0),
-            "aircraft_right": (1.0, 0.0, 0.0), "aircraft_up": (0.0, 1.0, 0.0), "aircraft_scale": 1.0}
-
-
 def sun_direction(elevation_deg: float, azimuth_deg: float) -> tuple:
     """Unit vector towards the sun: azimuth 0 = -z, positive towards +x (the cloudscape's convention), float32
     operations as the C default."""
@@ -129,65 +109,12 @@ def sun_direction(elevation_deg: float, azimuth_deg: float) -> tuple:
     return (float(ce * sa), float(se), float(-(ce * ca)))
 
 
-def check_values(values: dict) -> None:
-    """Validate a parameter dict with ``ccl_volume_check``'s rules (no grids); ValueError naming the field."""
-    for name, v in values.items():
-        if name in _VEC_FIELDS:
-            a = np.asarray(v, dtype=np.float64)
-            if a.shape != (3,) or not np.all(np.isfinite(a)):
-                raise ValueError(f"{name} must be 3 finite numbers, got {v!r}")
-        elif not (isinstance(v, (int, float)) and math.isfinite(v)):
-            raise ValueError(f"{name} must be a finite number, got {v!r}")
-    for name in _COLOUR_FIELDS:
-        a = np.asarray(values[name], dtype=np.float64)
-        if np.any(a < 0.0) or np.any(a > MAX_COLOUR):
-            raise ValueError(f"{name} must have components in [0, {MAX_COLOUR:g}], got {values[name]!r}")
-    for name in ("sun",) + (("aircraft_forward", "aircraft_right", "aircraft_up") if values.get("aircraft") else ()):
-        n = float(np.linalg.norm(np.asarray(values[name], dtype=np.float64)))
-        if abs(n - 1.0) > 1e-3:
-            raise ValueError(f"{name} must be a unit vector, got |v| = {n:.6g}")
-    rules = {"sun_glow": (0.0, MAX_COLOUR, False), "sun_glow_power": (0.0, None, True), "field_size": (0.0, None, True),
-             "fog_distance": (0.0, None, True), "tau_per_voxel": (0.0, MAX_TAU, False),
-             "light_tau_per_voxel": (0.0, MAX_TAU, False), "step_voxels": (0.05, MAX_STEP, False),
-             "light_step_voxels": (0.05, MAX_STEP, False), "max_steps": (1, 100000, False)}
-    for name, (lo, hi, open_lo) in rules.items():
-        v = values[name]
-        if (v <= lo if open_lo else v < lo) or (hi is not None and v > hi):
-            dom = f"{'(' if open_lo else '['}{lo:g}, {'inf)' if hi is None else f'{hi:g}]'}"
-            raise ValueError(f"{name} must be in {dom}, got {v!r}")
-    if not 0.0 <= values["exit_transmittance"] < 1.0:
-        raise ValueError(f"exit_transmittance must be in [0, 1), got {values['exit_transmittance']!r}")
-    if not -1.0 < values["g"] < 1.0:
-        raise ValueError(f"g must be in (-1, 1), got {values['g']!r}")
-    if values["aircraft"] and not values["aircraft_scale"] > 0:
-        raise ValueError(f"aircraft_scale must be in (0, inf), got {values['aircraft_scale']!r}")
-
-
-def warp_params(values: dict) -> VolumeParams:
-    s = VolumeParams()
-    for name, v in values.items():
-        if name in _VEC_FIELDS:
-            setattr(s, name, wp.vec3(*[float(x) for x in v]))
-        elif name in _INT_FIELDS:
-            setattr(s, name, int(v))
-        else:
-            setattr(s, name, float(v))
-    return s
-
-
-def c_params(values: dict):
+def checked_params(values: dict):
+    """``values`` (``ccl_volume_params`` fields; the others the C defaults) checked by ``ccl_volume_check`` without
+    grids (:mod:`pywarp.core.cbridge`): the cffi struct; ValueError naming the first bad field."""
     from ..core.binding import ffi
 
-    p = ffi().new("ccl_volume_params *")
-    for name, v in values.items():
-        if name in _VEC_FIELDS:
-            vec = getattr(p, name)
-            vec.x, vec.y, vec.z = (float(x) for x in v)
-        elif name in _INT_FIELDS:
-            setattr(p, name, int(v))
-        else:
-            setattr(p, name, float(v))
-    return p
+    return VOLUME_PARAMS.checked(values, ffi().NULL, 0)
 
 
 # --- sampling -----------------------------------------------------------------------------------------------------------

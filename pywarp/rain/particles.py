@@ -11,10 +11,12 @@ import math
 import numpy as np
 import warp as wp
 
+from ..core.cbridge import PARTICLES_PARAMS, read
 from ..core.registry import VARIANT, Arg
-from ..kernels.particles import (_FOV, FILTERS, MAX_COUNT, ParticlesLights, c_lights, c_params, check_lights,
-                                 check_params, composite_kernel, composite_tile_kernel, light_params, lights_on,
-                                 params, pixels_kernel, spawn_kernel, step_kernel, uv_ratio_kernel)
+from ..kernels import VARIANT_CORRECTED
+from ..kernels.particles import (_FOV, FILTERS, MAX_COUNT, ParticlesLights, c_lights, check_lights,
+                                 composite_kernel, composite_tile_kernel, light_params, lights_on,
+                                 pixels_kernel, spawn_kernel, step_kernel, uv_ratio_kernel)
 
 
 class ParticleSystem:
@@ -28,8 +30,9 @@ class ParticleSystem:
         if isinstance(capacity, bool) or not isinstance(capacity, (int, np.integer)) or not 0 <= capacity <= MAX_COUNT:
             raise ValueError(f"capacity must be an integer in [0, {MAX_COUNT}], got {capacity!r}")
         self.variant = VARIANT.check(variant)
-        self.values = check_params(values)
-        self.params = params(**self.values)
+        c = PARTICLES_PARAMS.checked(values)  # ccl_particles_params_check (pywarp.core.cbridge)
+        self.values = read(c)
+        self.params = PARTICLES_PARAMS.warp_struct(c)
         self.capacity = int(capacity)
         self.device = device
         n = max(self.capacity, 1)
@@ -60,7 +63,7 @@ class ParticleSystem:
         """Warm start (corrected variant, empty system): ``requested`` particles spawned with y uniform between the
         respawn level and the box top."""
         requested = self._check_requested(requested)
-        if self.variant == 0 and self.count == 0 and requested:
+        if self.variant == VARIANT_CORRECTED and self.count == 0 and requested:
             wp.launch(spawn_kernel, dim=requested, inputs=[self.params, 0, 1],
                       outputs=[self.pos, self.radius, self.speed, self.generation], device=self.device)
             self.count = requested
@@ -69,7 +72,7 @@ class ParticleSystem:
         """One frame of SimulateParticleSystem."""
         requested = self._check_requested(requested)
         dt = self._check_dt(dt)
-        if self.variant == 0:
+        if self.variant == VARIANT_CORRECTED:
             if self.count > requested:
                 self.count = requested
             if self.count < requested:
@@ -140,7 +143,8 @@ def simulate_c(eq):
         speed = np.zeros(n, np.float32)
         gen = np.zeros(n, np.uint32)
         count = f.new("int *", 0)
-        st = lib().ccl_particles_simulate(c_params(**values), requested, dt, frames, int(warm), v, capacity,
+        st = lib().ccl_particles_simulate(PARTICLES_PARAMS.checked(values), requested, dt, frames, int(warm), v,
+                                          capacity,
                                           f.cast("ccl_vec3 *", f.from_buffer("float[]", pos)),
                                           f.from_buffer("float[]", radius), f.from_buffer("float[]", speed),
                                           f.from_buffer("uint32_t[]", gen), count)

@@ -54,6 +54,10 @@ class RainSettings(Settings):
     """Every parameter of a rain frame, with its unit, default and the reason for it. Immutable: change with
     ``dataclasses.replace`` or :meth:`pywarp.rain.technique.RainTechnique.update`."""
 
+    #: ``background``: the background scene is rebuilt (and its frames cached again); ``mask``: the refraction mask
+    #: is computed again; ``particles``: the particle system starts again
+    INVALIDATES = Settings.INVALIDATES + ("background", "mask", "particles")
+
     width: int = param(640, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group=_G_IMAGE,
                        doc="image width", reason="640 x 360: the issue's benchmark frame")
     height: int = param(360, unit="px", kind="int", lo=1, hi=8192, invalidates="size", group=_G_IMAGE,
@@ -65,46 +69,49 @@ class RainSettings(Settings):
                        doc="requested number of drops (G/H keys)",
                        reason="3000: heavy rain at 640 x 360 that still lets the background through; Table 6.2 "
                               "measures 0 - 50 000")
-    shape: str = param("1.0", choices=SHAPES, invalidates="textures", group=_G_RAIN,
+    shape: str = param("1.0", choices=SHAPES, invalidates="mask", group=_G_RAIN,
                        doc="drop shape: the Table 2.1 radius a (mm) whose Beard-Chuang outline the mask takes (T key)",
                        reason="1.0: the typical drop of the text's §3.1 (1 mm radius ~ 10 px)")
-    mask: str = param("outline", choices=MASKS, invalidates="textures", group=_G_RAIN,
+    mask: str = param("outline", choices=MASKS, invalidates="mask", group=_G_RAIN,
                       doc="refraction mask: sphere, outline (the application: the shape's outline, a sphere's "
                           "refraction) or exact (rays traced through the Beard-Chuang drop)",
                       reason="outline: what the application did (rr-alg-3.1.1, spec erratum 12)")
-    size_mm: float = param(1.3, unit="mm", lo=0.1, hi=4.5, group=_G_RAIN, cli="--size",
+    size_mm: float = param(1.3, unit="mm", lo=0.1, hi=4.5, c="size_mean_mm", invalidates="particles", group=_G_RAIN,
+                           cli="--size",
                            doc="mean drop radius of the particle sizes, Gauss(1, 1.3, 8)'s 1.3 (B/N keys)",
                            reason="1.3: the text's mean size (rr-code-5.2.2), read as a radius (Table 2.2 is indexed "
                                   "by radius)")
-    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, group=_G_RAIN, cli="--size-spread",
+    size_spread_mm: float = param(1.0, unit="mm", lo=0.0, hi=4.4, check=_check_size, c="size_spread_mm",
+                                  invalidates="particles", group=_G_RAIN, cli="--size-spread",
                                   doc="Gauss(1, 1.3, 8)'s 1, read as the width of the averaged uniforms: radii in "
                                       "size +- spread/2, standard deviation spread / sqrt(12 samples)",
                                   reason="1: the printed argument; with 8 samples sigma = 0.10 mm, so ~68 % of the "
                                          "drops are within 0.1 mm of 1.3 mm (the text's ~66 %)")
-    size_samples: int = param(8, kind="int", lo=1, hi=64, group=_G_RAIN,
+    size_samples: int = param(8, kind="int", lo=1, hi=64, c="size_samples", invalidates="particles", group=_G_RAIN,
                               doc="Gauss(1, 1.3, 8)'s 8, read as the number of uniforms averaged (Irwin-Hall)",
                               reason="8: the printed argument")
-    slowdown: float = param(4.0, lo=0.015625, hi=1000.0, group=_G_RAIN,
+    slowdown: float = param(4.0, lo=0.015625, hi=1000.0, c="slowdown", invalidates="particles", group=_G_RAIN,
                             doc="terminal speeds of Table 2.2 divided by this", reason="4: the application's")
-    metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, group=_G_RAIN,
+    metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, c="metres_per_unit",
+                                   invalidates="particles", group=_G_RAIN,
                                    doc="one scene unit in metres (speeds in m/s become units/s)",
                                    reason="1: not given (spec erratum 17); the 2 x 0.25 x 3 box is then a few metres "
                                           "around the viewer")
-    wind_x: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, group=_G_RAIN, cli="--wind-x",
+    wind_x: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, invalidates="particles", group=_G_RAIN, cli="--wind-x",
                           doc="horizontal wind along x (our extension; drops drift and wrap in the box)",
                           reason="0: the text has no wind")
-    wind_z: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, group=_G_RAIN, cli="--wind-z",
+    wind_z: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, invalidates="particles", group=_G_RAIN, cli="--wind-z",
                           doc="horizontal wind along z (our extension)", reason="0: the text has no wind")
-    warm_start: bool = param(True, group=_G_RAIN,
+    warm_start: bool = param(True, invalidates="particles", group=_G_RAIN,
                              doc="start with every requested drop in the air (off: one drop added per frame, as the "
                                  "listing)",
                              reason="on: a single image shows the requested count (the listing needs `drops` frames "
                                     "to fill the box)")
-    variant: str = param("corrected", choices=("corrected", "thesis"), group=_G_RAIN,
+    variant: str = param("corrected", choices=("corrected", "thesis"), invalidates="particles", group=_G_RAIN,
                          doc="particle counter of rr-code-5.2.2: corrected (+1 per frame) or thesis (the printed "
                              "decrement: no drop is ever created)",
                          reason="corrected: the listing's evident intent")
-    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, group=_G_RAIN,
+    seed: int = param(0, kind="uint32", lo=0, hi=2 ** 32 - 1, c="seed", invalidates="particles", group=_G_RAIN,
                       doc="seed of every particle draw; the same seed gives the same rain", reason="0")
     time_s: float = param(0.0, unit="s", lo=0.0, hi=1e6, group=_G_RAIN, cli="--time",
                           doc="simulated time since the start (animate advances it; dt = its change, scaled by "
@@ -144,7 +151,7 @@ class RainSettings(Settings):
     capture_fov_deg: float = param(150.0, unit="deg", lo=1.0, hi=170.0, group=_G_LOOK, cli="--capture-fov",
                                    doc="vertical FOV of the capture camera (rr-der-3.2.1)",
                                    reason="150: the text's contract (the exact drop FOV is 165 deg, rr-der-3.2.1)")
-    mask_size: int = param(512, unit="px", kind="int", lo=8, hi=4096, invalidates="textures", group=_G_LOOK,
+    mask_size: int = param(512, unit="px", kind="int", lo=8, hi=4096, invalidates="mask", group=_G_LOOK,
                            doc="edge of the refraction mask", reason="512: the text's (rr-alg-3.1.1)")
     light1_pos: tuple = param((0.5, 0.45, -1.6), unit="units", length=3, group=_G_LIGHT,
                               doc="position of point light 1 (rr-A1..rr-CF), camera-relative scene units (x right, y "
@@ -179,13 +186,13 @@ class RainSettings(Settings):
                                     reason="2: the horizon across the frame, so drops show sky and ground upside down")
     fov_y_deg: float = param(60.0, unit="deg", lo=1.0, hi=170.0, group=_G_CAM, cli="--fov",
                              doc="vertical field of view of the view", reason="60: a natural view")
-    background: str = param("clouds", check=_check_background, invalidates="sky", group=_G_BG,
+    background: str = param("clouds", check=_check_background, invalidates="background", group=_G_BG,
                             doc="background: 'panorama' (built-in analytic sky and ground) or any registered scene "
                                 "(its settings' width, height, fov_y_deg, camera_yaw_deg and camera_pitch_deg are set "
                                 "from ours)",
                             reason="clouds: the vc cloudscape, a real rendered background")
     background_options: dict = param({"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05}, cli=None,
-                                     invalidates="sky", group=_G_BG,
+                                     invalidates="background", group=_G_BG,
                                      doc="settings of the background scene by name",
                                      reason="clouds: an overcast, dark rain sky seen from 50 m")
     device: str = param("cpu", invalidates="device", group=_G_RUN, doc="Warp device: cpu, or cuda:N where present",
@@ -200,12 +207,13 @@ class RainSettings(Settings):
         return dict(l1=self.light1_pos, c_l1=self.light1_colour, l2=self.light2_pos, c_l2=self.light2_colour,
                     ambient=self.light_ambient, r_half=self.light_r_half, variant=self.light_variant)
 
-    def particle_values(self) -> dict:
-        """The particle-system parameters (``pywarp.kernels.particles.DEFAULTS`` fields) of these settings."""
-        return dict(size_mean_mm=self.size_mm, size_spread_mm=self.size_spread_mm, size_samples=self.size_samples,
-                    slowdown=self.slowdown, metres_per_unit=self.metres_per_unit,
-                    wind=(self.wind_x / self.metres_per_unit, 0.0, self.wind_z / self.metres_per_unit),
-                    seed=self.seed)
+    def c_values(self) -> dict:
+        """The ``ccl_particles_params`` values of these settings (:mod:`pywarp.core.cbridge`): the C defaults, the
+        fields the specs name and the wind in scene units per second."""
+        from ..core.cbridge import PARTICLES_PARAMS, settings_values
+
+        return {**PARTICLES_PARAMS.defaults(), **settings_values(self),
+                "wind": (self.wind_x / self.metres_per_unit, 0.0, self.wind_z / self.metres_per_unit)}
 
 
 #: rr-tab-A: the controls of the application (Appendix A.1), as data: key -> (action, the settings field it changes,

@@ -238,7 +238,7 @@ class RainTechnique:
     pays for them once)."""
 
     def __init__(self, settings: RainSettings | None = None):
-        self.settings = (settings or RainSettings()).validate()
+        self.settings = settings or RainSettings()
         self.background = None
         self._cache: dict = {}
         self._device_cache: dict = {}
@@ -256,7 +256,7 @@ class RainTechnique:
     def _reset_particles(self) -> None:
         s = self.settings
         self.system = P.ParticleSystem(max(s.drops, 1), device=self.device, variant=s.variant,
-                                       **s.particle_values())
+                                       **s.c_values())
         if s.warm_start:
             self.system.fill(s.drops)
         self.t = 0.0
@@ -265,19 +265,16 @@ class RainTechnique:
         old = self.settings
         new = replace(old, **changes)
         self.settings = new
-        changed = new.changed(old)
         stale = new.invalidated(old)
         if "device" in stale:
             self.init()
             return
-        if "sky" in stale:
+        if "background" in stale:
             self.background = make_background(new)
             self._cache.clear()
-        if "textures" in stale:
+        if "mask" in stale:
             self.mask, self.extent, self.normals = drop_mask(new.shape, new.mask, new.mask_size)
-        particle_fields = {"size_mm", "size_spread_mm", "size_samples", "slowdown", "metres_per_unit", "wind_x",
-                           "wind_z", "seed", "variant", "warm_start"}
-        if changed & particle_fields or new.drops > self.system.capacity:
+        if "particles" in stale or new.drops > self.system.capacity:
             self._reset_particles()
         if stale & {"size"}:
             self.resize(new.width, new.height)

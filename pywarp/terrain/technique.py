@@ -77,8 +77,7 @@ class TerrainTechnique:
         s = self.settings
         self.launcher = shared_launcher(s.device, s.threads)
         self.device = self.launcher.device
-        self.values = effective(s).params()
-        self.params = K.warp_params(self.values)  # checked by ccl_terrain_params_check
+        self.params = effective(s).warp_params()  # checked by ccl_terrain_params_check
         self.perm = perm_array(s.seed, self.device)
         self.resize(s.width, s.height)
 
@@ -91,8 +90,7 @@ class TerrainTechnique:
         if "device" in stale:
             self.launcher = shared_launcher(new.device, new.threads)
             self.device = self.launcher.device
-        self.values = effective(new).params()
-        self.params = K.warp_params(self.values)
+        self.params = effective(new).warp_params()
         self.perm = perm_array(new.seed, self.device)
         if stale & {"size", "device"} or (new.quality, new.preview_scale) != (old.quality, old.preview_scale):
             self.resize(new.width, new.height)
@@ -143,7 +141,7 @@ def render_pixels_c(settings: TerrainSettings, xs, ys, pose: TerrainPose | None 
     s = settings
     pose = pose or TerrainPose.from_settings(s)
     return equation("pt-alg-7.1.6", impl="c")(np.asarray(xs), np.asarray(ys), s.width, s.height, pose.camera(s.width, s.height),
-                                 s.params())
+                                 s.c_values())
 
 
 def render_pixels_warp(settings: TerrainSettings, xs, ys, pose: TerrainPose | None = None) -> tuple:
@@ -151,7 +149,7 @@ def render_pixels_warp(settings: TerrainSettings, xs, ys, pose: TerrainPose | No
     s = settings
     pose = pose or TerrainPose.from_settings(s)
     return equation("pt-alg-7.1.6", device=s.device)(np.asarray(xs), np.asarray(ys), s.width, s.height,
-                                              pose.camera(s.width, s.height), s.params())
+                                              pose.camera(s.width, s.height), s.c_values())
 
 
 def ground_height(settings: TerrainSettings, x, z, octaves: int | None = None) -> np.ndarray:

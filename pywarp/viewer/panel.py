@@ -20,8 +20,9 @@ from dataclasses import dataclass
 
 from ..core.params import Param, specs
 
-#: fields whose change is costly apply when the widget is released, the others while it moves
-APPLY_ON_RELEASE = ("textures", "size", "device")
+#: fields whose change is costly (by their settings class's invalidation names) apply when the widget is released, the
+#: others while it moves
+APPLY_ON_RELEASE = ("textures", "clouds", "flight", "mask", "size", "device")
 #: integer ranges up to this span get a slider; wider ones an input field
 SLIDER_INT_SPAN = 4096
 #: float ranges up to this span get a slider; wider ones (e.g. a camera position in +-1000 km) a drag field

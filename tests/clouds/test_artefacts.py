@@ -66,11 +66,11 @@ def test_horizon_band_is_as_steady_as_the_sky_above(settings):
 def weather_c(settings: CloudscapeSettings, textures, xs, zs) -> np.ndarray:
     """``ccl_cloudscape_weather`` (C) at world points (km): (n, 4)."""
     from pywarp.clouds.cloudscape import c_textures
-    from pywarp.clouds.cparams import c_params, param_values
+    from pywarp.clouds.settings import CLOUDSCAPE_PARAMS
     from pywarp.core.binding import ffi, lib
 
     f, lb = ffi(), lib()
-    p, t = c_params(param_values(settings)), c_textures(textures)
+    p, t = CLOUDSCAPE_PARAMS.to_c(settings.c_values()), c_textures(textures)
     out = np.empty((len(xs), 4), dtype=np.float32)
     rgba = f.new("float[4]")
     for i, (x, z) in enumerate(zip(xs, zs)):
@@ -108,8 +108,7 @@ def test_the_weather_map_does_not_repeat_with_its_tile(small_textures):
 def test_weather_c_and_warp_agree(small_textures):
     import warp as wp
 
-    from pywarp.clouds.cloudscape import warp_params
-    from pywarp.clouds.cparams import param_values
+    from pywarp.clouds.settings import CLOUDSCAPE_PARAMS
     from pywarp.kernels import cloudscape as K
 
     s = CloudscapeSettings(base_size=32, detail_size=16, curl_size=32, weather_size=128)
@@ -120,7 +119,8 @@ def test_weather_c_and_warp_agree(small_textures):
         si = replace(s, weather_detile=detile)
         pts = wp.array(np.stack([x, np.zeros_like(x), z], axis=1), dtype=wp.vec3)
         out = wp.zeros(len(x), dtype=wp.vec4)
-        wp.launch(K.weather_points_kernel, dim=len(x), inputs=[warp_params(param_values(si)), tex, pts], outputs=[out])
+        wp.launch(K.weather_points_kernel, dim=len(x), inputs=[CLOUDSCAPE_PARAMS.warp_struct(si.c_values()), tex, pts],
+                  outputs=[out])
         np.testing.assert_allclose(out.numpy(), weather_c(si, small_textures, x, z), rtol=0, atol=2e-6)
 
 
@@ -202,7 +202,7 @@ def test_rows_along_the_layer_base_are_not_speckled():
     import importlib.util
     from pathlib import Path
 
-    from pywarp.clouds.cloudscape import CameraPose, param_values
+    from pywarp.clouds.cloudscape import CameraPose
 
     path = Path(__file__).resolve().parents[2] / "tutorials" / "vc" / "fig_4_13_camera_positions.py"
     spec = importlib.util.spec_from_file_location("fig_4_13", path)
@@ -210,7 +210,7 @@ def test_rows_along_the_layer_base_are_not_speckled():
     spec.loader.exec_module(tut)
     s = CloudscapeSettings(**tut.FULL, **tut.SCENE)
     t = CloudscapeTechnique(s)
-    x, z = tut.clear_spot(t.textures.weather[..., 0], param_values(s)["weather_scale_km"], tut.CLEAR_HALF_KM)
+    x, z = tut.clear_spot(t.textures.weather[..., 0], s.c_values()["weather_scale_km"], tut.CLEAR_HALF_KM)
     pose = CameraPose(x, 2.5, z, 90.0, -3.0, s.fov_y_deg)
     for kw, speckled in ((THESIS, True), ({}, False)):
         rough, tangent = _row_roughness(replace(s, **kw), pose)

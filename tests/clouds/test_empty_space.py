@@ -212,8 +212,7 @@ def test_weather_with_the_selector_classes_is_bit_for_bit_the_lookup(small_textu
     at random points and on a fine line across cell edges; the map short-cuts most points of the default map."""
     import warp as wp
 
-    from pywarp.clouds.cloudscape import warp_params
-    from pywarp.clouds.cparams import param_values
+    from pywarp.clouds.settings import CLOUDSCAPE_PARAMS
 
     s = CloudscapeSettings(base_size=32, detail_size=16, curl_size=32, weather_size=128)
     rng = np.random.default_rng(9)
@@ -225,7 +224,8 @@ def test_weather_with_the_selector_classes_is_bit_for_bit_the_lookup(small_textu
     for skip in (1, 0):
         tex.empty_skip = skip
         o = wp.zeros(len(x), dtype=wp.vec4)
-        wp.launch(K.weather_points_kernel, dim=len(x), inputs=[warp_params(param_values(s)), tex, pts], outputs=[o])
+        wp.launch(K.weather_points_kernel, dim=len(x), inputs=[CLOUDSCAPE_PARAMS.warp_struct(s.c_values()), tex, pts],
+                  outputs=[o])
         out.append(o.numpy())
     tex.empty_skip = 1
     np.testing.assert_array_equal(out[0], out[1])

@@ -85,17 +85,15 @@ from pywarp.clouds.cloudscape import (  # noqa: E402
     CameraPose,
     CloudscapeSettings,
     CloudscapeTechnique,
-    c_params,
     c_sky,
     c_textures,
     light_params,
-    param_values,
     render_frame_c,
     render_pixels_c,
     render_pixels_warp,
-    warp_params,
 )
 from pywarp.clouds import settings as CS  # noqa: E402
+from pywarp.clouds.settings import CLOUDSCAPE_PARAMS  # noqa: E402
 from pywarp.core.binding import ffi, lib  # noqa: E402
 from pywarp.kernels import cloudscape as K  # noqa: E402
 
@@ -116,7 +114,7 @@ def tech():
 
 def _c_lit(settings):
     """ccl_cloudscape_light of the settings' parameters and sky: the C struct."""
-    p = c_params(param_values(settings))
+    p = CLOUDSCAPE_PARAMS.to_c(settings.c_values())
     lib().ccl_cloudscape_light(p, c_sky(settings), p)
     return p
 
@@ -175,14 +173,15 @@ def _energy_kernel(p: K.CloudscapeParams, d: wp.array(dtype=float), a: wp.array(
 @pytest.mark.parametrize("octaves,weight", [(1, 0.0), (3, 0.3), (8, 1.0)])
 def test_energy_c_equals_warp(octaves, weight):
     s = small(ms_octaves=octaves, silver_weight=weight, silver_g=0.85, g=0.35)
-    v = param_values(s)
+    v = s.c_values()
     rng = np.random.default_rng(3)
     d = np.float32(rng.uniform(0, 8, 500))
     a = np.float32(rng.uniform(0, 3, 500))
     c = np.float32(rng.uniform(-1, 1, 500))
     out = wp.zeros(500, dtype=float)
-    wp.launch(_energy_kernel, 500, inputs=[warp_params(v), wp.array(d), wp.array(a), wp.array(c)], outputs=[out])
-    cp = c_params(v)
+    wp.launch(_energy_kernel, 500, inputs=[CLOUDSCAPE_PARAMS.warp_struct(v), wp.array(d), wp.array(a), wp.array(c)],
+              outputs=[out])
+    cp = CLOUDSCAPE_PARAMS.to_c(v)
     ce = np.array([lib().ccl_cloudscape_energy(cp, float(x), float(y), float(z)) for x, y, z in zip(d, a, c)],
                   dtype=np.float32)
     np.testing.assert_array_equal(out.numpy(), ce)
@@ -209,7 +208,7 @@ def _ground_points(n: int = 24, half_km: float = 12.0) -> np.ndarray:
 def _fine_shadow(values, tex_c, point, sun, n: int = 400) -> float:
     """exp(-sigma_light x optical depth) towards the sun from n base-shape samples at full resolution -- the same
     density field, marched independently of ccl_cloudscape_ground (30 times finer)."""
-    p = c_params({**values, "lod": 0})
+    p = CLOUDSCAPE_PARAMS.to_c({**values, "lod": 0})
     c = np.array([0.0, -CS.EARTH_RADIUS_KM, 0.0])
 
     def far_root(r):
@@ -256,7 +255,7 @@ def test_ground_c_equals_warp_and_clouds_shadow_the_ground(tech):
     lum = g_w @ np.array([0.2126, 0.7152, 0.0722])
     assert lum[shadowed].max() < lum[lit].min()
     # the shadows are the clouds': an independent fine march agrees on which points lie in shadow
-    v = param_values(s)
+    v = s.c_values()
     fine = np.array([_fine_shadow(v, tex_c, q.astype(np.float64), sun.astype(np.float64)) for q in pts[::3]])
     agree = (sh_w[::3] < 0.5) == (fine < 0.5)
     assert agree.mean() >= 0.9, agree.mean()
@@ -509,7 +508,7 @@ def test_lighting_defaults_equal_ccl_cloudscape_params_default():
         lib().CCL_CLOUDSCAPE_SKY_PHI_CELLS)
     assert tuple(S.SUN_LAMBDA_UM) == (0.680, 0.550, 0.440)
     # lighting='thesis' maps to the thesis's single octave and lobe
-    v = param_values(CloudscapeSettings(lighting="thesis"))
+    v = CloudscapeSettings(lighting="thesis").c_values()
     assert (v["lighting"], v["ms_octaves"], v["silver_weight"]) == (0, 1, 0.0)
 
 

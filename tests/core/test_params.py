@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from pywarp.core.params import INVALIDATES, Param, Settings, add_options, from_options, inherit, param, specs
+from pywarp.core.params import Param, Settings, add_options, from_options, inherit, param, specs
 
 
 def _even(obj, name, v):
@@ -19,6 +19,8 @@ def _even(obj, name, v):
 
 @dataclass(frozen=True)
 class Demo(Settings):
+    INVALIDATES = Settings.INVALIDATES + ("sky", "textures")
+
     count: int = param(8, unit="px", kind="int", lo=1, hi=64, doc="a count", reason="8: small", check=_even)
     size: int = param(16, kind="int", lo=4, hi=512, pow2=True, doc="a size", reason="16: small",
                       invalidates="textures")
@@ -41,7 +43,7 @@ def test_defaults_are_valid_and_specs_list_every_field():
     names = [p.name for p in specs(Demo)]
     assert names == [f.name for f in dataclasses.fields(Demo)]
     for p in specs(Demo):
-        assert isinstance(p, Param) and p.doc and p.reason and p.invalidates in INVALIDATES
+        assert isinstance(p, Param) and p.doc and p.reason and p.invalidates in Demo.INVALIDATES
         assert getattr(d, p.name) == p.default
     assert specs(d) == specs(Demo)
 
@@ -101,13 +103,22 @@ def test_settings_are_immutable_and_replace_validates():
 def test_param_refuses_a_spec_without_doc_reason_or_known_invalidation():
     with pytest.raises(ValueError, match="doc and the reason"):
         param(1.0, doc="x", reason="")
-    with pytest.raises(ValueError, match="^invalidates must be one of"):
-        param(1.0, doc="x", reason="y", invalidates="everything")
+    @dataclass(frozen=True)
+    class Bad(Settings):
+        x: float = param(1.0, doc="x", reason="y", invalidates="textures")  # not one of Settings.INVALIDATES
+
+    with pytest.raises(ValueError, match=r"^Bad\.x: invalidates must be one of 'nothing', 'size', 'device', "
+                                         r"got 'textures'$"):
+        Bad()
+    with pytest.raises(ValueError, match="^c_enum must map every choice"):
+        param("a", choices=("a", "b"), doc="x", reason="y", c="mode", c_enum={"a": "CCL_A"})
 
 
 def test_inherit_takes_the_spec_declared_once():
     @dataclass(frozen=True)
     class Other(Settings):
+        INVALIDATES = Demo.INVALIDATES
+
         gain: float = inherit(Demo, "gain")
         size: int = inherit(Demo, "size", cli="--texture-size")
 

@@ -144,3 +144,15 @@ def test_cli_render_animate_bench(tmp_path, capsys):
     # the one-brick-per-jump path gives the same pixels; the preview is measured in the same run
     assert r["previous_same_pixels"] is True and set(r["previous_frame_ms"]) == set(r["frame_ms"])
     assert r["preview"]["fps"] > 0 and r["preview"]["step_voxels"] == 2.0
+
+
+def test_invalidation_names_are_the_flight_scenes():
+    """The flight's own names: a new speed simulates the flight again (not a "texture" change), a cloud setting
+    rebuilds the clouds, the sun the light volumes."""
+    base = FlightSettings()
+    assert FlightSettings.INVALIDATES == ("nothing", "size", "device", "clouds", "flight", "light")
+    cases = {"max_speed_mps": (50.0, {"flight"}), "flight_duration_s": (20.0, {"flight"}), "seed": (3, {"clouds"}),
+             "cloud_cover": (100.0, {"clouds"}), "sun_elevation_deg": (20.0, {"light"}), "g": (0.5, set()),
+             "width": (320, {"size"})}
+    for name, (value, stale) in cases.items():
+        assert replace(base, **{name: value}).invalidated(base) == stale, name

@@ -12,11 +12,11 @@ import warp as wp
 import pywarp
 from helpers import ulp_distance
 from pywarp.core.binding import ffi, lib
+from pywarp.core.cbridge import PARTICLES_PARAMS, TERRAIN_PARAMS, VOLUME_PARAMS
 from pywarp.core.registry import get, warp_parameters
 from pywarp.kernels import camera as CAM
 from pywarp.flight import model as F
 from pywarp.kernels import noise
-from pywarp.kernels import particles as PT
 from pywarp.kernels import rain as R
 from pywarp.kernels import sky as sky_mod
 from pywarp.kernels import terrain as K
@@ -239,7 +239,7 @@ def test_volume_check_refuses_extents_outside_the_length_range(extent):
 @pytest.mark.parametrize("extent", [(1e-6, 1e-6, 1e-6), (1e6, 1e6, 1e6), (1e-6, 1e6, 1.0)])
 def test_volume_light_in_unit_range_at_the_extent_limits(extent):
     """The limits themselves: light in [0, 1], Warp and C alike (1 um and 1000 km boxes)."""
-    vals = V.default_values()
+    vals = VOLUME_PARAMS.defaults()
     dens = np.zeros((3, 4, 5), np.uint8)
     dens[1:, :, 2:] = 255
     v = VS.PlacedVolume(dens, (0.0, 0.0, 0.0), extent)
@@ -253,26 +253,26 @@ def test_volume_light_in_unit_range_at_the_extent_limits(extent):
 
 @pytest.mark.parametrize("field, value", [("sun_colour", (F32_MAX, 1.0, 1.0)), ("ambient_top", (0.5, 2e6, 0.5)),
                                           ("ground_b", (-0.1, 0.3, 0.2)), ("sky_horizon", (0.5, 0.5, 1e30))])
-def test_volume_colours_bounded_in_c_and_python(field, value):
+def test_volume_colours_bounded_by_the_check(field, value):
     """Before: any finite colour passed; sun_colour.x = FLT_MAX with the aircraft on gave a NaN pixel (Inf * 0)."""
-    vals = V.default_values()
+    vals = VOLUME_PARAMS.defaults()
     vals[field] = value
     g, keep = _volume_grid((10.0, 10.0, 10.0), np.full((2, 2, 2), 100, np.uint8))
-    assert _c_check(V.c_params(vals), g) == (1, field)
-    with pytest.raises(ValueError, match=rf"^{field} must have components in \[0, 1e\+06\]"):
-        V.check_values(vals)
+    assert _c_check(VOLUME_PARAMS.to_c(vals), g) == (1, field)
+    with pytest.raises(ValueError, match=rf"^{field} is out of range \(ccl_volume_check\)"):
+        V.checked_params(vals)
     del keep
-    vals = V.default_values()
+    vals = VOLUME_PARAMS.defaults()
     vals["sun_glow"] = 2e6
-    assert _c_check(V.c_params(vals), g)[1] == "sun_glow"
-    with pytest.raises(ValueError, match=r"^sun_glow must be in \[0, 1e\+06\]"):
-        V.check_values(vals)
+    assert _c_check(VOLUME_PARAMS.to_c(vals), g)[1] == "sun_glow"
+    with pytest.raises(ValueError, match=r"^sun_glow is out of range \(ccl_volume_check\)"):
+        V.checked_params(vals)
 
 
 def test_volume_pixels_finite_with_colours_at_the_limit():
     """Every colour and the glow at 10^6, the aircraft in view, a thick cloud: finite pixels, Warp and C alike."""
-    vals = V.default_values()
-    for name in V._COLOUR_FIELDS:
+    vals = VOLUME_PARAMS.defaults()
+    for name in ("sun_colour", "ambient_top", "ambient_bottom", "sky_zenith", "sky_horizon", "ground_a", "ground_b"):
         vals[name] = (1e6, 1e6, 1e6)
     vals["sun_glow"] = 1e6
     fw, rt, up = F.axes(0.3, 0.09, 0.35)
@@ -305,26 +305,25 @@ def test_volume_colour_and_length_limits_are_the_c_constants():
 
 @pytest.mark.parametrize("field, value", [("light_tau_per_voxel", 1.6e32), ("light_step_voxels", 8.4e6),
                                           ("tau_per_voxel", 2e6), ("step_voxels", 3e38)])
-def test_volume_optical_depths_and_steps_bounded_in_c_and_python(field, value):
+def test_volume_optical_depths_and_steps_bounded_by_the_check(field, value):
     """Before: any finite optical depth per voxel and step passed; light_tau_per_voxel = 1.6e32 with
     light_step_voxels = 8.4e6 made the step's optical depth Inf, and Inf x a density of 0 wrote NaN light."""
-    vals = V.default_values()
+    vals = VOLUME_PARAMS.defaults()
     vals[field] = value
     g, keep = _volume_grid((10.0, 10.0, 10.0), np.full((2, 2, 2), 100, np.uint8))
-    assert _c_check(V.c_params(vals), g) == (1, field)
+    assert _c_check(VOLUME_PARAMS.to_c(vals), g) == (1, field)
     out = np.full(8, -5.0, np.float32)
-    assert lib().ccl_volume_light(V.c_params(vals), g, ffi().from_buffer("float[]", out), out.size) != 0
+    assert lib().ccl_volume_light(VOLUME_PARAMS.to_c(vals), g, ffi().from_buffer("float[]", out), out.size) != 0
     assert np.all(out == -5.0)
-    lo = "0" if "tau" in field else "0.05"
-    with pytest.raises(ValueError, match=rf"^{field} must be in \[{lo}, 1e\+06\]"):
-        V.check_values(vals)
+    with pytest.raises(ValueError, match=rf"^{field} is out of range \(ccl_volume_check\)"):
+        V.checked_params(vals)
     del keep
 
 
 def test_volume_light_and_pixels_finite_with_optical_depths_and_steps_at_the_limit():
     """Optical depths per voxel and steps at 10^6 (the step's optical depth 10^12): the light in [0, 1] and the
     pixels finite, Warp and C alike; empty voxels next to dense ones (the density of 0 that met Inf)."""
-    vals = V.default_values()
+    vals = VOLUME_PARAMS.defaults()
     vals.update(tau_per_voxel=1e6, light_tau_per_voxel=1e6, step_voxels=1e6, light_step_voxels=1e6)
     dens = np.zeros((4, 4, 4), np.uint8)
     dens[1:3, 1:3, 1:3] = 255
@@ -343,17 +342,17 @@ def test_volume_light_and_pixels_finite_with_optical_depths_and_steps_at_the_lim
 def test_volume_sky_glow_clamps_the_cosine_in_c_and_warp():
     """The volume sky's glow has the gradient sky's rounding (finding 4): d . sun of unit vectors rounds above 1 and
     c^power overflowed for powers above ~7e8. Both twins clamp the cosine to [0, 1]."""
-    vals = V.default_values()
+    vals = VOLUME_PARAMS.defaults()
     vals["sun"] = (1.0, 0.0, 0.0)
     vals["sun_glow_power"] = 3e38
     d = float(np.float32(1.0 + 2.0 ** -23))  # d . sun = 1 + 2^-23 in float32
-    p = V.c_params(vals)
+    p = VOLUME_PARAMS.to_c(vals)
     dv = ffi().new("ccl_vec3 *")
     dv.x, dv.y, dv.z = d, 0.0, 0.0
     r = lib().ccl_volume_sky(p, dv[0])
     c = np.array([r.x, r.y, r.z], np.float32)
     out = wp.zeros(1, dtype=wp.vec3, device="cpu")
-    wp.launch(_volume_sky_kernel, dim=1, inputs=[V.warp_params(vals), wp.vec3(d, 0.0, 0.0)], outputs=[out],
+    wp.launch(_volume_sky_kernel, dim=1, inputs=[VOLUME_PARAMS.warp_struct(vals), wp.vec3(d, 0.0, 0.0)], outputs=[out],
               device="cpu")
     w = out.numpy()[0]
     sky = np.array(vals["sky_horizon"], np.float32) + np.array(vals["sun_colour"], np.float32) * np.float32(0.6)
@@ -375,7 +374,7 @@ def test_terrain_check_refuses_tiny_noise_scales(field, value):
     """Before: the domains were (0, max]; horizontal_scale 1.02e-38 overflowed x / scale and ccl_terrain_shade
     returned NaN (cloud_scale and wave_scale alike, found by the strict harness)."""
     with pytest.raises(ValueError, match=rf"^{field} is out of range \(ccl_terrain_params_check\)"):
-        K.c_params({field: value})
+        TERRAIN_PARAMS.checked({field: value})
     with pytest.raises(ValueError, match=field):
         TerrainSettings(**{field: value})
 
@@ -386,8 +385,9 @@ def test_terrain_shade_nan_case_of_the_finding_is_refused_and_the_limit_is_finit
     rays in every direction."""
     base = dict(heightmap=1, march_octaves=1, step_size=3.14, precision=1.001, max_steps=1)
     with pytest.raises(ValueError, match=r"^horizontal_scale"):
-        K.c_params(dict(base, horizontal_scale=1.02e-38))
-    p = K.c_params(dict(base, horizontal_scale=K.MIN_SCALE, cloud_scale=K.MIN_SCALE, wave_scale=K.MIN_SCALE))
+        TERRAIN_PARAMS.checked(dict(base, horizontal_scale=1.02e-38))
+    p = TERRAIN_PARAMS.checked(dict(base, horizontal_scale=K.MIN_SCALE, cloud_scale=K.MIN_SCALE,
+    wave_scale=K.MIN_SCALE))
     rng = np.random.default_rng(3)
     steps = ffi().new("int *")
     for _ in range(200):
@@ -416,9 +416,9 @@ def test_terrain_min_scale_is_the_c_check_limit():
     """The Python limit is the C one: the C check accepts MIN_SCALE and refuses the float below it."""
     below = float(np.nextafter(np.float32(K.MIN_SCALE), np.float32(0)))
     for field in ("horizontal_scale", "cloud_scale", "wave_scale"):
-        K.c_params({field: K.MIN_SCALE})
+        TERRAIN_PARAMS.checked({field: K.MIN_SCALE})
         with pytest.raises(ValueError, match=field):
-            K.c_params({field: below})
+            TERRAIN_PARAMS.checked({field: below})
 
 
 # --- property-test findings: rr-tab-2.2 slowdown, rr-alg-3.1.3 tan_half_fov / aspect ----------------------------------
@@ -434,7 +434,7 @@ def test_terminal_speed_refuses_a_tiny_slowdown(impl):
     assert np.all(np.isfinite(v)) and v.max() == pytest.approx(9.23 * 64, rel=1e-6)
 
 
-def test_particles_refuse_a_tiny_slowdown_in_c_python_and_settings():
+def test_particles_refuse_a_tiny_slowdown_in_c_and_settings():
     p = ffi().new("ccl_particles_params *")
     lib().ccl_particles_params_default(p)
     p.slowdown = 1e-45
@@ -442,8 +442,8 @@ def test_particles_refuse_a_tiny_slowdown_in_c_python_and_settings():
     assert lib().ccl_particles_params_check(p, fld) != 0 and ffi().string(fld[0]) == b"slowdown"
     p.slowdown = 0.015625
     assert lib().ccl_particles_params_check(p, fld) == 0
-    with pytest.raises(ValueError, match=r"^slowdown must be in"):
-        PT.params(slowdown=1e-45)
+    with pytest.raises(ValueError, match=r"^slowdown is out of range \(ccl_particles_params_check\), got 1e-45$"):
+        PARTICLES_PARAMS.checked({"slowdown": 1e-45})
     with pytest.raises(ValueError, match="slowdown"):
         RainSettings(slowdown=1e-45)
 
@@ -476,14 +476,13 @@ def test_cloudscape_far_light_factor_bounded_and_finite_at_the_limit():
     distance, their product x 5, is 1.5 km), but its weight (light_far_factor - 1) x 5 x light_step_km overflowed to
     Inf in the first product, and Inf x a density of 0 made the pixel NaN."""
     from pywarp.clouds.cloudscape import CloudscapeTechnique, render_pixels_c, render_pixels_warp
-    from pywarp.clouds.cparams import check_params, param_values
     from pywarp.clouds.settings import CloudscapeSettings
 
     finding = {"light_far_factor": 3.0e38, "light_step_km": 1.0e-39}
     with pytest.raises(ValueError, match=r"^light_far_factor is out of range: it must be in \[1, 10\^6\] "):
         CloudscapeSettings(advanced=finding)
     with pytest.raises(ValueError, match=r"^light_far_factor is out of range"):  # the C check itself
-        check_params({**param_values(CloudscapeSettings()), **finding})
+        CloudscapeSettings().c_params({**CloudscapeSettings().c_values(), **finding})
     # at the limit, a far sample 5 km away with a weight of 5 km: finite pixels, the twins equal
     s = CloudscapeSettings(width=16, height=9, base_size=16, detail_size=32, curl_size=16, weather_size=512,
                            samples_min=8, samples_max=16,

@@ -123,24 +123,23 @@ SIZES = {"base": 128, "detail": 32, "curl": 128, "weather": 512}
                                           ("weather_offset", (1e30, 0.0)), ("curl_strength_km", 1e30),
                                           ("detail_offset", (0.0, -1e9, 0.0)), ("weather_scale_km", 1e-4)])
 def test_cloudscape_check_bounds_texture_coordinates(field, value):
-    from pywarp.clouds.cparams import check_params, param_values
     from pywarp.clouds.settings import CloudscapeSettings
 
-    values = param_values(CloudscapeSettings())
-    check_params(values, SIZES)  # the defaults pass
+    s = CloudscapeSettings(**{f"{k}_size": v for k, v in SIZES.items()})
+    values = s.c_values()
+    s.c_params(values)  # the defaults pass
     values[field] = value
     with pytest.raises(ValueError, match=r"out of range \(ccl_cloudscape_check"):
-        check_params(values, SIZES)
+        s.c_params(values)
 
 
 def test_cloudscape_check_passes_at_the_largest_sizes_time_and_wind():
-    from pywarp.clouds.cparams import checked_values
     from pywarp.clouds.settings import MAX_SIZE_2D, MAX_SIZE_3D, MAX_TIME_S, CloudscapeSettings
 
     for t in (MAX_TIME_S, -MAX_TIME_S):
-        checked_values(CloudscapeSettings(base_size=MAX_SIZE_3D, detail_size=MAX_SIZE_3D, curl_size=MAX_SIZE_2D,
-                                          weather_size=MAX_SIZE_2D, time_s=t, wind_speed_kmh=1000.0,
-                                          wind_direction_deg=45.0))
+        CloudscapeSettings(base_size=MAX_SIZE_3D, detail_size=MAX_SIZE_3D, curl_size=MAX_SIZE_2D,
+                           weather_size=MAX_SIZE_2D, time_s=t, wind_speed_kmh=1000.0,
+                           wind_direction_deg=45.0).c_params()
 
 
 def test_settings_with_coordinates_beyond_the_bound_refused_before_rendering():
@@ -161,12 +160,12 @@ def test_settings_with_coordinates_beyond_the_bound_refused_before_rendering():
 
 
 def test_cloudscape_check_sun_tolerance_and_march_clamps_the_phase_argument():
-    from pywarp.clouds.cloudscape import RenderTextures, c_params, param_values
+    from pywarp.clouds.cloudscape import CLOUDSCAPE_PARAMS, RenderTextures
     from pywarp.clouds.settings import CloudscapeSettings
 
     F, L = ffi(), lib()
     s = CloudscapeSettings(base_size=16, detail_size=8, curl_size=16, weather_size=16)
-    p = c_params(param_values(s))
+    p = CLOUDSCAPE_PARAMS.to_c(s.c_values())
     tex = RenderTextures.generate(s)
     from pywarp.clouds.cloudscape import c_textures
 

@@ -1,9 +1,10 @@
 """Differential property test of the flight scene's cloud volumes (cclouds/volume.h, pywarp.kernels.volume):
 parameter sets and boxes drawn at the edges of their domains and beyond them.
 
-* The Python validation (:func:`pywarp.kernels.volume.check_values`, :class:`PlacedVolume`) and ``ccl_volume_check``
-  are separate implementations of one rule: they must refuse exactly the same sets (finding 11 was a bound both
-  lacked).
+* The parameters' check of the Warp side (:func:`pywarp.kernels.volume.checked_params`: the values written to the C
+  struct by :mod:`pywarp.core.cbridge` and checked by ``ccl_volume_check``) and the box check of
+  :class:`PlacedVolume` refuse exactly the sets that ``ccl_volume_check`` refuses with a grid (finding 11 was a bound
+  both lacked).
 * An accepted set gives light volumes in [0, 1] and finite pixels, the Warp kernels and the C reference alike and
   equal within the tolerance of ``tests/hardening/test_fuzz_findings.py`` (relative 1e-5, since colours reach 10^6).
 
@@ -21,6 +22,7 @@ from hypothesis import given  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from pywarp.core.binding import ffi, lib  # noqa: E402
+from pywarp.core.cbridge import VOLUME_PARAMS  # noqa: E402
 from pywarp.kernels import camera as CAM  # noqa: E402
 from pywarp.flight import model as F  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
@@ -70,7 +72,7 @@ def _grid(v: VS.PlacedVolume, light: np.ndarray):
 def _c_refuses(values: dict, v: VS.PlacedVolume) -> str | None:
     g, keep = _grid(v, np.ones(v.density.shape, np.float32))
     out = ffi().new("const char **")
-    st_ = lib().ccl_volume_check(V.c_params(values), g, 1, out)
+    st_ = lib().ccl_volume_check(VOLUME_PARAMS.to_c(values), g, 1, out)
     del keep
     return ffi().string(out[0]).decode() if st_ != 0 else None
 
@@ -78,7 +80,7 @@ def _c_refuses(values: dict, v: VS.PlacedVolume) -> str | None:
 def _python_refuses(values: dict, extent) -> tuple[bool, bool]:
     """(the parameters refused, the extent refused) by the Python validation."""
     try:
-        V.check_values(values)
+        V.checked_params(values)
         params = False
     except ValueError:
         params = True
@@ -104,7 +106,7 @@ DENSITY[2, 2, 1] = 90
        extent=st.sampled_from(EXTENTS), aircraft=st.booleans(), seed=st.integers(0, 2 ** 16))
 def test_python_and_c_refuse_alike_and_accepted_sets_render_finite_and_equal(scalars, colours, extent, aircraft,
                                                                              seed):
-    values = {**V.default_values(), **scalars, **colours}
+    values = {**VOLUME_PARAMS.defaults(), **scalars, **colours}
     if aircraft:
         fw, rt, up = F.axes(0.3, 0.09, 0.35)
         values.update(aircraft=1, aircraft_position=(0.0, 100.0, -60.0), aircraft_forward=fw, aircraft_right=rt,
@@ -115,7 +117,7 @@ def test_python_and_c_refuse_alike_and_accepted_sets_render_finite_and_equal(sca
     ok_box = VS.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
     box = VS.PlacedVolume(DENSITY, (-40.0, 80.0, -300.0), (80.0, 60.0, 80.0))
     box.extent = tuple(float(e) for e in extent)  # (the C check must see the extent itself)
-    c_params, c_box = _c_refuses(values, ok_box), _c_refuses(V.default_values(), box)
+    c_params, c_box = _c_refuses(values, ok_box), _c_refuses(VOLUME_PARAMS.defaults(), box)
     assert py_params == (c_params is not None), (scalars, colours, aircraft, c_params)
     assert py_box == (c_box is not None), (extent, c_box)
     if c_box is not None:

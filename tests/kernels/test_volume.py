@@ -11,6 +11,7 @@ import warp as wp
 
 import pywarp
 from helpers import assert_twins_agree
+from pywarp.core.cbridge import VOLUME_PARAMS
 from pywarp.core.runtime import TileLauncher
 from pywarp.kernels import camera as CAM
 from pywarp.flight import model as F
@@ -25,7 +26,7 @@ def ball(n=24, radius=9.0, soft=40.0):
 
 
 def scene(aircraft=True):
-    vals = V.default_values()
+    vals = VOLUME_PARAMS.defaults()
     vs = VS.VolumeSet([VS.PlacedVolume(ball(), (-60.0, 80.0, -300.0), (120.0, 90.0, 120.0)),
                       VS.PlacedVolume(ball(16, 6.0), (40.0, 120.0, -420.0), (160.0, 60.0, 100.0)),
                       VS.PlacedVolume(ball(20, 7.0)[:, :, :], (-200.0, 60.0, -500.0), (90.0, 90.0, 90.0))])
@@ -41,7 +42,7 @@ def scene(aircraft=True):
 
 
 def test_light_volume_warp_vs_c_and_closed_forms():
-    vals = V.default_values()
+    vals = VOLUME_PARAMS.defaults()
     vals["sun"] = (0.0, 1.0, 0.0)
     v = VS.PlacedVolume(ball(), (0, 0, 0), (24, 24, 24))
     vs = VS.VolumeSet([v])
@@ -82,7 +83,7 @@ def test_pixels_warp_vs_c():
 def test_render_is_deterministic_for_any_thread_count():
     vals, vs, cam = scene()
     g, n, d, l, o = vs.warp()
-    args = [V.warp_params(vals), g, n, d, l, o, cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), 160, 90]
+    args = [VOLUME_PARAMS.warp_struct(vals), g, n, d, l, o, cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), 160, 90]
     imgs = []
     for workers in (1, 2, 3):
         out = wp.zeros((90, 160, 3), dtype=wp.uint8)
@@ -108,7 +109,7 @@ def test_skipping_changes_no_pixel():
         if cap == 0:
             o = wp.zeros_like(o)
         out = wp.zeros((90, 160, 3), dtype=wp.uint8)
-        wp.launch(V.render_kernel, dim=(90, 160), inputs=[0, V.warp_params(vals), g, n, d, l, o,
+        wp.launch(V.render_kernel, dim=(90, 160), inputs=[0, VOLUME_PARAMS.warp_struct(vals), g, n, d, l, o,
                                                          cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), 160, 90],
                   outputs=[out])
         imgs.append(out.numpy())
@@ -184,27 +185,16 @@ def test_bad_input_is_refused():
         VS.PlacedVolume(np.zeros((4, 4, 4), np.uint8), (0, 0, 0), (1, 0, 1))
     with pytest.raises(ValueError, match="at most"):
         VS.VolumeSet([VS.PlacedVolume(np.zeros((2, 2, 2), np.uint8), (0, 0, 0), (1, 1, 1))] * 17)
-    vals = V.default_values()
-    with pytest.raises(ValueError, match="g must be"):
-        V.check_values(dict(vals, g=1.0))
-    with pytest.raises(ValueError, match="sun must be a unit"):
-        V.check_values(dict(vals, sun=(0.0, 2.0, 0.0)))
-    V.check_values(vals)
+    vals = VOLUME_PARAMS.defaults()
+    with pytest.raises(ValueError, match=r"^g is out of range \(ccl_volume_check\), got 1\.0$"):
+        V.checked_params(dict(vals, g=1.0))
+    with pytest.raises(ValueError, match=r"^sun is out of range \(ccl_volume_check\)"):
+        V.checked_params(dict(vals, sun=(0.0, 2.0, 0.0)))
+    V.checked_params(vals)
 
 
-def test_python_defaults_are_the_c_defaults():
-    from pywarp.core.binding import ffi, lib
-
-    p = ffi().new("ccl_volume_params *")
-    lib().ccl_volume_params_default(p)
-    for name, v in V.default_values().items():
-        got = getattr(p, name)
-        if isinstance(v, tuple):
-            assert (got.x, got.y, got.z) == pytest.approx(v, rel=1e-7), name
-        else:
-            assert got == pytest.approx(v, rel=1e-7), name
-    sun = V.sun_direction(35.0, 150.0)
-    assert sun == pytest.approx(V.default_values()["sun"], abs=1e-6)
+def test_the_default_sun_is_sun_direction_of_its_angles():
+    assert V.sun_direction(35.0, 150.0) == pytest.approx(VOLUME_PARAMS.defaults()["sun"], abs=1e-6)
 
 
 # --- survey extras ---------------------------------------------------------------------------------------------------

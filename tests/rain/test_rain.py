@@ -134,3 +134,12 @@ def test_lights_in_the_scene_match_c_at_sampled_pixels(mode):
     np.testing.assert_allclose(img[ys, xs], c, rtol=1e-6, atol=1e-6)
     with pytest.raises(ValueError, match="light1_colour"):
         RainSettings(light1_colour=(-0.1, 0.0, 0.0))
+
+
+def test_particle_settings_invalidate_the_particles():
+    base = RainSettings()
+    for name, value in {"size_mm": 1.0, "slowdown": 2.0, "wind_x": 1.0, "seed": 5, "variant": "thesis",
+                        "warm_start": False}.items():
+        assert dataclasses.replace(base, **{name: value}).invalidated(base) == {"particles"}, name
+    assert dataclasses.replace(base, drops=10).invalidated(base) == set()  # the technique grows the system itself
+    assert dataclasses.replace(base, mask_size=256).invalidated(base) == {"mask"}

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 import pytest
 
-from pywarp.kernels import terrain as K
+from pywarp.core.cbridge import TERRAIN_PARAMS, settings_values
 from pywarp.terrain.settings import PREVIEW, TEST_HEIGHTMAP, TerrainSettings
 from pywarp.terrain.technique import (TerrainPose, TerrainTechnique, render_pixels_c, render_pixels_warp,
                                       ground_height, walk_path)
@@ -63,10 +63,14 @@ def test_the_frame_is_the_pixel_function():
 
 
 def test_settings_defaults_are_the_c_defaults():
-    c = K.params_default()
-    mine = TerrainSettings().params()
+    s = TerrainSettings()
+    c = TERRAIN_PARAMS.defaults()
+    mine = settings_values(s)
+    computed = {"sun", "wind", "samples_per_axis"}  # from the settings' angles, wind_x/_z, rays_per_pixel
+    assert set(c) - {"perm"} == set(mine) | computed  # every C field but the Perlin table comes from the settings
+    mine.update({k: v for k, v in s.c_values().items() if k in computed})
     for name, v in c.items():
-        if name in ("sun", "seed"):
+        if name in ("sun", "seed", "perm"):
             continue  # the sun comes from the settings' elevation and azimuth
         got = mine[name]
         if isinstance(v, tuple):
@@ -87,7 +91,7 @@ def test_bad_settings_name_the_field():
     with pytest.raises(ValueError, match="fog"):
         TerrainSettings(fog="sometimes")
     with pytest.raises(ValueError, match="precision"):
-        K.c_params({"precision": float("nan")})
+        TERRAIN_PARAMS.checked({"precision": float("nan")})
 
 
 @pytest.mark.spec("pt-code-7.3", "pt-alg-7.3.4", "pt-7.3", "pt-code-7.10", "pt-code-7.11")

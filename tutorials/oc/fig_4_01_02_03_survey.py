@@ -43,6 +43,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
+from pywarp.core.cbridge import VOLUME_PARAMS  # noqa: E402
 from pywarp.kernels import camera as CAM  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
 from pywarp.flight import volumes as VS  # noqa: E402
@@ -102,7 +103,7 @@ def ellipsoid_opacity(p: np.ndarray, centre, radii, texture: np.ndarray) -> np.n
 
 
 def render_volume(density: np.ndarray, width: int, height: int) -> np.ndarray:
-    values = V.default_values()
+    values = VOLUME_PARAMS.defaults()
     values["sky_zenith"], values["sky_horizon"] = (0.20, 0.38, 0.70), (0.55, 0.68, 0.86)
     # the sun from the right and a little behind, 35 deg high: lit right sides, shaded left and bottom; fields of
     # 30 m for a ground seen from 150 m

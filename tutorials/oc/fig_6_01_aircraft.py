@@ -30,6 +30,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
+from pywarp.core.cbridge import VOLUME_PARAMS  # noqa: E402
 from pywarp.kernels import camera as CAM  # noqa: E402
 from pywarp.flight import model as F  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
@@ -47,7 +48,7 @@ def panel(nose: float, wing: float, width: int, height: int):
     pitch, roll = pywarp.equation("oc-6.1.1")(h + nose, h - nose, h + wing, h - wing, MODEL.length, MODEL.span)
     pitch, roll = float(pitch), float(roll)
     f, r, u = F.axes(0.0, pitch, roll)
-    values = V.default_values()
+    values = VOLUME_PARAMS.defaults()
     values.update(sun=V.sun_direction(35.0, 110.0), aircraft=1, aircraft_position=tuple(POS), aircraft_forward=f,
                   aircraft_right=r, aircraft_up=u)
     eye = POS + np.array([-9.0, 6.5, -11.0])  # in front, to the left and above

@@ -52,9 +52,9 @@ SPEC_CLAMPED = {"cumulus": "1 on [0.30, 0.60]", "stratocumulus": "1 on [0.25, 0.
 
 def renderer_clamp() -> bool:
     """Whether the cloudscape renderer clamps the gradient: ``gradient_clamp`` of ``ccl_cloudscape_params_default``."""
-    from pywarp.clouds.cloudscape import CloudscapeSettings, param_values
+    from pywarp.clouds.cloudscape import CloudscapeSettings
 
-    return bool(param_values(CloudscapeSettings())["gradient_clamp"])
+    return bool(CloudscapeSettings().c_values()["gradient_clamp"])
 
 
 def variants() -> tuple:

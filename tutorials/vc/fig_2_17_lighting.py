@@ -57,8 +57,8 @@ import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.clouds.cloudscape import (CameraPose, CloudscapeSettings, CloudscapeTechnique, c_params,  # noqa: E402
-                                      param_values)
+from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.settings import CLOUDSCAPE_PARAMS  # noqa: E402
 
 SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, fov_y_deg=50.0, lighting="thesis", powder=True)
 FULL = dict(width=400, height=225)
@@ -74,7 +74,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     size = QUICK if quick else FULL
-    p = param_values(CloudscapeSettings(lighting="thesis"))  # the thesis lighting's constants
+    p = CloudscapeSettings(lighting="thesis").c_values()  # the thesis lighting's constants
     dim = {name: tuple(AMBIENT_SCALE * v for v in p[name]) for name in ("ambient_bottom", "ambient_top")}
     rows = (
         ("silver lining", BELOW_TO_SUN, dict(sun_elevation_deg=10.0, sun_azimuth_deg=0.0),
@@ -176,7 +176,8 @@ def _energy_octaves(d: np.ndarray, a: float, octaves: int) -> np.ndarray:
     multiple-scattering octaves of the default factors, the powder term on (vc-2.31 as printed)."""
     from pywarp.core.binding import lib
 
-    p = c_params(param_values(CloudscapeSettings(ms_octaves=octaves, silver_weight=0.0, g=0.2, powder=True)))
+    s = CloudscapeSettings(ms_octaves=octaves, silver_weight=0.0, g=0.2, powder=True)
+    p = CLOUDSCAPE_PARAMS.to_c(s.c_values())
     return np.array([lib().ccl_cloudscape_energy(p, float(x), a, 0.0) for x in d])
 
 

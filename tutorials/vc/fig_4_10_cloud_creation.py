@@ -9,13 +9,13 @@ the renderer; panel (g) shows the literal reading C := D_h); the curl-displaced 
 the final density (vc-2.30). Each step is computed
 with the public registry functions (pywarp.clouds_relative_height, pywarp.clouds_height_gradient, pywarp.clouds_base_shape,
 pywarp.clouds_coverage, pywarp.clouds_detail_erosion) on texture values read from the renderer's own textures
-(pywarp.clouds.cloudscape.RenderTextures) with the renderer's world scales (pywarp.clouds.cloudscape.param_values), so the slice is
-the density the renderer marches (up to float32 rounding: the texture lookups here are NumPy float64 re-implementations
+(pywarp.clouds.cloudscape.RenderTextures) with the renderer's world scales
+(pywarp.clouds.settings.CloudscapeSettings.c_values), so the slice is the density the renderer marches (up to float32 rounding: the texture lookups here are NumPy float64 re-implementations
 of the renderer's wrap-around bilinear / trilinear samplers). A render of the same clouds from above marks the slice.
 
 Parameters (none are given in the thesis): the renderer's defaults (layer 1.5-4 km, texture sizes 128^3 / 32^3 /
-128^2 / 512^2, its world scales of the textures -- read from pywarp.clouds.cloudscape.param_values and printed in the figure
--- and clamped height gradients), coverage 0.45, cloud type 0.75, seed 0, sun 30° up at azimuth 120°; slice
+128^2 / 512^2, its world scales of the textures -- read from pywarp.clouds.settings.CloudscapeSettings.c_values and
+printed in the figure -- and clamped height gradients), coverage 0.45, cloud type 0.75, seed 0, sun 30° up at azimuth 120°; slice
 z = -22 km, x = -20 .. 20 km; camera 12 km up at (0, -6) km looking 30° down along -z (60° vertical field of view),
 640x360. The last slice row is not what the renderer does: it shows the same step with the threshold C := 1 - D_h,
 the reading most other implementations use (spec vc-2.29 note 2), for contrast. Output: figures/vc/fig-4.10.png.
@@ -50,7 +50,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
+from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
 
 # the weather map's one periodic lookup (weather_detile off), so that the top view (a), the slices and the render
 # (b) show the same clouds; the threshold C of vc-2.29 is the renderer's default reading, C := 1 - D_h
@@ -162,7 +162,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     settings = CloudscapeSettings(**(QUICK if quick else FULL), **SCENE)
     tech = CloudscapeTechnique(settings)
-    p = param_values(settings)
+    p = settings.c_values()
 
     # %% [markdown]
     # The slice and the render use the same textures: the technique's (tech.textures) and its parameters.

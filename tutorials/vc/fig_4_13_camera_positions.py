@@ -42,7 +42,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, param_values  # noqa: E402
+from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
 
 SCENE = dict(coverage=0.6, cloud_type=0.75, seed=0, sun_elevation_deg=25.0, sun_azimuth_deg=120.0, fov_y_deg=60.0)
 FULL = dict(width=480, height=270)
@@ -81,7 +81,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     settings = CloudscapeSettings(**(QUICK if quick else FULL), **SCENE)
     tech = CloudscapeTechnique(settings)
-    p = param_values(settings)
+    p = settings.c_values()
     x_in, z_in = clear_spot(tech.textures.weather[..., 0], p["weather_scale_km"], CLEAR_HALF_KM)
     top = settings.layer_top_km
     poses = (("(a) inside the layer", CameraPose(x_in, 2.5, z_in, 90.0, -3.0, settings.fov_y_deg)),
