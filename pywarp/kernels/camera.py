@@ -87,6 +87,18 @@ class Camera:
     def eye_vec3(self) -> wp.vec3:
         return wp.vec3(*self.eye.tolist())
 
+    def to_c(self):
+        """The same camera as a ``ccl_camera`` (cffi; the matrices column-major, as the C code reads them)."""
+        from ..core.binding import ffi
+
+        c = ffi().new("ccl_camera *")
+        c.eye.x, c.eye.y, c.eye.z = (float(v) for v in self.eye)
+        for name in ("view", "proj", "view_proj", "inv_view_proj", "inv_view_proj_rot"):
+            arr = getattr(c, name)
+            for i, v in enumerate(self.column_major(name)):
+                arr[i] = float(v)
+        return c
+
     def jittered(self, dx_px: float, dy_px: float, width: int, height: int) -> "Camera":
         """The same camera moved by a fraction of a pixel (TAA-style sub-pixel jitter): pixel (x, y) of a width x
         height image then looks through the point (x + 0.5 + dx_px, y + 0.5 + dy_px) of this camera's image plane

@@ -31,7 +31,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from pywarp.clouds import textures as T  # noqa: E402
-from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique, RenderTextures  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings, RenderTextures  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
 
 GENERA = (("fig-2.6.png", "nimbostratus-like overcast (type 0.5, coverage 1, precipitation 1)",
            dict(cloud_type=0.5, coverage=1.0, precipitation=1.0)),
