@@ -1,4 +1,4 @@
-"""The viewer's controls interface (pywarp.core.scenes): the free-fly default on the settings' camera fields (keys
+"""The viewer's controls interface (pywarp.viewer.controls): the free-fly default on the settings' camera fields (keys
 move the camera as the bindings say, values stay in their specs' domains), scenes without camera fields, a scene's
 own controls, and backward compatibility of Scene."""
 from __future__ import annotations
@@ -38,10 +38,10 @@ def test_clouds_camera_fields_are_found_by_name():
         "pitch": "camera_pitch_deg"}
 
 
-def test_free_fly_is_the_default_and_moves_as_the_bindings_say():
+def test_clouds_fly_freely_as_the_bindings_say():
     s = flat()
     ctl = V.make_controls(clouds(), s)
-    assert type(ctl) is V.FreeFlyControls and ctl.unit == "km" and ctl.speed == V.FREE_FLY_SPEED["km"]
+    assert isinstance(ctl, V.FreeFlyControls) and ctl.unit == "km" and ctl.speed == V.FREE_FLY_SPEED["km"]
     v = ctl.speed
     st, s1 = step(ctl, s, held={"W"})  # yaw 0, pitch 0: forward is -z
     assert st.moving and s1.camera_z_km == pytest.approx(-v) and s1.camera_x_km == pytest.approx(0.0)
@@ -100,7 +100,7 @@ def test_free_fly_speed_keys_and_nothing_held_is_still():
     assert ctl.speed == v / 2
 
 
-def test_free_fly_preview_turns_reprojection_on_for_clouds():
+def test_clouds_preview_turns_reprojection_on():
     assert V.make_controls(clouds(), flat()).preview(flat()) == {"reprojection": True}
     assert V.FreeFlyControls.bindings and V.FreeFlyControls.benchmark_keys
 
