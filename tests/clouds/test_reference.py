@@ -15,9 +15,9 @@ from pywarp.clouds.cloudscape import RenderTextures
 from pywarp.clouds.reference import (
     ReferenceRenderer,
     hg_samples_kernel,
-from pywarp.core.pose import Pose
 )
 from pywarp.clouds.settings import CloudscapeSettings
+from pywarp.core.pose import Pose
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 
