@@ -228,7 +228,7 @@ def test_passes_do_not_change_the_image(monkeypatch, textures):
 def test_the_scene_technique_protocol(textures):
     """make_technique gives the reference with settings.reference; update keeps the constructor's arguments and
     follows the settings; resize changes the frame."""
-    from pywarp.clouds.scene import make_technique
+    from pywarp.clouds.technique import make_technique
 
     t = make_technique(small(width=12, height=8, reference=True, spp=2, reference_seed=3))
     assert isinstance(t, ReferenceRenderer) and t.spp == 2 and t.seed == 3
