@@ -29,6 +29,8 @@ from .settings import VIEWS, FlightSettings  # noqa: E402
 
 @dataclass(frozen=True)
 class AircraftState:
+    """The aircraft at a moment: position (m, y up), heading, pitch and roll (rad), speed (m/s)."""
+
     position: tuple
     heading: float
     pitch: float
