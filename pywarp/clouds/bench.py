@@ -223,11 +223,13 @@ def measure_sky(tech, repeat: int = 2) -> dict:
     """Fig 4.16: the sky stage alone (ms) for the gradient and Preetham models, over the full frame and with
     reprojection (one pixel per 4 x 4 block), on ``tech``'s frame and camera."""
     from dataclasses import replace
+
     from ..core.pose import Pose
+    from ..kernels.camera import pose_camera
     from .cloudscape import make_sky
 
     s = tech.settings
-    cam = Pose.from_settings(s).camera(s.width, s.height)
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
     buf = tech._buffers["current"]
     out = {}
     for kind in ("gradient", "preetham"):

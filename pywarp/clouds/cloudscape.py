@@ -299,7 +299,7 @@ def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, 
     params = c_params(param_values(s))
     tex = c_textures(textures, s.half_base())
     sky = c_sky(s)
-    cam = pose.camera(s.width, s.height).to_c()
+    cam = CAM.pose_camera(pose, s.width, s.height).to_c()
     field_ = f.new("const char **")
     if lb.ccl_cloudscape_check(params, tex, sky, field_) != 0:
         raise ValueError(f"ccl_cloudscape_check rejected {f.string(field_[0]).decode()}")
@@ -318,7 +318,7 @@ def render_pixels_warp(technique, xs, ys, pose: Pose | None = None,
     with :func:`render_pixels_c`."""
     s = technique.settings
     pose = pose or Pose.from_settings(s)
-    cam = pose.camera(s.width, s.height)
+    cam = CAM.pose_camera(pose, s.width, s.height)
     tex = technique.textures.warp(s.half_base())
     dev = technique.device
     xa = wp.array(np.asarray(xs, dtype=np.int32), dtype=wp.int32, device=dev)
@@ -343,7 +343,7 @@ def render_frame_c(settings: CloudscapeSettings, textures: RenderTextures, pose:
     params = c_params(param_values(s))
     tex = c_textures(textures, s.half_base())
     out = np.empty((s.height, s.width, 3), dtype=np.float32)
-    status = lb.ccl_cloudscape_render(params, tex, c_sky(s), pose.camera(s.width, s.height).to_c(), s.width,
+    status = lb.ccl_cloudscape_render(params, tex, c_sky(s), CAM.pose_camera(pose, s.width, s.height).to_c(), s.width,
                                       s.height, frame, f.from_buffer("float[]", out), out.size)
     status_error(status, "ccl_cloudscape_render")
     return out

@@ -81,6 +81,7 @@ from ..core.runtime import init, launcher as shared_launcher
 
 init()
 
+from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import cloudscape as K  # noqa: E402
 from ..kernels.hash import hash_pcg  # noqa: E402
 from ..kernels.phase import phase_hg  # noqa: E402
@@ -801,7 +802,7 @@ class ReferenceRenderer:
         the image stays unbiased."""
         s = self.settings
         pose = pose or Pose.from_settings(s)
-        cam = pose.camera(s.width, s.height)
+        cam = CAM.pose_camera(pose, s.width, s.height)
         h, w = s.height, s.width
         tex = self.textures.warp(s.half_base())
         sun = wp.vec3(*self.sky.sun.tolist())

@@ -1,10 +1,22 @@
 """Registers the ``clouds`` scene (vc): the volumetric cloudscape. Importing this module imports neither Warp nor the C
-library: the technique, the camera path, the benchmarks and the controls are named as "module:function" and imported
-when first used."""
+library: the camera path, the benchmarks and the controls are named as "module:function" and imported when first used,
+and the technique factory (the real-time technique, or the path-traced reference) imports its choice when called."""
 from __future__ import annotations
 
 from ..core.scenes import Benchmark, CameraPath, Scene, register
 from .settings import CloudscapeSettings
+
+
+def make_technique(settings: CloudscapeSettings):
+    """The cloudscape technique (vc-A33: init / update / render / resize), textures generated (cached); with
+    ``settings.reference`` the path-traced ground truth (:class:`pywarp.clouds.reference.ReferenceRenderer`)."""
+    if settings.reference:
+        from .reference import ReferenceRenderer
+
+        return ReferenceRenderer(settings)
+    from .technique import CloudscapeTechnique
+
+    return CloudscapeTechnique(settings)
 
 
 #: the path tracer's settings: options of ``pywarp render`` only
@@ -15,7 +27,7 @@ SCENE = register(Scene(
     default_benchmark="cloudscape",
     description="volumetric cloudscape of the vc thesis: Preetham or gradient sky, cloud-layer raymarch, reprojection",
     settings=CloudscapeSettings,
-    technique="pywarp.clouds.technique:make_technique",
+    technique=make_technique,
     paths={"flythrough": CameraPath(
         "flythrough", "climb from the start altitude below the cloud layer, through it, to 1.5 km above its top, "
                       "flying 12 km forward along the heading; the pitch eases down to -12 deg",

@@ -23,6 +23,7 @@ chosen pixels. The camera is a :class:`pywarp.core.pose.Pose` (position in km).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import warp as wp
@@ -39,30 +40,6 @@ from ..kernels import reproj as RP  # noqa: E402
 from .cloudscape import (GradientSky, PreethamSky, RenderTextures, SkyModel, checked_values, light_params,  # noqa: E402
                          make_sky, warp_params)
 from .settings import CloudscapeSettings  # noqa: E402
-
-
-def make_technique(settings: CloudscapeSettings):
-    """The scene's technique for ``settings``: the cloudscape technique, textures generated (cached); with
-    ``settings.reference`` the path-traced ground truth (:class:`pywarp.clouds.reference.ReferenceRenderer`)."""
-    if settings.reference:
-        from .reference import ReferenceRenderer
-
-        return ReferenceRenderer(settings)
-    return CloudscapeTechnique(settings)
-
-
-class _JitteredPose:
-    """A camera pose seen through its camera moved by (dx_px, dy_px) pixels (:meth:`pywarp.kernels.camera.Camera.
-    jittered`); every other attribute is the pose's (CloudscapeTechnique.render_accumulated)."""
-
-    def __init__(self, pose: Pose, dx_px: float, dy_px: float):
-        self._pose, self.dx_px, self.dy_px = pose, dx_px, dy_px
-
-    def __getattr__(self, name):
-        return getattr(self._pose, name)
-
-    def camera(self, width: int, height: int) -> CAM.Camera:
-        return self._pose.camera(width, height).jittered(self.dx_px, self.dy_px, width, height)
 
 
 class CloudscapeTechnique(Technique):
@@ -134,7 +111,7 @@ class CloudscapeTechnique(Technique):
         finishes."""
         s = self.settings
         pose = pose or Pose.from_settings(s)
-        cam = pose.camera(s.width, s.height)
+        cam = CAM.pose_camera(pose, s.width, s.height)
         reproj = s.reprojection if reprojection is None else bool(reprojection)
         if reproj and self.camera_in_layer_or_above(pose):
             reproj = False  # vc-A24: the view ray does not always hit the inner sphere
@@ -214,7 +191,7 @@ class CloudscapeTechnique(Technique):
         total = None
         for k, (dx, dy) in enumerate(offsets):
             step = None if progress is None else (lambda f: progress(f / n))
-            view = pose if k == 0 else _JitteredPose(pose, float(dx), float(dy))
+            view = pose if k == 0 else replace(pose, jitter_px=(float(dx), float(dy)))
             frame = self.render(view, reprojection=False, encode=False, progress=step)
             total = frame.astype(np.float64) if total is None else total + frame
         self._prev_camera = None  # a jittered camera is no history for a later reprojected frame

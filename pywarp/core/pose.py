@@ -4,12 +4,13 @@ cameraPosition / cameraTarget) and the vertical field of view.
     from pywarp.core.pose import Pose
     pose = Pose(x=0.0, y=0.3, z=0.0, yaw_deg=0.0, pitch_deg=8.0)   # the position in the scene's unit (km, units)
     pose.forward()                      # (sin yaw cos pitch, sin pitch, -cos yaw cos pitch)
-    cam = pose.camera(640, 360)         # pywarp.kernels.camera.Camera; cam.to_c() is the ccl_camera
+    cam = pose_camera(pose, 640, 360)   # pywarp.kernels.camera: the matrices; cam.to_c() is the ccl_camera
 
 Yaw 0 looks along -z, a positive yaw turns towards +x; the pitch is up positive; y is up. A scene's settings hold the
 pose in fields found by name (:func:`camera_fields`), so ``Pose.from_settings`` and the viewer's free-fly camera
-(:class:`pywarp.viewer.controls.FreeFlyControls`) read every scene's camera the same way. Importing this module
-imports neither Warp nor the C library (:meth:`Pose.camera` does).
+(:class:`pywarp.viewer.controls.FreeFlyControls`) read every scene's camera the same way. The pose is plain numbers
+(this module imports neither Warp nor the C library); the camera matrices of a pose are
+:func:`pywarp.kernels.camera.pose_camera`'s.
 """
 from __future__ import annotations
 
@@ -52,7 +53,8 @@ def forward(yaw_deg: float, pitch_deg: float) -> tuple[float, float, float]:
 
 @dataclass(frozen=True)
 class Pose:
-    """Camera position (the scene's unit; y up), yaw / pitch (deg) and vertical field of view (deg)."""
+    """Camera position (the scene's unit; y up), yaw / pitch (deg), vertical field of view (deg) and a sub-pixel
+    offset of the image (``jitter_px``: (dx, dy) pixels, TAA-style; the frames of an accumulated still)."""
 
     x: float = 0.0
     y: float = 0.0
@@ -60,6 +62,7 @@ class Pose:
     yaw_deg: float = 0.0
     pitch_deg: float = 0.0
     fov_y_deg: float = 60.0
+    jitter_px: tuple = (0.0, 0.0)
 
     @classmethod
     def from_settings(cls, s) -> "Pose":
@@ -82,12 +85,3 @@ class Pose:
         r = np.cross(f, [0.0, 1.0, 0.0])
         r /= np.linalg.norm(r)
         return r, np.cross(r, f), f
-
-    def camera(self, width: int, height: int, z_near: float = 0.01, z_far: float = 1000.0):
-        """The camera matrices (vc-A25 / pt-code-7.2, :func:`pywarp.kernels.camera.camera_look_at`): the eye, the
-        target one unit along :meth:`forward`, world up (0, 1, 0), the aspect width / height."""
-        from ..kernels.camera import camera_look_at
-
-        eye = self.eye()
-        return camera_look_at(eye, eye + self.forward(), (0.0, 1.0, 0.0), math.radians(self.fov_y_deg),
-                              width / height, z_near, z_far)

@@ -120,6 +120,18 @@ class Camera:
                       inv_view_proj_rot=f32(d("inv_view_proj_rot") @ j_inv))
 
 
+def pose_camera(pose, width: int, height: int, z_near: float = 0.01, z_far: float = 1000.0) -> Camera:
+    """The camera of a :class:`pywarp.core.pose.Pose` for a width x height image (pt-code-7.2: cameraPosition and
+    cameraTarget = position + forward, world up (0, 1, 0); the pose's vertical field of view), moved by its
+    sub-pixel ``jitter_px`` (:meth:`Camera.jittered`) where that is not (0, 0)."""
+    eye = pose.eye()
+    cam = camera_look_at(eye, eye + pose.forward(), (0.0, 1.0, 0.0), math.radians(pose.fov_y_deg), width / height,
+                         z_near, z_far)
+    if pose.jitter_px != (0.0, 0.0):
+        cam = cam.jittered(pose.jitter_px[0], pose.jitter_px[1], width, height)
+    return cam
+
+
 def _check_camera(camera, name: str = "camera") -> Camera:
     if not isinstance(camera, Camera):
         raise TypeError(f"{name} must be a pywarp.kernels.camera.Camera (see camera_look_at), got "
@@ -320,4 +332,4 @@ def _camera_ray_kernel(xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32
     out[i] = camera_ray(inv_view_proj_rot, xs[i], ys[i], width, height)
 
 
-__all__ = ["Camera", "camera_look_at", "c_camera_look_at", "camera_ray", "subpixel_jitter"]
+__all__ = ["Camera", "camera_look_at", "c_camera_look_at", "camera_ray", "pose_camera", "subpixel_jitter"]

@@ -24,6 +24,7 @@ from ..core.technique import Technique
 
 init()
 
+from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import terrain as K  # noqa: E402
 from ..kernels.noise import perm_array  # noqa: E402
 from .settings import PREVIEW, TerrainSettings  # noqa: E402
@@ -70,7 +71,7 @@ class TerrainTechnique(Technique):
         full = self.settings
         s = effective(full)
         pose = pose or Pose.from_settings(full)
-        cam = pose.camera(s.width, s.height)
+        cam = CAM.pose_camera(pose, s.width, s.height)
         b = self._buffers
         band_done = None if progress is None else (lambda n, total=s.height: progress(n / total))
         self.launcher.launch(K.render_kernel, s.height, s.width,
@@ -101,7 +102,7 @@ def render_pixels_c(settings: TerrainSettings, xs, ys, pose: Pose | None = None)
     """The C reference ``ccl_terrain_pixel`` at pixels (xs[k], ys[k]): (colours (k, 3) in [0, 1], steps (k,))."""
     s = settings
     pose = pose or Pose.from_settings(s)
-    return equation("pt-alg-7.1.6", impl="c")(np.asarray(xs), np.asarray(ys), s.width, s.height, pose.camera(s.width, s.height),
+    return equation("pt-alg-7.1.6", impl="c")(np.asarray(xs), np.asarray(ys), s.width, s.height, CAM.pose_camera(pose, s.width, s.height),
                                  s.params())
 
 
@@ -110,7 +111,7 @@ def render_pixels_warp(settings: TerrainSettings, xs, ys, pose: Pose | None = No
     s = settings
     pose = pose or Pose.from_settings(s)
     return equation("pt-alg-7.1.6", device=s.device)(np.asarray(xs), np.asarray(ys), s.width, s.height,
-                                              pose.camera(s.width, s.height), s.params())
+                                              CAM.pose_camera(pose, s.width, s.height), s.params())
 
 
 def ground_height(settings: TerrainSettings, x, z, octaves: int | None = None) -> np.ndarray:

@@ -15,11 +15,12 @@ import pytest
 from pywarp.clouds.cloudscape import CloudscapeSettings
 from pywarp.clouds.technique import CloudscapeTechnique
 from pywarp.core.pose import Pose
+from pywarp.kernels.camera import pose_camera
 
 def horizon_rows(s: CloudscapeSettings, pose: Pose) -> np.ndarray:
     """Per column, the (fractional) image row where the horizon crosses, from the camera geometry in float64:
     the elevation of the horizon is -acos(R / (R + altitude)); the pixel rays of a pinhole camera pitched up."""
-    cam = pose.camera(s.width, s.height)
+    cam = pose_camera(pose, s.width, s.height)
     inv = np.asarray(cam.inv_view_proj_rot, dtype=np.float64).reshape(4, 4)
     dip = math.acos(s.earth_radius_km / (s.earth_radius_km + pose.y))
     ys = np.linspace(0.0, s.height, 8 * s.height + 1)

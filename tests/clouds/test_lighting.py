@@ -88,6 +88,7 @@ from pywarp.core.pose import Pose  # noqa: E402
 from pywarp.clouds import settings as CS  # noqa: E402
 from pywarp.core.binding import ffi, lib  # noqa: E402
 from pywarp.kernels import cloudscape as K  # noqa: E402
+from pywarp.kernels.camera import pose_camera  # noqa: E402
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 LIGHT = ("sun_colour", "ambient_top", "ambient_bottom", "ambient_ground")
@@ -310,7 +311,7 @@ def _cloud_light(t: CloudscapeTechnique, pose: Pose):
     """(the clouds' own colour C / O_D, opacity O_D) per pixel: the light the clouds send, before compositing and
     aerial perspective."""
     s = t.settings
-    cam = pose.camera(s.width, s.height)
+    cam = pose_camera(pose, s.width, s.height)
     col = wp.zeros((s.height, s.width), dtype=wp.vec3)
     op = wp.zeros((s.height, s.width), dtype=float)
     wp.launch(_march_kernel, (s.height, s.width),

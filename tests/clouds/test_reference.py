@@ -18,6 +18,7 @@ from pywarp.clouds.reference import (
 )
 from pywarp.clouds.settings import CloudscapeSettings
 from pywarp.core.pose import Pose
+from pywarp.kernels.camera import pose_camera
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 
@@ -94,7 +95,7 @@ def test_slab_single_scattering_closed_form(textures):
     mean, se = _mean_and_se(r, img)
     from pywarp import camera_ray
 
-    cam = Pose.from_settings(s).camera(s.width, s.height)
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
     ys, xs = np.mgrid[0:s.height, 0:s.width]
     d = np.asarray(camera_ray(xs.ravel(), ys.ravel(), s.width, s.height, cam), dtype=np.float64)
     sun = np.asarray(s.sun(), dtype=np.float64)
@@ -228,7 +229,7 @@ def test_passes_do_not_change_the_image(monkeypatch, textures):
 def test_the_scene_technique_protocol(textures):
     """make_technique gives the reference with settings.reference; update keeps the constructor's arguments and
     follows the settings; resize changes the frame."""
-    from pywarp.clouds.technique import make_technique
+    from pywarp.clouds.scene import make_technique
 
     t = make_technique(small(width=12, height=8, reference=True, spp=2, reference_seed=3))
     assert isinstance(t, ReferenceRenderer) and t.spp == 2 and t.seed == 3

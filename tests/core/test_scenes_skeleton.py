@@ -59,12 +59,13 @@ def test_every_scene_reads_its_pose_from_its_settings_fields():
 
 
 def test_pose_camera_and_its_c_twin_equal_ccl_camera_look_at():
-    """Pose.camera builds the matrices from the eye and eye + forward; Camera.to_c hands them to C unchanged:
-    both equal what ccl_camera_look_at builds from the same eye and target."""
-    from pywarp.kernels.camera import c_camera_look_at
+    """pose_camera builds the matrices from the eye and eye + forward; Camera.to_c hands them to C unchanged:
+    both equal what ccl_camera_look_at builds from the same eye and target. A jittered pose is the camera moved by
+    its sub-pixel offset."""
+    from pywarp.kernels.camera import c_camera_look_at, pose_camera
 
     pose = Pose(0.5, 0.3, -1.0, 25.0, 8.0, 60.0)
-    cam = pose.camera(320, 180)
+    cam = pose_camera(pose, 320, 180)
     ref = c_camera_look_at(pose.eye(), pose.eye() + pose.forward(), (0.0, 1.0, 0.0), math.radians(60.0),
                            320 / 180, 0.01, 1000.0)
     c = cam.to_c()
@@ -72,6 +73,11 @@ def test_pose_camera_and_its_c_twin_equal_ccl_camera_look_at():
     for name in ("view", "proj", "view_proj", "inv_view_proj", "inv_view_proj_rot"):
         np.testing.assert_array_equal(getattr(cam, name), getattr(ref, name))
         np.testing.assert_array_equal(np.array(list(getattr(c, name)), np.float32), ref.column_major(name))
+    moved = pose_camera(Pose(0.5, 0.3, -1.0, 25.0, 8.0, 60.0, jitter_px=(0.25, -0.5)), 320, 180)
+    shifted = ref.jittered(0.25, -0.5, 320, 180)
+    for name in ("view", "proj", "view_proj", "inv_view_proj", "inv_view_proj_rot"):
+        np.testing.assert_array_equal(getattr(moved, name), getattr(shifted, name))
+    assert not np.array_equal(moved.proj, cam.proj)
 
 
 # --- the technique base ------------------------------------------------------------------------------------------------
