@@ -440,10 +440,10 @@ SPEED_MEASUREMENTS = ("reprojected", "full_same_size", "full")
 #: The measurement, as source: run by ``exec`` in this process (ours) and by ``PYTHON -c`` in another interpreter
 #: (the baseline), where it imports *that* interpreter's pywarp. It uses only what every version of the package has
 #: had (CloudscapeSettings, CloudscapeTechnique(settings, textures=), render(pose, reprojection=), a pose class built
-#: from_settings or from six numbers in order; pywarp.clouds.technique with pywarp.core.pose.Pose, before that
-#: pywarp.clouds.cloudscape with CameraPose, before that pywarp.cloudscape). As a program it answers one JSON line per command
-#: (:data:`SPEED_MEASUREMENTS`, then ``quit``) on the original stdout; everything else that writes to stdout (library
-#: notices) is sent to stderr.
+#: from_settings or from its first six fields in order: pywarp.clouds.technique with pywarp.core.pose.Pose, before
+#: that pywarp.clouds.cloudscape with CameraPose, before that pywarp.cloudscape). As a program it answers one JSON line
+#: per command (:data:`SPEED_MEASUREMENTS`, then ``quit``) on the original stdout; everything else that writes to
+#: stdout (library notices) is sent to stderr.
 _SPEED_PROBE = r"""
 import dataclasses, json, os, sys, time
 
@@ -484,7 +484,7 @@ class SpeedProbe:
         t.render(p, reprojection=True)
         total = 0.0
         for k in range(1, self.frames + 1):
-            x, y, z, yaw, pitch, fov = dataclasses.astuple(p)
+            x, y, z, yaw, pitch, fov = dataclasses.astuple(p)[:6]
             q = Pose(x, y, z - 0.002 * k, yaw + 0.02 * k, pitch, fov)
             t0 = time.perf_counter()
             t.render(q, reprojection=True)

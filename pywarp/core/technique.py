@@ -13,7 +13,8 @@ settings, the device and the order of the steps::
         def render(self, pose=None, progress=None): ...
 
 * ``Technique(settings)``: the settings (default: ``settings_class()``), the device (:meth:`use_device`), then
-  :meth:`init`: :meth:`rebuild` of everything and :meth:`resize` to the settings' size.
+  :meth:`init`: :meth:`rebuild` of every invalidation its fields declare (:func:`invalidations`) and :meth:`resize`
+  to the settings' size.
 * ``update(**changes)``: the new settings; what the change invalidates comes from the settings' parameter specs
   (``param(..., invalidates="sky" | "textures" | "size" | "device")``, :meth:`pywarp.core.params.Settings.
   invalidated`): "device" switches the device first, :meth:`rebuild` gets the invalidations and the changed field
@@ -27,11 +28,14 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import replace
 
-from .params import INVALIDATES
+from .params import specs
 from .runtime import launcher as shared_launcher
 
-#: what :meth:`Technique.init` rebuilds: every invalidation
-EVERYTHING = frozenset(INVALIDATES) - {"nothing"}
+
+def invalidations(settings_class) -> frozenset:
+    """Every invalidation the fields of a settings class declare (their specs' ``invalidates``, less "nothing"):
+    what :meth:`Technique.init` rebuilds."""
+    return frozenset(p.invalidates for p in specs(settings_class)) - {"nothing"}
 
 
 class Technique:
@@ -55,7 +59,7 @@ class Technique:
 
     def init(self) -> None:
         """Everything the first frame needs: :meth:`rebuild` of every invalidation and field, then the buffers."""
-        self.rebuild(EVERYTHING, {f.name for f in dataclasses.fields(self.settings)})
+        self.rebuild(invalidations(type(self.settings)), {f.name for f in dataclasses.fields(self.settings)})
         self.resize(self.settings.width, self.settings.height)
 
     def rebuild(self, stale: set, changed: set) -> None:

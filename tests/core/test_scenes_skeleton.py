@@ -95,7 +95,7 @@ class _Toy(Settings):
 
 
 def _toy_technique():
-    from pywarp.core.technique import EVERYTHING, Technique
+    from pywarp.core.technique import Technique, invalidations
 
     class Toy(Technique):
         settings_class = _Toy
@@ -110,7 +110,7 @@ def _toy_technique():
         def allocate(self, width, height):
             self.log.append(("allocate", width, height))
 
-    return Toy, EVERYTHING
+    return Toy, invalidations(_Toy)
 
 
 def test_technique_init_rebuilds_everything_then_allocates():
