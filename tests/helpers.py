@@ -70,7 +70,8 @@ def march_frames(view: dict, marches: dict, reference: str, width: int = 240, he
     display-linear frames in levels of 8 bits by name, the view samples each took as ``name + "_samples"``, and the
     frame after ``reference``'s (the same march at the next jitter offset: the variation every frame already has) as
     ``reference + "_next"``."""
-    from pywarp.clouds.cloudscape import CameraPose, CloudscapeTechnique
+    from pywarp.core.pose import Pose
+    from pywarp.clouds.technique import CloudscapeTechnique
     from pywarp.clouds.settings import CloudscapeSettings
 
     out = {}
@@ -79,7 +80,7 @@ def march_frames(view: dict, marches: dict, reference: str, width: int = 240, he
         s = CloudscapeSettings(width=width, height=height, **view, **kw)
         t = CloudscapeTechnique(s, textures=tex)
         tex = t.textures
-        pose = CameraPose.from_settings(s)
+        pose = Pose.from_settings(s)
         out[name] = t.render(pose, reprojection=False, encode=False) * 255.0
         out[name + "_samples"] = int(t.samples_taken().astype(np.int64).sum())
         if name == reference:

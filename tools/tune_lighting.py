@@ -63,7 +63,8 @@ def main(argv=None):
     a = ap.parse_args(argv)
 
     from pywarp.clouds.bench_reference import ACCUMULATE, SCENES, errors
-    from pywarp.clouds.cloudscape import CloudscapeTechnique, RenderTextures
+    from pywarp.clouds.cloudscape import RenderTextures
+    from pywarp.clouds.technique import CloudscapeTechnique
     from pywarp.clouds.settings import CloudscapeSettings
 
     base = CloudscapeSettings(width=a.width, height=a.height)

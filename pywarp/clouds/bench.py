@@ -81,15 +81,15 @@ def _timed(fn, repeat: int) -> float:
 
 def _reprojected_ms(t, n_frames: int = 16) -> float:
     """Median time of steady-state reprojected frames (after one frame without history), slowly moving camera."""
-    from .cloudscape import CameraPose
+    from ..core.pose import Pose
 
-    p = CameraPose.from_settings(t.settings)
+    p = Pose.from_settings(t.settings)
     step = [0]
 
     def next_frame():
         step[0] += 1
         k = step[0]
-        q = CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * k, p.yaw_deg + 0.02 * k, p.pitch_deg, p.fov_y_deg)
+        q = Pose(p.x, p.y, p.z - 0.002 * k, p.yaw_deg + 0.02 * k, p.pitch_deg, p.fov_y_deg)
         t.render(q, reprojection=True)
 
     t.render(p, reprojection=True)  # the frame without history
@@ -131,17 +131,16 @@ def _reprojected_path_ms(t, n_frames: int = 16) -> tuple[float, dict]:
     :data:`REPROJECTION_SPLIT` + ``other`` (mean ms per frame)."""
     import time
 
-    from .cloudscape import CameraPose
+    from ..core.pose import Pose
 
-    p = CameraPose.from_settings(t.settings)
+    p = Pose.from_settings(t.settings)
     t.render(p, reprojection=True)  # the frame without history
     timer = _KernelTimer(t.launcher)
     t.launcher = timer
     total = 0.0
     try:
         for k in range(1, n_frames + 1):
-            q = CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * k, p.yaw_deg + 0.02 * k, p.pitch_deg,
-                           p.fov_y_deg)
+            q = Pose(p.x, p.y, p.z - 0.002 * k, p.yaw_deg + 0.02 * k, p.pitch_deg, p.fov_y_deg)
             t0 = time.perf_counter()
             t.render(q, reprojection=True)
             total += 1e3 * (time.perf_counter() - t0)
@@ -172,7 +171,9 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
     round, so that all see the same machine). ``detail``: a dict that receives every repetition --
     ``samples`` (step -> [ms per round], ``reprojection`` the mean frame of each pass of the steady path) and
     ``reprojection_split`` (raymarch / reprojection / other -> [ms per round], :data:`REPROJECTION_SPLIT`)."""
-    from .cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique
+    from ..core.pose import Pose
+    from .cloudscape import CloudscapeSettings
+    from .technique import CloudscapeTechnique
     from ..core.timing import samples_ms
 
     if width < 1 or height < 1:
@@ -181,7 +182,7 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
         raise ValueError(f"repeat must be >= 1, got {repeat}")
     tech = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, device=device or "cpu",
                                                   threads=workers, **settings))
-    pose = CameraPose.from_settings(tech.settings)
+    pose = Pose.from_settings(tech.settings)
 
     def frame(**changes):
         tech.update(**changes)
@@ -221,10 +222,14 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
 def measure_sky(tech, repeat: int = 2) -> dict:
     """Fig 4.16: the sky stage alone (ms) for the gradient and Preetham models, over the full frame and with
     reprojection (one pixel per 4 x 4 block), on ``tech``'s frame and camera."""
-    from .cloudscape import CameraPose, make_sky, replace
+    from dataclasses import replace
+
+    from ..core.pose import Pose
+    from ..kernels.camera import pose_camera
+    from .cloudscape import make_sky
 
     s = tech.settings
-    cam = CameraPose.from_settings(s).camera(s.width, s.height)
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
     buf = tech._buffers["current"]
     out = {}
     for kind in ("gradient", "preetham"):
@@ -250,7 +255,9 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         thread), the same small frame (``small``), same pixels.
     reprojected_over_full, ms_640x360_reprojected, ms_1280x720_full, machine.
     """
-    from .cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique, render_frame_c
+    from ..core.pose import Pose
+    from .cloudscape import CloudscapeSettings, render_frame_c
+    from .technique import CloudscapeTechnique
 
     if width < 1 or height < 1:
         raise ValueError(f"width and height must be >= 1, got {width}x{height}")
@@ -258,7 +265,7 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         raise ValueError(f"repeat must be >= 1, got {repeat}")
     tech, ladder = measure_ladder(width, height, repeat, workers, device)
     textures = tech.textures
-    pose = CameraPose.from_settings(tech.settings)
+    pose = Pose.from_settings(tech.settings)
     # the proposed cheaper option (not the default): light samples from the base shape only (no detail erosion)
     tech.update(light_detail=False)
     option_light_base_only = _timed(lambda: tech.render(pose, reprojection=False), repeat)
@@ -334,7 +341,9 @@ def bench_reprojection(width: int = 640, height: int = 360, frames: int = 48, ne
     (the first reprojection cycle)."""
     from skimage.metrics import peak_signal_noise_ratio, structural_similarity
 
-    from .cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique
+    from ..core.pose import Pose
+    from .cloudscape import CloudscapeSettings
+    from .technique import CloudscapeTechnique
 
     if frames <= 16:
         raise ValueError(f"frames must be > 16 (the first cycle is skipped), got {frames}")
@@ -342,14 +351,14 @@ def bench_reprojection(width: int = 640, height: int = 360, frames: int = 48, ne
                            device=device or "cpu")
     rep = CloudscapeTechnique(s)
     full = CloudscapeTechnique(s, textures=rep.textures)
-    p0 = CameraPose.from_settings(s)
+    p0 = Pose.from_settings(s)
     ssim, psnr = [], []
     for k in range(frames):
         t = k / fps
         yaw = p0.yaw_deg + turn_deg_per_s * t
         dist = speed_kmh * t / 3600.0
-        pose = CameraPose(p0.x_km + dist * math.sin(math.radians(yaw)), p0.altitude_km,
-                          p0.z_km - dist * math.cos(math.radians(yaw)), yaw, p0.pitch_deg, p0.fov_y_deg)
+        pose = Pose(p0.x + dist * math.sin(math.radians(yaw)), p0.y,
+                    p0.z - dist * math.cos(math.radians(yaw)), yaw, p0.pitch_deg, p0.fov_y_deg)
         a = rep.render(pose, reprojection=True)
         full.frame = rep.frame - 1  # the same frame index: the same ray jitter
         b = full.render(pose, reprojection=False)
@@ -430,10 +439,11 @@ SPEED_MEASUREMENTS = ("reprojected", "full_same_size", "full")
 
 #: The measurement, as source: run by ``exec`` in this process (ours) and by ``PYTHON -c`` in another interpreter
 #: (the baseline), where it imports *that* interpreter's pywarp. It uses only what every version of the package has
-#: had (CloudscapeSettings, CloudscapeTechnique(settings, textures=), render(pose, reprojection=), CameraPose;
-#: pywarp.clouds.cloudscape, before that pywarp.cloudscape). As a program it answers one JSON line per command
-#: (:data:`SPEED_MEASUREMENTS`, then ``quit``) on the original stdout; everything else that writes to stdout (library
-#: notices) is sent to stderr.
+#: had (CloudscapeSettings, CloudscapeTechnique(settings, textures=), render(pose, reprojection=), a pose class built
+#: from_settings or from its first six fields in order: pywarp.clouds.technique with pywarp.core.pose.Pose, before
+#: that pywarp.clouds.cloudscape with CameraPose, before that pywarp.cloudscape). As a program it answers one JSON line
+#: per command (:data:`SPEED_MEASUREMENTS`, then ``quit``) on the original stdout; everything else that writes to
+#: stdout (library notices) is sent to stderr.
 _SPEED_PROBE = r"""
 import dataclasses, json, os, sys, time
 
@@ -442,24 +452,29 @@ if __name__ == "__main__":  # the protocol keeps the real stdout; anything else 
     os.dup2(2, 1)
 
 try:
-    from pywarp.clouds import cloudscape as C
-    API = "pywarp.clouds.cloudscape"
+    from pywarp.clouds.settings import CloudscapeSettings
+    from pywarp.clouds.technique import CloudscapeTechnique
+    from pywarp.core.pose import Pose
+    API = "pywarp.clouds.technique"
 except ImportError:
-    from pywarp import cloudscape as C
-    API = "pywarp.cloudscape"
+    try:
+        from pywarp.clouds.cloudscape import CameraPose as Pose, CloudscapeSettings, CloudscapeTechnique
+        API = "pywarp.clouds.cloudscape"
+    except ImportError:
+        from pywarp.cloudscape import CameraPose as Pose, CloudscapeSettings, CloudscapeTechnique
+        API = "pywarp.cloudscape"
 
 
 class SpeedProbe:
     def __init__(self, cfg):
-        names = {f.name for f in dataclasses.fields(C.CloudscapeSettings)}
+        names = {f.name for f in dataclasses.fields(CloudscapeSettings)}
         wanted = dict(cfg["scene"], device=cfg["device"], threads=cfg["workers"])
         common = {k: v for k, v in wanted.items() if k in names}
         self.not_applied = sorted(k for k in wanted if k not in names)
         (rw, rh), (fw, fh) = cfg["reprojected"], cfg["full"]
-        self.rep = C.CloudscapeTechnique(C.CloudscapeSettings(width=rw, height=rh, **common))
-        self.fullt = C.CloudscapeTechnique(C.CloudscapeSettings(width=fw, height=fh, **common),
-                                           textures=self.rep.textures)
-        self.pose = C.CameraPose.from_settings(self.rep.settings)
+        self.rep = CloudscapeTechnique(CloudscapeSettings(width=rw, height=rh, **common))
+        self.fullt = CloudscapeTechnique(CloudscapeSettings(width=fw, height=fh, **common), textures=self.rep.textures)
+        self.pose = Pose.from_settings(self.rep.settings)
         self.frames = int(cfg["frames"])
         self.reprojected()  # warm-up: every kernel of both paths loaded, the buffers touched
 
@@ -469,8 +484,8 @@ class SpeedProbe:
         t.render(p, reprojection=True)
         total = 0.0
         for k in range(1, self.frames + 1):
-            q = C.CameraPose(p.x_km, p.altitude_km, p.z_km - 0.002 * k, p.yaw_deg + 0.02 * k, p.pitch_deg,
-                             p.fov_y_deg)
+            x, y, z, yaw, pitch, fov = dataclasses.astuple(p)[:6]
+            q = Pose(x, y, z - 0.002 * k, yaw + 0.02 * k, pitch, fov)
             t0 = time.perf_counter()
             t.render(q, reprojection=True)
             total += time.perf_counter() - t0

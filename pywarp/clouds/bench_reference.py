@@ -130,7 +130,8 @@ def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | 
     display image (uint8 sRGB, after the exposure of the table) -- for the tutorial. ``spp`` >= 4 (two halves).
     ``settings``: further settings for every render (e.g. smaller textures for a quick run)."""
     from ..core.timing import machine
-    from .cloudscape import CloudscapeTechnique, RenderTextures
+    from .cloudscape import RenderTextures
+    from .technique import CloudscapeTechnique
     from .reference import ReferenceRenderer
     from .settings import CloudscapeSettings
 

@@ -1,32 +1,24 @@
-"""The volumetric cloudscape of the vc thesis on the CPU: Preetham (or gradient) sky, cloud-layer raymarch, temporal
-reprojection -- the render chain of vc-A30 built from the classes of vc-A31 (sky models), vc-A32 (texture generator)
-and vc-A33 (visualization technique: init / update / render, plus resize).
+"""The volumetric cloudscape of the vc thesis on the CPU, the parts the technique (:mod:`pywarp.clouds.technique`) is
+built from: the sky models of vc-A31, the textures as the renderer reads them (vc-A32), the per-frame lighting setup,
+and the C reference of the same pixel (``ccl_cloudscape_pixel``, ``ccl_cloudscape_render``).
 
-    from pywarp.clouds.cloudscape import CloudscapeSettings, render_image
+    from pywarp.clouds.cloudscape import RenderTextures, make_sky, render_pixels_c
+    from pywarp.clouds.technique import CloudscapeTechnique, render_image
     img = render_image(CloudscapeSettings(width=640, height=360))      # uint8 (360, 640, 3)
-
-One frame (``CloudscapeTechnique.render``):
-  1. the sky model writes the background of every pixel (or, with reprojection, of one pixel per 4 x 4 block);
-  2. the cloud kernel marches the cloud layer for the same pixels and composites over the background (vc-4.8);
-  3. with reprojection, the other 15/16 of the pixels come from the previous frame (vc-A26) at the position found
-     through the depth of what each pixel shows (the clouds' mean distance, kept in a depth buffer; the setting
-     ``reprojection_depth``: "clouds", or the thesis's "inner_sphere" hit point) and sampled with the filter of
-     ``reprojection_filter``, or from the reduced buffer;
-  4. sRGB encoding, uint8.
-Every stage is a Warp kernel launched as row bands on every core (:class:`pywarp.core.runtime.TileLauncher`). The same
-pixel computation exists in C (``ccl_cloudscape_pixel``): :func:`render_pixels_c` runs it at chosen pixels.
+    rgb = render_pixels_c(settings, textures, xs, ys)                   # the C reference at chosen pixels
 """
 from __future__ import annotations
 
 import math
 import weakref
 from abc import ABC, abstractmethod
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 import warp as wp
 
-from ..core.runtime import TileLauncher, init, launcher as shared_launcher
+from ..core.pose import Pose
+from ..core.runtime import TileLauncher, init
 
 init()
 
@@ -36,50 +28,6 @@ from ..kernels import reproj as RP  # noqa: E402
 from ..kernels import sky as S  # noqa: E402
 from . import textures as T  # noqa: E402
 from .settings import CLOUDSCAPE_PARAMS, SKIES, CloudscapeSettings  # noqa: E402,F401  (re-exported)
-
-
-
-# --- camera -------------------------------------------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class CameraPose:
-    """Camera position (km; y up, ground at y = 0 under the origin), yaw/pitch (deg) and vertical FOV (deg)."""
-
-    x_km: float = 0.0
-    altitude_km: float = 0.3
-    z_km: float = 0.0
-    yaw_deg: float = 0.0
-    pitch_deg: float = 8.0
-    fov_y_deg: float = 60.0
-
-    @classmethod
-    def from_settings(cls, s: CloudscapeSettings) -> "CameraPose":
-        return cls(s.camera_x_km, s.camera_altitude_km, s.camera_z_km, s.camera_yaw_deg, s.camera_pitch_deg,
-                   s.fov_y_deg)
-
-    def forward(self) -> np.ndarray:
-        y, p = math.radians(self.yaw_deg), math.radians(self.pitch_deg)
-        return np.array([math.sin(y) * math.cos(p), math.sin(p), -math.cos(y) * math.cos(p)])
-
-    def camera(self, width: int, height: int) -> CAM.Camera:
-        """The vc-A25 camera matrices (``pywarp.kernels.camera.camera_look_at``)."""
-        eye = np.array([self.x_km, self.altitude_km, self.z_km])
-        return CAM.camera_look_at(eye, eye + self.forward(), (0.0, 1.0, 0.0), math.radians(self.fov_y_deg),
-                                width / height, 0.01, 1000.0)
-
-
-class _JitteredPose:
-    """A camera pose seen through its camera moved by (dx_px, dy_px) pixels (:meth:`pywarp.kernels.camera.Camera.
-    jittered`); every other attribute is the pose's (CloudscapeTechnique.render_accumulated)."""
-
-    def __init__(self, pose: CameraPose, dx_px: float, dy_px: float):
-        self._pose, self.dx_px, self.dy_px = pose, dx_px, dy_px
-
-    def __getattr__(self, name):
-        return getattr(self._pose, name)
-
-    def camera(self, width: int, height: int) -> CAM.Camera:
-        return self._pose.camera(width, height).jittered(self.dx_px, self.dy_px, width, height)
 
 
 # --- sky models (vc-A31) --------------------------------------------------------------------------------------------------
@@ -273,201 +221,6 @@ def light_params(params: K.CloudscapeParams, sky: "SkyModel", device: str = "cpu
 
 
 
-# --- the technique (vc-A30, A33) ------------------------------------------------------------------------------------------
-
-class CloudscapeTechnique:
-    """The volumetric-clouds visualization technique: ``init`` (textures, sky), ``update`` (settings, time),
-    ``render`` (one frame for a camera pose), ``resize``. Holds the frame buffers and the previous camera for the
-    temporal reprojection (vc-A26)."""
-
-    def __init__(self, settings: CloudscapeSettings | None = None, generator=None, sky: SkyModel | None = None,
-                 textures: RenderTextures | None = None):
-        self.settings = settings or CloudscapeSettings()
-        self.launcher = shared_launcher(self.settings.device, self.settings.threads)
-        self.device = self.launcher.device
-        self.generator = generator
-        self.textures = textures
-        self.sky = sky
-        self.frame = 0
-        self._prev_camera = None
-        self._buffers = None
-        self.init()
-
-    # vc-A33: init / update / render, and the resize notification
-    def init(self) -> None:
-        if self.textures is None:
-            self.textures = RenderTextures.generate(self.settings, self.generator)
-        if self.sky is None:
-            self.sky = make_sky(self.settings)
-        self.params = light_params(self.settings.warp_params(), self.sky, self.device)
-        self.resize(self.settings.width, self.settings.height)
-
-    def update(self, **changes) -> None:
-        """Change settings (e.g. ``time_s``, ``sun_elevation_deg``); the settings' specs say what each change
-        invalidates: textures are regenerated only when a texture setting changes, the sky only when a sky setting
-        does, the buffers when the size does."""
-        old = self.settings
-        new = replace(old, **changes)
-        stale = new.invalidated(old)
-        self.settings = new
-        if "device" in stale:
-            self.launcher = shared_launcher(new.device, new.threads)
-            self.device = self.launcher.device
-        if "textures" in stale or ("device" in stale and self.textures.device != self.device):
-            self.textures = RenderTextures.generate(new, self.generator)
-        if "sky" in stale:
-            if type(self.sky) in (GradientSky, PreethamSky):
-                self.sky = make_sky(new)  # the sky kind may have changed
-            else:
-                self.sky.update(new)  # a user's own sky model
-        self.params = light_params(new.warp_params(), self.sky, self.device)
-        if stale & {"size", "device"}:
-            self.resize(new.width, new.height)
-
-    def resize(self, width: int, height: int) -> None:
-        if (width, height) != (self.settings.width, self.settings.height):
-            self.settings = replace(self.settings, width=width, height=height)
-        gw, gh = RP.reproj_grid(width, height)
-        dev = self.device
-        self._buffers = {
-            "current": wp.zeros((height, width, 3), dtype=float, device=dev),
-            "previous": wp.zeros((height, width, 3), dtype=float, device=dev),
-            "out": wp.zeros((height, width, 3), dtype=float, device=dev),
-            "reduced": wp.zeros((gh, gw, 3), dtype=float, device=dev),
-            "samples": wp.zeros((height, width), dtype=wp.int32, device=dev),
-            # distances (km) of what each pixel shows, for the depth-aware reprojection: this frame's marched pixels,
-            # the previous frame's and this frame's final depths (ping-pong like the colour)
-            "depth": wp.zeros((height, width), dtype=float, device=dev),
-            "prev_depth": wp.zeros((height, width), dtype=float, device=dev),
-            "out_depth": wp.zeros((height, width), dtype=float, device=dev),
-            "encoded": wp.zeros((height, width, 3), dtype=wp.uint8, device=dev),
-            "non_finite": wp.zeros(1, dtype=wp.int32, device=dev),
-        }
-        self._prev_camera = None
-
-    def camera_in_layer_or_above(self, pose: CameraPose) -> bool:
-        return pose.altitude_km >= self.settings.layer_base_km
-
-    def render(self, pose: CameraPose | None = None, reprojection: bool | None = None,
-               encode: bool = True, progress=None) -> np.ndarray:
-        """Render one frame; returns uint8 sRGB (height, width, 3), or the display-linear float frame when
-        ``encode=False``. Reprojection (default: the setting) falls back to a full render when the camera is inside
-        or above the layer (vc-A24) and on the first frame. ``progress``: optional callable, called with a fraction
-        of the frame (the fractions add up to 1) as each band of the cloud pass -- nearly all of the time --
-        finishes."""
-        s = self.settings
-        pose = pose or CameraPose.from_settings(s)
-        cam = pose.camera(s.width, s.height)
-        reproj = s.reprojection if reprojection is None else bool(reprojection)
-        if reproj and self.camera_in_layer_or_above(pose):
-            reproj = False  # vc-A24: the view ray does not always hit the inner sphere
-        b = self._buffers
-        h, w = s.height, s.width
-        layer = s.layer()
-        tex = self.textures.warp(s.half_base())
-        sun = wp.vec3(*self.sky.sun.tolist())
-        target = b["current"] if reproj else b["out"]
-        depth_target = b["depth"] if reproj else b["out_depth"]
-        self.sky.render(target, cam, self.frame, reproj, self.params, self.launcher)
-        rows, cols = (RP.reproj_grid(w, h)[::-1]) if reproj else (h, w)
-        band_done = None if progress is None else (lambda n, total=rows: progress(n / total))
-        self.launcher.launch(K.clouds_kernel, rows, cols,
-                             [self.params, tex, sun, cam.mat44("inv_view_proj_rot"),
-                              cam.eye_vec3(), self.frame, int(reproj)],
-                             [target, b["reduced"], b["samples"], depth_target], progress=band_done)
-        if reproj:
-            history = int(self._prev_camera is not None)
-            prev = self._prev_camera or cam
-            # depth-aware (cclouds/reproj.h): the fixed-point iteration on the depth; 0 iterations and the bilinear
-            # filter = the thesis's inner-sphere point and sampling (the colours of RP.reproject_frame_kernel), the
-            # depths still carried
-            iterations = RP.DEPTH_ITERATIONS if s.reprojection_depth == "clouds" else 0
-            flt = RP.FILTERS[s.reprojection_filter]
-            self.launcher.launch(RP.reproject_frame_depth_kernel, h, w,
-                                 [b["current"], b["depth"], b["previous"], b["prev_depth"], b["reduced"], self.frame,
-                                  cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), prev.mat44("view_proj"),
-                                  prev.eye_vec3(), layer.centre_vec3(), layer.r_inner,
-                                  int(s.reprojection_neighbourhood), flt, iterations, history],
-                                 [b["out"], b["out_depth"]])
-        # the final frame becomes the previous one (ping-pong)
-        b["previous"], b["out"] = b["out"], b["previous"]
-        b["prev_depth"], b["out_depth"] = b["out_depth"], b["prev_depth"]
-        final = b["previous"]
-        self._prev_camera = cam if reproj or s.reprojection else None
-        self.frame += 1
-        if not encode:
-            return _finite(final.numpy().copy())
-        return self._encode(final)
-
-    def _encode(self, linear: wp.array) -> np.ndarray:
-        """uint8 sRGB of a display-linear frame on the device (encode_kernel: clamp, encode, quantise); a frame with
-        a non-finite pixel raises instead (the encoding's clamp would make a NaN a black pixel: never a NaN image,
-        not even a black one)."""
-        b = self._buffers
-        b["non_finite"].zero_()
-        self.launcher.launch(K.encode_kernel, self.settings.height, self.settings.width, [linear],
-                             [b["encoded"], b["non_finite"]])
-        if int(b["non_finite"].numpy()[0]) != 0:
-            _finite(linear.numpy())  # raises, naming the first such pixel
-        return b["encoded"].numpy().copy()
-
-    def render_linear(self, pose: CameraPose | None = None, progress=None) -> np.ndarray:
-        """The linear-image hook (:mod:`pywarp.core.linear`): one frame exactly as :meth:`render` (same frame
-        counter and reprojection history), returned as display-linear float32 RGB (height, width, 3) before the
-        clamp and the sRGB encoding of ``render``'s uint8 image."""
-        return np.asarray(self.render(pose, encode=False, progress=progress), dtype=np.float32)
-
-    def render_accumulated(self, pose: CameraPose | None = None, n: int | None = None, progress=None,
-                           encode: bool = True) -> np.ndarray:
-        """A still without noise: the average of ``n`` full frames (default: the ``accumulate`` setting) in
-        display-linear space, encoded once (uint8 sRGB like :meth:`render`; ``encode=False``: display-linear
-        float32). Frame k looks through the camera moved by the sub-pixel offset k of the R2 sequence
-        (:func:`pywarp.kernels.camera.subpixel_jitter`, offset 0 = the pixel centre; a box filter over the pixel:
-        anti-aliased edges) and uses its own frame counter (``self.frame`` + k: a new ray jitter, vc-A23), so both
-        the aliasing and the jitter noise average out (the noise falls as 1/sqrt(n)). No reprojection. n = 1 is
-        :meth:`render` without reprojection, bit for bit. ``progress``: fractions of the whole accumulation (they add
-        up to 1). ``n`` is checked (1..1024) before any kernel runs."""
-        from ..core.params import specs
-
-        spec = next(p for p in specs(CloudscapeSettings) if p.name == "accumulate")
-        n = spec.validate(self.settings.accumulate if n is None else n, "accumulate")
-        s = self.settings
-        pose = pose or CameraPose.from_settings(s)
-        offsets = CAM.subpixel_jitter(n)
-        total = None
-        for k, (dx, dy) in enumerate(offsets):
-            step = None if progress is None else (lambda f: progress(f / n))
-            view = pose if k == 0 else _JitteredPose(pose, float(dx), float(dy))
-            frame = self.render(view, reprojection=False, encode=False, progress=step)
-            total = frame.astype(np.float64) if total is None else total + frame
-        self._prev_camera = None  # a jittered camera is no history for a later reprojected frame
-        linear = (total / n).astype(np.float32)
-        if not encode:
-            return linear
-        b = self._buffers
-        b["previous"].assign(linear)
-        return self._encode(b["previous"])
-
-    def samples_taken(self) -> np.ndarray:
-        """View samples marched per pixel in the last frame (pixels not rendered keep older counts)."""
-        return self._buffers["samples"].numpy().copy()
-
-
-def _finite(linear: np.ndarray) -> np.ndarray:
-    """``linear`` (height, width, 3) when every channel is finite; else a RuntimeError naming the first bad pixel."""
-    bad = ~np.all(np.isfinite(linear), axis=2)
-    if bad.any():
-        ys, xs = np.nonzero(bad)
-        raise RuntimeError(f"the render produced {len(ys)} non-finite pixels (first at x={xs[0]}, y={ys[0]}); "
-                           "nothing is written")
-    return linear
-
-
-def render_image(settings: CloudscapeSettings | None = None, pose: CameraPose | None = None) -> np.ndarray:
-    """One uint8 sRGB image (height, width, 3) of the cloudscape."""
-    return CloudscapeTechnique(settings).render(pose, reprojection=False)
-
-
 # --- the C reference ------------------------------------------------------------------------------------------------------
 
 def c_sky(settings: CloudscapeSettings):
@@ -518,30 +271,18 @@ def c_textures(textures: RenderTextures, half_base: bool = True):
 _KEEP_ALIVE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # cffi struct -> the buffers it points into
 
 
-def c_camera(cam: CAM.Camera):
-    from ..core.binding import ffi
-
-    c = ffi().new("ccl_camera *")
-    c.eye.x, c.eye.y, c.eye.z = (float(v) for v in cam.eye)
-    for name in ("view", "proj", "view_proj", "inv_view_proj", "inv_view_proj_rot"):
-        arr = getattr(c, name)
-        for i, v in enumerate(cam.column_major(name)):
-            arr[i] = float(v)
-    return c
-
-
-def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, ys, pose: CameraPose | None = None,
+def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, ys, pose: Pose | None = None,
                     frame: int = 0) -> np.ndarray:
     """``ccl_cloudscape_pixel`` (the scalar C reference) at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
     from ..core.binding import ffi, lib
 
     f, lb = ffi(), lib()
     s = settings
-    pose = pose or CameraPose.from_settings(s)
+    pose = pose or Pose.from_settings(s)
     params = CLOUDSCAPE_PARAMS.to_c(s.c_values())
     tex = c_textures(textures, s.half_base())
     sky = c_sky(s)
-    cam = c_camera(pose.camera(s.width, s.height))
+    cam = CAM.pose_camera(pose, s.width, s.height).to_c()
     field_ = f.new("const char **")
     if lb.ccl_cloudscape_check(params, tex, sky, field_) != 0:
         raise ValueError(f"ccl_cloudscape_check rejected {f.string(field_[0]).decode()}")
@@ -554,13 +295,13 @@ def render_pixels_c(settings: CloudscapeSettings, textures: RenderTextures, xs, 
     return out
 
 
-def render_pixels_warp(technique: CloudscapeTechnique, xs, ys, pose: CameraPose | None = None,
+def render_pixels_warp(technique, xs, ys, pose: Pose | None = None,
                        frame: int = 0) -> np.ndarray:
     """:func:`pywarp.kernels.cloudscape.cloudscape_pixel` at pixels (xs[k], ys[k]) -- the Warp side of the comparison
     with :func:`render_pixels_c`."""
     s = technique.settings
-    pose = pose or CameraPose.from_settings(s)
-    cam = pose.camera(s.width, s.height)
+    pose = pose or Pose.from_settings(s)
+    cam = CAM.pose_camera(pose, s.width, s.height)
     tex = technique.textures.warp(s.half_base())
     dev = technique.device
     xa = wp.array(np.asarray(xs, dtype=np.int32), dtype=wp.int32, device=dev)
@@ -574,40 +315,18 @@ def render_pixels_warp(technique: CloudscapeTechnique, xs, ys, pose: CameraPose 
     return out.numpy()
 
 
-def flythrough_path(frames: int, settings: CloudscapeSettings) -> list[CameraPose]:
-    """The camera path of ``pywarp animate``: a climb from ``settings.camera_altitude_km`` below the layer, through
-    it, to 1.5 km above its top, flying forward along the camera heading at 600 km/h-equivalent per frame step; the
-    pitch eases from looking up (below) to looking slightly down (above) so that the cloud tops come into view."""
-    if frames < 1:
-        raise ValueError(f"frames must be >= 1, got {frames}")
-    s = settings
-    start = s.camera_altitude_km
-    end = max(s.layer_top_km + 1.5, start)
-    poses = []
-    yaw = math.radians(s.camera_yaw_deg)
-    for i in range(frames):
-        u = i / max(frames - 1, 1)
-        ease = 0.5 - 0.5 * math.cos(math.pi * u)
-        alt = start + (end - start) * ease
-        dist = 12.0 * u  # km flown forward
-        pitch = s.camera_pitch_deg + (-12.0 - s.camera_pitch_deg) * ease
-        poses.append(CameraPose(s.camera_x_km + math.sin(yaw) * dist, alt, s.camera_z_km - math.cos(yaw) * dist,
-                                s.camera_yaw_deg, pitch, s.fov_y_deg))
-    return poses
-
-
-def render_frame_c(settings: CloudscapeSettings, textures: RenderTextures, pose: CameraPose | None = None,
+def render_frame_c(settings: CloudscapeSettings, textures: RenderTextures, pose: Pose | None = None,
                    frame: int = 0) -> np.ndarray:
     """A whole frame with the C reference ``ccl_cloudscape_render`` (one thread): sRGB floats (height, width, 3)."""
     from ..core.binding import ffi, lib, status_error
 
     f, lb = ffi(), lib()
     s = settings
-    pose = pose or CameraPose.from_settings(s)
+    pose = pose or Pose.from_settings(s)
     params = CLOUDSCAPE_PARAMS.to_c(s.c_values())
     tex = c_textures(textures, s.half_base())
     out = np.empty((s.height, s.width, 3), dtype=np.float32)
-    status = lb.ccl_cloudscape_render(params, tex, c_sky(s), c_camera(pose.camera(s.width, s.height)), s.width,
+    status = lb.ccl_cloudscape_render(params, tex, c_sky(s), CAM.pose_camera(pose, s.width, s.height).to_c(), s.width,
                                       s.height, frame, f.from_buffer("float[]", out), out.size)
     status_error(status, "ccl_cloudscape_render")
     return out

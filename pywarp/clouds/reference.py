@@ -81,12 +81,15 @@ from ..core.runtime import init, launcher as shared_launcher
 
 init()
 
+from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import cloudscape as K  # noqa: E402
 from ..kernels.hash import hash_pcg  # noqa: E402
 from ..kernels.phase import phase_hg  # noqa: E402
 from ..kernels.raymarch import raymarch_ray_sphere  # noqa: E402
 from ..kernels.sky import Preetham, SkyGradient  # noqa: E402
-from .cloudscape import CameraPose, CloudscapeTechnique, RenderTextures  # noqa: E402
+from ..core.pose import Pose  # noqa: E402
+from .cloudscape import RenderTextures  # noqa: E402
+from .technique import CloudscapeTechnique  # noqa: E402
 from .settings import CloudscapeSettings  # noqa: E402
 
 #: Samples per pixel: at least 1; at most 2^16 (the noise then is 1/256 of one sample's; more is never needed for an
@@ -787,7 +790,7 @@ class ReferenceRenderer:
         r.rr_threshold = RR_TRANSMITTANCE
         return r
 
-    def render(self, pose: CameraPose | None = None, encode: bool = True, progress=None):
+    def render(self, pose: Pose | None = None, encode: bool = True, progress=None):
         """The path-traced frame: uint8 sRGB (height, width, 3), or display-linear float32 with ``encode=False``
         (the mean of ``spp`` paths per pixel). ``progress(fraction)`` as passes of PASS_SPP samples finish (the
         fractions add up to 1). Sets :attr:`stats`: spp, seconds, std_error (per-pixel Monte Carlo standard error
@@ -798,8 +801,8 @@ class ReferenceRenderer:
         ever break it, the samples are redone with the constant bound (warned, ``stats['majorant']`` says why), so
         the image stays unbiased."""
         s = self.settings
-        pose = pose or CameraPose.from_settings(s)
-        cam = pose.camera(s.width, s.height)
+        pose = pose or Pose.from_settings(s)
+        cam = CAM.pose_camera(pose, s.width, s.height)
         h, w = s.height, s.width
         tex = self.textures.warp(s.half_base())
         sun = wp.vec3(*self.sky.sun.tolist())
@@ -870,7 +873,7 @@ class ReferenceRenderer:
             return linear
         return encode_srgb(linear, self.launcher)
 
-    def render_linear(self, pose: CameraPose | None = None, progress=None) -> np.ndarray:
+    def render_linear(self, pose: Pose | None = None, progress=None) -> np.ndarray:
         """The linear-image hook (:mod:`pywarp.core.linear`)."""
         return self.render(pose, encode=False, progress=progress)
 
@@ -884,7 +887,7 @@ def encode_srgb(linear: np.ndarray, launcher=None) -> np.ndarray:
     return out.numpy()
 
 
-def render_reference(settings: CloudscapeSettings | None = None, pose: CameraPose | None = None, encode: bool = True,
+def render_reference(settings: CloudscapeSettings | None = None, pose: Pose | None = None, encode: bool = True,
                      **kwargs):
     """One path-traced frame (see :class:`ReferenceRenderer` for ``kwargs``)."""
     return ReferenceRenderer(settings, **kwargs).render(pose, encode=encode)

@@ -1,5 +1,6 @@
 """Registers the ``clouds`` scene (vc): the volumetric cloudscape. Importing this module imports neither Warp nor the C
-library; the technique, the camera path and the benchmarks load them when used."""
+library: the camera path, the benchmarks and the controls are named as "module:function" and imported when first used,
+and the technique factory (the real-time technique, or the path-traced reference) imports its choice when called."""
 from __future__ import annotations
 
 from ..core.scenes import Benchmark, CameraPath, Scene, register
@@ -13,24 +14,9 @@ def make_technique(settings: CloudscapeSettings):
         from .reference import ReferenceRenderer
 
         return ReferenceRenderer(settings)
-    from .cloudscape import CloudscapeTechnique
+    from .technique import CloudscapeTechnique
 
     return CloudscapeTechnique(settings)
-
-
-def flythrough(frames: int, settings: CloudscapeSettings) -> list:
-    from .cloudscape import flythrough_path
-
-    return flythrough_path(frames, settings)
-
-
-def _lazy(module: str, name: str):
-    def call(*args, **kwargs):
-        import importlib
-
-        return getattr(importlib.import_module(module, __package__), name)(*args, **kwargs)
-    call.__name__ = name
-    return call
 
 
 #: the path tracer's settings: options of ``pywarp render`` only
@@ -45,39 +31,39 @@ SCENE = register(Scene(
     paths={"flythrough": CameraPath(
         "flythrough", "climb from the start altitude below the cloud layer, through it, to 1.5 km above its top, "
                       "flying 12 km forward along the heading; the pitch eases down to -12 deg",
-        flythrough, start_fields=("camera_altitude_km", "camera_pitch_deg", "camera_yaw_deg", "camera_x_km",
-                                  "camera_z_km"))},
+        "pywarp.clouds.technique:flythrough_path",
+        start_fields=("camera_altitude_km", "camera_pitch_deg", "camera_yaw_deg", "camera_x_km", "camera_z_km"))},
     default_path="flythrough",
     benchmarks={
         "tiles": Benchmark("tiles", "tile-parallel launcher vs one launch, on a frame-sized kernel",
-                           _lazy(".bench", "bench_tiles"), _lazy(".bench", "report_tiles"),
+                           "pywarp.clouds.bench:bench_tiles", "pywarp.clouds.bench:report_tiles",
                            {"width": 960, "height": 540, "repeat": 5, "workers": None}),
         "cloudscape": Benchmark("cloudscape", "the renderer's optimisation ladder (fig 4.17), sky models (fig 4.16), "
                                               "Warp vs C, reprojection; keys in the README",
-                                _lazy(".bench", "bench_cloudscape"), _lazy(".bench", "report_cloudscape"),
+                                "pywarp.clouds.bench:bench_cloudscape", "pywarp.clouds.bench:report_cloudscape",
                                 {"width": 960, "height": 540, "repeat": 2, "workers": None}),
         "textures": Benchmark("textures", "noise-texture generation: C one thread vs Warp tile-parallel vs one "
-                                          "launch", _lazy(".bench_textures", "bench_textures"),
-                              _lazy(".bench_textures", "report"),
+                                          "launch", "pywarp.clouds.bench_textures:bench_textures",
+                              "pywarp.clouds.bench_textures:report",
                               {"repeat": 3, "workers": None}),
         "reprojection": Benchmark("reprojection", "SSIM/PSNR of reprojected frames against full renders along a "
                                                   "camera path (needs scikit-image, a test extra)",
-                                  _lazy(".bench", "run_reprojection"), _lazy(".bench", "report_reprojection"),
+                                  "pywarp.clouds.bench:run_reprojection", "pywarp.clouds.bench:report_reprojection",
                                   {"width": 640, "height": 360}),
         "dask": Benchmark("dask", "the fly-through's frames on a Dask LocalCluster of 1 and 2 worker processes: "
                                   "speed-up of 2 over 1 and frames/s per worker, to size a cluster (needs dask)",
-                          _lazy("..core.animation", "run_dask_bench"), _lazy("..core.animation", "report_dask"),
+                          "pywarp.core.animation:run_dask_bench", "pywarp.core.animation:report_dask",
                           {"width": 320, "height": 180, "repeat": 1}),
         "speed": Benchmark("speed", "640x360 reprojected (mean over a steady path) and 1280x720 full frame, and their "
                                     "ratio; --baseline PYTHON measures another installation's the same way, "
                                     "interleaved in one run, and prints both and the speed-ups",
-                           _lazy(".bench", "bench_speed"), _lazy(".bench", "report_speed"),
+                           "pywarp.clouds.bench:bench_speed", "pywarp.clouds.bench:report_speed",
                            {"repeat": 3, "workers": None, "baseline": None}),
         "reference": Benchmark("reference", "the real-time lighting models (thesis, +sky light, +multiple "
                                             "scattering) against the path-traced ground truth of three scenes: "
                                             "SSIM and mean CIEDE2000 after the best exposure scale (needs "
                                             "scikit-image and colour-science)",
-                               _lazy(".bench_reference", "bench_reference"), _lazy(".bench_reference", "report"),
+                               "pywarp.clouds.bench_reference:bench_reference", "pywarp.clouds.bench_reference:report",
                                {"width": 160, "height": 90, "spp": 1024, "workers": None}),
     },
     outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
@@ -87,4 +73,5 @@ SCENE = register(Scene(
                                 "reprojection_filter"),
                      "animate": ("accumulate",) + _REFERENCE_FIELDS, "view": ("accumulate",) + _REFERENCE_FIELDS},
     time_field="time_s",
+    controls="pywarp.clouds.controls:CloudscapeControls",
 ))

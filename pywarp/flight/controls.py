@@ -1,5 +1,5 @@
 """The flight simulator's keys (oc §6.1.2: the arrows pitch and roll, W / S speed) as the viewer's controls
-(:class:`pywarp.core.scenes.Controls`; ``pywarp view flight``).
+(:class:`pywarp.viewer.controls.Controls`; ``pywarp view flight``).
 
 The aircraft is flown live by the flight model of :mod:`pywarp.kernels.flight` (``flight_step`` through
 :func:`pywarp.flight.model.simulate`, the model of the settings: ``max_speed_mps``, ``point_rate_mps``,
@@ -9,8 +9,8 @@ scripted flight's state at the settings' ``time_s`` (the frame ``pywarp render f
 when ``time_s`` or the start fields change in the panel. The camera is the settings' ``view``: the chase camera
 (behind and above the aircraft, ``chase_distance_m``, ``chase_height_m``) or the cockpit.
 
-The aircraft state lives here, not in the settings: once it has flown, every step returns a :class:`FlownPose` (a
-:class:`pywarp.flight.technique.FlightPose` that carries the aircraft; before, None: the settings' own camera, the
+The aircraft state lives here, not in the settings: once it has flown, every step returns a
+:class:`pywarp.flight.technique.FlightPose` that carries the aircraft (before, None: the settings' own camera, the
 same aircraft). Preview frames (while the aircraft moves) take
 ``FlightSettings.preview()``'s ray step ``preview_step_voxels``; their resolution is the viewer's adaptive preview
 scale (which replaces ``preview_scale``: it follows the measured frame time).
@@ -19,10 +19,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
-from typing import Any
 
-from ..core.scenes import Binding, Controls, Input, Step
+from ..viewer.controls import Binding, Controls, Input, Step
 from . import model as F
 from . import script as S
 from .technique import AircraftState, FlightPose
@@ -31,14 +29,6 @@ from .technique import AircraftState, FlightPose
 KEYS = {"Up": "up", "Down": "down", "Left": "left", "Right": "right", "W": "w", "S": "s"}
 #: the most simulation steps one viewer frame takes (a stalled frame does not fly minutes at once): 0.5 s
 MAX_STEPS_PER_FRAME = 30
-
-
-@dataclass(frozen=True)
-class FlownPose(FlightPose):
-    """A pose of the live flight: the camera ``view`` of the ``aircraft`` state (``time_s`` is the scripted moment
-    the flight started from; the technique renders ``aircraft``)."""
-
-    aircraft: Any = None
 
 
 class FlightControls(Controls):
@@ -114,7 +104,7 @@ class FlightControls(Controls):
                f"{math.degrees(self.roll):+.1f} deg")
         # until the first flight step the aircraft is the scripted one at time_s: the settings' own camera (pose None,
         # so that the session's first frame is the one it asked for); then the flown aircraft, every step
-        pose = FlownPose(settings.time_s, settings.view, self.aircraft()) if self.flying else None
+        pose = FlightPose(settings.time_s, settings.view, self.aircraft()) if self.flying else None
         return Step(pose=pose, moving=moving, message=msg)
 
     def preview(self, settings) -> dict:

@@ -10,13 +10,14 @@ the volume renderer of :mod:`pywarp.kernels.volume` (row bands on every core thr
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import warp as wp
 
 from ..core.cbridge import VOLUME_PARAMS
-from ..core.runtime import init, launcher as shared_launcher
+from ..core.runtime import init
+from ..core.technique import Technique
 
 init()
 
@@ -28,11 +29,26 @@ from .settings import VIEWS, FlightSettings  # noqa: E402
 
 
 @dataclass(frozen=True)
+class AircraftState:
+    """The aircraft at a moment: position (m, y up), heading, pitch and roll (rad), speed (m/s)."""
+
+    position: tuple
+    heading: float
+    pitch: float
+    roll: float
+    speed: float
+
+
+@dataclass(frozen=True)
 class FlightPose:
-    """A moment of the scripted flight and the camera that looks at it (``chase`` or ``cockpit``)."""
+    """A moment of the scripted flight and the camera that looks at it (``chase`` or ``cockpit``): the flight's
+    camera is placed by the aircraft, not by a yaw and a pitch. ``aircraft``: the state to look at (the viewer's live
+    flight, :class:`pywarp.flight.controls.FlightControls`; ``time_s`` is then the scripted moment it started from);
+    None: the scripted aircraft at ``time_s``."""
 
     time_s: float = 6.0
     view: str = "chase"
+    aircraft: AircraftState | None = None
 
     def __post_init__(self):
         if isinstance(self.time_s, bool) or not isinstance(self.time_s, (int, float)) or not math.isfinite(
@@ -42,36 +58,27 @@ class FlightPose:
             raise ValueError(f"view must be one of {', '.join(map(repr, VIEWS))}, got {self.view!r}")
 
 
-@dataclass(frozen=True)
-class AircraftState:
-    position: tuple
-    heading: float
-    pitch: float
-    roll: float
-    speed: float
-
-
-class FlightTechnique:
+class FlightTechnique(Technique):
     """The flight scene's technique. ``volumes``: the placed cloud arrays with their light volumes
     (:class:`pywarp.flight.volumes.VolumeSet`); ``trajectory``: the scripted flight
     (:class:`pywarp.flight.model.Trajectory`)."""
 
-    def __init__(self, settings: FlightSettings | None = None, script=None):
-        self.settings = settings or FlightSettings()
-        self.script = tuple(script) if script is not None else S.DEFAULT_SCRIPT
-        self.launcher = shared_launcher(self.settings.device, self.settings.threads)
-        self.device = self.launcher.device
-        self.volumes = None
-        self.trajectory = None
-        self._out = None
-        self.init()
+    settings_class = FlightSettings
 
-    # --- init / update / resize ----------------------------------------------------------------------------------
-    def init(self) -> None:
-        self._build_flight()
-        self._build_clouds()
-        self._build_light()
-        self.resize(self.settings.width, self.settings.height)
+    def __init__(self, settings: FlightSettings | None = None, script=None):
+        self.script = tuple(script) if script is not None else S.DEFAULT_SCRIPT
+        super().__init__(settings)
+
+    def rebuild(self, stale: set, changed: set) -> None:
+        """What each change invalidates comes from the specs (``FlightSettings.INVALIDATES``): ``flight`` simulates
+        the flight again and rebuilds the clouds placed along it, ``clouds`` the clouds, ``light`` (sun, light) the
+        light volumes; a device switch all of them."""
+        if stale & {"flight", "device"}:
+            self._build_flight()
+        if stale & {"flight", "clouds", "device"}:
+            self._build_clouds()
+        if stale & {"flight", "clouds", "device", "light"}:
+            self.volumes.compute_light(self.settings.c_values())
 
     def _build_flight(self) -> None:
         s = self.settings
@@ -87,32 +94,7 @@ class FlightTechnique:
                                origin, extent) for k, (origin, extent) in enumerate(boxes)]
         self.volumes = V.VolumeSet(vols, device=self.device)
 
-    def _build_light(self) -> None:
-        self.volumes.compute_light(self.settings.c_values())
-
-    def update(self, **changes) -> None:
-        """Change settings; what each change invalidates comes from the specs (``FlightSettings.INVALIDATES``):
-        ``flight`` simulates the flight again and rebuilds the clouds placed along it, ``clouds`` the clouds, ``light``
-        (sun, light) the light volumes, ``size`` the frame buffer."""
-        old = self.settings
-        new = replace(old, **changes)
-        stale = new.invalidated(old)
-        self.settings = new
-        if "device" in stale:
-            self.launcher = shared_launcher(new.device, new.threads)
-            self.device = self.launcher.device
-        if stale & {"flight", "device"}:
-            self._build_flight()
-        if stale & {"flight", "clouds", "device"}:
-            self._build_clouds()
-        if stale & {"flight", "clouds", "device", "light"}:
-            self._build_light()
-        if stale & {"size", "device"}:
-            self.resize(new.width, new.height)
-
-    def resize(self, width: int, height: int) -> None:
-        if (width, height) != (self.settings.width, self.settings.height):
-            self.settings = replace(self.settings, width=width, height=height)
+    def allocate(self, width: int, height: int) -> None:
         self._out = wp.zeros((height, width, 3), dtype=wp.uint8, device=self.device)
 
     # --- the aircraft and the camera -----------------------------------------------------------------------------
@@ -129,7 +111,7 @@ class FlightTechnique:
     def view(self, pose: FlightPose) -> tuple[CAM.Camera, dict]:
         """(camera, volume parameter values) of ``pose``."""
         s = self.settings
-        a = getattr(pose, "aircraft", None) or self.aircraft(pose.time_s)  # the viewer's live flight carries it
+        a = pose.aircraft or self.aircraft(pose.time_s)
         f, r, u = F.axes(a.heading, a.pitch, a.roll)
         pos = np.asarray(a.position, dtype=np.float64)
         values = s.c_values()
@@ -185,6 +167,16 @@ def path_poses(frames: int, settings: FlightSettings, view: str) -> list[FlightP
         raise ValueError(f"frames must be an integer >= 1, got {frames!r}")
     d = settings.flight_duration_s
     return [FlightPose(d * i / max(frames - 1, 1), view) for i in range(frames)]
+
+
+def chase_path(frames: int, settings: FlightSettings) -> list[FlightPose]:
+    """The ``chase`` camera path: :func:`path_poses` seen from behind and above the aircraft."""
+    return path_poses(frames, settings, "chase")
+
+
+def cockpit_path(frames: int, settings: FlightSettings) -> list[FlightPose]:
+    """The ``cockpit`` camera path: :func:`path_poses` from the pilot's eye."""
+    return path_poses(frames, settings, "cockpit")
 
 
 def render_image(settings: FlightSettings | None = None, pose: FlightPose | None = None) -> np.ndarray:

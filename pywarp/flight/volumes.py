@@ -192,18 +192,6 @@ def light_c(values: dict, volume: PlacedVolume) -> np.ndarray:
     return out
 
 
-def _c_camera(cam):
-    from ..core.binding import ffi
-
-    c = ffi().new("ccl_camera *")
-    c.eye.x, c.eye.y, c.eye.z = (float(v) for v in cam.eye)
-    for name in ("view", "proj", "view_proj", "inv_view_proj", "inv_view_proj_rot"):
-        arr = getattr(c, name)
-        for i, v in enumerate(cam.column_major(name)):
-            arr[i] = float(v)
-    return c
-
-
 def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: int) -> np.ndarray:
     """``ccl_volume_pixel`` at pixels (xs[k], ys[k]): display-linear RGB (k, 3)."""
     from ..core.binding import ffi, lib
@@ -214,7 +202,7 @@ def pixels_c(values: dict, vset: VolumeSet, camera, xs, ys, width: int, height: 
     fld = f.new("const char **")
     if lb.ccl_volume_check(params, arr, len(vset.volumes), fld) != 0:
         raise ValueError(f"ccl_volume_check rejected {f.string(fld[0]).decode()}")
-    cam = _c_camera(camera)
+    cam = camera.to_c()
     out = np.empty((len(xs), 3), np.float32)
     rgb = f.new("float[3]")
     for k, (x, y) in enumerate(zip(xs, ys)):

@@ -87,6 +87,18 @@ class Camera:
     def eye_vec3(self) -> wp.vec3:
         return wp.vec3(*self.eye.tolist())
 
+    def to_c(self):
+        """The same camera as a ``ccl_camera`` (cffi; the matrices column-major, as the C code reads them)."""
+        from ..core.binding import ffi
+
+        c = ffi().new("ccl_camera *")
+        c.eye.x, c.eye.y, c.eye.z = (float(v) for v in self.eye)
+        for name in ("view", "proj", "view_proj", "inv_view_proj", "inv_view_proj_rot"):
+            arr = getattr(c, name)
+            for i, v in enumerate(self.column_major(name)):
+                arr[i] = float(v)
+        return c
+
     def jittered(self, dx_px: float, dy_px: float, width: int, height: int) -> "Camera":
         """The same camera moved by a fraction of a pixel (TAA-style sub-pixel jitter): pixel (x, y) of a width x
         height image then looks through the point (x + 0.5 + dx_px, y + 0.5 + dy_px) of this camera's image plane
@@ -106,6 +118,18 @@ class Camera:
         return Camera(eye=self.eye, view=self.view, proj=f32(j @ d("proj")), view_proj=f32(j @ d("view_proj")),
                       inv_view_proj=f32(d("inv_view_proj") @ j_inv),
                       inv_view_proj_rot=f32(d("inv_view_proj_rot") @ j_inv))
+
+
+def pose_camera(pose, width: int, height: int, z_near: float = 0.01, z_far: float = 1000.0) -> Camera:
+    """The camera of a :class:`pywarp.core.pose.Pose` for a width x height image (pt-code-7.2: cameraPosition and
+    cameraTarget = position + forward, world up (0, 1, 0); the pose's vertical field of view), moved by its
+    sub-pixel ``jitter_px`` (:meth:`Camera.jittered`) where that is not (0, 0)."""
+    eye = pose.eye()
+    cam = camera_look_at(eye, eye + pose.forward(), (0.0, 1.0, 0.0), math.radians(pose.fov_y_deg), width / height,
+                         z_near, z_far)
+    if pose.jitter_px != (0.0, 0.0):
+        cam = cam.jittered(pose.jitter_px[0], pose.jitter_px[1], width, height)
+    return cam
 
 
 def _check_camera(camera, name: str = "camera") -> Camera:
@@ -308,4 +332,4 @@ def _camera_ray_kernel(xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32
     out[i] = camera_ray(inv_view_proj_rot, xs[i], ys[i], width, height)
 
 
-__all__ = ["Camera", "camera_look_at", "c_camera_look_at", "camera_ray", "subpixel_jitter"]
+__all__ = ["Camera", "camera_look_at", "c_camera_look_at", "camera_ray", "pose_camera", "subpixel_jitter"]

@@ -1,5 +1,5 @@
 """The rain application's keyboard (rr-tab-A, :data:`pywarp.rain.settings.CONTROLS`) as the viewer's controls
-(:class:`pywarp.core.scenes.Controls`; ``pywarp view rain``).
+(:class:`pywarp.viewer.controls.Controls`; ``pywarp view rain``).
 
 Keys (the table's): W / S step forward / back, Q / E move up / down, A / D turn left / right (5 deg), Y / C look up /
 down (5 deg), P pauses / starts the simulation, F toggles drops / streaks, T selects the next drop shape of Table
@@ -25,7 +25,8 @@ from __future__ import annotations
 import math
 
 from ..core.params import specs
-from ..core.scenes import Binding, Controls, FREE_FLY_SPEED, Input, Step, camera_fields
+from ..core.pose import camera_fields
+from ..viewer.controls import FREE_FLY_SPEED, Binding, Controls, Input, Step
 from .settings import CONTROLS, MODES, PANORAMA, SHAPES
 
 #: keyboard auto-repeat of a held key: first repeat after this long (s), then this many steps per second

@@ -19,40 +19,19 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 import warp as wp
 
-from ..core.runtime import init, launcher as shared_launcher
+from ..core.pose import Pose
+from ..core.runtime import init
+from ..core.technique import Technique
 
 init()
 
 from . import particles as P  # noqa: E402
 from .settings import PANORAMA, RainSettings  # noqa: E402
-
-
-# --- the camera ----------------------------------------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class RainPose:
-    """Orientation of the view (the rain box follows the eye, so only the orientation matters to the drops)."""
-
-    yaw_deg: float = 0.0
-    pitch_deg: float = 2.0
-    fov_y_deg: float = 60.0
-
-    @classmethod
-    def from_settings(cls, s: RainSettings) -> "RainPose":
-        return cls(s.camera_yaw_deg, s.camera_pitch_deg, s.fov_y_deg)
-
-    def basis(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(right, up, forward) unit vectors (world, y up; yaw 0 looks along -z)."""
-        y, p = math.radians(self.yaw_deg), math.radians(self.pitch_deg)
-        f = np.array([math.sin(y) * math.cos(p), math.sin(p), -math.cos(y) * math.cos(p)])
-        s = np.cross(f, [0.0, 1.0, 0.0])
-        s /= np.linalg.norm(s)
-        return s, np.cross(s, f), f
 
 
 # --- backgrounds ---------------------------------------------------------------------------------------------------------
@@ -62,7 +41,7 @@ class Panorama:
     checkered ground plane 1.7 m below the eye (2 m squares) and a ring of coloured posts 40 m away -- enough structure
     to read the refraction (each drop shows it upside down). A function of the view direction only."""
 
-    def render(self, pose: RainPose, width: int, height: int, fov_y_deg: float) -> np.ndarray:
+    def render(self, pose: Pose, width: int, height: int, fov_y_deg: float) -> np.ndarray:
         s, u, f = pose.basis()
         t = math.tan(math.radians(fov_y_deg) / 2.0)
         xs = (2.0 * (np.arange(width) + 0.5) / width - 1.0) * t * width / height
@@ -120,7 +99,7 @@ class SceneBackground:
         self.base = self.scene.settings(**base)
         self._techniques: dict = {}
 
-    def render(self, pose: RainPose, width: int, height: int, fov_y_deg: float) -> np.ndarray:
+    def render(self, pose: Pose, width: int, height: int, fov_y_deg: float) -> np.ndarray:
         changes = {k: v for k, v in (("width", width), ("height", height), ("fov_y_deg", fov_y_deg),
                                      ("camera_yaw_deg", pose.yaw_deg), ("camera_pitch_deg", pose.pitch_deg))
                    if k in self.fields}
@@ -193,7 +172,7 @@ def sphere_mask(size: int, n_water: float = 1.33) -> np.ndarray:
 
 # --- sprites (the vertex stage) ------------------------------------------------------------------------------------------
 
-def sprites(state: dict, pose: RainPose, width: int, height: int, s: RainSettings, extent: float,
+def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, extent: float,
             streaks: bool, positions: bool = False):
     """Billboards (k, 6) (``pywarp.kernels.particles.SPRITE_FIELDS``) of the particles in view, far first: each
     drop's centre projected with the view camera, its billboard radius r L/a * billboard_scale on screen; streaks
@@ -232,26 +211,30 @@ def sprites(state: dict, pose: RainPose, width: int, height: int, s: RainSetting
 
 # --- the technique -------------------------------------------------------------------------------------------------------
 
-class RainTechnique:
+class RainTechnique(Technique):
     """Rain over a background scene: ``init`` (background, mask, particles), ``update`` (settings, time),
     ``render`` (one frame), ``resize``. The background view and capture are cached per pose and size (a still camera
     pays for them once)."""
 
+    settings_class = RainSettings
+
     def __init__(self, settings: RainSettings | None = None):
-        self.settings = settings or RainSettings()
-        self.background = None
         self._cache: dict = {}
         self._device_cache: dict = {}
-        self.init()
+        super().__init__(settings)
 
-    def init(self) -> None:
+    def rebuild(self, stale: set, changed: set) -> None:
+        """What each change invalidates comes from the specs (``RainSettings.INVALIDATES``): ``background`` the
+        background scene, ``mask`` the drop mask, ``particles`` (or more drops than it holds) the particle system; a
+        device switch all three."""
         s = self.settings
-        self.launcher = shared_launcher(s.device, s.threads)
-        self.device = self.launcher.device
-        self.background = make_background(s)
-        self.mask, self.extent, self.normals = drop_mask(s.shape, s.mask, s.mask_size)
-        self._reset_particles()
-        self.resize(s.width, s.height)
+        if stale & {"background", "device"}:
+            self.background = make_background(s)
+            self._cache.clear()
+        if stale & {"mask", "device"}:
+            self.mask, self.extent, self.normals = drop_mask(s.shape, s.mask, s.mask_size)
+        if stale & {"particles", "device"} or s.drops > self.system.capacity:
+            self._reset_particles()
 
     def _reset_particles(self) -> None:
         s = self.settings
@@ -260,28 +243,6 @@ class RainTechnique:
         if s.warm_start:
             self.system.fill(s.drops)
         self.t = 0.0
-
-    def update(self, **changes) -> None:
-        old = self.settings
-        new = replace(old, **changes)
-        self.settings = new
-        stale = new.invalidated(old)
-        if "device" in stale:
-            self.init()
-            return
-        if "background" in stale:
-            self.background = make_background(new)
-            self._cache.clear()
-        if "mask" in stale:
-            self.mask, self.extent, self.normals = drop_mask(new.shape, new.mask, new.mask_size)
-        if "particles" in stale or new.drops > self.system.capacity:
-            self._reset_particles()
-        if stale & {"size"}:
-            self.resize(new.width, new.height)
-
-    def resize(self, width: int, height: int) -> None:
-        if (width, height) != (self.settings.width, self.settings.height):
-            self.settings = replace(self.settings, width=width, height=height)
 
     def _advance(self) -> None:
         s = self.settings
@@ -297,7 +258,7 @@ class RainTechnique:
         if self.system.count > s.drops:  # a lowered count (G key) takes effect at once
             self.system.step(s.drops, 0.0)
 
-    def images(self, pose: RainPose) -> tuple[np.ndarray, np.ndarray]:
+    def images(self, pose: Pose) -> tuple[np.ndarray, np.ndarray]:
         """(view, capture) of the background for ``pose`` (cached): display-encoded RGB float32."""
         s = self.settings
         key = (pose, s.width, s.height, s.capture_size, s.capture_fov_deg)
@@ -309,10 +270,10 @@ class RainTechnique:
             self._cache[key] = (np.ascontiguousarray(view, np.float32), np.ascontiguousarray(capture, np.float32))
         return self._cache[key]
 
-    def frame_inputs(self, pose: RainPose | None = None) -> dict:
+    def frame_inputs(self, pose: Pose | None = None) -> dict:
         """Everything the compositing pass takes for the current state (for tests and the C comparison)."""
         s = self.settings
-        pose = pose or RainPose.from_settings(s)
+        pose = pose or Pose.from_settings(s)
         self._advance()
         view, capture = self.images(pose)
         lights = dict(s.light_values())
@@ -330,7 +291,7 @@ class RainTechnique:
             ins.update(lights=lights, positions=out[1], normals=self.normals)
         return ins
 
-    def render(self, pose: RainPose | None = None, progress=None, encode: bool = True) -> np.ndarray:
+    def render(self, pose: Pose | None = None, progress=None, encode: bool = True) -> np.ndarray:
         """One frame: uint8 (height, width, 3), or the float frame with ``encode=False``."""
         ins = self.frame_inputs(pose)
         out = P.composite(**ins, launcher=self.launcher, cache=self._device_cache)
@@ -341,7 +302,7 @@ class RainTechnique:
         return (np.clip(out, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
 
 
-def render_image(settings: RainSettings | None = None, pose: RainPose | None = None) -> np.ndarray:
+def render_image(settings: RainSettings | None = None, pose: Pose | None = None) -> np.ndarray:
     """One uint8 image of rain."""
     return RainTechnique(settings).render(pose)
 
@@ -350,4 +311,4 @@ def still_path(frames: int, settings: RainSettings) -> list:
     """The camera of the settings for every frame (the rain falls; the cached background is rendered once)."""
     if frames < 1:
         raise ValueError(f"frames must be >= 1, got {frames}")
-    return [RainPose.from_settings(settings)] * frames
+    return [Pose.from_settings(settings)] * frames

@@ -11,9 +11,8 @@ While the camera moves the viewer renders ``quality='preview'`` frames (:data:`p
 """
 from __future__ import annotations
 
-import math
-
-from ..core.scenes import FREE_FLY_MOUSE_DEG, Binding, Controls, Input, Step
+from ..core.pose import forward
+from ..viewer.controls import FREE_FLY_MOUSE_DEG, Binding, Controls, Input, Step
 
 #: walking speed (units per second): a brisk walk over hills ~50 units apart (the walk path's 3 units per frame at
 #: ~3 frames/s)
@@ -56,11 +55,11 @@ class TerrainControls(Controls):
             if pitch != s.camera_pitch_deg:
                 changes["camera_pitch_deg"] = pitch
         if "W" in inp.held and dt > 0.0:
-            y, p = math.radians(yaw), math.radians(pitch)
+            f = forward(yaw, pitch)
             d = WALK_SPEED * dt
-            x = s.camera_x + d * math.sin(y) * math.cos(p)
-            z = s.camera_z - d * math.cos(y) * math.cos(p)
-            h = s.camera_y + d * math.sin(p)
+            x = s.camera_x + d * f[0]
+            z = s.camera_z + d * f[2]
+            h = s.camera_y + d * f[1]
             h = max(h, self.ground(s, x, z) + CLEARANCE)
             changes.update(camera_x=x, camera_y=h, camera_z=z)
         return Step(changes=changes, moving=bool(changes),

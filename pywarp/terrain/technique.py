@@ -12,13 +12,15 @@ GLSL writes them without gamma). The same pixel exists in C (``ccl_terrain_pixel
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 import warp as wp
 
+from ..core.pose import Pose
 from ..core.registry import equation
-from ..core.runtime import init, launcher as shared_launcher
+from ..core.runtime import init
+from ..core.technique import Technique
 
 init()
 
@@ -38,78 +40,37 @@ def effective(settings: TerrainSettings) -> TerrainSettings:
     return replace(s, **PREVIEW, width=-(-s.width // k), height=-(-s.height // k))
 
 
-@dataclass(frozen=True)
-class TerrainPose:
-    """Camera position (units, y up), yaw/pitch (deg; yaw 0 = -z, positive towards +x) and vertical FOV (deg)."""
-
-    x: float = -22.0
-    y: float = 9.0
-    z: float = 30.0
-    yaw_deg: float = 0.0
-    pitch_deg: float = -8.0
-    fov_y_deg: float = 90.0
-
-    @classmethod
-    def from_settings(cls, s: TerrainSettings) -> "TerrainPose":
-        return cls(s.camera_x, s.camera_y, s.camera_z, s.camera_yaw_deg, s.camera_pitch_deg, s.fov_y_deg)
-
-    def forward(self) -> np.ndarray:
-        y, p = math.radians(self.yaw_deg), math.radians(self.pitch_deg)
-        return np.array([math.sin(y) * math.cos(p), math.sin(p), -math.cos(y) * math.cos(p)])
-
-    def camera(self, width: int, height: int) -> CAM.Camera:
-        """pt-code-7.2: cameraPosition and cameraTarget = position + forward, world up (0, 1, 0)."""
-        eye = np.array([self.x, self.y, self.z])
-        return CAM.camera_look_at(eye, eye + self.forward(), (0.0, 1.0, 0.0), math.radians(self.fov_y_deg),
-                                  width / height, 0.01, 1000.0)
-
-
-class TerrainTechnique:
+class TerrainTechnique(Technique):
     """``init`` (parameters, Perlin table, buffers), ``update(**changes)``, ``render(pose)``, ``resize``."""
 
-    def __init__(self, settings: TerrainSettings | None = None):
-        self.settings = settings or TerrainSettings()
-        self.frame = 0
-        self._buffers = None
-        self.init()
+    settings_class = TerrainSettings
 
-    def init(self) -> None:
-        s = self.settings
-        self.launcher = shared_launcher(s.device, s.threads)
-        self.device = self.launcher.device
-        self.params = effective(s).warp_params()  # checked by ccl_terrain_params_check
-        self.perm = perm_array(s.seed, self.device)
-        self.resize(s.width, s.height)
-
-    def update(self, **changes) -> None:
-        """Change settings; only a new size or device reallocates, every other change is a new parameter struct."""
-        old = self.settings
-        new = replace(old, **changes)
+    def invalidated(self, new: TerrainSettings, old: TerrainSettings) -> set:
+        """The specs' invalidations, and "size" when the quality or the preview scale changes (the preview frame has
+        its own size)."""
         stale = new.invalidated(old)
-        self.settings = new
-        if "device" in stale:
-            self.launcher = shared_launcher(new.device, new.threads)
-            self.device = self.launcher.device
-        self.params = effective(new).warp_params()
-        self.perm = perm_array(new.seed, self.device)
-        if stale & {"size", "device"} or (new.quality, new.preview_scale) != (old.quality, old.preview_scale):
-            self.resize(new.width, new.height)
+        if (new.quality, new.preview_scale) != (old.quality, old.preview_scale):
+            stale.add("size")
+        return stale
 
-    def resize(self, width: int, height: int) -> None:
-        if (width, height) != (self.settings.width, self.settings.height):
-            self.settings = replace(self.settings, width=width, height=height)
-        dev = self.device
+    def rebuild(self, stale: set, changed: set) -> None:
+        """Every change is a new parameter struct (checked by ccl_terrain_params_check) and Perlin table."""
+        s = self.settings
+        self.params = effective(s).warp_params()
+        self.perm = perm_array(s.seed, self.device)
+
+    def allocate(self, width: int, height: int) -> None:
         e = effective(self.settings)
-        self._buffers = {"out": wp.zeros((e.height, e.width, 3), dtype=float, device=dev),
-                         "steps": wp.zeros((e.height, e.width), dtype=wp.int32, device=dev)}
+        self._buffers = {"out": wp.zeros((e.height, e.width, 3), dtype=float, device=self.device),
+                         "steps": wp.zeros((e.height, e.width), dtype=wp.int32, device=self.device)}
 
-    def render(self, pose: TerrainPose | None = None, progress=None, encode: bool = True) -> np.ndarray:
+    def render(self, pose: Pose | None = None, progress=None, encode: bool = True) -> np.ndarray:
         """One frame: uint8 (height, width, 3), or the float colours in [0, 1] when ``encode=False``. ``progress``
         is called with fractions of the frame (summing to 1) as row bands finish."""
         full = self.settings
         s = effective(full)
-        pose = pose or TerrainPose.from_settings(full)
-        cam = pose.camera(s.width, s.height)
+        pose = pose or Pose.from_settings(full)
+        cam = CAM.pose_camera(pose, s.width, s.height)
         b = self._buffers
         band_done = None if progress is None else (lambda n, total=s.height: progress(n / total))
         self.launcher.launch(K.render_kernel, s.height, s.width,
@@ -131,25 +92,25 @@ class TerrainTechnique:
         return self._buffers["steps"].numpy().copy()
 
 
-def render_image(settings: TerrainSettings | None = None, pose: TerrainPose | None = None) -> np.ndarray:
+def render_image(settings: TerrainSettings | None = None, pose: Pose | None = None) -> np.ndarray:
     """One uint8 image (height, width, 3) of the terrain."""
     return TerrainTechnique(settings).render(pose)
 
 
-def render_pixels_c(settings: TerrainSettings, xs, ys, pose: TerrainPose | None = None) -> tuple:
+def render_pixels_c(settings: TerrainSettings, xs, ys, pose: Pose | None = None) -> tuple:
     """The C reference ``ccl_terrain_pixel`` at pixels (xs[k], ys[k]): (colours (k, 3) in [0, 1], steps (k,))."""
     s = settings
-    pose = pose or TerrainPose.from_settings(s)
-    return equation("pt-alg-7.1.6", impl="c")(np.asarray(xs), np.asarray(ys), s.width, s.height, pose.camera(s.width, s.height),
+    pose = pose or Pose.from_settings(s)
+    return equation("pt-alg-7.1.6", impl="c")(np.asarray(xs), np.asarray(ys), s.width, s.height, CAM.pose_camera(pose, s.width, s.height),
                                  s.c_values())
 
 
-def render_pixels_warp(settings: TerrainSettings, xs, ys, pose: TerrainPose | None = None) -> tuple:
+def render_pixels_warp(settings: TerrainSettings, xs, ys, pose: Pose | None = None) -> tuple:
     """The Warp ``terrain_pixel`` at pixels (xs[k], ys[k]) -- the other side of :func:`render_pixels_c`."""
     s = settings
-    pose = pose or TerrainPose.from_settings(s)
+    pose = pose or Pose.from_settings(s)
     return equation("pt-alg-7.1.6", device=s.device)(np.asarray(xs), np.asarray(ys), s.width, s.height,
-                                              pose.camera(s.width, s.height), s.c_values())
+                                              CAM.pose_camera(pose, s.width, s.height), s.c_values())
 
 
 def ground_height(settings: TerrainSettings, x, z, octaves: int | None = None) -> np.ndarray:
@@ -159,7 +120,7 @@ def ground_height(settings: TerrainSettings, x, z, octaves: int | None = None) -
                     s.device)
 
 
-def walk_path(frames: int, settings: TerrainSettings) -> list[TerrainPose]:
+def walk_path(frames: int, settings: TerrainSettings) -> list[Pose]:
     """The camera path of ``pywarp animate terrain`` (a scripted walk standing in for the demo's mouse + W): from
     the settings' camera, 3 units per frame along the heading, the heading swinging +-20 deg (one slow S-curve),
     the eye kept at its start height above max(ground, water) -- the ground smoothed over 12 units so that the
@@ -187,5 +148,5 @@ def walk_path(frames: int, settings: TerrainSettings) -> list[TerrainPose]:
     ground = np.maximum(ground, s.water_level)
     clearance = s.camera_y - max(float(ground[0]), s.water_level)
     clearance = max(clearance, 2.0)
-    return [TerrainPose(float(xs_a[i]), float(ground[i] + clearance), float(zs_a[i]), yaws[i], s.camera_pitch_deg,
-                        s.fov_y_deg) for i in range(frames)]
+    return [Pose(float(xs_a[i]), float(ground[i] + clearance), float(zs_a[i]), yaws[i], s.camera_pitch_deg,
+                 s.fov_y_deg) for i in range(frames)]

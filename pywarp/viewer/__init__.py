@@ -2,8 +2,8 @@
 
 A real window (Dear ImGui through ``imgui-bundle``, :mod:`pywarp.viewer.window`) shows the scene's image as a texture
 beside a panel generated from the scene's parameter specs (:mod:`pywarp.viewer.panel`); keys, the mouse and time
-drive the camera and the settings through the scene's controls (:mod:`pywarp.core.scenes`: ``Scene.controls``, the
-free-fly default). Rendering runs off the UI thread on the tile-parallel launcher, at reduced resolution while the
+drive the camera and the settings through the scene's controls (:mod:`pywarp.viewer.controls`: ``Scene.controls``,
+the free-fly default). Rendering runs off the UI thread on the tile-parallel launcher, at reduced resolution while the
 view moves and refined to full quality when it stops (:mod:`pywarp.viewer.session`).
 
     pywarp view clouds                         # fly: W/S/A/D, E/Q, arrows or left-drag; F1 help, F12 screenshot

@@ -27,7 +27,8 @@ from typing import Any
 
 import numpy as np
 
-from ..core.scenes import Input, Scene
+from ..core.scenes import Scene
+from .controls import Input, make_controls
 
 #: a preview frame should take about this long (s): 1/30 s leaves room for the UI thread within the 20 frames/s target
 PREVIEW_BUDGET_S = 1.0 / 30.0
@@ -337,7 +338,7 @@ class Session:
                  scale_index: int = START_SCALE, fixed_scale: bool = False, time_scale: float = 20.0):
         self.scene = scene
         self.settings = settings
-        self.controls = scene.make_controls(settings)
+        self.controls = make_controls(scene, settings)
         self.exclude = tuple(exclude)
         self.script = script
         self.still_s = float(still_s)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import time
 
-from ..core.scenes import Binding, Input
+from .controls import Binding, Input
 from .panel import draw as draw_panel
 from .session import Benchmark, Session
 
@@ -30,7 +30,7 @@ VIEWER_BINDINGS = (Binding("Esc", "quit"), Binding("F1", "this help"), Binding("
 
 
 def key_table(imgui) -> dict:
-    """Key name (:mod:`pywarp.core.scenes` docstring) -> ImGui keys."""
+    """Key name (:mod:`pywarp.viewer.controls` docstring) -> ImGui keys."""
     K = imgui.Key
     t = {chr(c): [getattr(K, chr(c).lower())] for c in range(ord("A"), ord("Z") + 1)}
     for d in range(10):

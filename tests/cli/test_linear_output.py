@@ -124,7 +124,7 @@ def test_a_scene_without_the_hook_is_refused_with_a_clear_error(tmp_path, capsys
 
 
 def test_animate_numbered_frames_are_the_frames_of_the_path_in_order(tmp_path):
-    from pywarp.clouds.cloudscape import CloudscapeTechnique
+    from pywarp.clouds.technique import CloudscapeTechnique
     from pywarp.clouds.settings import CloudscapeSettings
     from PIL import Image
 

@@ -12,7 +12,9 @@ import importlib
 import numpy as np
 import pytest
 
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique
+from pywarp.clouds.cloudscape import CloudscapeSettings
+from pywarp.clouds.technique import CloudscapeTechnique
+from pywarp.core.pose import Pose
 import pywarp
 from pywarp.kernels.camera import camera_look_at, subpixel_jitter
 
@@ -20,7 +22,7 @@ cli_main = importlib.import_module("pywarp.cli.main")
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 #: a low camera pitch puts the distant, noisy cloud band near the horizon into the frame
-POSE = CameraPose(0.0, 0.3, 0.0, 0.0, 8.0, 60.0)
+POSE = Pose(0.0, 0.3, 0.0, 0.0, 8.0, 60.0)
 
 
 def small(**kw) -> CloudscapeSettings:

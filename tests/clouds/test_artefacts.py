@@ -20,7 +20,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique
+from pywarp.clouds.cloudscape import CloudscapeSettings
+from pywarp.clouds.technique import CloudscapeTechnique
 
 #: the configuration of the thesis's renderer: no level of detail, no refinement
 THESIS = dict(lod=False, refine_step_km=0.0)
@@ -140,14 +141,14 @@ def fresh_vs_carried(s: CloudscapeSettings, textures, frames: int = 24, settle: 
     """Along a steady forward path (20 m per frame at 0.3 km altitude, pitched up 20 deg) with reprojection: after
     ``settle`` frames, the mean block deviation of the pixel marched fresh in each frame's 4 x 4 blocks, and of the
     block position farthest from it ((a + 2) mod 4, (b + 2) mod 4), a pixel carried from earlier frames."""
-    from pywarp.clouds.cloudscape import CameraPose
+    from pywarp.core.pose import Pose
 
     t = CloudscapeTechnique(s, textures=textures)
     fresh, carried = [], []
     for i in range(frames):
         f = t.frame % 16
         a, b = f // 4, f % 4  # eq 4.1: the pixel (4 i + a, 4 j + b) of each block is marched in this frame
-        img = t.render(CameraPose(0.0, 0.3, -0.02 * i, 0.0, 20.0, 60.0))
+        img = t.render(Pose(0.0, 0.3, -0.02 * i, 0.0, 20.0, 60.0))
         if i >= settle:
             fresh.append(block_deviation(img, a, b))
             carried.append(block_deviation(img, (a + 2) % 4, (b + 2) % 4))
@@ -186,7 +187,7 @@ def _row_roughness(s: CloudscapeSettings, pose) -> tuple[np.ndarray, int]:
     w = s.width
     rough = np.abs(np.diff(img[:, int(0.4 * w):int(0.8 * w)], axis=1)).mean(axis=1)
     r = s.earth_radius_km
-    dip = math.degrees(math.acos((r + s.layer_base_km) / (r + pose.altitude_km)))
+    dip = math.degrees(math.acos((r + s.layer_base_km) / (r + pose.y)))
     ys = np.arange(s.height) + 0.5
     elev = pose.pitch_deg + np.degrees(np.arctan((1 - 2 * ys / s.height) * math.tan(math.radians(s.fov_y_deg) / 2)))
     return rough, int(np.argmax(elev < -dip))
@@ -202,7 +203,7 @@ def test_rows_along_the_layer_base_are_not_speckled():
     import importlib.util
     from pathlib import Path
 
-    from pywarp.clouds.cloudscape import CameraPose
+    from pywarp.core.pose import Pose
 
     path = Path(__file__).resolve().parents[2] / "tutorials" / "vc" / "fig_4_13_camera_positions.py"
     spec = importlib.util.spec_from_file_location("fig_4_13", path)
@@ -211,7 +212,7 @@ def test_rows_along_the_layer_base_are_not_speckled():
     s = CloudscapeSettings(**tut.FULL, **tut.SCENE)
     t = CloudscapeTechnique(s)
     x, z = tut.clear_spot(t.textures.weather[..., 0], s.c_values()["weather_scale_km"], tut.CLEAR_HALF_KM)
-    pose = CameraPose(x, 2.5, z, 90.0, -3.0, s.fov_y_deg)
+    pose = Pose(x, 2.5, z, 90.0, -3.0, s.fov_y_deg)
     for kw, speckled in ((THESIS, True), ({}, False)):
         rough, tangent = _row_roughness(replace(s, **kw), pose)
         at = rough[tangent - 4:tangent].max()

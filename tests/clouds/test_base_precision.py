@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 
 from helpers import march_frames, pixel_change
-from pywarp.clouds.cloudscape import (HALF_MAX, CameraPose, CloudscapeTechnique, RenderTextures, half_values,
-                                      render_pixels_c, render_pixels_warp)
+from pywarp.clouds.cloudscape import HALF_MAX, RenderTextures, half_values, render_pixels_c, render_pixels_warp
+from pywarp.clouds.technique import CloudscapeTechnique
 from pywarp.clouds.settings import CloudscapeSettings
+from pywarp.core.pose import Pose
 from pywarp.kernels import cloudscape as K
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
@@ -54,7 +55,7 @@ def test_c_and_warp_read_the_same_base_texels(precision):
     t = CloudscapeTechnique(s)
     xs = [3, 17, 31, 40, 52, 60, 8, 25]
     ys = [30, 24, 20, 18, 22, 33, 12, 16]
-    pose = CameraPose.from_settings(s)
+    pose = Pose.from_settings(s)
     np.testing.assert_array_equal(render_pixels_warp(t, xs, ys, pose), render_pixels_c(s, t.textures, xs, ys, pose))
 
 

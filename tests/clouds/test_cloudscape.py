@@ -9,15 +9,9 @@ import sys
 import numpy as np
 import pytest
 
-from pywarp.clouds.cloudscape import (
-    CameraPose,
-    CloudscapeSettings,
-    CloudscapeTechnique,
-    flythrough_path,
-    render_frame_c,
-    render_pixels_c,
-    render_pixels_warp,
-)
+from pywarp.clouds.cloudscape import CloudscapeSettings, render_frame_c, render_pixels_c, render_pixels_warp
+from pywarp.clouds.technique import CloudscapeTechnique, flythrough_path
+from pywarp.core.pose import Pose
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 SPEC = ("vc-A14", "vc-A17", "vc-A18", "vc-A19", "vc-A20", "vc-A21", "vc-A22", "vc-A24", "vc-A25", "vc-4.8")
@@ -81,7 +75,7 @@ def test_whole_frame_warp_equals_c_render():
 def test_images_are_finite_everywhere(tech, altitude, pitch, sky):
     s = small(sky=sky)
     t = CloudscapeTechnique(s, textures=tech.textures)
-    lin = t.render(CameraPose(0.0, altitude, 0.0, 30.0, pitch, 60.0), reprojection=False, encode=False)
+    lin = t.render(Pose(0.0, altitude, 0.0, 30.0, pitch, 60.0), reprojection=False, encode=False)
     assert np.all(np.isfinite(lin))
     assert lin.min() >= 0.0
 
@@ -110,7 +104,7 @@ def test_reprojection_static_camera_converges_to_full_render(tech):
 
 @pytest.mark.spec("vc-A26", "vc-A24")
 def test_reprojection_falls_back_to_full_render_inside_and_above_the_layer(tech):
-    pose = CameraPose(0.0, 2.5, 0.0, 10.0, 5.0, 60.0)
+    pose = Pose(0.0, 2.5, 0.0, 10.0, 5.0, 60.0)
     s = small(reprojection=True, jitter="none")
     a = CloudscapeTechnique(s, textures=tech.textures).render(pose, reprojection=True, encode=False)
     b = CloudscapeTechnique(s, textures=tech.textures).render(pose, reprojection=False, encode=False)
@@ -139,7 +133,7 @@ def test_optimisation_ladder_reduces_the_work(tech):
 def test_flythrough_climbs_through_the_layer():
     s = CloudscapeSettings()
     poses = flythrough_path(30, s)
-    alts = [p.altitude_km for p in poses]
+    alts = [p.y for p in poses]
     assert alts[0] == s.camera_altitude_km and alts[-1] > s.layer_top_km
     assert all(b >= a for a, b in zip(alts, alts[1:]))
     with pytest.raises(ValueError, match="frames must be >= 1"):
@@ -259,7 +253,7 @@ def test_ground_below_the_horizon_sky_above(altitude):
     ground colour (the sky lighting's lit ground: tests/clouds/test_lighting.py)."""
     s = small(sky="gradient", coverage=0.0, jitter="none", lighting="thesis")
     t = CloudscapeTechnique(s)
-    lin = t.render(CameraPose(0.0, altitude, 0.0, 0.0, 0.0, 60.0), reprojection=False, encode=False)
+    lin = t.render(Pose(0.0, altitude, 0.0, 0.0, 0.0, 60.0), reprojection=False, encode=False)
     ground = np.array(t.params.ground_colour, dtype=np.float32)
     np.testing.assert_array_equal(lin[-1, s.width // 2], ground)  # bottom row looks 30 deg down
     assert np.abs(lin[0, s.width // 2] - ground).max() > 0.1  # top row looks 30 deg up: sky

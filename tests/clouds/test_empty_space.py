@@ -6,6 +6,8 @@ import pytest
 
 from pywarp.clouds import cloudscape as C
 from pywarp.clouds.settings import CloudscapeSettings
+from pywarp.clouds.technique import CloudscapeTechnique
+from pywarp.core.pose import Pose
 from pywarp.kernels import cloudscape as K
 from tests.clouds.test_artefacts import small_textures, weather_c  # noqa: F401 (a fixture)
 
@@ -49,8 +51,8 @@ def test_empty_distance_all_empty_is_capped_and_all_occupied_is_zero():
 
 def _pair(**kw):
     s = CloudscapeSettings(width=96, height=54, threads=2, **kw)
-    t = C.CloudscapeTechnique(s)
-    pose = C.CameraPose.from_settings(s)
+    t = CloudscapeTechnique(s)
+    pose = Pose.from_settings(s)
     tex = t.textures.warp()
     out = []
     bound = tex.base_bound

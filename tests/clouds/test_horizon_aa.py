@@ -12,14 +12,17 @@ import math
 import numpy as np
 import pytest
 
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique
+from pywarp.clouds.cloudscape import CloudscapeSettings
+from pywarp.clouds.technique import CloudscapeTechnique
+from pywarp.core.pose import Pose
+from pywarp.kernels.camera import pose_camera
 
-def horizon_rows(s: CloudscapeSettings, pose: CameraPose) -> np.ndarray:
+def horizon_rows(s: CloudscapeSettings, pose: Pose) -> np.ndarray:
     """Per column, the (fractional) image row where the horizon crosses, from the camera geometry in float64:
     the elevation of the horizon is -acos(R / (R + altitude)); the pixel rays of a pinhole camera pitched up."""
-    cam = pose.camera(s.width, s.height)
+    cam = pose_camera(pose, s.width, s.height)
     inv = np.asarray(cam.inv_view_proj_rot, dtype=np.float64).reshape(4, 4)
-    dip = math.acos(s.earth_radius_km / (s.earth_radius_km + pose.altitude_km))
+    dip = math.acos(s.earth_radius_km / (s.earth_radius_km + pose.y))
     ys = np.linspace(0.0, s.height, 8 * s.height + 1)
     out = []
     for x in range(s.width):
@@ -43,7 +46,7 @@ def frame():
     s = CloudscapeSettings(width=192, height=108, coverage=0.0, aerial_km=0.0, camera_pitch_deg=20.0,
                            camera_altitude_km=0.3, threads=2)
     t = CloudscapeTechnique(s)
-    pose = CameraPose.from_settings(s)
+    pose = Pose.from_settings(s)
     return s, pose, _linear(t.render(pose, reprojection=False))
 
 

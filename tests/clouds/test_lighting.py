@@ -82,9 +82,7 @@ def test_sun_attenuation_refuses_bad_input(theta_s, turbidity, match):
 import warp as wp  # noqa: E402
 
 from pywarp.clouds.cloudscape import (  # noqa: E402
-    CameraPose,
     CloudscapeSettings,
-    CloudscapeTechnique,
     c_sky,
     c_textures,
     light_params,
@@ -92,15 +90,18 @@ from pywarp.clouds.cloudscape import (  # noqa: E402
     render_pixels_c,
     render_pixels_warp,
 )
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
+from pywarp.core.pose import Pose  # noqa: E402
 from pywarp.clouds import settings as CS  # noqa: E402
 from pywarp.clouds.settings import CLOUDSCAPE_PARAMS  # noqa: E402
 from pywarp.core.binding import ffi, lib  # noqa: E402
 from pywarp.kernels import cloudscape as K  # noqa: E402
+from pywarp.kernels.camera import pose_camera  # noqa: E402
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 LIGHT = ("sun_colour", "ambient_top", "ambient_bottom", "ambient_ground")
-BELOW = CameraPose(0.0, 0.3, 0.0, 0.0, 12.0, 60.0)
-ABOVE = CameraPose(0.0, 8.0, 0.0, 30.0, -30.0, 60.0)
+BELOW = Pose(0.0, 0.3, 0.0, 0.0, 12.0, 60.0)
+ABOVE = Pose(0.0, 8.0, 0.0, 30.0, -30.0, 60.0)
 
 
 def small(**kw) -> CloudscapeSettings:
@@ -268,7 +269,7 @@ def test_ground_c_equals_warp_and_clouds_shadow_the_ground(tech):
     ("gradient", BELOW, dict(sun_elevation_deg=4.0, ms_octaves=5, silver_weight=0.6)),
     ("preetham", ABOVE, dict(ms_octaves=2, silver_weight=0.0, aerial_height_km=0.0)),
     ("gradient", ABOVE, dict(ms_octaves=1, silver_weight=0.5, beer=False)),
-    ("preetham", CameraPose(0.0, 2.5, 0.0, 60.0, 3.0, 60.0), dict(powder=False, aerial_km=8.0)),
+    ("preetham", Pose(0.0, 2.5, 0.0, 60.0, 3.0, 60.0), dict(powder=False, aerial_km=8.0)),
 ])
 def test_sky_lighting_pixels_match_c_reference(tech, sky, pose, extra):
     """Sky lighting, multiple-scattering octaves, the dual lobe, the lit ground and aerial perspective: Warp vs the C
@@ -315,11 +316,11 @@ def _march_kernel(p: K.CloudscapeParams, tex: K.CloudTextures, sun: wp.vec3, inv
     opacity[y, x] = 1.0 - trans
 
 
-def _cloud_light(t: CloudscapeTechnique, pose: CameraPose):
+def _cloud_light(t: CloudscapeTechnique, pose: Pose):
     """(the clouds' own colour C / O_D, opacity O_D) per pixel: the light the clouds send, before compositing and
     aerial perspective."""
     s = t.settings
-    cam = pose.camera(s.width, s.height)
+    cam = pose_camera(pose, s.width, s.height)
     col = wp.zeros((s.height, s.width), dtype=wp.vec3)
     op = wp.zeros((s.height, s.width), dtype=float)
     wp.launch(_march_kernel, (s.height, s.width),
@@ -366,7 +367,7 @@ def test_aerial_perspective_fades_distant_clouds_into_the_horizon_sky(tech):
     """With aerial perspective a cloud's colour moves towards the haze colour H (here the clear sky of the same
     pixel), the more the farther it is: |on - H| / |off - H| <= 1, and smaller for the clouds near the horizon
     (tens of km away) than for those high in the view (a few km)."""
-    pose = CameraPose(0.0, 0.3, 0.0, 0.0, 10.0, 60.0)
+    pose = Pose(0.0, 0.3, 0.0, 0.0, 10.0, 60.0)
     base = dict(sun_elevation_deg=35.0, aerial_height_km=0.0)
     on = render_pixels_grid(CloudscapeTechnique(small(aerial_km=30.0, **base), textures=tech.textures), pose)
     off = render_pixels_grid(CloudscapeTechnique(small(aerial_km=0.0, **base), textures=tech.textures), pose)
@@ -384,7 +385,7 @@ def test_aerial_perspective_fades_distant_clouds_into_the_horizon_sky(tech):
     assert np.median(far) < np.median(near) - 0.1
 
 
-def render_pixels_grid(t: CloudscapeTechnique, pose: CameraPose) -> np.ndarray:
+def render_pixels_grid(t: CloudscapeTechnique, pose: Pose) -> np.ndarray:
     """Display-linear frame (height, width, 3) of the technique at ``pose``."""
     return t.render(pose, reprojection=False, encode=False)
 
@@ -409,8 +410,8 @@ def test_silver_lobe_brightens_clouds_towards_the_sun(tech):
     """The second, narrow forward lobe lights the clouds seen towards the sun and dims those seen away from it (the
     phase function's weight moves forward)."""
     s = dict(sun_elevation_deg=10.0, sun_azimuth_deg=0.0, ms_octaves=1)
-    pose = CameraPose(0.0, 0.3, 0.0, 0.0, 12.0, 60.0)
-    away = CameraPose(0.0, 0.3, 0.0, 180.0, 12.0, 60.0)
+    pose = Pose(0.0, 0.3, 0.0, 0.0, 12.0, 60.0)
+    away = Pose(0.0, 0.3, 0.0, 180.0, 12.0, 60.0)
     lum = {}
     for w in (0.0, 0.5):
         t = CloudscapeTechnique(small(silver_weight=w, **s), textures=tech.textures)
@@ -439,7 +440,7 @@ GOLDEN_YS = [27, 34, 35, 22, 31, 13, 5, 18, 15, 23, 35, 9, 30, 4, 12, 28]
 #: of the whole frame (the Warp renderer's uint8 image; the C reference's float32 sRGB frame), computed by the code
 #: of commit ec4f252 -- before the sky lighting existed -- in a scratch worktree of that commit with its own C library.
 GOLDEN = {
-    "below": (dict(sun_elevation_deg=35.0), CameraPose(0.0, 0.3, 0.0, 0.0, 20.0, 60.0), [
+    "below": (dict(sun_elevation_deg=35.0), Pose(0.0, 0.3, 0.0, 0.0, 20.0, 60.0), [
         1042075884, 1043547249, 1046495443, 1035489772, 1036831949, 1034147594, 1035489772, 1036831949, 1034147594,
         1048541920, 1051439918, 1055482694, 1035489772, 1036831949, 1034147594, 1041434224, 1048502004, 1054026392,
         1044516412, 1048944113, 1053082191, 1047556000, 1051186998, 1055534190, 1042190408, 1048968346, 1054357650,
@@ -449,7 +450,7 @@ GOLDEN = {
         "307ccb9258deddda14473438fe1ec4499132dceb52011936c17790af86613cec",
         "9ba6be6be9a62ea9ef591a0425df2ff74a97ad6fe7c2564e734df22efa5a8253"),
     "sunset": (dict(sun_elevation_deg=4.0, sun_azimuth_deg=10.0, sky="gradient"),
-               CameraPose(0.0, 0.3, 0.0, 0.0, 12.0, 60.0), [
+               Pose(0.0, 0.3, 0.0, 0.0, 12.0, 60.0), [
         1035489772, 1036831949, 1034147594, 1035489772, 1036831949, 1034147594, 1035489772, 1036831949, 1034147594,
         1046242012, 1047466104, 1049243191, 1035489772, 1036831949, 1034147594, 1058200939, 1060415644, 1064069246,
         1053658127, 1057845162, 1062438278, 1056918670, 1057917328, 1059450266, 1058399206, 1060585285, 1064093654,
@@ -458,7 +459,7 @@ GOLDEN = {
         1035489772, 1036831949, 1034147594],
         "510c368682cfbb5c0674c068e4a5f723c0b6fcd0accd75570bc19b14c69181ec",
         "2f966b473407f3e5fc3a8ce15c3ecca7778c5cfd40e8e8932e949742ba0eee6b"),
-    "above": (dict(sun_elevation_deg=35.0, g=0.4), CameraPose(0.0, 8.0, 0.0, 30.0, -30.0, 60.0), [
+    "above": (dict(sun_elevation_deg=35.0, g=0.4), Pose(0.0, 8.0, 0.0, 30.0, -30.0, 60.0), [
         1050236406, 1051241825, 1053248348, 1048196120, 1049238192, 1050939326, 1035489772, 1036831949, 1034147594,
         1035489772, 1036831949, 1034147594, 1035489772, 1036831949, 1034147594, 1049107509, 1049965101, 1051676691,
         1036065207, 1037509993, 1035262889, 1051446325, 1052526199, 1054682307, 1050709143, 1051617197, 1053428934,

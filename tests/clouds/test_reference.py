@@ -11,12 +11,14 @@ import numpy as np
 import pytest
 import warp as wp
 
-from pywarp.clouds.cloudscape import CameraPose, RenderTextures
+from pywarp.clouds.cloudscape import RenderTextures
 from pywarp.clouds.reference import (
     ReferenceRenderer,
     hg_samples_kernel,
 )
 from pywarp.clouds.settings import CloudscapeSettings
+from pywarp.core.pose import Pose
+from pywarp.kernels.camera import pose_camera
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 
@@ -93,7 +95,7 @@ def test_slab_single_scattering_closed_form(textures):
     mean, se = _mean_and_se(r, img)
     from pywarp import camera_ray
 
-    cam = CameraPose.from_settings(s).camera(s.width, s.height)
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
     ys, xs = np.mgrid[0:s.height, 0:s.width]
     d = np.asarray(camera_ray(xs.ravel(), ys.ravel(), s.width, s.height, cam), dtype=np.float64)
     sun = np.asarray(s.sun(), dtype=np.float64)

@@ -162,7 +162,7 @@ def test_invalidation_follows_the_specs():
 
 
 def test_technique_update_regenerates_only_what_the_change_invalidates():
-    from pywarp.clouds.cloudscape import CloudscapeTechnique
+    from pywarp.clouds.technique import CloudscapeTechnique
 
     t = CloudscapeTechnique(S.CloudscapeSettings(**SMALL))
     textures, sky, buffers = t.textures, t.sky, t._buffers
@@ -185,7 +185,7 @@ def test_technique_update_regenerates_only_what_the_change_invalidates():
 def test_render_progress_adds_up_to_one_frame_and_changes_no_pixel(threads):
     """A progress callback splits the cloud pass into bands (also with one worker, serially); the pixels are those
     of the render without it."""
-    from pywarp.clouds.cloudscape import CloudscapeTechnique
+    from pywarp.clouds.technique import CloudscapeTechnique
 
     s = S.CloudscapeSettings(**SMALL, threads=threads)
     ref = CloudscapeTechnique(s).render(reprojection=False)

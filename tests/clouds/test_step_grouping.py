@@ -13,8 +13,9 @@ tests/clouds/test_cloudscape.py (test_warp_pixels_match_c_reference)."""
 import numpy as np
 import pytest
 
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeTechnique
+from pywarp.clouds.technique import CloudscapeTechnique
 from pywarp.clouds.settings import CloudscapeSettings
+from pywarp.core.pose import Pose
 
 #: a view from below the layer pitched up so far that every ray's view steps are short (elevation >= 15 deg: the
 #: 2.5 km layer takes <= 9.7 km of ray in >= 100 steps, < 0.1 km each): every ray is grouped
@@ -31,13 +32,13 @@ def pair(request):
         s = CloudscapeSettings(width=240, height=135, **STEEP, **GENERA[request.param], **kw)
         t = CloudscapeTechnique(s, textures=tex)
         tex = t.textures
-        pose = CameraPose.from_settings(s)
+        pose = Pose.from_settings(s)
         out[name] = t.render(pose, reprojection=False, encode=False)
         out[name + "_samples"] = t.samples_taken().astype(np.int64)
         # the next frame: the same march at another jitter offset, the variation every frame already has
         out[name + "_next"] = t.render(pose, reprojection=False, encode=False)
     s = CloudscapeSettings(width=240, height=135, **STEEP, **{**GENERA[request.param], "coverage": 0.0})
-    out["clear"] = CloudscapeTechnique(s).render(CameraPose.from_settings(s), reprojection=False, encode=False)
+    out["clear"] = CloudscapeTechnique(s).render(Pose.from_settings(s), reprojection=False, encode=False)
     return out
 
 

@@ -19,8 +19,10 @@ import numpy as np
 import pytest
 from helpers import march_frames, pixel_change
 
-from pywarp.clouds.cloudscape import (CameraPose, CloudscapeTechnique, c_camera, render_pixels_c,
-                                      render_pixels_warp)
+from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
+from pywarp.clouds.technique import CloudscapeTechnique
+from pywarp.core.pose import Pose
+from pywarp.kernels.camera import pose_camera
 from pywarp.clouds.settings import MARCH_NAMES, CloudscapeSettings
 from pywarp.core.binding import ffi, lib
 from pywarp.kernels import cloudscape as K
@@ -117,7 +119,7 @@ def _textbook_steps(s: CloudscapeSettings) -> np.ndarray:
     """The length of the textbook's view steps in every pixel (km; inf where the ray misses the layer), by the C
     functions it calls: the layer segment (vc-A14 / A24) over the adaptive sample count (vc-A18)."""
     f, lb = ffi(), lib()
-    cam = c_camera(CameraPose.from_settings(s).camera(s.width, s.height))
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height).to_c()
     layer = s.layer()
     centre = f.new("ccl_vec3 *")
     centre.x, centre.y, centre.z = layer.centre

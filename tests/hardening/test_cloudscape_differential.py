@@ -16,12 +16,8 @@ hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import assume, given  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from pywarp.clouds.cloudscape import (  # noqa: E402
-    CloudscapeTechnique,
-    RenderTextures,
-    render_pixels_c,
-    render_pixels_warp,
-)
+from pywarp.clouds.cloudscape import RenderTextures, render_pixels_c, render_pixels_warp  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
 from pywarp.clouds.settings import CloudscapeSettings  # noqa: E402
 
 SETTINGS = differential_settings(150)

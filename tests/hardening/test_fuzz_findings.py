@@ -475,7 +475,8 @@ def test_cloudscape_far_light_factor_bounded_and_finite_at_the_limit():
     """Before: light_far_factor = 3e38 with light_step_km = 1e-39 passed ccl_cloudscape_check (the far sample's
     distance, their product x 5, is 1.5 km), but its weight (light_far_factor - 1) x 5 x light_step_km overflowed to
     Inf in the first product, and Inf x a density of 0 made the pixel NaN."""
-    from pywarp.clouds.cloudscape import CloudscapeTechnique, render_pixels_c, render_pixels_warp
+    from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
+    from pywarp.clouds.technique import CloudscapeTechnique
     from pywarp.clouds.settings import CloudscapeSettings
 
     finding = {"light_far_factor": 3.0e38, "light_step_km": 1.0e-39}

@@ -143,7 +143,7 @@ def test_cloudscape_check_passes_at_the_largest_sizes_time_and_wind():
 
 
 def test_settings_with_coordinates_beyond_the_bound_refused_before_rendering():
-    from pywarp.clouds.cloudscape import CloudscapeTechnique
+    from pywarp.clouds.technique import CloudscapeTechnique
     from pywarp.clouds.settings import CloudscapeSettings
 
     with pytest.raises(ValueError, match=r"^detail_scale_km is out of range"):
@@ -235,7 +235,7 @@ def test_angles_times_positions_bounded(field, value):
 
 
 def test_largest_time_and_wind_still_render_finite_pixels():
-    from pywarp.clouds.cloudscape import CloudscapeTechnique
+    from pywarp.clouds.technique import CloudscapeTechnique
     from pywarp.clouds.settings import MAX_TIME_S, CloudscapeSettings
 
     s = CloudscapeSettings(width=8, height=8, base_size=16, detail_size=32, curl_size=16, weather_size=512,
@@ -246,7 +246,7 @@ def test_largest_time_and_wind_still_render_finite_pixels():
 
 
 def test_nan_pixels_raise_before_encoding_not_black():
-    from pywarp.clouds.cloudscape import CloudscapeTechnique
+    from pywarp.clouds.technique import CloudscapeTechnique
     from pywarp.clouds.settings import CloudscapeSettings
 
     tech = CloudscapeTechnique(CloudscapeSettings(width=8, height=8, base_size=16, detail_size=8, curl_size=16,

@@ -8,10 +8,11 @@ import math
 import numpy as np
 import pytest
 
+from pywarp.core.pose import Pose
 from pywarp.core.scenes import scene
 from pywarp.rain import particles as P
 from pywarp.rain.settings import CONTROLS, RainSettings
-from pywarp.rain.technique import Panorama, RainPose, RainTechnique, sphere_mask
+from pywarp.rain.technique import Panorama, RainTechnique, sphere_mask
 
 SMALL = dict(width=160, height=90, background="panorama", drops=1500, capture_size=128, mask_size=128)
 
@@ -75,10 +76,10 @@ def test_drops_show_the_scene_upside_down():
     # one big drop in the middle of the view: its upper half sees the ground (darker, greener), its lower half the
     # sky -- the inversion of a refracting sphere (fig 2.4)
     w, h = 200, 120
-    pose = RainPose(0.0, 0.0, 60.0)
+    pose = Pose(yaw_deg=0.0, pitch_deg=0.0, fov_y_deg=60.0)
     pano = Panorama()
     view = pano.render(pose, w, h, 60.0)
-    cap = pano.render(RainPose(0.0, 0.0, 150.0), 256, 256, 150.0)
+    cap = pano.render(Pose(yaw_deg=0.0, pitch_deg=0.0, fov_y_deg=150.0), 256, 256, 150.0)
     sp = np.array([[100.0, 60.0, 30.0, 30.0, 0.0, 1.0]], np.float32)
     out = P.composite(view, cap, sphere_mask(128), sp, math.radians(60))
     top = out[38:52, 92:108].mean(axis=(0, 1))

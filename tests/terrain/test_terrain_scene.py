@@ -11,9 +11,10 @@ import numpy as np
 import pytest
 
 from pywarp.core.cbridge import TERRAIN_PARAMS, settings_values
+from pywarp.core.pose import Pose
 from pywarp.terrain.settings import PREVIEW, TEST_HEIGHTMAP, TerrainSettings
-from pywarp.terrain.technique import (TerrainPose, TerrainTechnique, render_pixels_c, render_pixels_warp,
-                                      ground_height, walk_path)
+from pywarp.terrain.technique import (TerrainTechnique, render_pixels_c, render_pixels_warp, ground_height,
+                                      walk_path)
 
 SMALL = dict(width=96, height=54)
 
@@ -144,7 +145,7 @@ def test_update_and_resize():
 def test_walk_path_stays_above_ground_and_water():
     s = TerrainSettings()
     poses = walk_path(30, s)
-    assert len(poses) == 30 and isinstance(poses[0], TerrainPose)
+    assert len(poses) == 30 and isinstance(poses[0], Pose)
     xs = np.array([p.x for p in poses])
     zs = np.array([p.z for p in poses])
     ys = np.array([p.y for p in poses])
@@ -221,11 +222,12 @@ def test_preview_quality_is_the_reduced_frame_enlarged():
 
 
 def test_controls_mouse_look_and_w_walk_forward_above_the_ground():
-    from pywarp.core.scenes import Input, scene
+    from pywarp.core.scenes import scene
+    from pywarp.viewer.controls import Input, make_controls
     from pywarp.terrain.controls import CLEARANCE, WALK_SPEED, TerrainControls
 
     s = TerrainSettings(**SMALL)
-    c = scene("terrain").make_controls(s)
+    c = make_controls(scene("terrain"), s)
     assert isinstance(c, TerrainControls) and c.benchmark_keys == {"W"}
     assert c.preview(s) == {"quality": "preview"}
     step = c.step(s, Input(dt=0.5, held=frozenset({"W"})))

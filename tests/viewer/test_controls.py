@@ -1,4 +1,4 @@
-"""The viewer's controls interface (pywarp.core.scenes): the free-fly default on the settings' camera fields (keys
+"""The viewer's controls interface (pywarp.viewer.controls): the free-fly default on the settings' camera fields (keys
 move the camera as the bindings say, values stay in their specs' domains), scenes without camera fields, a scene's
 own controls, and backward compatibility of Scene."""
 from __future__ import annotations
@@ -9,6 +9,8 @@ from dataclasses import dataclass
 import pytest
 
 from pywarp.core import scenes as S
+from pywarp.core.pose import camera_fields
+from pywarp.viewer import controls as V
 from pywarp.core.params import Settings, param
 
 
@@ -25,21 +27,21 @@ def flat(**kw):
 
 
 def step(ctl, settings, dt=1.0, held=(), pressed=(), mouse=(0.0, 0.0), wheel=0.0):
-    st = ctl.step(settings, S.Input(dt=dt, held=frozenset(held), pressed=frozenset(pressed), mouse=mouse,
+    st = ctl.step(settings, V.Input(dt=dt, held=frozenset(held), pressed=frozenset(pressed), mouse=mouse,
                                     wheel=wheel))
     return st, (settings if not st.changes else __import__("dataclasses").replace(settings, **st.changes))
 
 
 def test_clouds_camera_fields_are_found_by_name():
-    assert S.camera_fields(clouds().settings) == {
+    assert camera_fields(clouds().settings) == {
         "x": "camera_x_km", "y": "camera_altitude_km", "z": "camera_z_km", "yaw": "camera_yaw_deg",
         "pitch": "camera_pitch_deg"}
 
 
-def test_free_fly_is_the_default_and_moves_as_the_bindings_say():
+def test_clouds_fly_freely_as_the_bindings_say():
     s = flat()
-    ctl = clouds().make_controls(s)
-    assert type(ctl) is S.FreeFlyControls and ctl.unit == "km" and ctl.speed == S.FREE_FLY_SPEED["km"]
+    ctl = V.make_controls(clouds(), s)
+    assert isinstance(ctl, V.FreeFlyControls) and ctl.unit == "km" and ctl.speed == V.FREE_FLY_SPEED["km"]
     v = ctl.speed
     st, s1 = step(ctl, s, held={"W"})  # yaw 0, pitch 0: forward is -z
     assert st.moving and s1.camera_z_km == pytest.approx(-v) and s1.camera_x_km == pytest.approx(0.0)
@@ -60,18 +62,18 @@ def test_free_fly_is_the_default_and_moves_as_the_bindings_say():
 
 def test_free_fly_looks_with_arrows_and_mouse_drag():
     s = flat()
-    ctl = clouds().make_controls(s)
+    ctl = V.make_controls(clouds(), s)
     _, s1 = step(ctl, s, held={"Right"}, dt=0.5)
-    assert s1.camera_yaw_deg == pytest.approx(0.5 * S.FREE_FLY_TURN_DEG_S)
+    assert s1.camera_yaw_deg == pytest.approx(0.5 * V.FREE_FLY_TURN_DEG_S)
     _, s2 = step(ctl, s, held={"Up"}, dt=0.25)
-    assert s2.camera_pitch_deg == pytest.approx(0.25 * S.FREE_FLY_TURN_DEG_S)
+    assert s2.camera_pitch_deg == pytest.approx(0.25 * V.FREE_FLY_TURN_DEG_S)
     _, s3 = step(ctl, s, mouse=(10.0, -5.0), dt=0.0)  # drag right and up: look right and up
-    assert s3.camera_yaw_deg == pytest.approx(10 * S.FREE_FLY_MOUSE_DEG)
-    assert s3.camera_pitch_deg == pytest.approx(5 * S.FREE_FLY_MOUSE_DEG)
+    assert s3.camera_yaw_deg == pytest.approx(10 * V.FREE_FLY_MOUSE_DEG)
+    assert s3.camera_pitch_deg == pytest.approx(5 * V.FREE_FLY_MOUSE_DEG)
 
 
 def test_free_fly_stays_in_the_domains_of_the_specs():
-    ctl = clouds().make_controls(flat())
+    ctl = V.make_controls(clouds(), flat())
     _, s1 = step(ctl, flat(camera_pitch_deg=80.0), held={"Up"}, dt=10.0)
     assert s1.camera_pitch_deg == 89.0  # the spec's hi
     _, s2 = step(ctl, flat(camera_altitude_km=0.1), held={"Q"}, dt=10.0)
@@ -79,7 +81,7 @@ def test_free_fly_stays_in_the_domains_of_the_specs():
 
 
 def test_free_fly_yaw_wraps_around():
-    ctl = clouds().make_controls(flat())
+    ctl = V.make_controls(clouds(), flat())
     _, s1 = step(ctl, flat(camera_yaw_deg=170.0), held={"Right"}, dt=0.5)  # +30 deg
     assert s1.camera_yaw_deg == pytest.approx(-160.0)
     _, s2 = step(ctl, flat(camera_yaw_deg=-175.0), mouse=(-50.0, 0.0), dt=0.0)  # -10 deg
@@ -88,7 +90,7 @@ def test_free_fly_yaw_wraps_around():
 
 def test_free_fly_speed_keys_and_nothing_held_is_still():
     s = flat()
-    ctl = clouds().make_controls(s)
+    ctl = V.make_controls(clouds(), s)
     v = ctl.speed
     st, _ = step(ctl, s)
     assert not st.moving and st.changes == {} and "km/s" in st.message
@@ -98,9 +100,9 @@ def test_free_fly_speed_keys_and_nothing_held_is_still():
     assert ctl.speed == v / 2
 
 
-def test_free_fly_preview_turns_reprojection_on_for_clouds():
-    assert clouds().make_controls(flat()).preview(flat()) == {"reprojection": True}
-    assert S.FreeFlyControls.bindings and S.FreeFlyControls.benchmark_keys
+def test_clouds_preview_turns_reprojection_on():
+    assert V.make_controls(clouds(), flat()).preview(flat()) == {"reprojection": True}
+    assert V.FreeFlyControls.bindings and V.FreeFlyControls.benchmark_keys
 
 
 @dataclass(frozen=True)
@@ -115,14 +117,14 @@ def _technique(settings):
 def test_a_scene_without_camera_fields_opens_with_the_default_and_moves_nothing():
     sc = S.Scene("plain", "a scene without a camera", _Plain, _technique)
     assert sc.controls is None  # the new field is optional: older registrations are unchanged
-    ctl = sc.make_controls(_Plain())
-    assert isinstance(ctl, S.FreeFlyControls) and ctl.fields == {}
+    ctl = V.make_controls(sc, _Plain())
+    assert isinstance(ctl, V.FreeFlyControls) and ctl.fields == {}
     st, _ = step(ctl, _Plain(), held={"W", "Right", "E"})
     assert st.changes == {} and not st.moving and ctl.preview(_Plain()) == {}
 
 
-class _Toggle(S.Controls):
-    bindings = (S.Binding("G / H", "lower / raise the gain"),)
+class _Toggle(V.Controls):
+    bindings = (V.Binding("G / H", "lower / raise the gain"),)
 
     def step(self, settings, inp):
         changes = {}
@@ -130,23 +132,23 @@ class _Toggle(S.Controls):
             changes["gain"] = min(settings.gain + 0.5, 2.0)
         if "G" in inp.pressed:
             changes["gain"] = max(settings.gain - 0.5, 0.0)
-        return S.Step(changes=changes, moving=bool(changes), message=f"gain {settings.gain:g}")
+        return V.Step(changes=changes, moving=bool(changes), message=f"gain {settings.gain:g}")
 
 
 def test_a_scene_supplies_its_own_controls():
     sc = S.Scene("plain", "own controls", _Plain, _technique, controls=_Toggle)
-    ctl = sc.make_controls(_Plain())
+    ctl = V.make_controls(sc, _Plain())
     assert isinstance(ctl, _Toggle) and ctl.bindings[0].keys == "G / H"
     st, s1 = step(ctl, _Plain(), pressed={"H"})
     assert s1.gain == 1.5 and st.moving
     bad = S.Scene("plain", "bad controls", _Plain, _technique, controls=lambda s: object())
     with pytest.raises(TypeError, match="must be a Controls"):
-        bad.make_controls(_Plain())
+        V.make_controls(bad, _Plain())
 
 
 def test_every_registered_scene_makes_its_controls():
     for sc in S.scenes().values():
-        ctl = sc.make_controls(sc.settings())
-        assert isinstance(ctl, S.Controls) and isinstance(ctl.bindings, tuple)
+        ctl = V.make_controls(sc, sc.settings())
+        assert isinstance(ctl, V.Controls) and isinstance(ctl.bindings, tuple)
         for b in ctl.bindings:
-            assert isinstance(b, S.Binding) and b.keys and b.help
+            assert isinstance(b, V.Binding) and b.keys and b.help

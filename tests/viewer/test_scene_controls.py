@@ -12,17 +12,18 @@ import numpy as np
 import pytest
 
 from pywarp.core import scenes as S
+from pywarp.viewer import controls as V
 from pywarp.rain.settings import CONTROLS, MODES, SHAPES
 
 
 def press(ctl, settings, keys, dt=0.0):
     keys = frozenset(keys)
-    st = ctl.step(settings, S.Input(dt=dt, held=keys, pressed=keys))
+    st = ctl.step(settings, V.Input(dt=dt, held=keys, pressed=keys))
     return st, dataclasses.replace(settings, **st.changes) if st.changes else settings
 
 
 def hold(ctl, settings, keys, dt):
-    st = ctl.step(settings, S.Input(dt=dt, held=frozenset(keys)))
+    st = ctl.step(settings, V.Input(dt=dt, held=frozenset(keys)))
     return st, dataclasses.replace(settings, **st.changes) if st.changes else settings
 
 
@@ -42,7 +43,7 @@ def rain_settings(rain, **kw):
 def test_rain_has_its_own_controls_with_every_key_of_the_table(rain):
     from pywarp.rain.controls import RainControls
 
-    ctl = rain.make_controls(rain_settings(rain))
+    ctl = V.make_controls(rain, rain_settings(rain))
     assert isinstance(ctl, RainControls)
     shown = " ".join(b.keys for b in ctl.bindings)
     for row in CONTROLS:
@@ -56,7 +57,7 @@ def test_rain_each_key_of_the_table_does_what_it_says(rain, row):
     s = rain_settings(rain, background="clouds", background_options={"camera_altitude_km": 0.05},
                       camera_yaw_deg=90.0, camera_pitch_deg=10.0, drops=3000, size_mm=1.3, shape="1.0",
                       mode="streaks")
-    ctl = rain.make_controls(s)
+    ctl = V.make_controls(rain, s)
     st, s1 = press(ctl, s, {key})
     assert st.moving or key == "P"
     if isinstance(change, float):  # A / D / Y / C / B / N: one step of the table per press
@@ -92,7 +93,7 @@ def test_rain_held_keys_repeat_like_a_keyboard_and_values_stay_in_their_domains(
     from pywarp.rain.controls import REPEAT_DELAY_S, REPEAT_HZ
 
     s = rain_settings(rain)
-    ctl = rain.make_controls(s)
+    ctl = V.make_controls(rain, s)
     _, s1 = press(ctl, s, {"D"}, dt=1 / 60)
     assert s1.camera_yaw_deg == 5.0
     _, s2 = hold(ctl, s1, {"D"}, dt=REPEAT_DELAY_S - 0.01)  # within the delay: no repeat yet
@@ -114,7 +115,7 @@ def test_rain_held_keys_repeat_like_a_keyboard_and_values_stay_in_their_domains(
 
 def test_rain_falls_in_the_viewer_and_the_viewers_own_time_is_not_doubled(rain):
     s = rain_settings(rain)
-    ctl = rain.make_controls(s)
+    ctl = V.make_controls(rain, s)
     _, s1 = hold(ctl, s, set(), dt=0.1)
     assert s1.time_s == pytest.approx(0.1 / s.clock_rate)  # one rain second per second
     s2 = dataclasses.replace(s1, time_s=s1.time_s + 2.0)  # the viewer's time plays (F5, the benchmark)
@@ -126,13 +127,13 @@ def test_rain_preview_frames_take_a_smaller_capture(rain):
     from pywarp.rain.controls import PREVIEW_CAPTURE
 
     s = rain_settings(rain)
-    assert rain.make_controls(s).preview(s) == {"capture_size": PREVIEW_CAPTURE}
+    assert V.make_controls(rain, s).preview(s) == {"capture_size": PREVIEW_CAPTURE}
 
 
 def _wait(session, full=None, version=None, timeout=300.0):
     t0 = time.time()
     while time.time() - t0 < timeout:
-        session.tick(S.Input(dt=0.0))
+        session.tick(V.Input(dt=0.0))
         session.poll()
         f = session.frame
         assert not session.worker.error, session.worker.error
@@ -143,9 +144,9 @@ def _wait(session, full=None, version=None, timeout=300.0):
 
 
 def _settle(session):
-    session.tick(S.Input(dt=0.0))  # the controls' pose of this state (a first pose counts as a change)
+    session.tick(V.Input(dt=0.0))  # the controls' pose of this state (a first pose counts as a change)
     session.clock += 1.0  # then still for a while: refined
-    session.tick(S.Input(dt=0.0))
+    session.tick(V.Input(dt=0.0))
     return _wait(session, full=True, version=session.version)
 
 
@@ -155,7 +156,7 @@ def test_rain_keys_in_a_headless_session_change_the_image(rain):
     s = rain_settings(rain, drops=2000, mode="streaks")
     session = Session(rain, s)
     try:
-        session.tick(S.Input(dt=0.0, pressed=frozenset({"P"}), held=frozenset({"P"})))  # paused: the rain stands
+        session.tick(V.Input(dt=0.0, pressed=frozenset({"P"}), held=frozenset({"P"})))  # paused: the rain stands
         first = _settle(session)
         assert session.settings.time_s == 0.0
         offline = rain.technique(session.settings).render()
@@ -164,7 +165,7 @@ def test_rain_keys_in_a_headless_session_change_the_image(rain):
         for key, check in (("F", lambda st: st.mode == "drops"), ("H", lambda st: st.drops == 4000),
                            ("D", lambda st: st.camera_yaw_deg == 5.0), ("T", lambda st: st.shape == "3.0"),
                            ("N", lambda st: st.size_mm == pytest.approx(1.4))):
-            session.tick(S.Input(dt=1 / 30, pressed=frozenset({key}), held=frozenset({key})))
+            session.tick(V.Input(dt=1 / 30, pressed=frozenset({key}), held=frozenset({key})))
             assert check(session.settings), (key, session.settings)
             f = _wait(session, version=session.version)
             assert not f.full or f.version == session.version
@@ -172,7 +173,7 @@ def test_rain_keys_in_a_headless_session_change_the_image(rain):
                 img = _settle(session).image
                 assert np.mean(np.abs(img.astype(float) - images["start"].astype(float))) > 0.2, key
                 images["start"] = img
-        session.tick(S.Input(dt=1 / 30, held=frozenset({"D"}), pressed=frozenset({"D"})))
+        session.tick(V.Input(dt=1 / 30, held=frozenset({"D"}), pressed=frozenset({"D"})))
         f = _wait(session, version=session.version)
         assert not f.full and f.settings.capture_size == 32  # the preview's capture
     finally:
@@ -195,24 +196,26 @@ def flight_settings(flight, **kw):
 def fly(ctl, s, keys, seconds, fps=30):
     st = None
     for _ in range(int(round(seconds * fps))):
-        st = ctl.step(s, S.Input(dt=1.0 / fps, held=frozenset(keys)))
+        st = ctl.step(s, V.Input(dt=1.0 / fps, held=frozenset(keys)))
     return st
 
 
 def test_flight_keys_fly_the_aircraft_as_the_table_says(flight):
-    from pywarp.flight.controls import FlightControls, FlownPose
+    from pywarp.flight.controls import FlightControls
+    from pywarp.flight.technique import AircraftState, FlightPose
 
     s = flight_settings(flight)
-    ctl = flight.make_controls(s)
+    ctl = V.make_controls(flight, s)
     assert isinstance(ctl, FlightControls)
     assert {"Up", "Down", "Left", "Right", "W", "S"} <= set(" ".join(b.keys for b in ctl.bindings).split())
-    st = ctl.step(s, S.Input(dt=0.0))
+    st = ctl.step(s, V.Input(dt=0.0))
     a0 = ctl.aircraft()
     assert st.pose is None and a0.position == (0.0, s.start_altitude_m, 0.0) and a0.speed == 40.0  # not flown yet
-    assert isinstance(ctl.step(s, S.Input(dt=0.1)).pose, FlownPose)  # flying: the flown aircraft's pose
+    flown = ctl.step(s, V.Input(dt=0.1)).pose
+    assert isinstance(flown, FlightPose) and isinstance(flown.aircraft, AircraftState)  # flying: the flown aircraft
 
     def after(keys, seconds=1.0):
-        c = flight.make_controls(s)
+        c = V.make_controls(flight, s)
         return fly(c, s, keys, seconds).pose.aircraft
 
     still = after(set())  # no key: straight on at the start speed (heading 0: along -z)
@@ -233,11 +236,11 @@ def test_flight_controls_fly_the_path_of_the_flight_model(flight):
     from pywarp.flight.model import simulate
 
     s = flight_settings(flight)
-    ctl = flight.make_controls(s)
+    ctl = V.make_controls(flight, s)
     for _ in range(30):
-        ctl.step(s, S.Input(dt=1 / 30, held=frozenset({"Down", "Right"})))
+        ctl.step(s, V.Input(dt=1 / 30, held=frozenset({"Down", "Right"})))
     for _ in range(15):
-        ctl.step(s, S.Input(dt=1 / 30, held=frozenset({"W"})))
+        ctl.step(s, V.Input(dt=1 / 30, held=frozenset({"W"})))
     tr = simulate([("down", 0.0, 1.0), ("right", 0.0, 1.0), ("w", 1.0, 1.5)], 1.5, dt=DT, start=s.start_state(),
                   model=s.flight_model())
     a = ctl.aircraft()
@@ -247,20 +250,20 @@ def test_flight_controls_fly_the_path_of_the_flight_model(flight):
 
 
 def test_flight_starts_from_the_scripted_moment_and_restarts_on_a_panel_change(flight):
-    from pywarp.flight.controls import FlownPose
+    from pywarp.flight.technique import FlightPose
 
     s = flight_settings(flight, time_s=4.0)
     tech = flight.technique(s)
-    ctl = flight.make_controls(s)
-    st = ctl.step(s, S.Input(dt=0.0))
+    ctl = V.make_controls(flight, s)
+    st = ctl.step(s, V.Input(dt=0.0))
     assert st.pose is None and ctl.aircraft() == tech.aircraft(4.0) and not st.moving  # the settings' camera
-    pose = FlownPose(4.0, "chase", ctl.aircraft())
+    pose = FlightPose(4.0, "chase", ctl.aircraft())
     assert np.array_equal(tech.render(pose), tech.render())  # the same aircraft as pywarp render's
     st = fly(ctl, s, {"Left"}, 0.5)
     assert st.moving and st.pose.aircraft != tech.aircraft(4.0)
     s2 = dataclasses.replace(s, time_s=8.0)
-    assert ctl.step(s2, S.Input(dt=0.0)).pose.aircraft == tech.aircraft(8.0)
-    assert flight.make_controls(s).preview(s) == {"step_voxels": s.preview_step_voxels}
+    assert ctl.step(s2, V.Input(dt=0.0)).pose.aircraft == tech.aircraft(8.0)
+    assert V.make_controls(flight, s).preview(s) == {"step_voxels": s.preview_step_voxels}
 
 
 def test_flight_chase_camera_follows_the_flown_aircraft_in_a_headless_session(flight):
@@ -272,7 +275,7 @@ def test_flight_chase_camera_follows_the_flown_aircraft_in_a_headless_session(fl
         _settle(session)
         v0 = session.version
         for _ in range(10):
-            session.tick(S.Input(dt=1 / 30, held=frozenset(session.controls.benchmark_keys)))
+            session.tick(V.Input(dt=1 / 30, held=frozenset(session.controls.benchmark_keys)))
         assert session.version > v0  # the benchmark keys move the aircraft: the pose changes
         f = _wait(session, version=session.version)
         assert not f.full and f.settings.step_voxels == s.preview_step_voxels

@@ -57,8 +57,7 @@ def test_rain_keys_and_panel_in_a_window(display, run_view, small_options, tmp_p
 
 
 def test_flight_keys_and_panel_in_a_window(display, run_view, small_options, tmp_path):
-    from pywarp.flight.controls import FlownPose
-    from pywarp.flight.technique import AircraftState
+    from pywarp.flight.technique import AircraftState, FlightPose
 
     sc = S.scene("flight")
     script = tmp_path / "fly.json"
@@ -73,7 +72,7 @@ def test_flight_keys_and_panel_in_a_window(display, run_view, small_options, tmp
                      "--script", str(script), "--state-out", "state.json"], tmp_path, display)
     ok(proc)
     side, settings = settings_of(sc, tmp_path / "a.json")
-    pose = eval(side["pose"], {"FlownPose": FlownPose, "AircraftState": AircraftState})  # noqa: S307 (our own repr)
+    pose = eval(side["pose"], {"FlightPose": FlightPose, "AircraftState": AircraftState})  # noqa: S307 (our own repr)
     tech = sc.technique(settings)
     start = tech.aircraft(4.0)
     a0 = pose.aircraft

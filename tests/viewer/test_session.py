@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from pywarp.core import scenes as S
+from pywarp.viewer import controls as V
 from pywarp.viewer.session import Script, Session, run_benchmark_headless, run_headless
 
 
@@ -17,7 +18,7 @@ def wait_frame(session, full=None, timeout=300.0, version=None):
     """The newest frame (possibly already shown) once it is ``full`` (None: either) and of ``version`` (None: any)."""
     t0 = time.time()
     while time.time() - t0 < timeout:
-        session.tick(S.Input(dt=0.0))
+        session.tick(V.Input(dt=0.0))
         session.poll()
         f = session.frame
         assert not session.worker.error, session.worker.error
@@ -42,7 +43,7 @@ def test_every_registered_scene_opens_and_renders_with_its_controls(name, small_
         assert f.image.dtype == np.uint8 and f.image.ndim == 3 and f.image.shape[2] == 3
         keys = set(session.controls.benchmark_keys) | {"W"}
         for _ in range(3):  # the controls drive the scene; frames keep coming
-            session.tick(S.Input(dt=0.1, held=frozenset(keys), pressed=frozenset(keys)))
+            session.tick(V.Input(dt=0.1, held=frozenset(keys), pressed=frozenset(keys)))
         wait_frame(session, version=session.version)
         assert not session.worker.error and not session.error
     finally:
@@ -60,13 +61,13 @@ def test_previews_while_moving_then_the_refined_frame_equals_the_offline_render(
     try:
         wait_frame(session, full=True)
         for _ in range(4):
-            session.tick(S.Input(dt=0.05, held=frozenset({"W"})))
+            session.tick(V.Input(dt=0.05, held=frozenset({"W"})))
             f = wait_frame(session, version=session.version)
         assert not f.full and f.image.shape[1] < s0.width  # reduced resolution while moving
         assert f.settings.reprojection  # clouds: temporal reprojection on for the previews
         assert session.settings.camera_z_km < 0.0  # W flew forward (yaw 0: along -z)
         session.clock += 1.0  # still for a while: refined
-        session.tick(S.Input(dt=0.0))
+        session.tick(V.Input(dt=0.0))
         f = wait_frame(session, full=True, version=session.version)
         assert f.image.shape[:2] == (s0.height, s0.width) and not f.settings.reprojection
         offline = clouds.technique(session.settings).render()
@@ -83,13 +84,13 @@ def test_panel_changes_recompute_only_what_they_invalidate(clouds, small_setting
         textures = tech.textures
         assert session.apply({"sun_elevation_deg": 60.0})  # sky only
         session.clock += 1.0
-        session.tick(S.Input())
+        session.tick(V.Input())
         sun = wait_frame(session, full=True, version=session.version)
         assert session.worker.tech is tech and tech.textures is textures
         assert not np.array_equal(sun.image, first.image)
         assert session.apply({"coverage": 0.9})  # the weather map: textures regenerated
         session.clock += 1.0
-        session.tick(S.Input())
+        session.tick(V.Input())
         cov = wait_frame(session, full=True, version=session.version)
         assert session.worker.tech is tech and tech.textures is not textures
         assert np.mean(np.abs(cov.image.astype(float) - sun.image.astype(float))) > 1.0
@@ -115,7 +116,7 @@ def test_a_script_plays_keys_changes_and_screenshots_deterministically(clouds, t
         assert [p.name for p in session.shots_written] == [f"a{run}.png", f"b{run}.png"]
         shots.append([np.asarray(Image.open(tmp_path / f"{k}{run}.png")) for k in "ab"])
         st = session.settings
-        assert st.camera_yaw_deg == pytest.approx(0.3 * S.FREE_FLY_TURN_DEG_S, abs=1e-6)
+        assert st.camera_yaw_deg == pytest.approx(0.3 * V.FREE_FLY_TURN_DEG_S, abs=1e-6)
         assert st.coverage == 0.8
     assert np.array_equal(shots[0][0], shots[1][0]) and np.array_equal(shots[0][1], shots[1][1])
     assert not np.array_equal(shots[0][0], shots[0][1])
@@ -152,6 +153,6 @@ def test_benchmark_mode_counts_the_frames_shown(clouds, small_settings):
     finally:
         session.close()
     assert r["scene"] == "clouds" and r["frames"] > 0 and r["fps"] > 0 and r["target_fps"] == 20.0
-    assert r["keys"] == sorted(S.FreeFlyControls.benchmark_keys) and r["window"] is False
+    assert r["keys"] == sorted(V.FreeFlyControls.benchmark_keys) and r["window"] is False
     assert r["moved"] and r["time_playing"]  # clouds: the camera circles and the wind blows
     assert set(r["preview_sizes"]) and all("x" in k for k in r["preview_sizes"])

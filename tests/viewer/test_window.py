@@ -17,6 +17,7 @@ import pytest
 from PIL import Image
 
 from pywarp.core import scenes as S
+from pywarp.viewer import controls as V
 
 PANEL_WIDTH = 470  # pywarp.viewer.window.PANEL_WIDTH (not imported: it imports imgui-bundle)
 
@@ -76,10 +77,10 @@ def test_clouds_script_screenshot_matches_the_offline_render(display, run_view, 
     ok(proc)
     state = json.loads((tmp_path / "state.json").read_text())
     st = state["settings"]
-    v = S.FREE_FLY_SPEED["km"]
+    v = V.FREE_FLY_SPEED["km"]
     assert st["camera_z_km"] == pytest.approx(-v * np.cos(np.radians(20.0)), rel=1e-6)
     assert st["camera_altitude_km"] == pytest.approx(0.3 + v * np.sin(np.radians(20.0)), rel=1e-6)
-    assert st["camera_yaw_deg"] == pytest.approx(0.5 * S.FREE_FLY_TURN_DEG_S, rel=1e-6)
+    assert st["camera_yaw_deg"] == pytest.approx(0.5 * V.FREE_FLY_TURN_DEG_S, rel=1e-6)
     assert st["coverage"] == 0.85
     a = np.asarray(Image.open(tmp_path / "a.png"))
     b = np.asarray(Image.open(tmp_path / "b.png"))

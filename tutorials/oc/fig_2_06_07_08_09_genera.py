@@ -31,7 +31,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from pywarp.clouds import textures as T  # noqa: E402
-from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
 from pywarp.tutorial import one_type_textures  # noqa: E402
 
 GENERA = (("fig-2.6.png", "nimbostratus-like overcast (type 0.5, coverage 1, precipitation 1)",

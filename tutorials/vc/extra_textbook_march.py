@@ -35,7 +35,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from pywarp.clouds.cloudscape import CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
 from pywarp.clouds.settings import CloudscapeSettings  # noqa: E402
 from pywarp.kernels.colour import srgb_encode_array  # noqa: E402
 

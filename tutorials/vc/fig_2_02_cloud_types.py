@@ -39,7 +39,9 @@ import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
 from pywarp.clouds import textures as T  # noqa: E402
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
+from pywarp.core.pose import Pose  # noqa: E402
 from pywarp.tutorial import one_type_textures  # noqa: E402
 
 TYPES = ((0.0, "stratus (type 0)"), (0.5, "stratocumulus (type 0.5)"), (1.0, "cumulus (type 1)"))
@@ -47,7 +49,7 @@ SCENE = dict(coverage=0.5, precipitation=0.2, seed=0, sun_elevation_deg=25.0, su
              camera_altitude_km=0.3, camera_pitch_deg=22.0, fov_y_deg=50.0)
 FULL = dict(width=400, height=225)
 QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
-ABOVE = CameraPose(x_km=0.0, altitude_km=5.0, z_km=0.0, yaw_deg=0.0, pitch_deg=-12.0, fov_y_deg=50.0)
+ABOVE = Pose(x=0.0, y=5.0, z=0.0, yaw_deg=0.0, pitch_deg=-12.0, fov_y_deg=50.0)
 
 
 # %% [markdown]

@@ -57,15 +57,17 @@ import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
 from pywarp.clouds.settings import CLOUDSCAPE_PARAMS  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
+from pywarp.core.pose import Pose  # noqa: E402
 
 SCENE = dict(coverage=0.45, cloud_type=0.75, seed=0, fov_y_deg=50.0, lighting="thesis", powder=True)
 FULL = dict(width=400, height=225)
 QUICK = dict(width=96, height=54, base_size=32, detail_size=16, curl_size=32, weather_size=64)
-BELOW_TO_SUN = CameraPose(0.0, 0.3, 0.0, 0.0, 15.0, 50.0)
-BELOW_AWAY = CameraPose(0.0, 0.3, 0.0, 0.0, 22.0, 50.0)
-CUMULUS = CameraPose(0.0, 1.0, 0.0, -8.0, 9.0, 40.0)
+BELOW_TO_SUN = Pose(0.0, 0.3, 0.0, 0.0, 15.0, 50.0)
+BELOW_AWAY = Pose(0.0, 0.3, 0.0, 0.0, 22.0, 50.0)
+CUMULUS = Pose(0.0, 1.0, 0.0, -8.0, 9.0, 40.0)
 SILVER = {"silver_g": 0.8, "silver_weight": 0.3}  # the option shown (the default is one lobe: silver_weight 0)
 AMBIENT_SCALE = 0.5  # row 3: the ambient constants x 1/2, so that the sun's term dominates
 

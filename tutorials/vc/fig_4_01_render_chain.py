@@ -3,9 +3,9 @@
 A diagram, not a computation: sky model -> cloud raymarch -> optional reprojection, with the reprojection flag acting on
 every stage (it selects the pixel index of vc-4.1 and launches 1/16 of the threads), and the inputs of the technique —
 the noise textures from the generator, the camera and the settings. It is drawn from this implementation (the module
-docstring of pywarp/clouds/cloudscape.py and CloudscapeTechnique.render there) with the names of the pywarp pipeline: sky
+docstring of pywarp/clouds/technique.py and CloudscapeTechnique.render there) with the names of the pywarp pipeline: sky
 models GradientSky (vc-A28) and PreethamSky (vc-A29), textures from BasicTextureGenerator (vc-A9, vc-A10, vc-A11,
-vc-A12), the technique CloudscapeTechnique with init / update / render, the camera as CameraPose, the cloud density
+vc-A12), the technique CloudscapeTechnique with init / update / render, the camera as Pose, the cloud density
 and light of vc-A17 and vc-A20 composited by vc-4.8, and the temporal reprojection of vc-A26 and vc-A27.
 Output: figures/vc/fig-4.1.png.
 """
@@ -81,7 +81,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     _box(ax, 5.0, 8.4, 6.0, 1.4, "BasicTextureGenerator",
          "base_shape 128³ RGBA (vc-A9), detail_shape 32³ RGB (vc-A10),\ncurl_noise 2-D (vc-A11), weather_map 2-D "
          "(vc-A12)\ngenerated once per texture settings, cached", INPUT)
-    _box(ax, 11.5, 8.4, 4.3, 1.4, "CameraPose (frame n)",
+    _box(ax, 11.5, 8.4, 4.3, 1.4, "Pose (frame n)",
          "position and orientation → view and\nprojection matrices of the frame", INPUT)
 
     # The technique container and its methods.
@@ -142,7 +142,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax.text(5.2, 0.9, "sky and clouds need no history: only the reprojection reads the previous frame",
             ha="center", va="center", fontsize=8, color="0.35", style="italic")
 
-    fig.suptitle("Rendering chain of the cloudscape (one frame), redrawn from pywarp/clouds/cloudscape.py "
+    fig.suptitle("Rendering chain of the cloudscape (one frame), redrawn from pywarp/clouds/technique.py "
                  "(CloudscapeTechnique.render)",
                  fontsize=12, y=0.985)
     fig.subplots_adjust(left=0.01, right=0.99, top=0.95, bottom=0.01)

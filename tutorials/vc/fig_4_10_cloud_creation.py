@@ -50,7 +50,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
+from pywarp.core.pose import Pose  # noqa: E402
 
 # the weather map's one periodic lookup (weather_detile off), so that the top view (a), the slices and the render
 # (b) show the same clouds; the threshold C of vc-2.29 is the renderer's default reading, C := 1 - D_h
@@ -62,7 +64,7 @@ SLICE_Z_KM = -22.0
 SLICE_X_KM = (-20.0, 20.0)
 SLICE_Y_KM = (1.4, 4.1)  # altitudes shown: the layer (1.5-4 km) and a little outside it
 MAP_HALF_KM = 24.0  # panel (a) shows x, z in [-24, 24] km
-POSE = CameraPose(x_km=0.0, altitude_km=12.0, z_km=-6.0, yaw_deg=0.0, pitch_deg=-30.0, fov_y_deg=60.0)
+POSE = Pose(x=0.0, y=12.0, z=-6.0, yaw_deg=0.0, pitch_deg=-30.0, fov_y_deg=60.0)
 
 
 # %% [markdown]
@@ -143,13 +145,13 @@ def density_slice(tex, p: dict, nx: int, ny: int) -> dict:
             "B_D_alt": np.where(keep, b_d_alt, zero)}
 
 
-def project(pose: CameraPose, width: int, height: int, pts: np.ndarray) -> np.ndarray:
+def project(pose: Pose, width: int, height: int, pts: np.ndarray) -> np.ndarray:
     """Pixel (column, row) of world points (..., 3) for the renderer's pinhole camera (no roll, y up)."""
     f = pose.forward()
     r = np.cross(f, [0.0, 1.0, 0.0])
     r /= np.linalg.norm(r)
     u = np.cross(r, f)
-    v = pts - np.array([pose.x_km, pose.altitude_km, pose.z_km])
+    v = pts - np.array([pose.x, pose.y, pose.z])
     t = np.tan(np.radians(pose.fov_y_deg) / 2.0)
     zc = v @ f
     nx = (v @ r) / (zc * t * width / height)
@@ -184,8 +186,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax.imshow(cov, extent=(-MAP_HALF_KM, MAP_HALF_KM, MAP_HALF_KM, -MAP_HALF_KM), cmap="viridis", vmin=0.0,
               vmax=1.0, interpolation="nearest")
     ax.plot(SLICE_X_KM, [SLICE_Z_KM] * 2, "r-", lw=2)
-    ax.plot([POSE.x_km], [POSE.z_km], "w^", ms=8)
-    ax.annotate("camera", (POSE.x_km, POSE.z_km), (POSE.x_km + 2, POSE.z_km + 4), color="w", fontsize=8)
+    ax.plot([POSE.x], [POSE.z], "w^", ms=8)
+    ax.annotate("camera", (POSE.x, POSE.z), (POSE.x + 2, POSE.z + 4), color="w", fontsize=8)
     ax.text(SLICE_X_KM[0], SLICE_Z_KM + 0.8, "slice", color="r", fontsize=9, va="top")
     ax.set_xlabel("x [km]")
     ax.set_ylabel("z [km]  (−z = view direction, up)")

@@ -38,7 +38,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
 
 SCENE = dict(sky="gradient", sun_elevation_deg=20.0, sun_azimuth_deg=30.0, camera_altitude_km=0.3,
              camera_pitch_deg=20.0, fov_y_deg=50.0, coverage=0.45, cloud_type=0.75, precipitation=0.2, seed=0)

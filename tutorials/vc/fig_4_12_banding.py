@@ -39,7 +39,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
-from pywarp.clouds.cloudscape import CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
 
 SCENE = dict(layer_top_km=12.0, samples_min=12, samples_max=16, cloud_type=1.0, coverage=0.45, sun_elevation_deg=25.0,
              sun_azimuth_deg=110.0, camera_altitude_km=0.3, camera_pitch_deg=25.0, fov_y_deg=60.0, seed=0,

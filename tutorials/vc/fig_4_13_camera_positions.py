@@ -42,7 +42,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
+from pywarp.core.pose import Pose  # noqa: E402
 
 SCENE = dict(coverage=0.6, cloud_type=0.75, seed=0, sun_elevation_deg=25.0, sun_azimuth_deg=120.0, fov_y_deg=60.0)
 FULL = dict(width=480, height=270)
@@ -84,9 +86,9 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     p = settings.c_values()
     x_in, z_in = clear_spot(tech.textures.weather[..., 0], p["weather_scale_km"], CLEAR_HALF_KM)
     top = settings.layer_top_km
-    poses = (("(a) inside the layer", CameraPose(x_in, 2.5, z_in, 90.0, -3.0, settings.fov_y_deg)),
-             ("(b) just above the layer top", CameraPose(0.0, top + 0.5, 0.0, 0.0, -10.0, settings.fov_y_deg)),
-             ("(c) high above the layer", CameraPose(0.0, 8.0, 0.0, 0.0, -25.0, settings.fov_y_deg)))
+    poses = (("(a) inside the layer", Pose(x_in, 2.5, z_in, 90.0, -3.0, settings.fov_y_deg)),
+             ("(b) just above the layer top", Pose(0.0, top + 0.5, 0.0, 0.0, -10.0, settings.fov_y_deg)),
+             ("(c) high above the layer", Pose(0.0, 8.0, 0.0, 0.0, -25.0, settings.fov_y_deg)))
 
     # %% [markdown]
     # The same technique renders all three views; only the camera pose changes. A pose is position (km) + yaw, pitch
@@ -107,7 +109,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         d = pose.forward()
         d32 = d.astype(np.float32)  # the unit direction in float32, normalized as the renderer's rays are
         d32 = d32 / np.sqrt(d32[0] * d32[0] + d32[1] * d32[1] + d32[2] * d32[2])
-        t0, t1 = pywarp.raymarch_layer_segment((pose.x_km, pose.altitude_km, pose.z_km), d32, c, p["r_earth"],
+        t0, t1 = pywarp.raymarch_layer_segment((pose.x, pose.y, pose.z), d32, c, p["r_earth"],
                                                p["r_inner"], p["r_outer"])
         segments.append((pose, d, float(t0), float(t1)))
 
@@ -117,7 +119,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     for k, ((title, pose), img) in enumerate(zip(poses, images)):
         ax = fig.add_subplot(gs[k // 2, k % 2])
         ax.imshow(img, interpolation="nearest")
-        ax.set_title(f"{title}: altitude {pose.altitude_km:.1f} km, pitch {pose.pitch_deg:+.0f}°", fontsize=10)
+        ax.set_title(f"{title}: altitude {pose.y:.1f} km, pitch {pose.pitch_deg:+.0f}°", fontsize=10)
         ax.set_axis_off()
     ax = fig.add_subplot(gs[1, 1])
     base, top_km = settings.layer_base_km, settings.layer_top_km
@@ -130,11 +132,11 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         x0 = 1.0 + 1.2 * k  # each camera drawn at its own place on a compressed horizontal axis
         hdist = np.hypot(d[0], d[2])
         squash = 0.12  # horizontal km drawn per km of distance
-        ax.plot([x0], [pose.altitude_km], "o", color=colour)
+        ax.plot([x0], [pose.y], "o", color=colour)
         tt = np.array([0.0, t1 * 1.05])
-        ax.plot(x0 + tt * hdist * squash, pose.altitude_km + tt * d[1], ":", color=colour, lw=1)
+        ax.plot(x0 + tt * hdist * squash, pose.y + tt * d[1], ":", color=colour, lw=1)
         seg = np.array([t0, t1])
-        ax.plot(x0 + seg * hdist * squash, pose.altitude_km + seg * d[1], "-", color=colour, lw=3,
+        ax.plot(x0 + seg * hdist * squash, pose.y + seg * d[1], "-", color=colour, lw=3,
                 label=f"{'abc'[k]}: march t = {t0:.1f} … {t1:.1f} km")
     ax.set_xlim(0.5, 6.5)
     ax.set_ylim(-0.3, 9.0)

@@ -48,7 +48,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
-from pywarp.clouds.cloudscape import CameraPose, CloudscapeSettings, CloudscapeTechnique  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
+from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
+from pywarp.core.pose import Pose  # noqa: E402
 
 # the thesis's reprojection (the inner-sphere point, bilinear sampling), not the renderer's depth-aware default: this
 # figure shows the thesis's artifacts
@@ -62,9 +64,9 @@ FORWARD_STEP_KM = 0.02
 CROP = (0.60, 0.58, 0.38, 0.32)  # x, y, w, h (fractions): the cumulus edges low on the right
 
 
-def camera_path(frames: int, s: CloudscapeSettings) -> list[CameraPose]:
+def camera_path(frames: int, s: CloudscapeSettings) -> list[Pose]:
     """Turn by YAW_STEP_DEG and fly FORWARD_STEP_KM along -z per frame, ending at yaw 0 + (frames/2 - 1) steps."""
-    return [CameraPose(0.0, s.camera_altitude_km, -FORWARD_STEP_KM * i, YAW_STEP_DEG * (i - frames // 2),
+    return [Pose(0.0, s.camera_altitude_km, -FORWARD_STEP_KM * i, YAW_STEP_DEG * (i - frames // 2),
                        s.camera_pitch_deg, s.fov_y_deg) for i in range(frames)]
 
 

@@ -32,7 +32,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from pywarp.clouds.cloudscape import CloudscapeSettings, render_image  # noqa: E402
+from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
+from pywarp.clouds.technique import render_image  # noqa: E402
 
 SCENE = dict(sun_elevation_deg=10.0, sun_azimuth_deg=35.0, coverage=0.5, cloud_type=0.9, camera_altitude_km=0.3,
              camera_pitch_deg=23.0, camera_yaw_deg=0.0, fov_y_deg=50.0, seed=0)
