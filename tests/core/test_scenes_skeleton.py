@@ -84,6 +84,8 @@ def test_pose_camera_and_its_c_twin_equal_ccl_camera_look_at():
 
 @dataclass(frozen=True)
 class _Toy(Settings):
+    INVALIDATES = Settings.INVALIDATES + ("sky", "textures")
+
     width: int = param(8, kind="int", lo=1, hi=64, invalidates="size", doc="width", reason="small")
     height: int = param(4, kind="int", lo=1, hi=64, invalidates="size", doc="height", reason="small")
     sun: float = param(1.0, lo=0.0, hi=2.0, invalidates="sky", doc="a sky setting", reason="1")
