@@ -12,7 +12,8 @@ texts (the scenes' cameras are ``pywarp.kernels.camera``), so they live here, on
 * :func:`environment`: a stand-in scene as a function of direction (sky, sun, a mountain ridge, a chequered meadow with
   a road, haze), the backdrop the rain tutorials refract through their drops;
 * :func:`one_type_textures`: the cloudscape's textures with one cloud type over the whole weather map, the stand-in
-  scene of the cloud-genus figures (this one renders with Warp).
+  scene of the cloud-genus figures (this one renders with Warp);
+* :func:`run_as_script`: the command line every tutorial has (``--out``, ``--quick``) when it runs as a script.
 
 Example::
 
@@ -25,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["pinhole_directions", "fisheye_directions", "row_of_elevation", "billboard_frame", "environment",
-           "one_type_textures"]
+           "one_type_textures", "run_as_script"]
 
 
 def pinhole_directions(width: int, height: int, fov_y_deg: float, azimuth_deg: float = 0.0,
@@ -124,3 +125,19 @@ def one_type_textures(settings, generator):
         T.WeatherMapSettings(size=s.weather_size, seed=s.seed, coverage=s.coverage, precipitation=s.precipitation,
                              cloud_type=s.cloud_type, cloud_type_variation=0.0))
     return RenderTextures.from_textures(tex, s.device)
+
+
+def run_as_script(main, doc: str, out: str, argv=None) -> list:
+    """A tutorial run as a script (``python tutorials/vc/fig_4_09_height_gradients.py [--out DIR] [--quick]``):
+    ``main(out_dir, quick)`` with the options, every file written printed on its own line; returns the files.
+    ``doc``: the tutorial's docstring (its first line is the description of ``--help``); ``out``: the default folder,
+    ``figures/<seed>``."""
+    import argparse
+
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0], allow_abbrev=False)
+    parser.add_argument("--out", default=out, help=f"output folder (default: {out})")
+    parser.add_argument("--quick", action="store_true", help="small sizes, for a fast check")
+    args = parser.parse_args(argv)
+    written = list(main(args.out, quick=args.quick))
+    print(*written, sep="\n")
+    return written

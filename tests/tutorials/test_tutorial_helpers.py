@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from pywarp.tutorial import billboard_frame, environment, fisheye_directions, pinhole_directions, row_of_elevation
 
@@ -92,3 +93,22 @@ def test_one_type_textures_fill_the_weather_map_with_one_type(tmp_path):
     np.testing.assert_array_equal(tex.weather[..., :2], spread[..., :2])
     np.testing.assert_array_equal(tex.base, gen.base_shape(T.BaseShapeSettings(size=32, seed=4)))
     assert tex.base.shape == (32, 32, 32, 4) and tex.detail.shape == (16, 16, 16, 4) and tex.curl.shape == (32, 32, 4)
+
+
+def test_run_as_script_passes_the_options_and_prints_every_file(tmp_path, capsys):
+    from pywarp.tutorial import run_as_script
+
+    calls = []
+
+    def main(out_dir, quick=False):
+        calls.append((out_dir, quick))
+        return [f"{out_dir}/a.png", f"{out_dir}/b.png"]
+
+    assert run_as_script(main, "Title line.\n\nMore.", "figures/vc", argv=[]) == ["figures/vc/a.png",
+                                                                               "figures/vc/b.png"]
+    assert run_as_script(main, "Title line.", "figures/vc", argv=["--out", str(tmp_path), "--quick"])
+    assert calls == [("figures/vc", False), (str(tmp_path), True)]
+    assert capsys.readouterr().out.splitlines() == ["figures/vc/a.png", "figures/vc/b.png", f"{tmp_path}/a.png",
+                                                    f"{tmp_path}/b.png"]
+    with pytest.raises(SystemExit):  # no abbreviations
+        run_as_script(main, "Title line.", "figures/vc", argv=["--qu"])

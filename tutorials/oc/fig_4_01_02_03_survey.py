@@ -167,11 +167,6 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
 
 if __name__ == "__main__":
-    import argparse
+    from pywarp.tutorial import run_as_script
 
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default="figures/oc")
-    ap.add_argument("--quick", action="store_true")
-    a = ap.parse_args()
-    for f in main(a.out, a.quick):
-        print(f)
+    run_as_script(main, __doc__, "figures/oc")

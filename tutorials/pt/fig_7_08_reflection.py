@@ -63,10 +63,6 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
 
 if __name__ == "__main__":
-    import argparse
+    from pywarp.tutorial import run_as_script
 
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default="figures/pt")
-    parser.add_argument("--quick", action="store_true")
-    args = parser.parse_args()
-    print(*main(args.out, quick=args.quick), sep="\n")
+    run_as_script(main, __doc__, "figures/pt")
