@@ -12,7 +12,6 @@ code at the start of the build.
 """
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 

@@ -17,7 +17,6 @@ Everything is rewritten only when its text changes, so that Sphinx rebuilds only
 """
 from __future__ import annotations
 
-import html
 import os
 import re
 import shutil

@@ -57,7 +57,6 @@ from typing import Callable
 
 import numpy as np
 
-from ..kernels.noise import COMBINATIONS  # Perlin-Worley combination names (vc-A8)
 from ..kernels.texgen import MAX_SIZE_2D, MIN_SIZE  # cclouds/texgen.h limits
 from . import texgen as _texgen  # the whole-texture generation (Warp tile kernels, C)
 

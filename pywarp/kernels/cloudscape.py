@@ -21,7 +21,6 @@ import numpy as np
 import warp as wp
 
 from .clouds import (
-    clouds_energy,
     clouds_base_shape,
     clouds_composite,
     clouds_coverage,

@@ -20,7 +20,6 @@ call derives the per-frame constants (cheap next to the per-pixel work of a NumP
 """
 from __future__ import annotations
 
-import math
 
 import numpy as np
 import warp as wp

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import time
-from dataclasses import replace
 
 #: rr-tab-6.1 (notebook: GeForce Go 7400, 1.733 GHz dual core) and rr-tab-6.2 (PC: Radeon 3850, Core2Duo 2.667 GHz):
 #: drops -> (drop fps, streak fps), as printed.

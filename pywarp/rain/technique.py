@@ -22,7 +22,6 @@ import math
 from dataclasses import replace
 
 import numpy as np
-import warp as wp
 
 from ..core.pose import Pose
 from ..core.runtime import init

@@ -80,12 +80,6 @@ def weather_c(settings: CloudscapeSettings, textures, xs, zs) -> np.ndarray:
     return out
 
 
-@pytest.fixture(scope="module")
-def small_textures():
-    from pywarp.clouds.cloudscape import RenderTextures
-    return RenderTextures.generate(CloudscapeSettings(base_size=32, detail_size=16, curl_size=32, weather_size=128))
-
-
 def test_the_weather_map_does_not_repeat_with_its_tile(small_textures):
     """Coverage at points one tile (weather_scale_km) apart: the thesis's periodic lookup gives the same values
     (correlation 1). The de-tiled map takes about half its area from each of two lattices of repeats that do not

@@ -9,7 +9,7 @@ from pywarp.clouds.settings import CloudscapeSettings
 from pywarp.clouds.technique import CloudscapeTechnique
 from pywarp.core.pose import Pose
 from pywarp.kernels import cloudscape as K
-from tests.clouds.test_artefacts import small_textures, weather_c  # noqa: F401 (a fixture)
+from tests.clouds.test_artefacts import weather_c
 
 
 def _brute_distance(cov, cap):

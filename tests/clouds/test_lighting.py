@@ -85,7 +85,6 @@ from pywarp.clouds.cloudscape import (  # noqa: E402
     CloudscapeSettings,
     c_sky,
     c_textures,
-    light_params,
     render_frame_c,
     render_pixels_c,
     render_pixels_warp,

@@ -527,7 +527,7 @@ def test_weather_map_from_image_loads_and_validates(tmp_path, rng):
 
 @pytest.mark.spec("vc-A13")
 def test_settings_defaults_are_documented_and_equal_the_c_defaults():
-    ffi, lib = _cclouds.ffi(), _cclouds.lib()
+    lib = _cclouds.lib()
     for kind, cls in T.SETTINGS.items():
         c = getattr(lib, f"ccl_texgen_{kind}_settings_default")()
         for fl in fields(cls):
@@ -545,7 +545,7 @@ def test_settings_defaults_are_documented_and_equal_the_c_defaults():
             if fl.name == "worley_weights":
                 assert tuple(cv) == pytest.approx(py, rel=1e-7)
             elif fl.name == "combination":
-                assert cv == T.COMBINATIONS[py]
+                assert cv == COMBINATIONS[py]
             else:
                 assert cv == pytest.approx(py, rel=1e-7), (kind, fl.name)
     assert T.BaseShapeSettings().shape == (128, 128, 128, 4) and T.DetailShapeSettings().shape == (32, 32, 32, 3)
@@ -638,7 +638,7 @@ def test_settings_validation_python_c_and_warp_agree_on_random_settings(rng):
     codes = TG.base_shape_settings_codes(cols["size"], cols["perlin_octaves"], cols["perlin_frequency"],
                                         cols["worley_cells"], cols["w0"], cols["w1"], cols["w2"], cols["combination"],
                                         cols["gamma"])
-    names = list(T.COMBINATIONS)
+    names = list(COMBINATIONS)
     n_invalid = 0
     for i in range(n):
         st = ffi.new("ccl_base_shape_settings *")

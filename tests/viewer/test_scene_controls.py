@@ -5,7 +5,6 @@ flown aircraft, and the preview frames take the scenes' cheaper settings."""
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 
 import numpy as np

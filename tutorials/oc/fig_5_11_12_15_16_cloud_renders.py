@@ -30,7 +30,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import pywarp  # noqa: E402
 from scipy import ndimage  # noqa: E402
 
 from pywarp.flight.clouds import CloudArraySettings, cloud_volume, noise_volume, scale_volume  # noqa: E402
