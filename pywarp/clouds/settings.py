@@ -306,7 +306,7 @@ _NOTHING = "nothing"
 class CloudscapeSettings(Settings):
     """Every parameter of a cloudscape render, with its unit, default and the reason for it. The thesis gives no
     values for any of them (spec vc-A36, "Not given"). Immutable: change with ``dataclasses.replace`` (validated) or
-    :meth:`pywarp.clouds.cloudscape.CloudscapeTechnique.update`. An invalid value raises ValueError (TypeError for a
+    :meth:`pywarp.clouds.technique.CloudscapeTechnique.update`. An invalid value raises ValueError (TypeError for a
     wrong type) naming the field, in the registry's wording."""
 
     #: ``textures``: the noise textures are regenerated; ``sky``: the sky model is rebuilt
