@@ -1,8 +1,10 @@
-"""The host side of the sky topic (cclouds/sky.h): the per-frame structs of the two sky models -- validated, then
-computed by the same float32 Warp code as the kernels (:func:`preetham_params` for vc-A29, :func:`gradient_params` for
-vc-A28) -- and the sun's air mass and transmittance on NumPy arrays (:func:`sun_attenuation`, Preetham et al. 1999
-appendix A.1). The equations and the kernels are :mod:`pywarp.kernels.sky`; the unit sun vector of the scenes'
-settings stays there (:func:`pywarp.kernels.sky.sun_direction`).
+"""The host side of the sky topic (cclouds/sky.h) and of the colour topic's display step: the per-frame structs of
+the two sky models -- validated, then computed by the same float32 Warp code as the kernels (:func:`preetham_params`
+for vc-A29, :func:`gradient_params` for vc-A28) --, the sun's air mass and transmittance on NumPy arrays
+(:func:`sun_attenuation`, Preetham et al. 1999 appendix A.1) and the sRGB encoding of the frame buffer on NumPy arrays
+(:func:`srgb_encode_array`). The equations and the kernels are :mod:`pywarp.kernels.sky` and
+:mod:`pywarp.kernels.colour`; the unit sun vector of the scenes' settings stays with the equations
+(:func:`pywarp.kernels.sky.sun_direction`).
 """
 from __future__ import annotations
 
@@ -13,6 +15,7 @@ from ..core.binding import lib
 from ..core.registry import VARIANT, Arg
 from ..core.runtime import resolve_device
 from ..kernels import sky as S
+from ..kernels import colour as C
 from ..kernels.colour import TONEMAP_EXPOSURE
 
 
@@ -94,3 +97,28 @@ def sun_attenuation(theta_s, turbidity, impl: str = "warp", device: str | None =
                                                              wp.array(T, dtype=float, device=dev)],
                   outputs=[om, ot], device=dev)
     return om.numpy()[:ts.size].reshape(shape), ot.numpy()[:ts.size].reshape(shape + (3,))
+
+
+_SRGB_ARG = Arg("c", "linear channel value")
+
+
+def srgb_encode_array(c, impl: str = "warp", device: str | None = None) -> np.ndarray:
+    """Element-wise sRGB encoding (IEC 61966-2-1) of a NumPy array -- the display step of the vc-A29 chain, which has
+    no catalogue ID of its own. ``impl="c"`` evaluates ``ccl_colour_srgb_encode``. ``c`` must be finite."""
+    a = _SRGB_ARG.check(c)
+    flat = np.ascontiguousarray(a.reshape(-1))
+    if impl == "c":
+        enc = lib().ccl_colour_srgb_encode
+        out = np.array([enc(v) for v in flat.tolist()], dtype=np.float32)
+    elif impl == "warp":
+        dev = resolve_device(device)
+        out = np.empty(flat.shape, np.float32)
+        if flat.size:
+            res = wp.empty(flat.size, dtype=float, device=dev)
+            wp.launch(C._srgb_encode_kernel, dim=flat.size, inputs=[wp.array(flat, dtype=float, device=dev)],
+                      outputs=[res], device=dev)
+            out = res.numpy()
+    else:
+        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
+    out = out.reshape(a.shape)
+    return out[()] if a.shape == () else out

@@ -469,7 +469,7 @@ def test_sky_preetham_xyY_matches_float64(rng):
 @pytest.mark.parametrize("variant", ["corrected", "thesis"])
 def test_sky_preetham_stages_compose_exactly(rng, variant):
     """hdr = 4.4(4.3(xyY)), tonemapped = 4.5(hdr), srgb = sRGB(tonemapped): the same float32 functions, bit for bit."""
-    from pywarp.kernels.colour import srgb_encode_array
+    from pywarp.clouds.sky import srgb_encode_array
 
     d = unit_dirs(rng, 1000)
     args = (d, 3.3, 28.0, 75.0)

@@ -70,7 +70,7 @@ def test_fbm_bound_two_one_minus_half_power(octaves):
 @pytest.mark.spec("pt-code-7.9")
 def test_fbm_is_the_printed_sum_of_noise_octaves_and_agrees_with_pt_alg_3_2():
     x, z = RNG.uniform(-40, 40, (2, 200)).astype(np.float32)
-    noise = pywarp.kernels.noise.perlin2
+    noise = pywarp.perlin2
     ref = np.zeros(200)
     for i in range(5):  # value += amplitude * noise(frequency * position), A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2
         f = np.float32(0.5 * 2 ** i)
