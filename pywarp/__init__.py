@@ -27,8 +27,8 @@ __all__ = ["equation", "registry", "missing", "__version__"]
 _HELPERS = {
     "camera_look_at": ("pywarp.kernels.camera", "camera_look_at"),  # vc-A25 / pt-code-7.2 camera matrices
     "sun_direction": ("pywarp.kernels.sky", "sun_direction"),  # unit sun vector from elevation/azimuth
-    "perlin2": ("pywarp.kernels.noise", "perlin2"),  # 2-D Perlin noise with a choice of interpolant (fig 2.5)
-    "interpolants": ("pywarp.kernels.interp", "interpolants"),  # linear/cosine/cubic/quintic curves (fig 2.6)
+    "perlin2": ("pywarp.clouds.noise", "perlin2"),  # 2-D Perlin noise with a choice of interpolant (fig 2.5)
+    "interpolants": ("pywarp.clouds.noise", "interpolants"),  # linear/cosine/cubic/quintic curves (fig 2.6)
 }
 
 

@@ -26,6 +26,7 @@ from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import cloudscape as K  # noqa: E402
 from ..kernels import reproj as RP  # noqa: E402
 from ..kernels import sky as S  # noqa: E402
+from . import sky as SKY  # noqa: E402
 from . import textures as T  # noqa: E402
 from .settings import CLOUDSCAPE_PARAMS, SKIES, CloudscapeSettings  # noqa: E402,F401  (re-exported)
 
@@ -65,7 +66,7 @@ class GradientSky(SkyModel):
 
     def update(self, settings: CloudscapeSettings) -> None:
         self.sun = settings.sun()
-        self.gradient = S.gradient_params()
+        self.gradient = SKY.gradient_params()
         self.preetham = S.Preetham()  # unused by the kernel for this kind
 
 
@@ -77,9 +78,9 @@ class PreethamSky(SkyModel):
     def update(self, settings: CloudscapeSettings) -> None:
         self.sun = settings.sun()
         theta_s = math.radians(90.0 - settings.sun_elevation_deg)
-        self.preetham = S.preetham_params(settings.turbidity, min(theta_s, float(np.float32(math.pi / 2))),
+        self.preetham = SKY.preetham_params(settings.turbidity, min(theta_s, float(np.float32(math.pi / 2))),
                                           exposure=settings.sky_exposure, variant=settings.sky_variant)
-        self.gradient = S.gradient_params()
+        self.gradient = SKY.gradient_params()
 
 
 def make_sky(settings: CloudscapeSettings) -> SkyModel:
@@ -136,12 +137,12 @@ class RenderTextures:
         return self._wp["base_half"]
 
     def mips(self, name: str, half_base: bool = False) -> np.ndarray:
-        """The flat mip chain of the base or detail volume (level 0 first; :func:`pywarp.kernels.cloudscape.mip_chain`);
+        """The flat mip chain of the base or detail volume (level 0 first; :func:`mip_chain`);
         with ``half_base`` the base's chain of :meth:`level0`, every level rounded to float16 values."""
         half = half_base and name == "base"
         key = f"mips_{name}" + ("_half" if half else "")
         if key not in self._wp:
-            chain = K.mip_chain(self.level0(name, half))
+            chain = mip_chain(self.level0(name, half))
             self._wp[key] = half_values(chain, "base texture") if half else chain
         return self._wp[key]
 
@@ -153,7 +154,7 @@ class RenderTextures:
             t = K.CloudTextures()
             for name in ("base", "detail"):
                 t.__setattr__(name + "_size", int(getattr(self, name).shape[0]))
-                t.__setattr__(name + "_levels", K.mip_levels(getattr(self, name).shape[0]))
+                t.__setattr__(name + "_levels", mip_levels(getattr(self, name).shape[0]))
             t.detail = wp.array(self.mips("detail"), dtype=wp.vec4, device=self.device)
             chain = self.mips("base", half_base)
             if half_base:
@@ -165,10 +166,10 @@ class RenderTextures:
             t.half_base = int(bool(half_base))
             t.curl = wp.array(self.curl, dtype=wp.vec4, device=self.device)
             t.weather = wp.array(self.weather, dtype=wp.vec4, device=self.device)
-            t.weather_empty = wp.array(K.weather_empty_distance(self.weather), dtype=wp.int32, device=self.device)
+            t.weather_empty = wp.array(weather_empty_distance(self.weather), dtype=wp.int32, device=self.device)
             t.empty_skip = 1
-            t.selector_class = wp.array(K.selector_class(self.weather), dtype=wp.uint8, device=self.device)
-            t.base_bound = K.base_shape_bound(chain)
+            t.selector_class = wp.array(selector_class(self.weather), dtype=wp.uint8, device=self.device)
+            t.base_bound = base_shape_bound(chain)
             self._wp[key] = t
         return self._wp[key]
 
@@ -187,6 +188,103 @@ def half_values(a: np.ndarray, what: str) -> np.ndarray:
         raise ValueError(f"{what}: a texel of {float(a[big].flat[0])!r} is beyond the float16 range "
                          f"+-{HALF_MAX:g}; use base_precision='single'")
     return a.astype(np.float16).astype(np.float32)
+
+
+def mip_levels(size: int) -> int:
+    """Levels of the full mip chain of a power-of-two edge: size, size / 2, ..., 1."""
+    return int(size).bit_length()
+
+
+def mip_chain(tex: np.ndarray) -> np.ndarray:
+    """The mip chain of a periodic RGBA volume ``tex[z, y, x, 4]`` (power-of-two edge) as one flat float32 (texels, 4)
+    array, level 0 first; each texel of level k + 1 is the mean of its 8 children of level k, added in the order of
+    ``ccl_cloudscape_mip3`` (x fastest, then y, then z), so C and NumPy agree bit for bit."""
+    a = np.ascontiguousarray(tex, dtype=np.float32)
+    n = a.shape[0]
+    if a.ndim != 4 or a.shape[:3] != (n, n, n) or a.shape[3] != 4 or n < 1 or n & (n - 1):
+        raise ValueError(f"mip_chain needs an (n, n, n, 4) volume with n a power of two, got {a.shape}")
+    levels = [a.reshape(-1, 4)]
+    while n > 1:
+        s = a[0::2, 0::2, 0::2] + a[0::2, 0::2, 1::2]
+        s = s + a[0::2, 1::2, 0::2]
+        s = s + a[0::2, 1::2, 1::2]
+        s = s + a[1::2, 0::2, 0::2]
+        s = s + a[1::2, 0::2, 1::2]
+        s = s + a[1::2, 1::2, 0::2]
+        s = s + a[1::2, 1::2, 1::2]
+        a = np.ascontiguousarray(s * np.float32(0.125), dtype=np.float32)
+        n //= 2
+        levels.append(a.reshape(-1, 4))
+    return np.concatenate(levels, axis=0)
+
+
+#: Largest distance :func:`weather_empty_distance` records (texels): a skip of at most EMPTY_CAP - 3 weather texels
+#: (2.3 km for the default 32 km map of 512 texels) -- longer skips would save little, the map costs EMPTY_CAP passes.
+EMPTY_CAP = 40
+
+
+def weather_empty_distance(weather: np.ndarray, cap: int = EMPTY_CAP) -> np.ndarray:
+    """Empty-space map of a periodic weather map ``weather[y, x, 4]``: per texel the Chebyshev distance (texels, at
+    most ``cap``) to the nearest texel whose coverage (R) is not <= 0, on the torus. A sample in texel T with distance
+    D >= K.EMPTY_MARGIN has coverage exactly 0 (bilinear weights of four zero texels), and so has every point within
+    D - K.EMPTY_MARGIN texels of it: the march skips those samples (their density is 0 in any case)."""
+    cov = np.asarray(weather, dtype=np.float32)[..., 0]
+    occupied = ~(cov <= 0.0)  # a NaN counts as occupied
+    dist = np.zeros(cov.shape, dtype=np.int32)
+    reach = occupied.copy()
+    for _ in range(int(cap)):
+        if reach.all():
+            break
+        dist += ~reach
+        reach = reach | np.roll(reach, 1, 0) | np.roll(reach, -1, 0)
+        reach = reach | np.roll(reach, 1, 1) | np.roll(reach, -1, 1)
+    return dist
+
+
+#: Relative and absolute margin of :func:`base_shape_bound` over the bound in exact arithmetic: the float32 trilinear
+#: blend of a convex combination and the float32 remap of vc-2.28 may exceed it by a few ulps (~1e-7); the margin is
+#: a hundred times that, and still skips nearly every sample the exact bound would (B_D > 0 needs B D_v > C).
+BASE_BOUND_MARGIN = 1.0e-5
+
+
+def base_shape_bound(chain: np.ndarray) -> float:
+    """An upper bound of the base shape B = remap(C_R, L_FBM - 1, 1, 0, 1) of vc-2.28 at any sample of a base mip
+    chain ``chain[texels, 4]`` (:func:`mip_chain`), or 0 (no bound) where none is proved.
+
+    Every sample is a convex combination of texels (trilinear weights, the blend of two levels, levels that are means
+    of level 0), so its C_R <= max C_R and its L_FBM (linear in the channels) >= min L_FBM. With C_R <= 1 and
+    L_FBM < 2, B = (C_R + 1 - L) / (2 - L) rises with C_R and falls with L (dB/dL = (C_R - 1) / (2 - L)^2 <= 0), so
+    B <= (max C_R + 1 - min L) / (2 - min L). Textures outside that domain (or with a NaN) get no bound."""
+    a = np.asarray(chain, dtype=np.float64).reshape(-1, 4)
+    if a.size == 0 or not np.isfinite(a).all():
+        return 0.0
+    r_max = float(a[:, 0].max())
+    l_fbm = 0.625 * a[:, 1] + 0.25 * a[:, 2] + 0.125 * a[:, 3]
+    l_min, l_max = float(l_fbm.min()), float(l_fbm.max())
+    if not (r_max <= 1.0 and l_max < 2.0):
+        return 0.0
+    b = (r_max + 1.0 - l_min) / (2.0 - l_min)
+    return float(max(b, 0.0) * (1.0 + BASE_BOUND_MARGIN) + BASE_BOUND_MARGIN)
+
+
+#: Margin of :func:`selector_class` (coverage units): a float32 bilinear blend of four texels stays within this of
+#: their range (its error is a few ulps of values <= 1, ~1e-7).
+SELECTOR_MARGIN = 1.0e-6
+
+
+def selector_class(weather: np.ndarray) -> np.ndarray:
+    """Per cell (i, j) of a periodic weather map ``weather[y, x, 4]`` -- the square between the texel centres
+    (j, i), (j, i + 1), (j + 1, i), (j + 1, i + 1), wrapped, which a bilinear lookup whose lower texel is (i, j)
+    reads -- 0 where all four coverages (R) are <= edge0 - SELECTOR_MARGIN (the de-tiling's selector is certainly
+    below edge0: blend weight exactly 0), 1 where all are >= edge1 + SELECTOR_MARGIN (weight exactly 1), else 2
+    (NaN included)."""
+    r = np.asarray(weather, dtype=np.float64)[..., 0]
+    four = [r, np.roll(r, -1, 1), np.roll(r, -1, 0), np.roll(np.roll(r, -1, 0), -1, 1)]
+    lo = K.WEATHER_DETILE["edge0"] - SELECTOR_MARGIN
+    hi = K.WEATHER_DETILE["edge1"] + SELECTOR_MARGIN
+    below = np.logical_and.reduce([c <= lo for c in four])
+    above = np.logical_and.reduce([c >= hi for c in four])
+    return np.where(below, 0, np.where(above, 1, 2)).astype(np.uint8)
 
 
 # --- the per-frame lighting setup ------------------------------------------------------------------------------------
@@ -208,7 +306,7 @@ def light_params(params: K.CloudscapeParams, sky: "SkyModel", device: str = "cpu
         return params
     kind = int(sky.kind)
     if kind not in (K.SKY_GRADIENT, K.SKY_PREETHAM):
-        kind, preetham, gradient = K.SKY_GRADIENT, S.Preetham(), S.gradient_params()
+        kind, preetham, gradient = K.SKY_GRADIENT, S.Preetham(), SKY.gradient_params()
     else:
         preetham, gradient = sky.preetham, sky.gradient
     out = wp.empty(1, dtype=K.CloudscapeParams, device=device)

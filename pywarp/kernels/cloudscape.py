@@ -17,7 +17,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
 import warp as wp
 
 from .clouds import (
@@ -159,104 +158,9 @@ def sample_bilinear_wrap(tex: wp.array2d(dtype=wp.vec4), size_mask: int, u: floa
     return c0 + (c1 - c0) * ty
 
 
-def mip_levels(size: int) -> int:
-    """Levels of the full mip chain of a power-of-two edge: size, size / 2, ..., 1."""
-    return int(size).bit_length()
-
-
-def mip_chain(tex: np.ndarray) -> np.ndarray:
-    """The mip chain of a periodic RGBA volume ``tex[z, y, x, 4]`` (power-of-two edge) as one flat float32 (texels, 4)
-    array, level 0 first; each texel of level k + 1 is the mean of its 8 children of level k, added in the order of
-    ``ccl_cloudscape_mip3`` (x fastest, then y, then z), so C and NumPy agree bit for bit."""
-    a = np.ascontiguousarray(tex, dtype=np.float32)
-    n = a.shape[0]
-    if a.ndim != 4 or a.shape[:3] != (n, n, n) or a.shape[3] != 4 or n < 1 or n & (n - 1):
-        raise ValueError(f"mip_chain needs an (n, n, n, 4) volume with n a power of two, got {a.shape}")
-    levels = [a.reshape(-1, 4)]
-    while n > 1:
-        s = a[0::2, 0::2, 0::2] + a[0::2, 0::2, 1::2]
-        s = s + a[0::2, 1::2, 0::2]
-        s = s + a[0::2, 1::2, 1::2]
-        s = s + a[1::2, 0::2, 0::2]
-        s = s + a[1::2, 0::2, 1::2]
-        s = s + a[1::2, 1::2, 0::2]
-        s = s + a[1::2, 1::2, 1::2]
-        a = np.ascontiguousarray(s * np.float32(0.125), dtype=np.float32)
-        n //= 2
-        levels.append(a.reshape(-1, 4))
-    return np.concatenate(levels, axis=0)
-
-
-#: Largest distance :func:`weather_empty_distance` records (texels): a skip of at most EMPTY_CAP - 3 weather texels
-#: (2.3 km for the default 32 km map of 512 texels) -- longer skips would save little, the map costs EMPTY_CAP passes.
-EMPTY_CAP = 40
 #: Texels of margin: the bilinear footprint reaches 1 texel beyond the sample's texel, a step of at most delta texels
 #: moves the texel by at most delta, and one texel more absorbs the rounding of the positions.
 EMPTY_MARGIN = wp.constant(3)
-
-
-def weather_empty_distance(weather: np.ndarray, cap: int = EMPTY_CAP) -> np.ndarray:
-    """Empty-space map of a periodic weather map ``weather[y, x, 4]``: per texel the Chebyshev distance (texels, at
-    most ``cap``) to the nearest texel whose coverage (R) is not <= 0, on the torus. A sample in texel T with distance
-    D >= EMPTY_MARGIN has coverage exactly 0 (bilinear weights of four zero texels), and so has every point within
-    D - EMPTY_MARGIN texels of it: the march skips those samples (their density is 0 in any case)."""
-    cov = np.asarray(weather, dtype=np.float32)[..., 0]
-    occupied = ~(cov <= 0.0)  # a NaN counts as occupied
-    dist = np.zeros(cov.shape, dtype=np.int32)
-    reach = occupied.copy()
-    for _ in range(int(cap)):
-        if reach.all():
-            break
-        dist += ~reach
-        reach = reach | np.roll(reach, 1, 0) | np.roll(reach, -1, 0)
-        reach = reach | np.roll(reach, 1, 1) | np.roll(reach, -1, 1)
-    return dist
-
-
-#: Relative and absolute margin of :func:`base_shape_bound` over the bound in exact arithmetic: the float32 trilinear
-#: blend of a convex combination and the float32 remap of vc-2.28 may exceed it by a few ulps (~1e-7); the margin is
-#: a hundred times that, and still skips nearly every sample the exact bound would (B_D > 0 needs B D_v > C).
-BASE_BOUND_MARGIN = 1.0e-5
-
-
-def base_shape_bound(chain: np.ndarray) -> float:
-    """An upper bound of the base shape B = remap(C_R, L_FBM - 1, 1, 0, 1) of vc-2.28 at any sample of a base mip
-    chain ``chain[texels, 4]`` (:func:`mip_chain`), or 0 (no bound) where none is proved.
-
-    Every sample is a convex combination of texels (trilinear weights, the blend of two levels, levels that are means
-    of level 0), so its C_R <= max C_R and its L_FBM (linear in the channels) >= min L_FBM. With C_R <= 1 and
-    L_FBM < 2, B = (C_R + 1 - L) / (2 - L) rises with C_R and falls with L (dB/dL = (C_R - 1) / (2 - L)^2 <= 0), so
-    B <= (max C_R + 1 - min L) / (2 - min L). Textures outside that domain (or with a NaN) get no bound."""
-    a = np.asarray(chain, dtype=np.float64).reshape(-1, 4)
-    if a.size == 0 or not np.isfinite(a).all():
-        return 0.0
-    r_max = float(a[:, 0].max())
-    l_fbm = 0.625 * a[:, 1] + 0.25 * a[:, 2] + 0.125 * a[:, 3]
-    l_min, l_max = float(l_fbm.min()), float(l_fbm.max())
-    if not (r_max <= 1.0 and l_max < 2.0):
-        return 0.0
-    b = (r_max + 1.0 - l_min) / (2.0 - l_min)
-    return float(max(b, 0.0) * (1.0 + BASE_BOUND_MARGIN) + BASE_BOUND_MARGIN)
-
-
-#: Margin of :func:`selector_class` (coverage units): a float32 bilinear blend of four texels stays within this of
-#: their range (its error is a few ulps of values <= 1, ~1e-7).
-SELECTOR_MARGIN = 1.0e-6
-
-
-def selector_class(weather: np.ndarray) -> np.ndarray:
-    """Per cell (i, j) of a periodic weather map ``weather[y, x, 4]`` -- the square between the texel centres
-    (j, i), (j, i + 1), (j + 1, i), (j + 1, i + 1), wrapped, which a bilinear lookup whose lower texel is (i, j)
-    reads -- 0 where all four coverages (R) are <= edge0 - SELECTOR_MARGIN (the de-tiling's selector is certainly
-    below edge0: blend weight exactly 0), 1 where all are >= edge1 + SELECTOR_MARGIN (weight exactly 1), else 2
-    (NaN included)."""
-    r = np.asarray(weather, dtype=np.float64)[..., 0]
-    four = [r, np.roll(r, -1, 1), np.roll(r, -1, 0), np.roll(np.roll(r, -1, 0), -1, 1)]
-    lo = WEATHER_DETILE["edge0"] - SELECTOR_MARGIN
-    hi = WEATHER_DETILE["edge1"] + SELECTOR_MARGIN
-    below = np.logical_and.reduce([c <= lo for c in four])
-    above = np.logical_and.reduce([c >= hi for c in four])
-    return np.where(below, 0, np.where(above, 1, 2)).astype(np.uint8)
 
 
 @wp.struct
@@ -277,17 +181,19 @@ class CloudTextures:
     curl: wp.array2d(dtype=wp.vec4)
     weather: wp.array2d(dtype=wp.vec4)
     # Warp only (an acceleration structure, no C twin: it changes no result): per weather texel, the Chebyshev
-    # distance in texels to the nearest texel of coverage > 0 (:func:`weather_empty_distance`); 0 everywhere: no
-    # empty-space skipping. empty_skip = 0 switches off this and the two short cuts below (the frames are the same)
+    # distance in texels to the nearest texel of coverage > 0 (:func:`pywarp.clouds.cloudscape.weather_empty_distance`);
+    # 0 everywhere: no empty-space skipping. empty_skip = 0 switches off this and the two short cuts below (the frames
+    # are the same)
     weather_empty: wp.array2d(dtype=wp.int32)
     empty_skip: int
     # Warp only, used with empty_skip: per cell of the weather map between texel centres (i, j)..(i + 1, j + 1),
-    # 0 / 1 where the de-tiling's selector is certainly 0 / 1 there (:func:`selector_class`), else 2; a map of
-    # another size than the weather's: none
+    # 0 / 1 where the de-tiling's selector is certainly 0 / 1 there (:func:`pywarp.clouds.cloudscape.selector_class`),
+    # else 2; a map of another size than the weather's: none
     selector_class: wp.array2d(dtype=wp.uint8)
     # Warp only, used with empty_skip: an upper bound of the base shape B of vc-2.28 over every sample of the base
-    # chain (:func:`base_shape_bound`); a sample with D_v * bound <= C (the coverage threshold) has B_D = 0, whatever
-    # the base texture holds there, so its lookup is skipped. <= 0 (the default) or NaN: no bound
+    # chain (:func:`pywarp.clouds.cloudscape.base_shape_bound`); a sample with D_v * bound <= C (the coverage
+    # threshold) has B_D = 0, whatever the base texture holds there, so its lookup is skipped. <= 0 (the default) or
+    # NaN: no bound
     base_bound: float
 
 
@@ -367,9 +273,9 @@ _WD_EDGE1 = wp.constant(WEATHER_DETILE["edge1"])
 
 @wp.func
 def _selector_certain(tex: CloudTextures, mask: int, u: float, v: float) -> float:
-    """The de-tiling's blend weight at selector coordinates (u, v) where :func:`selector_class` proves it (0 or 1,
-    exactly what the lookup and smoothstep give there), else -1 (also outside the sampler's domain: the lookup
-    decides, NaN included)."""
+    """The de-tiling's blend weight at selector coordinates (u, v) where
+    :func:`pywarp.clouds.cloudscape.selector_class` proves it (0 or 1, exactly what the lookup and smoothstep give
+    there), else -1 (also outside the sampler's domain: the lookup decides, NaN included)."""
     fsize = float(mask + 1)
     if not (wp.abs(u * fsize) < 8388608.0 and wp.abs(v * fsize) < 8388608.0):
         return -1.0

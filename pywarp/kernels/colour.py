@@ -127,7 +127,8 @@ def colour_tonemap_exp(c_hdr: float, exposure: float, variant: int) -> float:
 @wp.func
 def colour_srgb_encode(c: float) -> float:
     """IEC 61966-2-1 sRGB encoding: 12.92 c below 0.0031308, else 1.055 c^(1/2.4) - 0.055 (part of vc-A29; no
-    catalogue ID of its own, so not a registry entry: :func:`srgb_encode_array` evaluates it on arrays)."""
+    catalogue ID of its own, so not a registry entry: :func:`pywarp.clouds.sky.srgb_encode_array` evaluates it on
+    arrays)."""
     if c <= SRGB_LINEAR_LIMIT:
         return 12.92 * c
     return 1.055 * wp.pow(c, 1.0 / 2.4) - 0.055
@@ -135,35 +136,6 @@ def colour_srgb_encode(c: float) -> float:
 
 @wp.kernel
 def _srgb_encode_kernel(c: wp.array(dtype=float), out: wp.array(dtype=float)):
-    # the array form of colour_srgb_encode for srgb_encode_array (a helper without a catalogue ID, not an entry)
+    # the array form of colour_srgb_encode for pywarp.clouds.sky.srgb_encode_array (a helper without a catalogue ID, not an entry)
     i = wp.tid()
     out[i] = colour_srgb_encode(c[i])
-
-
-_SRGB_ARG = Arg("c", "linear channel value")
-
-
-def srgb_encode_array(c, impl: str = "warp", device: str | None = None) -> np.ndarray:
-    """Element-wise sRGB encoding (IEC 61966-2-1) of a NumPy array -- the display step of the vc-A29 chain, which has
-    no catalogue ID of its own. ``impl="c"`` evaluates ``ccl_colour_srgb_encode``. ``c`` must be finite."""
-    a = _SRGB_ARG.check(c)
-    flat = np.ascontiguousarray(a.reshape(-1))
-    if impl == "c":
-        from ..core.binding import lib
-
-        enc = lib().ccl_colour_srgb_encode
-        out = np.array([enc(v) for v in flat.tolist()], dtype=np.float32)
-    elif impl == "warp":
-        from ..core.runtime import resolve_device
-
-        dev = resolve_device(device)
-        out = np.empty(flat.shape, np.float32)
-        if flat.size:
-            res = wp.empty(flat.size, dtype=float, device=dev)
-            wp.launch(_srgb_encode_kernel, dim=flat.size, inputs=[wp.array(flat, dtype=float, device=dev)],
-                      outputs=[res], device=dev)
-            out = res.numpy()
-    else:
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    out = out.reshape(a.shape)
-    return out[()] if a.shape == () else out

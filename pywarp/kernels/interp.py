@@ -4,8 +4,8 @@
   (vc-2.20, Perlin 2002).
 * :func:`interp_lerp` (Perlin's lerp, argument order (t, a, b)) and :func:`interp_cosine` (cosine interpolation),
   the curves vc-fig-2.6 compares the fades with; they have no catalogue ID of their own (vc-A1 step 3 names them
-  without a formula), so they are helpers, not registry entries. :func:`interpolants` evaluates all four curves on
-  NumPy arrays. The oc text's printed listings (oc-5.1.4.1 ``Linear_Interp(a, b, x) = a*(1-x) + b*x``, oc-5.1.4.2
+  without a formula), so they are helpers, not registry entries. :func:`pywarp.clouds.noise.interpolants` evaluates
+  all four curves on NumPy arrays. The oc text's printed listings (oc-5.1.4.1 ``Linear_Interp(a, b, x) = a*(1-x) + b*x``, oc-5.1.4.2
   ``Cosine_Interp``) are the same functions in exact arithmetic but not in float32 -- the printed blend gives exactly
   b at x = 1, ``a + t(b - a)`` need not -- and take (a, b, x): they are their own entries,
   :func:`pywarp.kernels.valuenoise.valuenoise_linear` / ``valuenoise_cosine`` (with the printed cubic, oc-5.1.4.3).
@@ -87,33 +87,3 @@ def _lerp_cosine_curves(t: wp.array(dtype=float), lin: wp.array(dtype=float), co
     i = wp.tid()
     lin[i] = interp_lerp(t[i], 0.0, 1.0)
     cos[i] = interp_cosine(t[i], 0.0, 1.0)
-
-
-def interpolants(t, impl: str = "warp"):
-    """The four interpolation curves of vc-fig-2.6 on ``t`` in [0, 1]: dict of 'linear' (t, via
-    interp_lerp(t, 0, 1)), 'cosine' ((1 - cos pi t)/2, via interp_cosine(t, 0, 1)), 'cubic' (2.19) and
-    'quintic' (2.20). ``impl="c"`` evaluates the C functions."""
-    from ..core.registry import equation
-
-    ta = _T.check(t, "t")
-    if impl == "c":
-        from ..core.binding import vectorize
-
-        lin = vectorize("ccl_interp_lerp")(ta, np.float32(0), np.float32(1))
-        cos = vectorize("ccl_interp_cosine")(ta, np.float32(0), np.float32(1))
-    elif impl == "warp":
-        from ..core.runtime import resolve_device
-
-        dev = resolve_device(None)
-        flat = np.ascontiguousarray(ta.ravel())
-        lin_w = wp.empty(flat.size, dtype=wp.float32, device=dev)
-        cos_w = wp.empty(flat.size, dtype=wp.float32, device=dev)
-        if flat.size:
-            wp.launch(_lerp_cosine_curves, dim=flat.size, inputs=[wp.array(flat, device=dev)],
-                      outputs=[lin_w, cos_w], device=dev)
-        lin, cos = lin_w.numpy().reshape(ta.shape), cos_w.numpy().reshape(ta.shape)
-    else:
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    return {"linear": np.asarray(lin, np.float32), "cosine": np.asarray(cos, np.float32),
-            "cubic": np.asarray(equation("vc-2.19", impl=impl)(ta)),
-            "quintic": np.asarray(equation("vc-2.20", impl=impl)(ta))}

@@ -310,7 +310,7 @@ def _grad3(hash: int, x: float, y: float, z: float) -> float:
                  "seeds use a Fisher-Yates permutation driven by the PCG hash (perm_table / ccl_noise_perm_table). "
                  "Output about [-1, 1], 0 at lattice points. period 0 = Perlin's lattice, period >= 1 = exactly "
                  "periodic (vc-A2). Also: 2-D noise ccl_noise_perlin2 / noise_perlin2 (= perlin3(x, y, 0), with a "
-                 "choice of interpolant quintic/cubic/linear/cosine for vc-fig-2.5, NumPy helper perlin2()), the "
+                 "choice of interpolant quintic/cubic/linear/cosine for vc-fig-2.5, NumPy helper pywarp.perlin2()), the "
                  "table-taking fast forms ccl_noise_perlin3_perm, and the interpolants ccl_interp_lerp, "
                  "ccl_interp_cosine (vc-fig-2.6). Warp functions take the permutation table (perm_array(seed)). "
                  "pt-alg-3.1: the terrain demo's undefined noise() is this noise (its 2-D slice z = 0, "
@@ -898,41 +898,7 @@ def noise_perlin_worley(p: float, w: float, combination: int) -> float:
 @wp.kernel
 def _perlin2_kernel(x: wp.array(dtype=float), y: wp.array(dtype=float), period: int, interp: int,
                     perm: wp.array(dtype=wp.int32), out: wp.array(dtype=float)):
-    # noise_perlin2 has no catalogue ID of its own (the 2-D form of vc-A1 for vc-fig-2.5): evaluated by perlin2()
+    # noise_perlin2 has no catalogue ID of its own (the 2-D form of vc-A1 for vc-fig-2.5): evaluated by
+    # pywarp.clouds.noise.perlin2()
     i = wp.tid()
     out[i] = noise_perlin2(x[i], y[i], perm, period, interp)
-
-
-def perlin2(x, y, seed: int = 0, period: int = 0, interp: str = "quintic", impl: str = "warp", device=None):
-    """2-D Perlin noise (vc-A1) on NumPy arrays: ``noise_perlin3(x, y, 0)`` for ``interp="quintic"``; ``"cubic"``
-    (2.19), ``"linear"`` and ``"cosine"`` replace the fade for the interpolation comparison of vc-fig-2.5.
-    ``impl="c"`` evaluates ``ccl_noise_perlin2``."""
-    if interp not in INTERP:
-        raise ValueError(f"interp must be one of {', '.join(map(repr, INTERP))}, got {interp!r}")
-    if impl not in ("warp", "c"):
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    seed = _check_seed(seed)
-    xa, ya = _X.check(x, "x"), _Y.check(y, "y")
-    per = _PERIOD.check(period, "period")
-    if per.ndim:
-        raise ValueError(f"period must be a scalar, got shape {per.shape}")
-    shape = np.broadcast_shapes(xa.shape, ya.shape)
-    xf = np.ascontiguousarray(np.broadcast_to(xa, shape).ravel())
-    yf = np.ascontiguousarray(np.broadcast_to(ya, shape).ravel())
-    if impl == "c":
-        from ..core.binding import vectorize
-
-        out = vectorize("ccl_noise_perlin2", extra=(seed, int(per), INTERP[interp]))(xf, yf)
-    else:
-        from ..core.runtime import resolve_device
-
-        dev = resolve_device(device)
-        n = xf.size
-        res = wp.empty(n, dtype=wp.float32, device=dev)
-        if n:
-            wp.launch(_perlin2_kernel, dim=n,
-                      inputs=[wp.array(xf, device=dev), wp.array(yf, device=dev), int(per), INTERP[interp],
-                              perm_array(seed, dev)], outputs=[res], device=dev)
-        out = res.numpy()
-    out = np.asarray(out, dtype=np.float32).reshape(shape)
-    return out[()] if shape == () else out

@@ -10,10 +10,11 @@ Radiance's perezlum.cal/skybright.cal. For the Preetham coefficients of 2 <= T <
 and below the horizon get the horizon limit of the formula and B / cos(theta) never divides by zero (the thesis does
 not say what it does there, vc-2.36 note).
 
-For a renderer: :func:`preetham_params` and :func:`gradient_params` validate the per-frame parameters and return the
-Warp structs :class:`Preetham` / :class:`SkyGradient`; the per-pixel functions are the ``@wp.func``
-:func:`sky_preetham_rgb` (tone-mapped linear RGB, the thesis' frame-buffer value), :func:`sky_preetham_hdr`,
-:func:`sky_preetham_xyY` and :func:`sky_gradient_rgb`, all allocation-free, with the C twins ``ccl_sky_*``.
+For a renderer: :func:`pywarp.clouds.sky.preetham_params` and :func:`pywarp.clouds.sky.gradient_params` (the host
+side) validate the per-frame parameters and return the Warp structs :class:`Preetham` / :class:`SkyGradient`; the
+per-pixel functions are the ``@wp.func`` :func:`sky_preetham_rgb` (tone-mapped linear RGB, the thesis' frame-buffer
+value), :func:`sky_preetham_hdr`, :func:`sky_preetham_xyY` and :func:`sky_gradient_rgb`, all allocation-free, with
+the C twins ``ccl_sky_*``.
 The registered entries of vc-A28 / vc-A29, :func:`sky_gradient_colour` and :func:`sky_preetham_colour`, are the
 element-wise forms: one view direction (``wp.vec3``) and the sky parameters themselves per element, from which each
 call derives the per-frame constants (cheap next to the per-pixel work of a NumPy call; a renderer uses the structs).
@@ -51,7 +52,8 @@ vec5 = wp.types.vector(length=5, dtype=wp.float32)
 
 @wp.struct
 class Preetham:
-    """Per-frame constants of the Preetham sky (the C struct ``ccl_preetham``); build with :func:`preetham_params`."""
+    """Per-frame constants of the Preetham sky (the C struct ``ccl_preetham``); build with
+    :func:`pywarp.clouds.sky.preetham_params`."""
 
     perez_Y: vec5  # Perez A..E of the luminance Y (vc-2.42)
     perez_x: vec5  # of the chromaticity x (vc-2.43)
@@ -71,7 +73,7 @@ class Preetham:
 @wp.struct
 class SkyGradient:
     """Per-frame constants of the gradient sky (the C struct ``ccl_sky_gradient``); build with
-    :func:`gradient_params`."""
+    :func:`pywarp.clouds.sky.gradient_params`."""
 
     horizon: wp.vec3
     zenith: wp.vec3
@@ -307,7 +309,8 @@ def sky_sun_direction(elevation_deg: float, azimuth_deg: float) -> wp.vec3:
 
 @wp.func
 def sky_preetham_init(turbidity: float, theta_s: float, exposure: float, variant: int) -> Preetham:
-    """Per-frame constants (vc-A29 update): 2.42-2.44 -> 2.39-2.41 -> 4.2. No validation (see preetham_params)."""
+    """Per-frame constants (vc-A29 update): 2.42-2.44 -> 2.39-2.41 -> 4.2. No validation (see
+    pywarp.clouds.sky.preetham_params)."""
     p = Preetham()
     A, B, C, D, E = sky_preetham_perez_Y(turbidity)
     p.perez_Y = vec5(A, B, C, D, E)
@@ -442,7 +445,7 @@ GRADIENT_DEFAULTS = {
                  "directions: cos(theta) clamped to 0.01 (horizon limit). output='srgb' adds the IEC 61966-2-1 sRGB "
                  "encoding (colour_srgb_encode), the display step of the render chain. Element-wise: the per-frame "
                  "constants are derived per call; a renderer uses @wp.func sky_preetham_rgb(d, sun, Preetham) with "
-                 "preetham_params(...) / ccl_sky_preetham_rgb with ccl_sky_preetham_init(...).",
+                 "pywarp.clouds.sky.preetham_params(...) / ccl_sky_preetham_rgb with ccl_sky_preetham_init(...).",
          references=(*_PREETHAM_REFS, "IEC 61966-2-1:1999 (sRGB transfer function)"))
 @wp.func
 def sky_preetham_colour(direction: wp.vec3, turbidity: float, sun_elevation_deg: float, sun_azimuth_deg: float,
@@ -495,12 +498,12 @@ def sky_gradient_colour(direction: wp.vec3, sun_elevation_deg: float, sun_azimut
     return c
 
 
-# --- host-side parameters of the struct path (validation, then the same float32 code as the kernels) ---------------
+# --- the kernels of the host-side struct builders (pywarp.clouds.sky) and the unit sun vector -----------------------
 
 @wp.kernel
 def _k_preetham_init(turbidity: float, theta_s: float, exposure: float, variant: int,
                      out: wp.array(dtype=Preetham)):
-    # builds the struct of preetham_params (a struct-valued helper, not a registry entry)
+    # builds the struct of pywarp.clouds.sky.preetham_params (a struct-valued helper, not a registry entry)
     out[0] = sky_preetham_init(turbidity, theta_s, exposure, variant)
 
 
@@ -515,57 +518,6 @@ def _scalar(arg: Arg, value) -> float:
     if a.ndim != 0:
         raise ValueError(f"{arg.name} must be a scalar (a per-frame constant), got an array of shape {a.shape}")
     return float(a)
-
-
-def _colour(name: str, value) -> tuple[float, float, float]:
-    a = np.asarray(value, dtype=np.float64) if not isinstance(value, (str, bytes)) else None
-    if a is None or a.shape != (3,):
-        raise ValueError(f"{name} must be an RGB triple, got {value!r}")
-    if not np.all(np.isfinite(a)) or np.any(a < 0):
-        raise ValueError(f"{name} must hold finite values >= 0 (linear RGB), got {tuple(a.tolist())}")
-    return tuple(float(np.float32(v)) for v in a)
-
-
-def _struct_from_numpy(cls, rec):
-    s = cls()
-    for name, (dtype, _) in rec.dtype.fields.items():
-        v = rec[name]
-        cur = getattr(s, name)
-        setattr(s, name, type(cur)(*v.tolist()) if hasattr(cur, "__len__") else type(cur)(v.item()))
-    return s
-
-
-def preetham_params(turbidity, theta_s, exposure=TONEMAP_EXPOSURE, variant="corrected",
-                    device: str | None = None) -> Preetham:
-    """Validated per-frame constants of the Preetham sky (vc-A29) as a Warp struct for :func:`sky_preetham_rgb`.
-
-    ``turbidity`` in [2, 10]; ``theta_s`` (sun zenith angle, rad) in [0, pi/2] -- a sun below the horizon is invalid
-    for the Preetham model; ``exposure`` > 0; ``variant`` 'corrected' or 'thesis' (applies to vc-2.39, 4.4 and 4.5).
-    The fields are computed by the Warp twin ``sky_preetham_init`` (float32, the same operations as
-    ``ccl_sky_preetham_init``).
-    """
-    from ..core.runtime import resolve_device
-
-    T = _scalar(_TURBIDITY, turbidity)
-    ts = _scalar(_THETA_S, theta_s)
-    k = _scalar(_EXPOSURE, exposure)
-    v = VARIANT.check(variant)
-    dev = resolve_device(device)
-    out = wp.empty(1, dtype=Preetham, device=dev)
-    wp.launch(_k_preetham_init, dim=1, inputs=[T, ts, k, v], outputs=[out], device=dev)
-    return _struct_from_numpy(Preetham, out.numpy()[0])
-
-
-def gradient_params(horizon_colour=GRADIENT_DEFAULTS["horizon_colour"],
-                    zenith_colour=GRADIENT_DEFAULTS["zenith_colour"], sun_colour=GRADIENT_DEFAULTS["sun_colour"],
-                    sun_exponent=GRADIENT_DEFAULTS["sun_exponent"]) -> SkyGradient:
-    """Validated per-frame constants of the gradient sky (vc-A28) as a Warp struct for :func:`sky_gradient_rgb`."""
-    g = SkyGradient()
-    g.horizon = wp.vec3(*_colour("horizon_colour", horizon_colour))
-    g.zenith = wp.vec3(*_colour("zenith_colour", zenith_colour))
-    g.sun = wp.vec3(*_colour("sun_colour", sun_colour))
-    g.sun_exponent = _scalar(Arg("sun_exponent", lo=0.0, lo_open=True), sun_exponent)
-    return g
 
 
 def sun_direction(elevation_deg, azimuth_deg=0.0, impl: str = "warp", device: str | None = None) -> np.ndarray:
@@ -626,39 +578,7 @@ def sky_sun_attenuation(theta_s: float, turbidity: float) -> wp.vec3:
 @wp.kernel
 def _k_sun_attenuation(theta_s: wp.array(dtype=float), turbidity: wp.array(dtype=float),
                        out_m: wp.array(dtype=float), out_t: wp.array(dtype=wp.vec3)):
-    # element-wise host helper of sun_attenuation (no catalogue ID: Preetham's appendix, not the thesis)
+    # element-wise kernel of pywarp.clouds.sky.sun_attenuation (no catalogue ID: Preetham's appendix, not the thesis)
     i = wp.tid()
     out_m[i] = sky_relative_air_mass(theta_s[i])
     out_t[i] = sky_sun_attenuation(theta_s[i], turbidity[i])
-
-
-def sun_attenuation(theta_s, turbidity, impl: str = "warp", device: str | None = None):
-    """(relative air mass m, transmittance RGB) towards a sun at zenith angle ``theta_s`` [rad, 0 .. pi/2] through an
-    atmosphere of ``turbidity`` [2, 10]: NumPy arrays of the broadcast shape, float32, and shape + (3,) for the
-    transmittance. ``impl``: 'warp' (:func:`sky_sun_attenuation`) or 'c' (``ccl_sky_sun_attenuation``)."""
-    ts = _THETA_S.check(theta_s)
-    T = _TURBIDITY.check(turbidity)
-    ts, T = np.broadcast_arrays(np.asarray(ts, dtype=np.float32), np.asarray(T, dtype=np.float32))
-    shape = ts.shape
-    ts, T = ts.ravel(), T.ravel()
-    if impl == "c":
-        from ..core.binding import lib
-
-        L = lib()
-        m = np.array([L.ccl_sky_relative_air_mass(float(a)) for a in ts], dtype=np.float32)
-        t = np.array([[v.x, v.y, v.z] for v in (L.ccl_sky_sun_attenuation(float(a), float(b)) for a, b in zip(ts, T))],
-                     dtype=np.float32).reshape(-1, 3)
-        return m.reshape(shape), t.reshape(shape + (3,))
-    if impl != "warp":
-        raise ValueError(f"impl must be 'warp' or 'c', got {impl!r}")
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-    n = max(ts.size, 1)
-    om = wp.empty(n, dtype=float, device=dev)
-    ot = wp.empty(n, dtype=wp.vec3, device=dev)
-    if ts.size:
-        wp.launch(_k_sun_attenuation, dim=ts.size, inputs=[wp.array(ts, dtype=float, device=dev),
-                                                           wp.array(T, dtype=float, device=dev)],
-                  outputs=[om, ot], device=dev)
-    return om.numpy()[:ts.size].reshape(shape), ot.numpy()[:ts.size].reshape(shape + (3,))

@@ -20,19 +20,18 @@ order, comparisons written out), so that the Warp render and the C reference pix
 * Scene level: :class:`TerrainParams` (the twin of ``ccl_terrain_params``) and :func:`terrain_shade` (one ray,
   pt-code-7.3 with materials, water and atmosphere), :func:`terrain_pixel` (supersampled pixel, pt-alg-7.1.6) and
   the image kernel :data:`render_kernel` (row bands through :class:`pywarp.core.runtime.TileLauncher`).
+* Host side: the NumPy-level ``height`` / ``water_normal`` and the evaluators of the two scene-level entries are
+  :mod:`pywarp.terrain.evaluators`.
 """
 from __future__ import annotations
 
-import math
-
-import numpy as np
 import warp as wp
 
-from ..core.cbridge import TERRAIN_PARAMS, c_constant
+from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, Option, declare
 from .common import clamp01, mix3
 from . import VARIANT_THESIS
-from .noise import _check_seed, noise_fbm_perlin2, noise_perlin2, perm_array
+from .noise import noise_fbm_perlin2, noise_perlin2, perm_array
 
 HEIGHTMAP_TEST = c_constant("CCL_TERRAIN_TEST", 0)
 HEIGHTMAP_FBM = c_constant("CCL_TERRAIN_FBM", 1)
@@ -803,180 +802,10 @@ def _water_normal_kernel(x: wp.array(dtype=float), z: wp.array(dtype=float), tim
     out[k] = terrain_water_normal_perm(x[k], z[k], time, wave_scale, wave_strength, perm)
 
 
-# --- NumPy-level helpers and the custom evaluators -------------------------------------------------------------------------
-
-def height(x, z, octaves: int = 4, height_scale: float = 12.0, horizontal_scale: float = 24.0, seed: int = 0,
-           heightmap: str = "fbm", device: str | None = None) -> np.ndarray:
-    """Terrain heights h(x, z) on NumPy arrays (the map of Kod 7.4 / Kod 7.9 heightmap); see terrain_height_perm."""
-    from ..core.runtime import resolve_device
-
-    if heightmap not in HEIGHTMAPS:
-        raise ValueError(f"heightmap must be one of {', '.join(map(repr, HEIGHTMAPS))}, got {heightmap!r}")
-    xa = Arg("x").check(x)
-    za = Arg("z").check(z)
-    o = _OCTAVES.check(octaves)
-    hs = _HEIGHT.check(height_scale)
-    hz = _HSCALE.check(horizontal_scale)
-    seed = _check_seed(seed)
-    shape = np.broadcast_shapes(xa.shape, za.shape)
-    xf = np.ascontiguousarray(np.broadcast_to(xa, shape).ravel())
-    zf = np.ascontiguousarray(np.broadcast_to(za, shape).ravel())
-    dev = resolve_device(device)
-    out = wp.empty(xf.size, dtype=float, device=dev)
-    if xf.size:
-        wp.launch(_height_kernel, dim=xf.size,
-                  inputs=[wp.array(xf, dtype=float, device=dev), wp.array(zf, dtype=float, device=dev), int(o),
-                          float(hs), float(hz), perm_array(seed, dev), HEIGHTMAPS[heightmap]], outputs=[out],
-                  device=dev)
-    return out.numpy().reshape(shape)
-
-
-def water_normal(x, z, time: float = 0.0, wave_scale: float = 2.0, wave_strength: float = 0.08, seed: int = 0,
-                 impl: str = "warp", device: str | None = None) -> np.ndarray:
-    """Wave normals (..., 3) of the water plane (part of pt-alg-7.3.4); ``impl="c"`` evaluates
-    ``ccl_terrain_water_normal_perm``."""
-    xa = Arg("x").check(x)
-    za = Arg("z").check(z)
-    for name, v, lo in (("time", time, 0.0), ("wave_scale", wave_scale, MIN_SCALE),
-                        ("wave_strength", wave_strength, 0.0)):
-        if not math.isfinite(float(v)) or float(v) < lo:
-            raise ValueError(f"{name} must be finite and >= {lo:g}, got {v!r}")
-    seed = _check_seed(seed)
-    shape = np.broadcast_shapes(xa.shape, za.shape)
-    xf = np.ascontiguousarray(np.broadcast_to(xa, shape).ravel())
-    zf = np.ascontiguousarray(np.broadcast_to(za, shape).ravel())
-    if impl == "c":
-        from ..core.binding import ffi, lib
-        from .noise import perm_table
-
-        f = ffi()
-        perm = f.new("uint8_t[512]", perm_table(seed).astype(np.uint8).tolist())
-        out = np.empty((xf.size, 3), np.float32)
-        for k in range(xf.size):
-            n = lib().ccl_terrain_water_normal_perm(float(xf[k]), float(zf[k]), float(time), float(wave_scale),
-                                                    float(wave_strength), perm)
-            out[k] = (n.x, n.y, n.z)
-        return out.reshape(shape + (3,))
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-    res = wp.empty(xf.size, dtype=wp.vec3, device=dev)
-    if xf.size:
-        wp.launch(_water_normal_kernel, dim=xf.size,
-                  inputs=[wp.array(xf, dtype=float, device=dev), wp.array(zf, dtype=float, device=dev),
-                          float(time), float(wave_scale), float(wave_strength), perm_array(seed, dev)],
-                  outputs=[res], device=dev)
-    return res.numpy().reshape(shape + (3,))
-
-
-def _rays(ro, rd):
-    ro = Arg("ro", length=3).check(ro)
-    rd = Arg("rd", length=3, unit=True).check(rd)
-    try:
-        shape = np.broadcast_shapes(ro.shape[:-1], rd.shape[:-1])
-    except ValueError:
-        raise ValueError(f"terrain_shade(): the shapes of ro{ro.shape} and rd{rd.shape} do not broadcast") from None
-    return (np.ascontiguousarray(np.broadcast_to(ro, shape + (3,)).reshape(-1, 3)),
-            np.ascontiguousarray(np.broadcast_to(rd, shape + (3,)).reshape(-1, 3)), shape)
-
-
-def _warp_shade(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def terrain_shade(ro, rd, params: dict | None = None):
-        """Colours (..., 3) (unclamped) and view-march steps (...) of rays (ro, rd) (pt-code-7.3)."""
-        ros, rds, shape = _rays(ro, rd)
-        c = TERRAIN_PARAMS.checked(dict(params or {}))
-        p, seed = TERRAIN_PARAMS.warp_struct(c), int(c.seed)
-        n = ros.shape[0]
-        out = wp.empty(n, dtype=wp.vec3, device=dev)
-        steps = wp.empty(n, dtype=wp.int32, device=dev)
-        if n:
-            wp.launch(_shade_kernel, dim=n, inputs=[p, perm_array(seed, dev), wp.array(ros, dtype=wp.vec3, device=dev),
-                                                    wp.array(rds, dtype=wp.vec3, device=dev)],
-                      outputs=[out, steps], device=dev)
-        return out.numpy().reshape(shape + (3,)), steps.numpy().reshape(shape)
-
-    return terrain_shade
-
-
-def _c_shade(eq):
-    from ..core.binding import ffi, lib
-
-    def terrain_shade(ro, rd, params: dict | None = None):
-        """Colours (..., 3) and view-march steps of rays (ro, rd) by ccl_terrain_shade."""
-        ros, rds, shape = _rays(ro, rd)
-        c = TERRAIN_PARAMS.checked(dict(params or {}))
-        f = ffi()
-        st = f.new("int *")
-        out = np.empty((ros.shape[0], 3), np.float32)
-        steps = np.empty(ros.shape[0], np.int32)
-        for k in range(ros.shape[0]):
-            col = lib().ccl_terrain_shade(c, tuple(map(float, ros[k])), tuple(map(float, rds[k])), st)
-            out[k] = (col.x, col.y, col.z)
-            steps[k] = st[0]
-        return out.reshape(shape + (3,)), steps.reshape(shape)
-
-    return terrain_shade
-
-
-def _pixel_args(x, y, width, height, camera):
-    from .camera import _camera_ray_args
-
-    return _camera_ray_args(x, y, width, height, camera)
-
-
-def _warp_pixel(eq, device):
-    from ..core.runtime import resolve_device
-
-    dev = resolve_device(device)
-
-    def terrain_pixel(x, y, width, height, camera, params: dict | None = None):
-        """Pixel colours (..., 3) in [0, 1] and summed view-march steps at pixels (x, y) (pt-alg-7.1.6)."""
-        xs, ys, shape, width, height, camera = _pixel_args(x, y, width, height, camera)
-        c = TERRAIN_PARAMS.checked(dict(params or {}))
-        p, seed = TERRAIN_PARAMS.warp_struct(c), int(c.seed)
-        out = wp.empty(xs.size, dtype=wp.vec3, device=dev)
-        steps = wp.empty(xs.size, dtype=wp.int32, device=dev)
-        if xs.size:
-            wp.launch(_pixels_kernel, dim=xs.size,
-                      inputs=[p, perm_array(seed, dev), camera.mat44("inv_view_proj_rot"), camera.eye_vec3(),
-                              wp.array(xs, dtype=wp.int32, device=dev), wp.array(ys, dtype=wp.int32, device=dev),
-                              width, height], outputs=[out, steps], device=dev)
-        return out.numpy().reshape(shape + (3,)), steps.numpy().reshape(shape)
-
-    return terrain_pixel
-
-
-def _c_pixel(eq):
-    from ..core.binding import ffi, lib
-
-    def terrain_pixel(x, y, width, height, camera, params: dict | None = None):
-        """Pixel colours (..., 3) and summed steps by the C reference ccl_terrain_pixel."""
-        xs, ys, shape, width, height, camera = _pixel_args(x, y, width, height, camera)
-        c = TERRAIN_PARAMS.checked(dict(params or {}))
-        f = ffi()
-        m = f.new("float[16]", camera.column_major("inv_view_proj_rot").tolist())
-        eye = tuple(float(v) for v in camera.eye)
-        rgb = f.new("float[3]")
-        st = f.new("int *")
-        out = np.empty((xs.size, 3), np.float32)
-        steps = np.empty(xs.size, np.int32)
-        for k in range(xs.size):
-            lib().ccl_terrain_pixel(c, m, eye, int(xs[k]), int(ys[k]), width, height, rgb, st)
-            out[k] = rgb[0], rgb[1], rgb[2]
-            steps[k] = st[0]
-        return out.reshape(shape + (3,)), steps.reshape(shape)
-
-    return terrain_pixel
-
-
 # Not element-wise: the scene parameters (ccl_terrain_params, ~50 fields and the Perlin table) are a struct argument
 # shared by every ray.
-declare("pt-code-7.3", "pt-alg-7.3.4", "pt-alg-7.3-material", c="ccl_terrain_shade", make_warp=_warp_shade,
-        make_c=_c_shade,
+declare("pt-code-7.3", "pt-alg-7.3.4", "pt-alg-7.3-material", c="ccl_terrain_shade",
+        make_warp="pywarp.terrain.evaluators:shade_warp", make_c="pywarp.terrain.evaluators:shade_c",
         summary="terrain_shade(ro, rd, params) -> (colour (..., 3), steps): the demo's top-level shading (Kod 7.3; "
                 "castRay returns its t, as the note fixes the 2-argument call) with everything of ch. 7: march "
                 "(fixed / dynamic / bisect), normal with distance-dependent octaves, materials by height and grass "
@@ -987,7 +816,8 @@ declare("pt-code-7.3", "pt-alg-7.3.4", "pt-alg-7.3-material", c="ccl_terrain_sha
         references=_REF)(terrain_shade)
 
 # Not element-wise: the scene parameters and the camera (ccl_camera) are struct arguments shared by every pixel.
-declare("pt-alg-7.1.6", c="ccl_terrain_pixel", make_warp=_warp_pixel, make_c=_c_pixel,
+declare("pt-alg-7.1.6", c="ccl_terrain_pixel", make_warp="pywarp.terrain.evaluators:pixel_warp",
+        make_c="pywarp.terrain.evaluators:pixel_c",
         summary="terrain_pixel(x, y, width, height, camera, params) -> (rgb (..., 3), steps): the C reference pixel "
                 "of the terrain scene. Supersampling (7.1.6): the mean of m x m regular sub-sample shades (m = "
                 "samples_per_axis: 1, 2, 4 for the text's 1, 4, 16 rays) at offsets ((i + 0.5) / m, (j + 0.5) / m), "
@@ -996,8 +826,8 @@ declare("pt-alg-7.1.6", c="ccl_terrain_pixel", make_warp=_warp_pixel, make_c=_c_
 
 
 __all__ = ["HEIGHTMAPS", "MARCH_METHODS", "SHADOW_KINDS", "STAGES", "TerrainParams",
-           "fbm_perm", "height", "render_kernel", "terrain_clouds", "terrain_fog",
+           "fbm_perm", "render_kernel", "terrain_clouds", "terrain_fog",
            "terrain_height_perm", "terrain_lighting", "terrain_march_bisect", "terrain_march_dynamic",
            "terrain_march_fixed", "terrain_normal", "terrain_normal_octaves", "terrain_pixel",
            "terrain_pixel_position", "terrain_shade", "terrain_shadow_hard", "terrain_shadow_soft", "terrain_sky",
-           "terrain_water_normal_perm", "terrain_water_weight", "water_normal"]
+           "terrain_water_normal_perm", "terrain_water_weight"]

@@ -27,6 +27,7 @@ init()
 from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import terrain as K  # noqa: E402
 from ..kernels.noise import perm_array  # noqa: E402
+from . import evaluators as E  # noqa: E402
 from .settings import PREVIEW, TerrainSettings  # noqa: E402
 
 
@@ -116,7 +117,7 @@ def render_pixels_warp(settings: TerrainSettings, xs, ys, pose: Pose | None = No
 def ground_height(settings: TerrainSettings, x, z, octaves: int | None = None) -> np.ndarray:
     """Terrain height at (x, z) with the settings' heightmap (default: the marched octaves)."""
     s = settings
-    return K.height(x, z, octaves or s.march_octaves, s.height_scale, s.horizontal_scale, s.seed, s.heightmap,
+    return E.height(x, z, octaves or s.march_octaves, s.height_scale, s.horizontal_scale, s.seed, s.heightmap,
                     s.device)
 
 

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from helpers import march_frames, pixel_change
-from pywarp.clouds.cloudscape import HALF_MAX, RenderTextures, half_values, render_pixels_c, render_pixels_warp
+from pywarp.clouds.cloudscape import (HALF_MAX, RenderTextures, base_shape_bound, half_values, mip_chain,
+                                      render_pixels_c, render_pixels_warp)
 from pywarp.clouds.technique import CloudscapeTechnique
 from pywarp.clouds.settings import CloudscapeSettings
 from pywarp.core.pose import Pose
-from pywarp.kernels import cloudscape as K
 
 SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 
@@ -42,11 +42,11 @@ def test_half_base_holds_the_rounded_chain_in_half_the_memory():
     np.testing.assert_array_equal(chain, half_values(chain, "base texture"))
     np.testing.assert_array_equal(chain[:32 ** 3].reshape(tex.base.shape), half_values(tex.base, "base texture"))
     np.testing.assert_array_equal(half.base_half.numpy().astype(np.float32).reshape(-1, 4), chain)
-    np.testing.assert_array_equal(single.base.numpy().reshape(-1, 4), K.mip_chain(tex.base))
+    np.testing.assert_array_equal(single.base.numpy().reshape(-1, 4), mip_chain(tex.base))
     assert half.base_half.capacity * 2 == single.base.capacity
     # the other textures are the same in both
     np.testing.assert_array_equal(half.detail.numpy(), single.detail.numpy())
-    assert half.base_bound == K.base_shape_bound(chain)
+    assert half.base_bound == base_shape_bound(chain)
 
 
 @pytest.mark.parametrize("precision", ["half", "single"])

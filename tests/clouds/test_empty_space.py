@@ -38,15 +38,15 @@ def test_empty_distance_equals_brute_force(seed):
         w[y, x, 0] = rng.uniform(0.01, 1.0)
     w[rng.integers(0, n), rng.integers(0, n), 0] = np.nan
     w[..., 1:] = rng.uniform(0, 1, (n, n, 3))  # other channels do not matter
-    got = K.weather_empty_distance(w, cap=9)
+    got = C.weather_empty_distance(w, cap=9)
     np.testing.assert_array_equal(got, _brute_distance(w[..., 0], 9))
 
 
 def test_empty_distance_all_empty_is_capped_and_all_occupied_is_zero():
     z = np.zeros((16, 16, 4), dtype=np.float32)
-    assert (K.weather_empty_distance(z, cap=5) == 5).all()
+    assert (C.weather_empty_distance(z, cap=5) == 5).all()
     z[..., 0] = 0.5
-    assert (K.weather_empty_distance(z, cap=5) == 0).all()
+    assert (C.weather_empty_distance(z, cap=5) == 0).all()
 
 
 def _pair(**kw):
@@ -104,7 +104,7 @@ def test_base_bound_bounds_every_sample_of_the_chain(small_textures):
     exceeds the bound; the bound is not loose by more than the spread of the channels allows (within 0.1 of the
     largest B of a texel for the default textures)."""
     chain = small_textures.mips("base")
-    bound = K.base_shape_bound(chain)
+    bound = C.base_shape_bound(chain)
     n = small_textures.base.shape[0]
     rng = np.random.default_rng(5)
     p = rng.uniform(-3.0, 3.0, (4000, 3))
@@ -129,20 +129,20 @@ def test_base_bound_bounds_every_sample_of_the_chain(small_textures):
 def test_base_bound_is_off_outside_its_proof():
     """A channel R > 1 (B would rise with L), an L >= 2 or a NaN: no bound (0), so nothing is skipped."""
     ok = np.full((9, 4), 0.5, dtype=np.float32)
-    assert K.base_shape_bound(ok) == pytest.approx(1.0 / 1.5, rel=1e-4)  # R = 0.5, L = 0.5: B = 1 / 1.5
+    assert C.base_shape_bound(ok) == pytest.approx(1.0 / 1.5, rel=1e-4)  # R = 0.5, L = 0.5: B = 1 / 1.5
     for bad in ((0, 1.5), (1, 2.5), (2, np.nan)):
         a = ok.copy()
         a[3, bad[0]] = bad[1]
         if bad[0] == 1:
             a[3, 1:] = bad[1]
-        assert K.base_shape_bound(a) == 0.0
+        assert C.base_shape_bound(a) == 0.0
 
 
 def test_skipping_has_work_to_skip():
     # the map of the default textures has wide empty regions: without them the skipping would test nothing
     s = CloudscapeSettings(width=8, height=8)
     w = C.RenderTextures.generate(s).weather
-    d = K.weather_empty_distance(w)
+    d = C.weather_empty_distance(w)
     assert (d >= K.EMPTY_MARGIN + 4).mean() > 0.2
 
 
@@ -197,9 +197,9 @@ def test_selector_class_against_brute_force():
     w[rng.uniform(size=(n, n)) < 0.2, 0] = 0.9
     w[2, 3, 0] = np.float32(K.WEATHER_DETILE["edge0"])  # on the edge: not certain
     w[5, 5, 0] = np.nan
-    got = K.selector_class(w)
-    lo = K.WEATHER_DETILE["edge0"] - K.SELECTOR_MARGIN
-    hi = K.WEATHER_DETILE["edge1"] + K.SELECTOR_MARGIN
+    got = C.selector_class(w)
+    lo = K.WEATHER_DETILE["edge0"] - C.SELECTOR_MARGIN
+    hi = K.WEATHER_DETILE["edge1"] + C.SELECTOR_MARGIN
     for i in range(n):
         for j in range(n):
             four = [float(w[i, j, 0]), float(w[i, (j + 1) % n, 0]), float(w[(i + 1) % n, j, 0]),
@@ -231,4 +231,4 @@ def test_weather_with_the_selector_classes_is_bit_for_bit_the_lookup(small_textu
         out.append(o.numpy())
     tex.empty_skip = 1
     np.testing.assert_array_equal(out[0], out[1])
-    assert (K.selector_class(small_textures.weather) < 2).mean() > 0.5
+    assert (C.selector_class(small_textures.weather) < 2).mean() > 0.5

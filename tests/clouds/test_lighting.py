@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 
+from pywarp.clouds.sky import sun_attenuation
 from pywarp.kernels import sky as S
 
 # --- the sun through the atmosphere ---------------------------------------------------------------------------------
@@ -28,7 +29,7 @@ THETAS = np.float32(np.radians([0.0, 30.0, 55.0, 70.0, 80.0, 86.0, 87.0]))
 @pytest.mark.parametrize("impl", ["warp", "c"])
 @pytest.mark.parametrize("turbidity", [2.0, 2.5, 6.0, 10.0])
 def test_sun_attenuation_closed_form(impl, turbidity):
-    m, t = S.sun_attenuation(THETAS, turbidity, impl=impl)
+    m, t = sun_attenuation(THETAS, turbidity, impl=impl)
     th = THETAS.astype(np.float64)
     for c, lam in enumerate(S.SUN_LAMBDA_UM):
         m_ref, t_ref = _attenuation_f64(th, turbidity, lam)
@@ -40,7 +41,7 @@ def test_sun_attenuation_closed_form(impl, turbidity):
 
 def test_sun_attenuation_known_values():
     """The values quoted in cclouds/sky.h and cloudscape.c (T = 2.5): zenith, the default 35 deg sun, 4 deg."""
-    _, t = S.sun_attenuation(np.float32(np.radians([0.0, 55.0, 86.0])), 2.5)
+    _, t = sun_attenuation(np.float32(np.radians([0.0, 55.0, 86.0])), 2.5)
     np.testing.assert_allclose(t[0], (0.855, 0.778, 0.637), atol=1e-3)
     np.testing.assert_allclose(t[1], (0.762, 0.646, 0.457), atol=1e-3)
     np.testing.assert_allclose(t[2], (0.145, 0.045, 0.0039), atol=1e-3)
@@ -51,7 +52,7 @@ def test_sun_attenuation_known_values():
 def test_sun_reddens_from_zenith_to_horizon():
     th = np.float32(np.linspace(0.0, np.pi / 2, 46))
     th[-1] = S.HALF_PI_F32
-    _, t = S.sun_attenuation(th, 2.5)
+    _, t = sun_attenuation(th, 2.5)
     assert np.all(t[:, 0] >= t[:, 1]) and np.all(t[:, 1] >= t[:, 2]) and np.all(t > 0) and np.all(t <= 1)
     assert np.all(np.diff(t, axis=0) < 0)  # every channel dims as the sun sinks
     rb = t[:, 0] / t[:, 2]
@@ -63,8 +64,8 @@ def test_sun_attenuation_c_equals_warp():
     """Bit for bit: the same float32 operations in the same order with the same libm (powf, expf, cosf)."""
     th = np.float32(np.linspace(0.0, S.HALF_PI_F32, 200))
     for T in (2.0, 3.7, 10.0):
-        mw, tw = S.sun_attenuation(th, T)
-        mc, tc = S.sun_attenuation(th, T, impl="c")
+        mw, tw = sun_attenuation(th, T)
+        mc, tc = sun_attenuation(th, T, impl="c")
         np.testing.assert_array_equal(mw, mc)
         np.testing.assert_array_equal(tw, tc)
 
@@ -74,7 +75,7 @@ def test_sun_attenuation_c_equals_warp():
                                                      (0.5, 10.5, "turbidity")])
 def test_sun_attenuation_refuses_bad_input(theta_s, turbidity, match):
     with pytest.raises(ValueError, match=match):
-        S.sun_attenuation(theta_s, turbidity)
+        sun_attenuation(theta_s, turbidity)
 
 
 # --- the cloudscape's lighting: C and Warp twins ----------------------------------------------------------------------
@@ -134,7 +135,7 @@ def test_light_c_equals_warp(tech, sky, elevation):
         np.testing.assert_allclose(np.array(getattr(t.params, name), dtype=np.float32),
                                    np.array(list(getattr(c, name)), dtype=np.float32), rtol=3e-7, err_msg=name)
     # the sun through the atmosphere of the settings' turbidity
-    _, att = S.sun_attenuation(np.float32(math.radians(90.0 - elevation)), 3.0)
+    _, att = sun_attenuation(np.float32(math.radians(90.0 - elevation)), 3.0)
     np.testing.assert_allclose(np.array(t.params.sun_colour), s.sun_intensity * att, rtol=1e-5)
     # ambient: bottom = 0.4 top; the sky is brighter near the horizon than at the zenith, so the cosine-weighted
     # mean (the ground's) lies below the plain mean

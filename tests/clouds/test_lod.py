@@ -8,6 +8,7 @@ import pytest
 import warp as wp
 
 from pywarp.core.binding import ffi, lib
+from pywarp.clouds import cloudscape as C
 from pywarp.kernels import cloudscape as K
 
 
@@ -29,14 +30,14 @@ def _c_mips(tex: np.ndarray) -> np.ndarray:
 @pytest.mark.parametrize("n", [1, 2, 8, 32])
 def test_mip_chain_levels_are_box_means_in_c_and_numpy_alike(n):
     tex = _volume(n)
-    chain = K.mip_chain(tex)
-    assert chain.shape == (sum((n >> k) ** 3 for k in range(K.mip_levels(n))), 4)
+    chain = C.mip_chain(tex)
+    assert chain.shape == (sum((n >> k) ** 3 for k in range(C.mip_levels(n))), 4)
     # C and NumPy: the same sums in the same order, bit for bit
     if n > 1:
         np.testing.assert_array_equal(_c_mips(tex), chain[n ** 3:])
     # independent: every level is the float64 box mean of level 0 over 2^k-wide blocks; the last level is the mean
     off = 0
-    for k in range(K.mip_levels(n)):
+    for k in range(C.mip_levels(n)):
         m = n >> k
         level = chain[off:off + m ** 3].reshape(m, m, m, 4)
         ref = tex.astype(np.float64).reshape(m, n // m, m, n // m, m, n // m, 4).mean(axis=(1, 3, 5))
@@ -84,13 +85,13 @@ def _mip_kernel(tex: wp.array(dtype=wp.vec4), size: int, levels: int, lod: float
 def test_sampling_at_a_level_blends_the_two_nearest_levels():
     n = 16
     tex = _volume(n, 5)
-    chain = wp.array(K.mip_chain(tex), dtype=wp.vec4)
+    chain = wp.array(C.mip_chain(tex), dtype=wp.vec4)
     pts_np = np.random.default_rng(2).uniform(-3, 3, (64, 3)).astype(np.float32)
     pts = wp.array(pts_np, dtype=wp.vec3)
 
     def at(lod):
         out = wp.zeros(len(pts_np), dtype=wp.vec4)
-        wp.launch(_mip_kernel, dim=len(pts_np), inputs=[chain, n, K.mip_levels(n), lod, pts], outputs=[out])
+        wp.launch(_mip_kernel, dim=len(pts_np), inputs=[chain, n, C.mip_levels(n), lod, pts], outputs=[out])
         return out.numpy()
 
     # level 0 (and any lod <= 0) is the plain trilinear sample of the texture: the C sampler's values

@@ -12,7 +12,7 @@ import pytest
 
 import pywarp
 from helpers import assert_twins_agree
-from pywarp.kernels.colour import srgb_encode_array
+from pywarp.clouds.sky import srgb_encode_array
 
 U = 2.0 ** -24  # float32 unit roundoff
 D65_LINDBLOOM = (0.95047, 1.0, 1.08883)

@@ -9,7 +9,7 @@ from helpers import assert_twins_agree
 
 import pywarp
 from pywarp.core import binding as _cclouds
-from pywarp.kernels import interp as kinterp
+from pywarp.clouds import noise as host_noise
 
 EPS32 = float(np.finfo(np.float32).eps)  # 2^-23
 
@@ -55,7 +55,7 @@ def test_interp_fades_closed_forms_and_end_derivatives(impl):
 @pytest.mark.parametrize("impl", ["warp", "c"])
 def test_interp_interpolants_of_fig_2_6(impl):
     t = np.linspace(0, 1, 65)
-    curves = kinterp.interpolants(t, impl=impl)
+    curves = host_noise.interpolants(t, impl=impl)
     td = f32(t)
     np.testing.assert_array_equal(curves["linear"], t.astype(np.float32))
     np.testing.assert_allclose(curves["cosine"], (1 - np.cos(np.pi * td)) / 2, atol=4 * EPS32)
@@ -101,7 +101,7 @@ def test_interp_c_and_warp_agree(rng):
     assert_twins_agree("vc-2.20", t)
     assert_twins_agree("vc-2.27", t, 0.0, 1.0, 5.0, 2.0)
     # the two helper curves (no registry entry): the Warp kernel of interpolants() vs the C functions
-    w, c = kinterp.interpolants(t), kinterp.interpolants(t, impl="c")
+    w, c = host_noise.interpolants(t), host_noise.interpolants(t, impl="c")
     np.testing.assert_array_equal(w["linear"], c["linear"])
     # cosf of glibc vs Warp's cos, each within 1 ulp of (1 - cos pi t) / 2's argument: 2 ulp of 1
     assert np.abs(w["cosine"].astype(np.float64) - c["cosine"]).max() <= 2 * EPS32
@@ -113,15 +113,15 @@ def test_interp_bad_input_raises_value_error_naming_parameter(impl):
     with pytest.raises(ValueError, match=r"^t must be in \[0, 1\]"):
         pywarp.equation("vc-2.19", impl=impl)(1.5)
     with pytest.raises(ValueError, match=r"^t must be in \[0, 1\]"):
-        kinterp.interpolants([0.5, -0.1], impl=impl)
+        host_noise.interpolants([0.5, -0.1], impl=impl)
     with pytest.raises(ValueError, match=r"^o_max must differ from o_min"):
         pywarp.equation("vc-2.27", impl=impl)(0.5, [0.0, 1.0], [1.0, 1.0], 0.0, 1.0)
     with pytest.raises(ValueError, match=r"^v must be finite"):
         pywarp.equation("vc-2.27", impl=impl)(np.nan, 0.0, 1.0, 0.0, 1.0)
     with pytest.raises(ValueError, match=r"^impl must be"):
-        kinterp.interpolants(0.5, impl="numpy")
+        host_noise.interpolants(0.5, impl="numpy")
 
 
 def test_interp_names_and_package_helpers():
     assert pywarp.interp_remap(0.5, 0.0, 1.0, 2.0, 4.0) == 3.0
-    assert pywarp.interpolants is kinterp.interpolants
+    assert pywarp.interpolants is host_noise.interpolants

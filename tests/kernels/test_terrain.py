@@ -10,7 +10,7 @@ import pytest
 from helpers import assert_twins_agree
 
 import pywarp
-from pywarp.kernels import terrain as T
+from pywarp.terrain import evaluators as TE
 
 RNG = np.random.default_rng(20160617)
 
@@ -70,7 +70,7 @@ def test_fbm_bound_two_one_minus_half_power(octaves):
 @pytest.mark.spec("pt-code-7.9")
 def test_fbm_is_the_printed_sum_of_noise_octaves_and_agrees_with_pt_alg_3_2():
     x, z = RNG.uniform(-40, 40, (2, 200)).astype(np.float32)
-    noise = pywarp.kernels.noise.perlin2
+    noise = pywarp.perlin2
     ref = np.zeros(200)
     for i in range(5):  # value += amplitude * noise(frequency * position), A0 = 1, F0 = 0.5, gain 0.5, lacunarity 2
         f = np.float32(0.5 * 2 ** i)
@@ -79,7 +79,7 @@ def test_fbm_is_the_printed_sum_of_noise_octaves_and_agrees_with_pt_alg_3_2():
     # one function answers both IDs, and the scene's heightmap is it: height = height_scale * fbm(x / hs, z / hs)
     from pywarp.core.registry import get
     assert get("pt-code-7.9") is get("pt-alg-3.2") and get("pt-code-7.9").c_symbol == "ccl_noise_fbm_perlin2"
-    h = T.height(x * 24.0, z * 24.0, 5, 1.0, 24.0, heightmap="fbm")
+    h = TE.height(x * 24.0, z * 24.0, 5, 1.0, 24.0, heightmap="fbm")
     np.testing.assert_array_equal(h, fbm79(np.float32(x * 24.0) / np.float32(24.0),
                                            np.float32(z * 24.0) / np.float32(24.0), 5))
 
@@ -293,12 +293,12 @@ def test_lower_kappa_keeps_the_bottom_visible_at_oblique_angles():
 @pytest.mark.spec("pt-alg-7.3.4")
 def test_water_normal_c_and_warp_agree_unit_and_tilted_by_the_strength():
     x, z = RNG.uniform(-100, 100, (2, 300))
-    wn = T.water_normal(x, z, 3.5, 2.0, 0.08)
-    cn = T.water_normal(x, z, 3.5, 2.0, 0.08, impl="c")
+    wn = TE.water_normal(x, z, 3.5, 2.0, 0.08)
+    cn = TE.water_normal(x, z, 3.5, 2.0, 0.08, impl="c")
     np.testing.assert_array_equal(wn, cn)
     np.testing.assert_allclose(np.linalg.norm(wn, axis=-1), 1.0, atol=1e-6)
     assert np.all(wn[:, 1] > 0.98)  # strength 0.08, |a|, |b| <= 1.5: tilt below 10 deg
-    flat = T.water_normal(x, z, 3.5, 2.0, 0.0)
+    flat = TE.water_normal(x, z, 3.5, 2.0, 0.0)
     np.testing.assert_array_equal(flat, np.broadcast_to(np.float32([0, 1, 0]), flat.shape))
 
 

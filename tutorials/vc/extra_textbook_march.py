@@ -37,7 +37,7 @@ import numpy as np  # noqa: E402
 
 from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
 from pywarp.clouds.settings import CloudscapeSettings  # noqa: E402
-from pywarp.kernels.colour import srgb_encode_array  # noqa: E402
+from pywarp.clouds.sky import srgb_encode_array  # noqa: E402
 
 DETERMINISTIC = False
 

@@ -2,7 +2,7 @@
 Perlin's improved fade 6t^5 - 15t^4 + 10t^3 (vc-2.20).
 
 Perlin gradient noise (vc-A1) on an 8 x 8 lattice, 256 x 256 pixels, seed 0 (Ken Perlin's 2002 permutation), evaluated
-by the library with each interpolant (pywarp.kernels.noise.perlin2, the NumPy front end of ccl_noise_perlin2 /
+by the library with each interpolant (pywarp.clouds.noise.perlin2, the NumPy front end of ccl_noise_perlin2 /
 noise_perlin2; the quintic panel equals pywarp.noise_perlin3(x, y, 0)). The thesis does not state the panels, lattice,
 seed or resolution; two extra rows (not in the thesis) make the differences visible: the gradient magnitude and the
 Laplacian of each image, by NumPy finite differences. Output: figures/vc/fig-2.5.png.
@@ -39,7 +39,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.kernels.noise import perlin2  # noqa: E402  (public NumPy helper: 2-D Perlin with a choice of interpolant)
+from pywarp.clouds.noise import perlin2  # noqa: E402  (public NumPy helper: 2-D Perlin with a choice of interpolant)
 
 PANELS = (("linear", "linear\nw = t"),
           ("cosine", "cosine\nw = (1 - cos πt)/2"),

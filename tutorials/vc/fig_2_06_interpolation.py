@@ -2,7 +2,7 @@
 the fade 3t^2 - 2t^3 (vc-2.19) and the improved fade 6t^5 - 15t^4 + 10t^3 (vc-2.20) on t in [0, 1].
 
 The fades are pywarp.interp_fade_cubic and pywarp.interp_fade_quintic; the linear and cosine curves are the library's
-interp_lerp / interp_cosine (pywarp.kernels.interp.interpolants; the thesis does not write the cosine formula, the
+interp_lerp / interp_cosine (pywarp.clouds.noise.interpolants; the thesis does not write the cosine formula, the
 catalogue's reading (1 - cos pi t)/2 is used). Extra panels (not in the thesis): the first and second derivatives of
 each curve by NumPy central differences, which show the smoothness property each curve buys (vc-A1).
 Output: figures/vc/fig-2.6.png.
@@ -30,7 +30,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
-from pywarp.kernels.interp import interpolants  # noqa: E402  (public NumPy helper: the four curves of this figure)
+from pywarp.clouds.noise import interpolants  # noqa: E402  (public NumPy helper: the four curves of this figure)
 
 STYLE = {"linear": ("linear  t", "C0", "-"),
          "cosine": ("cosine  (1 - cos πt)/2", "C1", "--"),
