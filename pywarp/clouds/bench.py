@@ -22,7 +22,7 @@ import numpy as np
 import warp as wp
 
 from ..core.runtime import TileLauncher, init
-from ..core.timing import best_ms, interleaved_ms, machine, median_ms  # noqa: F401  (machine: re-exported)
+from ..core.timing import Progress, best_ms, interleaved_ms, machine, median_ms  # noqa: F401  (machine: re-exported)
 
 init()
 
@@ -263,7 +263,10 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         raise ValueError(f"width and height must be >= 1, got {width}x{height}")
     if repeat < 1:
         raise ValueError(f"repeat must be >= 1, got {repeat}")
+    progress = Progress(7, "cloudscape")
     tech, ladder = measure_ladder(width, height, repeat, workers, device)
+    progress.step("ladder (fig 4.17): " + ", ".join(f"{k} {v:.0f} ms" for k, v in ladder.items()
+                                                     if k != "dense_clouds_cut_percent"))
     textures = tech.textures
     pose = Pose.from_settings(tech.settings)
     # the proposed cheaper option (not the default): light samples from the base shape only (no detail erosion)
@@ -279,15 +282,18 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         tech.update(advanced=adv)
         options[name] = _timed(lambda: tech.render(pose, reprojection=False), repeat)
     tech.update(advanced={})
+    progress.step("options: " + ", ".join(f"{k} {v:.0f} ms" for k, v in options.items()))
     sky = measure_sky(tech, repeat)
     sky_ms = {k: v["full"] for k, v in sky.items()}
     sky_reprojected_ms = {k: v["reprojection"] for k, v in sky.items()}
+    progress.step("sky models (fig 4.16): " + ", ".join(f"{k} {v:.1f} ms" for k, v in sky_ms.items()))
 
     dev = tech.settings.device
     one = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, threads=1, device=dev),
                               textures=textures)
     t_one = _timed(lambda: one.render(pose, reprojection=False), repeat)
     t_all = ladder["early_exit"]
+    progress.step(f"one thread: {t_one:.0f} ms")
 
     sw, sh = small
     warp_over_c = None  # Warp per thread over C per thread: a CPU comparison
@@ -297,13 +303,16 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         t_w = _timed(lambda: w_small.render(reprojection=False), repeat)
         t_c = _timed(lambda: render_frame_c(s_small, textures), repeat)
         warp_over_c = round(t_w / t_c, 3)
+    progress.step(f"Warp over C per thread, {sw}x{sh}: {warp_over_c if warp_over_c is not None else 'n/a (not cpu)'}")
 
     t640 = CloudscapeTechnique(CloudscapeSettings(width=640, height=360, threads=workers, device=dev),
                                textures=textures)
     ms_640_reproj = _reprojected_ms(t640)
+    progress.step(f"640x360 reprojected: {ms_640_reproj:.1f} ms")
     t1280 = CloudscapeTechnique(CloudscapeSettings(width=1280, height=720, threads=workers, device=dev),
                                 textures=textures)
     ms_1280_full = _timed(lambda: t1280.render(reprojection=False), 1)
+    progress.step(f"1280x720 full: {ms_1280_full:.0f} ms")
 
     r = lambda v: round(v, 2)  # noqa: E731
     return {
@@ -408,7 +417,11 @@ def report_cloudscape(res: dict) -> str:
 
 def run_reprojection(width: int = 640, height: int = 360, device: str | None = None) -> dict:
     """:func:`bench_reprojection` with neighbourhoods 1 and 3."""
-    res = {str(n): bench_reprojection(width=width, height=height, neighbourhood=n, device=device) for n in (1, 3)}
+    progress = Progress(2, "neighbourhoods")
+    res = {}
+    for n in (1, 3):
+        res[str(n)] = bench_reprojection(width=width, height=height, neighbourhood=n, device=device)
+        progress.step(f"neighbourhood {n} done")
     return {"benchmark": "reprojection", "size": [width, height], "device": device or "cpu", "neighbourhoods": res}
 
 
@@ -704,12 +717,15 @@ def bench_speed(repeat: int = 3, workers: int | None = None, device: str | None 
             info["baseline"] = {**other.info, "interpreter": python}  # as given (python: what it runs)
         rounds = {name: {kind: [] for kind in SPEED_MEASUREMENTS} for name in sides}
         order = list(sides)
+        progress = Progress(repeat, "rounds")
         for r in range(repeat):
             for kind in SPEED_MEASUREMENTS:
                 for name in (order if r % 2 == 0 else order[::-1]):
                     side = sides[name]
                     ms = getattr(side, kind)() if name == "ours" else side.measure(kind)
                     rounds[name][kind].append(round(float(ms), 3))
+            progress.step("; ".join(f"{name}: " + ", ".join(f"{kind} {rounds[name][kind][-1]:.1f} ms"
+                                                            for kind in SPEED_MEASUREMENTS) for name in sides))
     finally:
         if other is not None:
             other.close()
