@@ -294,6 +294,9 @@ def cmd_bench(args) -> int:
     sys.stdout.flush()
     b.print(result, args.json)
     sys.stdout.flush()
+    if args.json and isinstance(result, dict):  # the report prints a benchmark's own warnings; JSON only holds them
+        for warning in result.get("warnings", ()):
+            say(f"warning: {warning}")
     say(f"load average at end: {_load_text(load['end'])}")
     if was_busy:
         per_core = ", ".join(f"{at} {v[0] / (os.cpu_count() or 1):.2f}" for at, v in load.items() if v)

@@ -130,13 +130,7 @@ def busy(load: list[float] | None, cores: int | None = None) -> bool:
 
 
 def non_monotonic(xs, ys, rel: float = 0.1) -> list[tuple]:
-    """Where ``ys`` (times along growing ``xs``, e.g. frame time vs drop count) falls by more than ``rel`` below the
-    largest value before it: ``(x_before, y_before, x, y)`` per fall. Such a table should grow; a fall means that
-    the machine's load changed while it was measured (or too few repeats)."""
-    out, top = [], None
-    for x, y in zip(xs, ys):
-        if top is not None and y < top[1] * (1.0 - rel):
-            out.append((*top, x, y))
-        if top is None or y > top[1]:
-            top = (x, y)
-    return out
+    """Where ``ys`` (times along growing ``xs``, e.g. frame time vs drop count) falls from one row to the next by more
+    than ``rel`` of the row before: ``(x_before, y_before, x, y)`` per fall. Such a table should grow; a fall means
+    that the machine's load changed while it was measured (or that too few repeats caught a slow outlier)."""
+    return [(x0, y0, x, y) for (x0, y0), (x, y) in zip(zip(xs, ys), zip(xs[1:], ys[1:])) if y < y0 * (1.0 - rel)]
