@@ -285,6 +285,8 @@ def cmd_bench(args) -> int:
                           defaults={k: v for k, v in b.defaults.items() if v is not None})
     kwargs = {k: getattr(values, k) for k in b.defaults}
     kwargs["device"] = _check_device(args.device)
+    if b.check is not None:
+        b.check(**kwargs)
     load = {"start": _bench_header(sc.name, b, kwargs)}
     result = b.run(**kwargs)
     load["end"] = load_average()

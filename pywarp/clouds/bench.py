@@ -552,6 +552,13 @@ class BaselineError(ValueError):
     """The ``--baseline`` interpreter is missing, cannot import pywarp, or failed during the measurement."""
 
 
+def check_speed(baseline: str | None = None, **_) -> None:
+    """``pywarp bench clouds speed``'s options checked before it prints or measures anything: the ``--baseline``
+    interpreter (:func:`bench_speed` checks it again when called directly)."""
+    if baseline is not None:
+        _check_baseline(baseline)
+
+
 def _check_baseline(python) -> str:
     import os
     import shutil

@@ -104,6 +104,14 @@ def test_bad_arguments_print_no_header(fake_drops, capsys):
     assert err.startswith("pywarp bench: error: --width") and "expected" not in err
 
 
+def test_a_bad_baseline_is_refused_before_the_header(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["bench", "clouds", "speed", "--baseline", str(tmp_path / "nope")])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert err.startswith("pywarp bench: error: --baseline must be") and len(err.splitlines()) == 1
+
+
 def test_busy_is_load_per_core_over_a_half():
     assert not timing.busy([1.0, 9.0, 9.0], cores=2)  # the 1-minute load counts
     assert timing.busy([1.01, 0.0, 0.0], cores=2)
