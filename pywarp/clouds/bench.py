@@ -362,6 +362,7 @@ def bench_reprojection(width: int = 640, height: int = 360, frames: int = 48, ne
     full = CloudscapeTechnique(s, textures=rep.textures)
     p0 = Pose.from_settings(s)
     ssim, psnr = [], []
+    progress = Progress(frames, f"neighbourhood {neighbourhood}: frames", every=8)
     for k in range(frames):
         t = k / fps
         yaw = p0.yaw_deg + turn_deg_per_s * t
@@ -374,6 +375,8 @@ def bench_reprojection(width: int = 640, height: int = 360, frames: int = 48, ne
         if k >= 16:
             ssim.append(structural_similarity(a, b, channel_axis=2, data_range=255))
             psnr.append(peak_signal_noise_ratio(b, a, data_range=255))
+        progress.step(f"frame {k}" + (f": SSIM {ssim[-1]:.4f}, PSNR {psnr[-1]:.1f} dB" if ssim else
+                                      " (the first cycle, not compared)"))
     return {
         "benchmark": "reprojection",
         "size": [width, height],
@@ -417,11 +420,7 @@ def report_cloudscape(res: dict) -> str:
 
 def run_reprojection(width: int = 640, height: int = 360, device: str | None = None) -> dict:
     """:func:`bench_reprojection` with neighbourhoods 1 and 3."""
-    progress = Progress(2, "neighbourhoods")
-    res = {}
-    for n in (1, 3):
-        res[str(n)] = bench_reprojection(width=width, height=height, neighbourhood=n, device=device)
-        progress.step(f"neighbourhood {n} done")
+    res = {str(n): bench_reprojection(width=width, height=height, neighbourhood=n, device=device) for n in (1, 3)}
     return {"benchmark": "reprojection", "size": [width, height], "device": device or "cpu", "neighbourhoods": res}
 
 

@@ -41,7 +41,7 @@ SCENE = register(Scene(
         "cloudscape": Benchmark("cloudscape", "the renderer's optimisation ladder (fig 4.17), sky models (fig 4.16), "
                                               "Warp vs C, reprojection; keys in the README",
                                 "pywarp.clouds.bench:bench_cloudscape", "pywarp.clouds.bench:report_cloudscape",
-                                {"width": 960, "height": 540, "repeat": 2, "workers": None}, expected="TBD"),
+                                {"width": 960, "height": 540, "repeat": 2, "workers": None}, expected="4-6 min"),
         "textures": Benchmark("textures", "noise-texture generation: C one thread vs Warp tile-parallel vs one "
                                           "launch", "pywarp.clouds.bench_textures:bench_textures",
                               "pywarp.clouds.bench_textures:report",
@@ -49,7 +49,7 @@ SCENE = register(Scene(
         "reprojection": Benchmark("reprojection", "SSIM/PSNR of reprojected frames against full renders along a "
                                                   "camera path (needs scikit-image, a test extra)",
                                   "pywarp.clouds.bench:run_reprojection", "pywarp.clouds.bench:report_reprojection",
-                                  {"width": 640, "height": 360}, expected="TBD"),
+                                  {"width": 640, "height": 360}, expected="2.5-5 min"),
         "dask": Benchmark("dask", "the fly-through's frames on a Dask LocalCluster of 1 and 2 worker processes: "
                                   "speed-up of 2 over 1 and frames/s per worker, to size a cluster (needs dask)",
                           "pywarp.core.animation:run_dask_bench", "pywarp.core.animation:report_dask",
@@ -65,7 +65,8 @@ SCENE = register(Scene(
                                             "SSIM and mean CIEDE2000 after the best exposure scale (needs "
                                             "scikit-image and colour-science)",
                                "pywarp.clouds.bench_reference:bench_reference", "pywarp.clouds.bench_reference:report",
-                               {"width": 160, "height": 90, "spp": 1024, "workers": None}, expected="TBD"),
+                               {"width": 160, "height": 90, "spp": 1024, "workers": None},
+                               expected="25-50 min (about 1.5-3 s per --spp)"),
     },
     outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360, "reprojection": True}},

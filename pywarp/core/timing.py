@@ -96,15 +96,17 @@ def say(text: str) -> None:
 
 
 class Progress:
-    """Rows of a benchmark as they finish: ``step(text)`` prints ``[k/total] text (elapsed, ETA)`` on stderr. The ETA
-    assumes the remaining steps cost what the finished ones did on average (rough where steps grow, e.g. a ladder
-    of sizes: it errs short)."""
+    """Rows of a benchmark as they finish: ``step(text)`` prints ``[k/total] text (elapsed, ETA)`` on stderr, every
+    ``every``-th step and the last (long loops of frames). The ETA assumes the remaining steps cost what the finished
+    ones did on average (rough where steps grow, e.g. a ladder of sizes: it errs short)."""
 
-    def __init__(self, total: int, label: str = ""):
-        self.total, self.label, self.done, self.t0 = total, label, 0, time.perf_counter()
+    def __init__(self, total: int, label: str = "", every: int = 1):
+        self.total, self.label, self.every, self.done, self.t0 = total, label, every, 0, time.perf_counter()
 
     def step(self, text: str) -> None:
         self.done += 1
+        if self.done % self.every and self.done != self.total:
+            return
         elapsed = time.perf_counter() - self.t0
         left = self.total - self.done
         eta = f", ETA {_duration(elapsed / self.done * left)}" if left > 0 else ""

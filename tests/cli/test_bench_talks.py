@@ -142,6 +142,15 @@ def test_rain_table_warns_when_not_monotonic():
     assert monotonic_warnings(rows) == []
 
 
+def test_progress_every_nth_step_and_the_last(capsys):
+    progress = timing.Progress(5, "frames", every=2)
+    for k in range(5):
+        progress.step(f"frame {k}")
+    err = capsys.readouterr().err.splitlines()
+    assert [line.split(" (")[0] for line in err] == ["  frames [2/5] frame 1", "  frames [4/5] frame 3",
+                                                     "  frames [5/5] frame 4"]
+
+
 def test_json_warnings_of_a_benchmark_go_to_stderr(monkeypatch, capsys):
     import pywarp.rain.bench as bench
 
