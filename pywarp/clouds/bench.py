@@ -164,13 +164,15 @@ LADDER_STEPS = {"unoptimised": dict(adaptive_samples=False, early_exit=False),
 
 
 def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers: int | None = None,
-                   device: str | None = None, detail: dict | None = None, **settings):
+                   device: str | None = None, detail: dict | None = None, progress: Progress | None = None,
+                   **settings):
     """The fig 4.17 ladder on one frame and camera, each step including the previous ones (ms):
     unoptimised, adaptive_samples, early_exit, reprojection. Returns (technique, ladder): each value the best of
     ``repeat`` repetitions after one warm-up frame; the full-frame steps are interleaved (one frame of each step per
     round, so that all see the same machine). ``detail``: a dict that receives every repetition --
     ``samples`` (step -> [ms per round], ``reprojection`` the mean frame of each pass of the steady path) and
-    ``reprojection_split`` (raymarch / reprojection / other -> [ms per round], :data:`REPROJECTION_SPLIT`)."""
+    ``reprojection_split`` (raymarch / reprojection / other -> [ms per round], :data:`REPROJECTION_SPLIT`).
+    ``progress``: a :class:`Progress` stepped three times (full-frame steps, reprojection, dense clouds)."""
     from ..core.pose import Pose
     from .cloudscape import CloudscapeSettings
     from .technique import CloudscapeTechnique
@@ -194,6 +196,8 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
         for k, changes in LADDER_STEPS.items():
             samples[k].append(frame(**changes))
     ladder = {k: min(v) for k, v in samples.items()}
+    if progress is not None:
+        progress.step("ladder (fig 4.17): " + ", ".join(f"{k} {v:.0f} ms" for k, v in ladder.items()))
     ladder["reprojection"] = _reprojected_ms(tech)
     if detail is not None:
         split = {g: [] for g in (*REPROJECTION_SPLIT, "other")}
@@ -205,6 +209,8 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
                 split[g].append(v)
         detail["samples"] = samples
         detail["reprojection_split"] = split
+    if progress is not None:
+        progress.step(f"reprojection: {ladder['reprojection']:.1f} ms")
     # vc-M7: early termination saves more with denser clouds (the thesis: up to 85 %); same frame, twice the
     # extinction, measured against its own unoptimised time
     sigma = tech.settings.sigma_per_km
@@ -214,6 +220,8 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
             dense[k].append(frame(**LADDER_STEPS[k], sigma_per_km=2.0 * sigma))
     tech.update(sigma_per_km=sigma, **LADDER_STEPS["early_exit"])
     ladder["dense_clouds_cut_percent"] = 100.0 * (1.0 - min(dense["early_exit"]) / min(dense["unoptimised"]))
+    if progress is not None:
+        progress.step(f"dense clouds: early exit cuts {ladder['dense_clouds_cut_percent']:.0f} %")
     if detail is not None:
         detail["dense_samples"] = dense
     return tech, ladder
@@ -263,10 +271,8 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         raise ValueError(f"width and height must be >= 1, got {width}x{height}")
     if repeat < 1:
         raise ValueError(f"repeat must be >= 1, got {repeat}")
-    progress = Progress(7, "cloudscape")
-    tech, ladder = measure_ladder(width, height, repeat, workers, device)
-    progress.step("ladder (fig 4.17): " + ", ".join(f"{k} {v:.0f} ms" for k, v in ladder.items()
-                                                     if k != "dense_clouds_cut_percent"))
+    progress = Progress(9, "cloudscape")
+    tech, ladder = measure_ladder(width, height, repeat, workers, device, progress=progress)
     textures = tech.textures
     pose = Pose.from_settings(tech.settings)
     # the proposed cheaper option (not the default): light samples from the base shape only (no detail erosion)
