@@ -98,7 +98,8 @@ def say(text: str) -> None:
 class Progress:
     """Rows of a benchmark as they finish: ``step(text)`` prints ``[k/total] text (elapsed, ETA)`` on stderr, every
     ``every``-th step and the last (long loops of frames). The ETA assumes the remaining steps cost what the finished
-    ones did on average (rough where steps grow, e.g. a ladder of sizes: it errs short)."""
+    ones did on average: rough where steps differ (short where they grow, e.g. a ladder of sizes; long after a costly
+    first step)."""
 
     def __init__(self, total: int, label: str = "", every: int = 1):
         self.total, self.label, self.every, self.done, self.t0 = total, label, every, 0, time.perf_counter()
