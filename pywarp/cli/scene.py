@@ -11,12 +11,14 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import os
 import sys
 import textwrap
 from dataclasses import dataclass
 
 from ..core.params import Settings, add_options, from_options, option_message, param, specs
 from ..core.scenes import DEFAULT_SCENE, scene as get_scene, scenes as all_scenes
+from ..core.timing import BUSY_LOAD_PER_CORE, busy, load_average, say
 
 
 # --- the command's own options, declared like settings -----------------------------------------------------------------
@@ -283,10 +285,44 @@ def cmd_bench(args) -> int:
                           defaults={k: v for k, v in b.defaults.items() if v is not None})
     kwargs = {k: getattr(values, k) for k in b.defaults}
     kwargs["device"] = _check_device(args.device)
+    if b.check is not None:
+        b.check(**kwargs)
+    load = {"start": _bench_header(sc.name, b, kwargs)}
     result = b.run(**kwargs)
+    load["end"] = load_average()
+    was_busy = busy(load["start"]) or busy(load["end"])
+    if isinstance(result, dict):
+        result.setdefault("load", {**load, "cores": os.cpu_count(), "busy": was_busy})
     sys.stdout.flush()
     b.print(result, args.json)
+    sys.stdout.flush()
+    if args.json and isinstance(result, dict):  # the report prints a benchmark's own warnings; JSON only holds them
+        for warning in result.get("warnings", ()):
+            say(f"warning: {warning}")
+    say(f"load average at end: {_load_text(load['end'])}")
+    if was_busy:
+        per_core = ", ".join(f"{at} {v[0] / (os.cpu_count() or 1):.2f}" for at, v in load.items() if v)
+        say(f"warning: the machine was busy while this ran (load per core {per_core}; above {BUSY_LOAD_PER_CORE}): "
+            f"the numbers may be off -- compare the ratios within this run, or rerun on an idle machine")
     return 0
+
+
+def _bench_header(scene: str, b, kwargs: dict) -> list | None:
+    """What the benchmark measures, how long it takes and the load average at its start, on stderr before it
+    measures (stdout keeps the report, or one JSON object as its last line). Returns the load average."""
+    opts = ", ".join(f"{k} {v if v is not None else 'none' if k == 'baseline' else 'auto'}"
+                     for k, v in kwargs.items())
+    say(f"pywarp bench {scene} {b.name}: {b.description}")
+    say(f"  expected: {b.expected or 'not stated'} on 2 CPU cores at its defaults (options: {opts})")
+    load = load_average()
+    say(f"  load average at start: {_load_text(load)}")
+    return load
+
+
+def _load_text(load: list | None) -> str:
+    if not load:
+        return "not available on this system"
+    return " ".join(f"{v:.2f}" for v in load) + f" (1, 5, 15 min; {os.cpu_count()} cores)"
 
 
 def view_defaults(sc) -> dict:
@@ -436,13 +472,17 @@ def add_scene_commands(sub, help_for: str | None = None) -> None:
         for bname, bm in sc.benchmarks.items():
             opts = ", ".join(f"{k} {v if v is not None else 'none' if k == 'baseline' else 'auto'}"
                              for k, v in bm.defaults.items())
-            lines.append(f"  {sc.name} {bname}: {bm.description} (defaults: {opts or '-'})")
+            lines.append(f"  {sc.name} {bname} [{bm.expected or 'duration not stated'}]: {bm.description} "
+                         f"(defaults: {opts or '-'})")
     b = sub.add_parser("bench", help="run a benchmark and print ratios measured in one run",
                        formatter_class=fmt,
                        description="Run a benchmark of a scene: pywarp bench [SCENE] [BENCHMARK] (a scene alone runs its default "
                                    "benchmark). Numbers are measured "
-                                   "in one run (best of --repeat after a warm-up); ratios compare them.\n\n"
-                                   "benchmarks:\n" + "\n".join(lines))
+                                   "in one run (best of --repeat after a warm-up); ratios compare them. Each "
+                                   "prints, on stderr, what it measures, how long it takes, its rows as they "
+                                   "finish and the load average at its start and end, with a warning when the "
+                                   "machine was busy (a shared machine slows every number).\n\n"
+                                   "benchmarks [time at the defaults on 2 CPU cores]:\n" + "\n".join(lines))
     b.add_argument("first", metavar="[SCENE]",
                    help=f"the scene (default {DEFAULT_SCENE}; may be left out) -- or the benchmark when it is")
     b.add_argument("second", nargs="?", default=None, metavar="BENCHMARK",

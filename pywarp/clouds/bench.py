@@ -22,7 +22,7 @@ import numpy as np
 import warp as wp
 
 from ..core.runtime import TileLauncher, init
-from ..core.timing import best_ms, interleaved_ms, machine, median_ms  # noqa: F401  (machine: re-exported)
+from ..core.timing import Progress, best_ms, interleaved_ms, machine, median_ms  # noqa: F401  (machine: re-exported)
 
 init()
 
@@ -164,13 +164,15 @@ LADDER_STEPS = {"unoptimised": dict(adaptive_samples=False, early_exit=False),
 
 
 def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers: int | None = None,
-                   device: str | None = None, detail: dict | None = None, **settings):
+                   device: str | None = None, detail: dict | None = None, progress: Progress | None = None,
+                   **settings):
     """The fig 4.17 ladder on one frame and camera, each step including the previous ones (ms):
     unoptimised, adaptive_samples, early_exit, reprojection. Returns (technique, ladder): each value the best of
     ``repeat`` repetitions after one warm-up frame; the full-frame steps are interleaved (one frame of each step per
     round, so that all see the same machine). ``detail``: a dict that receives every repetition --
     ``samples`` (step -> [ms per round], ``reprojection`` the mean frame of each pass of the steady path) and
-    ``reprojection_split`` (raymarch / reprojection / other -> [ms per round], :data:`REPROJECTION_SPLIT`)."""
+    ``reprojection_split`` (raymarch / reprojection / other -> [ms per round], :data:`REPROJECTION_SPLIT`).
+    ``progress``: a :class:`Progress` stepped three times (full-frame steps, reprojection, dense clouds)."""
     from ..core.pose import Pose
     from .cloudscape import CloudscapeSettings
     from .technique import CloudscapeTechnique
@@ -194,6 +196,8 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
         for k, changes in LADDER_STEPS.items():
             samples[k].append(frame(**changes))
     ladder = {k: min(v) for k, v in samples.items()}
+    if progress is not None:
+        progress.step("ladder (fig 4.17): " + ", ".join(f"{k} {v:.0f} ms" for k, v in ladder.items()))
     ladder["reprojection"] = _reprojected_ms(tech)
     if detail is not None:
         split = {g: [] for g in (*REPROJECTION_SPLIT, "other")}
@@ -205,6 +209,8 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
                 split[g].append(v)
         detail["samples"] = samples
         detail["reprojection_split"] = split
+    if progress is not None:
+        progress.step(f"reprojection: {ladder['reprojection']:.1f} ms")
     # vc-M7: early termination saves more with denser clouds (the thesis: up to 85 %); same frame, twice the
     # extinction, measured against its own unoptimised time
     sigma = tech.settings.sigma_per_km
@@ -214,6 +220,8 @@ def measure_ladder(width: int = 960, height: int = 540, repeat: int = 2, workers
             dense[k].append(frame(**LADDER_STEPS[k], sigma_per_km=2.0 * sigma))
     tech.update(sigma_per_km=sigma, **LADDER_STEPS["early_exit"])
     ladder["dense_clouds_cut_percent"] = 100.0 * (1.0 - min(dense["early_exit"]) / min(dense["unoptimised"]))
+    if progress is not None:
+        progress.step(f"dense clouds: early exit cuts {ladder['dense_clouds_cut_percent']:.0f} %")
     if detail is not None:
         detail["dense_samples"] = dense
     return tech, ladder
@@ -263,7 +271,8 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         raise ValueError(f"width and height must be >= 1, got {width}x{height}")
     if repeat < 1:
         raise ValueError(f"repeat must be >= 1, got {repeat}")
-    tech, ladder = measure_ladder(width, height, repeat, workers, device)
+    progress = Progress(9, "cloudscape")
+    tech, ladder = measure_ladder(width, height, repeat, workers, device, progress=progress)
     textures = tech.textures
     pose = Pose.from_settings(tech.settings)
     # the proposed cheaper option (not the default): light samples from the base shape only (no detail erosion)
@@ -279,15 +288,18 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         tech.update(advanced=adv)
         options[name] = _timed(lambda: tech.render(pose, reprojection=False), repeat)
     tech.update(advanced={})
+    progress.step("options: " + ", ".join(f"{k} {v:.0f} ms" for k, v in options.items()))
     sky = measure_sky(tech, repeat)
     sky_ms = {k: v["full"] for k, v in sky.items()}
     sky_reprojected_ms = {k: v["reprojection"] for k, v in sky.items()}
+    progress.step("sky models (fig 4.16): " + ", ".join(f"{k} {v:.1f} ms" for k, v in sky_ms.items()))
 
     dev = tech.settings.device
     one = CloudscapeTechnique(CloudscapeSettings(width=width, height=height, threads=1, device=dev),
                               textures=textures)
     t_one = _timed(lambda: one.render(pose, reprojection=False), repeat)
     t_all = ladder["early_exit"]
+    progress.step(f"one thread: {t_one:.0f} ms")
 
     sw, sh = small
     warp_over_c = None  # Warp per thread over C per thread: a CPU comparison
@@ -297,13 +309,16 @@ def bench_cloudscape(width: int = 960, height: int = 540, repeat: int = 2, worke
         t_w = _timed(lambda: w_small.render(reprojection=False), repeat)
         t_c = _timed(lambda: render_frame_c(s_small, textures), repeat)
         warp_over_c = round(t_w / t_c, 3)
+    progress.step(f"Warp over C per thread, {sw}x{sh}: {warp_over_c if warp_over_c is not None else 'n/a (not cpu)'}")
 
     t640 = CloudscapeTechnique(CloudscapeSettings(width=640, height=360, threads=workers, device=dev),
                                textures=textures)
     ms_640_reproj = _reprojected_ms(t640)
+    progress.step(f"640x360 reprojected: {ms_640_reproj:.1f} ms")
     t1280 = CloudscapeTechnique(CloudscapeSettings(width=1280, height=720, threads=workers, device=dev),
                                 textures=textures)
     ms_1280_full = _timed(lambda: t1280.render(reprojection=False), 1)
+    progress.step(f"1280x720 full: {ms_1280_full:.0f} ms")
 
     r = lambda v: round(v, 2)  # noqa: E731
     return {
@@ -353,6 +368,7 @@ def bench_reprojection(width: int = 640, height: int = 360, frames: int = 48, ne
     full = CloudscapeTechnique(s, textures=rep.textures)
     p0 = Pose.from_settings(s)
     ssim, psnr = [], []
+    progress = Progress(frames, f"neighbourhood {neighbourhood}: frames", every=8)
     for k in range(frames):
         t = k / fps
         yaw = p0.yaw_deg + turn_deg_per_s * t
@@ -365,6 +381,8 @@ def bench_reprojection(width: int = 640, height: int = 360, frames: int = 48, ne
         if k >= 16:
             ssim.append(structural_similarity(a, b, channel_axis=2, data_range=255))
             psnr.append(peak_signal_noise_ratio(b, a, data_range=255))
+        progress.step(f"frame {k}" + (f": SSIM {ssim[-1]:.4f}, PSNR {psnr[-1]:.1f} dB" if ssim else
+                                      " (the first cycle, not compared)"))
     return {
         "benchmark": "reprojection",
         "size": [width, height],
@@ -539,6 +557,13 @@ class BaselineError(ValueError):
     """The ``--baseline`` interpreter is missing, cannot import pywarp, or failed during the measurement."""
 
 
+def check_speed(baseline: str | None = None, **_) -> None:
+    """``pywarp bench clouds speed``'s options checked before it prints or measures anything: the ``--baseline``
+    interpreter (:func:`bench_speed` checks it again when called directly)."""
+    if baseline is not None:
+        _check_baseline(baseline)
+
+
 def _check_baseline(python) -> str:
     import os
     import shutil
@@ -704,12 +729,15 @@ def bench_speed(repeat: int = 3, workers: int | None = None, device: str | None 
             info["baseline"] = {**other.info, "interpreter": python}  # as given (python: what it runs)
         rounds = {name: {kind: [] for kind in SPEED_MEASUREMENTS} for name in sides}
         order = list(sides)
+        progress = Progress(repeat, "rounds")
         for r in range(repeat):
             for kind in SPEED_MEASUREMENTS:
                 for name in (order if r % 2 == 0 else order[::-1]):
                     side = sides[name]
                     ms = getattr(side, kind)() if name == "ours" else side.measure(kind)
                     rounds[name][kind].append(round(float(ms), 3))
+            progress.step("; ".join(f"{name}: " + ", ".join(f"{kind} {rounds[name][kind][-1]:.1f} ms"
+                                                            for kind in SPEED_MEASUREMENTS) for name in sides))
     finally:
         if other is not None:
             other.close()

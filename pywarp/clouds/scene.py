@@ -37,34 +37,36 @@ SCENE = register(Scene(
     benchmarks={
         "tiles": Benchmark("tiles", "tile-parallel launcher vs one launch, on a frame-sized kernel",
                            "pywarp.clouds.bench:bench_tiles", "pywarp.clouds.bench:report_tiles",
-                           {"width": 960, "height": 540, "repeat": 5, "workers": None}),
+                           {"width": 960, "height": 540, "repeat": 5, "workers": None}, expected="5-20 s"),
         "cloudscape": Benchmark("cloudscape", "the renderer's optimisation ladder (fig 4.17), sky models (fig 4.16), "
                                               "Warp vs C, reprojection; keys in the README",
                                 "pywarp.clouds.bench:bench_cloudscape", "pywarp.clouds.bench:report_cloudscape",
-                                {"width": 960, "height": 540, "repeat": 2, "workers": None}),
+                                {"width": 960, "height": 540, "repeat": 2, "workers": None}, expected="4-6 min"),
         "textures": Benchmark("textures", "noise-texture generation: C one thread vs Warp tile-parallel vs one "
                                           "launch", "pywarp.clouds.bench_textures:bench_textures",
                               "pywarp.clouds.bench_textures:report",
-                              {"repeat": 3, "workers": None}),
+                              {"repeat": 3, "workers": None}, expected="30 s-1 min"),
         "reprojection": Benchmark("reprojection", "SSIM/PSNR of reprojected frames against full renders along a "
                                                   "camera path (needs scikit-image, a test extra)",
                                   "pywarp.clouds.bench:run_reprojection", "pywarp.clouds.bench:report_reprojection",
-                                  {"width": 640, "height": 360}),
+                                  {"width": 640, "height": 360}, expected="2.5-5 min"),
         "dask": Benchmark("dask", "the fly-through's frames on a Dask LocalCluster of 1 and 2 worker processes: "
                                   "speed-up of 2 over 1 and frames/s per worker, to size a cluster (needs dask)",
                           "pywarp.core.animation:run_dask_bench", "pywarp.core.animation:report_dask",
-                          {"width": 320, "height": 180, "repeat": 1}),
+                          {"width": 320, "height": 180, "repeat": 1}, expected="30 s-1 min"),
         "speed": Benchmark("speed", "640x360 reprojected (mean over a steady path) and 1280x720 full frame, and their "
                                     "ratio; --baseline PYTHON measures another installation's the same way, "
                                     "interleaved in one run, and prints both and the speed-ups",
                            "pywarp.clouds.bench:bench_speed", "pywarp.clouds.bench:report_speed",
-                           {"repeat": 3, "workers": None, "baseline": None}),
+                           {"repeat": 3, "workers": None, "baseline": None}, expected="1-2 min",
+                           check="pywarp.clouds.bench:check_speed"),
         "reference": Benchmark("reference", "the real-time lighting models (thesis, +sky light, +multiple "
                                             "scattering) against the path-traced ground truth of three scenes: "
                                             "SSIM and mean CIEDE2000 after the best exposure scale (needs "
                                             "scikit-image and colour-science)",
                                "pywarp.clouds.bench_reference:bench_reference", "pywarp.clouds.bench_reference:report",
-                               {"width": 160, "height": 90, "spp": 1024, "workers": None}),
+                               {"width": 160, "height": 90, "spp": 1024, "workers": None},
+                               expected="25-50 min (about 1.5-3 s per --spp)"),
     },
     outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360, "reprojection": True}},

@@ -96,16 +96,22 @@ class CameraPath:
 @dataclass(frozen=True)
 class Benchmark:
     """A benchmark: ``run(**options) -> dict`` (JSON-serialisable) and ``report(result) -> str``. ``defaults``: the
-    options it takes besides ``device`` (which every benchmark honours) and their defaults (None: chosen by run)."""
+    options it takes besides ``device`` (which every benchmark honours) and their defaults (None: chosen by run).
+    ``expected``: how long it runs at its defaults on two CPU cores (e.g. ``"1-2 min"``), printed by ``bench --help``
+    and before it starts, so that nobody waits on a silent terminal without knowing for how long. ``check``:
+    ``check(**options)`` raises ValueError for options the run would refuse (e.g. a missing ``--baseline``
+    interpreter), called before anything is printed, so that a bad option stays a one-line error."""
 
     name: str
     description: str
     run: Callable[..., dict] | str
     report: Callable[[dict], str] | str
     defaults: dict = field(default_factory=dict)
+    expected: str = ""
+    check: Callable[..., None] | str | None = None
 
     def __post_init__(self):
-        _lazy_fields(self, "run", "report")
+        _lazy_fields(self, "run", "report", "check")
 
     def print(self, result: dict, as_json: bool = False) -> None:
         """The report, or one JSON object on the last line."""

@@ -14,18 +14,12 @@
 """
 from __future__ import annotations
 
-import os
 import time
+
+from ..core.timing import Progress, load_average, say
 
 #: moments of the default flight the frame benchmark renders [s]
 MOMENTS = (3.0, 6.0, 10.0, 18.0, 26.0)
-
-
-def _load() -> list | None:
-    try:
-        return [round(x, 2) for x in os.getloadavg()]
-    except (AttributeError, OSError):
-        return None
 
 
 def bench_frame(width: int = 640, height: int = 360, repeat: int = 3, workers: int | None = None,
@@ -41,8 +35,9 @@ def bench_frame(width: int = 640, height: int = 360, repeat: int = 3, workers: i
     setup_s = time.perf_counter() - t0
     ps = s.preview()
     prev = FlightTechnique(ps)  # the same clouds and flight (same seed), preview size and step
-    load0 = _load()
+    load0 = load_average()
     per, old, pre, same = {}, {}, {}, True
+    progress = Progress(len(MOMENTS), "moments")
     for t in MOMENTS:
         pose = FlightPose(min(t, s.flight_duration_s), "chase")
         tech.volumes.set_skip_cap(1)
@@ -61,6 +56,8 @@ def bench_frame(width: int = 640, height: int = 360, repeat: int = 3, workers: i
                 (prev if key == "pre" else tech).render(pose)
                 best[key] = min(best[key], time.perf_counter() - a)
         per[f"{t:g}"], old[f"{t:g}"], pre[f"{t:g}"] = best["new"] * 1e3, best["old"] * 1e3, best["pre"] * 1e3
+        progress.step(f"t = {t:g} s: {per[f'{t:g}']:.1f} ms (previous {old[f'{t:g}']:.1f} ms, preview "
+                      f"{pre[f'{t:g}']:.1f} ms)")
     tech.volumes.set_skip_cap(255)
     mean = sum(per.values()) / len(per)
     mean_old = sum(old.values()) / len(old)
@@ -72,7 +69,7 @@ def bench_frame(width: int = 640, height: int = 360, repeat: int = 3, workers: i
             "preview": {"width": ps.width, "height": ps.height, "step_voxels": ps.step_voxels, "frame_ms": pre,
                         "mean_frame_ms": mean_pre, "fps": 1e3 / mean_pre},
             "aim_fps_two_cores": 15.0, "setup_s": setup_s, "clouds": s.cloud_count, "cloud_size": s.cloud_size,
-            "load_average": _load(), "load_average_before": load0}
+            "load_average": load_average(), "load_average_before": load0}
 
 
 def report_frame(r: dict) -> str:
@@ -100,9 +97,10 @@ def bench_clouds(repeat: int = 3, workers: int | None = None, device: str = "cpu
     from .clouds import bench_cloud_array
 
     lau = launcher(device, workers)
+    say(f"  cloud arrays 32^3, 64^3, 128^3 x linear, cosine, cubic, best of {repeat} ...")
     r = bench_cloud_array(sizes=(32, 64, 128), interpolations=("linear", "cosine", "cubic"), repeats=repeat,
                           impl="warp", device=lau.device)
-    r["load_average"] = _load()
+    r["load_average"] = load_average()
     return r
 
 

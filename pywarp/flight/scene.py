@@ -27,14 +27,14 @@ SCENE = register(Scene(
         "frame": Benchmark("frame", "volume-render frame time of the chase view at moments of the flight (Warp, "
                                     "tile-parallel), frames/s; the C reference per pixel on a sample",
                            "pywarp.flight.bench:bench_frame", "pywarp.flight.bench:report_frame",
-                           {"width": 640, "height": 360, "repeat": 3, "workers": None}),
+                           {"width": 640, "height": 360, "repeat": 3, "workers": None}, expected="30 s-1 min"),
         "clouds": Benchmark("clouds", "cloud-array generation time by size (32^3, 64^3, 128^3) and interpolation "
                                       "(linear, cosine, cubic: the text calls cubic 'unusable in real time')",
                             "pywarp.flight.bench:bench_clouds", "pywarp.flight.bench:report_clouds",
-                            {"repeat": 3, "workers": None}),
+                            {"repeat": 3, "workers": None}, expected="5-15 s"),
         "all": Benchmark("all", "frame and clouds together (one JSON object)",
                          "pywarp.flight.bench:bench_all", "pywarp.flight.bench:report_all",
-                         {"width": 640, "height": 360, "repeat": 3, "workers": None}),
+                         {"width": 640, "height": 360, "repeat": 3, "workers": None}, expected="40 s-1.5 min"),
     },
     outputs={"render": "flight.png", "animate": "flight.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360}},

@@ -5,6 +5,8 @@ from __future__ import annotations
 import json
 import time
 
+from ..core.timing import Progress, non_monotonic
+
 #: rr-tab-6.1 (notebook: GeForce Go 7400, 1.733 GHz dual core) and rr-tab-6.2 (PC: Radeon 3850, Core2Duo 2.667 GHz):
 #: drops -> (drop fps, streak fps), as printed.
 TABLE_6_1 = {0: (14.3, 14.3), 10: (13.9, 13.7), 50: (13.7, 13.5), 100: (13.5, 13.3), 500: (12.9, 12.4),
@@ -27,6 +29,7 @@ def bench_drops(width: int = 640, height: int = 360, repeat: int = 3, workers=No
                      size_spread_mm=0.6, device=device, threads=workers)
     tech = RainTechnique(s)
     rows = []
+    progress = Progress(len(counts), "drop counts")
     for n in counts:
         row = {"drops": n}
         for mode in ("drops", "streaks"):
@@ -50,6 +53,7 @@ def bench_drops(width: int = 640, height: int = 360, repeat: int = 3, workers=No
         if n in TABLE_6_2:
             row["table_6_2_fps"] = TABLE_6_2[n]
         rows.append(row)
+        progress.step(f"{n} drops: drops {row['drops_ms']:.2f} ms, streaks {row['streaks_ms']:.2f} ms")
     from . import drops as R
 
     mask_ms = {}
@@ -61,8 +65,22 @@ def bench_drops(width: int = 640, height: int = 360, repeat: int = 3, workers=No
         mask_ms[method] = round((time.perf_counter() - t0) * 1e3, 1)
     return {"benchmark": "rain drops", "width": width, "height": height, "device": tech.device,
             "workers": tech.launcher.workers, "background": background, "size_mm": 0.5, "rows": rows,
-            "mask_build_ms": mask_ms,
+            "mask_build_ms": mask_ms, "warnings": monotonic_warnings(rows),
             "aim": "10 000 streaks at 640x360 in <= 50 ms on two cores (issue 11)"}
+
+
+def monotonic_warnings(rows: list[dict]) -> list[str]:
+    """A warning per mode whose frame time falls as the drop count grows by more than 10 % (more drops cost more:
+    a fall is the machine's load changing during the run, or too few repeats for the smallest times)."""
+    out = []
+    for mode in ("drops", "streaks"):
+        falls = non_monotonic([row["drops"] for row in rows], [row[f"{mode}_ms"] for row in rows])
+        if falls:
+            where = ", ".join(f"{y0:.2f} ms at {x0} drops -> {y:.2f} ms at {x}" for x0, y0, x, y in falls)
+            out.append(f"{mode}: the time falls as the drop count grows ({where}): the machine's load changed while "
+                       f"it was measured, or the times are too small for --repeat; rerun with a higher --repeat on "
+                       f"an idle machine")
+    return out
 
 
 def report_drops(r: dict) -> str:
@@ -76,6 +94,7 @@ def report_drops(r: dict) -> str:
         lines.append(f"{row['drops']:>7} {row['drops_ms']:>9.2f} {row['drops_fps']:>7.1f} {row['streaks_ms']:>11.2f} "
                      f"{row['streaks_fps']:>7.1f}   {t1:>22}  {t2:>22}")
     lines.append("mask build (512^2, a = 1 mm): " + ", ".join(f"{k} {v} ms" for k, v in r["mask_build_ms"].items()))
+    lines += [f"warning: {w}" for w in r.get("warnings", ())]
     return "\n".join(lines)
 
 

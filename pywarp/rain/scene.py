@@ -22,7 +22,7 @@ SCENE = register(Scene(
         "drops": Benchmark("drops", "frame time vs drop count (0 .. 50 000) for drops and streaks over a cached "
                                     "background, beside Tables 6.1 / 6.2; mask build times",
                            "pywarp.rain.bench:bench_drops", "pywarp.rain.bench:report_drops",
-                           {"width": 640, "height": 360, "repeat": 3, "workers": None}),
+                           {"width": 640, "height": 360, "repeat": 3, "workers": None}, expected="10-20 s"),
     },
     outputs={"render": "rain.png", "animate": "rain.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360}},

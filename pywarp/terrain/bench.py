@@ -7,7 +7,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..core.timing import best_ms, machine
+from ..core.timing import Progress, best_ms, machine
 from .settings import PREVIEW, TEST_HEIGHTMAP, TerrainSettings
 
 SIZES = ((640, 480), (1366, 768), (1920, 1080))
@@ -39,6 +39,7 @@ def bench_marching(repeat: int = 1, workers: int | None = None, device: str | No
     """Tabulka 7.1: the test heightmap (Kod 7.4 / 7.5 map, lit as in 7.2, no shadows) with the fixed step (STEP_SIZE
     0.1, MAX_T 200) and the dynamic step (PRECISION 0.01, MAX_STEPS 1000) at the text's three sizes."""
     rows = []
+    progress = Progress(len(SIZES), "Tabulka 7.1")
     for (w, h), fixed_text, dyn_text in zip(SIZES, TEXT_7_1["fixed"], TEXT_7_1["dynamic"]):
         s = _base(device, workers, width=w, height=h, **TEST_HEIGHTMAP)
         ms_f, steps_f, img_f = _time_frame(replace(s, march="fixed"), repeat)
@@ -49,6 +50,7 @@ def bench_marching(repeat: int = 1, workers: int | None = None, device: str | No
                      "max_abs_image_difference": round(float(np.abs(img_f - img_d).max()), 4),
                      "text_ms_fixed": fixed_text, "text_ms_dynamic": dyn_text,
                      "text_ratio": round(fixed_text / dyn_text, 1)})
+        progress.step(f"{w}x{h}: fixed {ms_f:.1f} ms, dynamic {ms_d:.1f} ms")
     mean = float(np.mean([r["ratio"] for r in rows]))
     return {"benchmark": "marching", "table": "pt-tab-7.1", "rows": rows, "mean_ratio": round(mean, 2),
             "text_mean_ratio": 19.9, "settings": {k: v for k, v in TEST_HEIGHTMAP.items()},
@@ -70,10 +72,12 @@ def report_marching(r: dict) -> str:
 def bench_final(repeat: int = 1, workers: int | None = None, device: str | None = None) -> dict:
     """Tabulka 8.1: the final scene (default settings) at the text's three sizes."""
     rows = []
+    progress = Progress(len(SIZES), "Tabulka 8.1")
     for (w, h), r1, r2 in zip(SIZES, TEXT_8_1["rig1"], TEXT_8_1["rig2"]):
         ms, steps, _ = _time_frame(_base(device, workers, width=w, height=h), repeat)
         rows.append({"size": [w, h], "ms": round(ms, 1), "fps": round(1000.0 / ms, 2), "steps": round(steps, 1),
                      "text_ms_rig1": r1, "text_ms_rig2": r2})
+        progress.step(f"{w}x{h}: {ms:.1f} ms")
     base = rows[0]["ms"]
     for row in rows:
         row["ratio_to_640x480"] = round(row["ms"] / base, 2)
@@ -97,8 +101,11 @@ def bench_bisect(width: int = 640, height: int = 360, repeat: int = 1, workers: 
                  device: str | None = None) -> dict:
     """The ch. 9 refinement against the plain dynamic step on the final scene: time, steps, image difference."""
     s = _base(device, workers, width=width, height=height)
+    progress = Progress(2, "bisection")
     ms_d, steps_d, img_d = _time_frame(replace(s, march="dynamic"), repeat)
+    progress.step(f"dynamic step: {ms_d:.1f} ms")
     ms_b, steps_b, img_b = _time_frame(replace(s, march="bisect"), repeat)
+    progress.step(f"bisection: {ms_b:.1f} ms")
     diff = np.abs(img_b - img_d)
     mse = float(np.mean((img_b - img_d) ** 2))
     return {"benchmark": "bisect", "size": [width, height], "ms_dynamic": round(ms_d, 1), "ms_bisect": round(ms_b, 1),
@@ -122,9 +129,11 @@ def bench_supersampling(width: int = 320, height: int = 180, repeat: int = 1, wo
                         device: str | None = None) -> dict:
     """7.1.6: cost of 1, 4 and 16 rays per pixel (the text: an 'unacceptable' drop, no numbers)."""
     rows = []
+    progress = Progress(3, "supersampling")
     for rays in (1, 4, 16):
         ms, steps, _ = _time_frame(_base(device, workers, width=width, height=height, rays_per_pixel=rays), repeat)
         rows.append({"rays_per_pixel": rays, "ms": round(ms, 1)})
+        progress.step(f"{rays} rays per pixel: {ms:.1f} ms")
     for row in rows:
         row["cost_ratio"] = round(row["ms"] / rows[0]["ms"], 2)
     return {"benchmark": "supersampling", "size": [width, height], "rows": rows, "device": device or "cpu",
@@ -141,9 +150,13 @@ def bench_preview(width: int = 640, height: int = 360, repeat: int = 3, workers:
     """Frames per second of the full setting, of the :data:`PREVIEW` reductions at full resolution and of the
     viewer's preview frame (quality='preview': the reductions at 1/preview_scale resolution, enlarged)."""
     s = _base(device, workers, width=width, height=height)
+    progress = Progress(3, "preview")
     ms_full, _, img_full = _time_frame(s, repeat)
+    progress.step(f"full setting: {ms_full:.1f} ms")
     ms_red, _, img_red = _time_frame(replace(s, **PREVIEW), repeat)
+    progress.step(f"reductions at full size: {ms_red:.1f} ms")
     ms_prev, _, img_prev = _time_frame(replace(s, quality="preview"), repeat)
+    progress.step(f"preview frame: {ms_prev:.1f} ms")
     return {"benchmark": "preview", "size": [width, height], "ms_full": round(ms_full, 1),
             "fps_full": round(1000.0 / ms_full, 2), "ms_reduced": round(ms_red, 1),
             "fps_reduced": round(1000.0 / ms_red, 2), "ms_preview": round(ms_prev, 1),
@@ -176,6 +189,7 @@ def bench_profile(width: int = 640, height: int = 360, repeat: int = 2, workers:
     import time
 
     rows = []
+    progress = Progress(len(PROFILE), "profile")
     for name, changes in PROFILE:
         tech = _tech(_base(device, workers, width=width, height=height, **changes))
         tech.render(encode=False)
@@ -186,6 +200,7 @@ def bench_profile(width: int = 640, height: int = 360, repeat: int = 2, workers:
             best = min(best, (time.perf_counter() - w0, time.process_time() - c0))
         rows.append({"case": name, "changes": changes, "wall_ms": round(best[0] * 1e3, 1),
                      "cpu_ms": round(best[1] * 1e3, 1), "steps": round(float(tech.steps_taken().mean()), 2)})
+        progress.step(f"{name}: {rows[-1]['cpu_ms']:.0f} ms CPU")
     full = rows[0]["cpu_ms"]
     for row in rows:
         row["cpu_share_of_full"] = round(row["cpu_ms"] / full, 3)
