@@ -21,7 +21,6 @@ named with the closest match.
 from __future__ import annotations
 
 import argparse
-import difflib
 import os
 import re
 import signal
@@ -30,6 +29,7 @@ import traceback
 from pathlib import Path
 
 from ..core.catalogue import SEEDS as _SEED_TEXTS
+from ..core.params import did_you_mean
 from ..core.output import clear_pending, note_interrupt, raise_pending
 from .cache import add_cache_command
 from .equations import add_equations_command
@@ -82,12 +82,6 @@ def usage_message(message: str) -> str:
                 return d["msg"]  # a type function's own message already names the option
             return fmt.format(**d)
     return message
-
-
-def did_you_mean(word: str, candidates) -> str:
-    """`` (did you mean --width?)`` for the closest of ``candidates`` to a misspelt ``word``; empty if none is close."""
-    close = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.75)
-    return f" (did you mean {close[0]}?)" if close else ""
 
 
 def unknown_arguments_message(parser: argparse.ArgumentParser, extra: list[str]) -> str:

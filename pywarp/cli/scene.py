@@ -187,14 +187,25 @@ def cmd_render(args) -> int:
     settings = settings_from_args(sc, args, "render")
     height = getattr(settings, "height", 1)
     with _progress_bar(height, "render", "rows", args.no_progress) as bar:
-        bar.set_postfix_str("textures")
+        # what a first run spends its time on before the first row: the scene's inputs (noise textures, cloud
+        # arrays: generated once, then cached) and Warp's kernels (compiled once, then loaded from its cache)
+        bar.set_postfix_str("preparing the scene (the first run generates its textures)")
         tech = sc.technique(settings)
         if linear.is_linear(out):
             linear.check_linear(tech, sc.name)
-        bar.set_postfix_str(f"{settings.width}x{settings.height}")
-        progress = lambda fraction: bar.update(fraction * height)  # noqa: E731
+        size = f"{settings.width}x{settings.height}"
+        if getattr(settings, "accumulate", 1) > 1:
+            size += f", {settings.accumulate} frames"
+        bar.set_postfix_str(f"{size}, loading the kernels (the first run compiles them)")
+        started = []
+
+        def progress(fraction):
+            if not started:  # the first band is done: the kernels are loaded
+                started.append(True)
+                bar.set_postfix_str(size)
+            bar.update(fraction * height)
+
         if getattr(settings, "accumulate", 1) > 1:  # a still averaged over jittered frames (clouds: --accumulate)
-            bar.set_postfix_str(f"{settings.width}x{settings.height}, {settings.accumulate} frames")
             img = tech.render_accumulated(None, settings.accumulate, progress=progress,
                                           encode=not linear.is_linear(out))
         elif linear.is_linear(out):

@@ -43,6 +43,15 @@ _C_INT = {"int": "int32", "uint32": "uint32"}
 _F32_MAX = float(np.finfo(np.float32).max)
 
 
+def did_you_mean(word: str, candidates) -> str:
+    """`` (did you mean --width?)`` for the closest of ``candidates`` to a misspelt ``word``; empty if none is close
+    (the command line's options and choices, the settings' choices, the scene names)."""
+    import difflib
+
+    close = difflib.get_close_matches(str(word), [str(c) for c in candidates], n=1, cutoff=0.75)
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
 def _fmt(v) -> str:
     return str(int(v)) if isinstance(v, (int, np.integer)) else f"{v:g}"
 
@@ -132,7 +141,7 @@ class Param:
                 raise (ValueError if self.choices else TypeError)(
                     f"{name} must be {self.domain() if self.choices else 'a string'}, got {shown}")
             if self.choices is not None and value not in self.choices:
-                raise ValueError(f"{name} must be {self.domain()}, got {shown}")
+                raise ValueError(f"{name} must be {self.domain()}, got {shown}{did_you_mean(value, self.choices)}")
             return value
         if k == "mapping":
             if not isinstance(value, dict):

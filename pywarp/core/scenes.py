@@ -203,5 +203,8 @@ def scene(name: str | None = None) -> Scene:
     all_ = scenes()
     name = DEFAULT_SCENE if name is None else name
     if name not in all_:
-        raise ValueError(f"scene must be one of {', '.join(map(repr, all_))}, got {name!r}")
+        from .params import did_you_mean
+
+        raise ValueError(f"scene must be one of {', '.join(map(repr, all_))}, got {name!r}"
+                         f"{did_you_mean(name, all_)}")
     return all_[name]

@@ -74,6 +74,10 @@ def test_python_dash_m_is_the_console_script(tmp_path):
     (["equations", "--sed", "vc"], "pywarp equations: error: unknown argument: --sed vc (did you mean --seed?)"),
     (["equations", "--form", "csv"], "pywarp equations: error: unknown argument: --form csv (did you mean --format?)"),
     (["equations", "--seed", "cv"], "pywarp equations: error: --seed must be one of vc, pt, rr, oc, got 'cv'"),
+    (["render", "clods"], "pywarp render: error: scene must be one of 'clouds', 'flight', 'rain', 'terrain', got "
+                          "'clods' (did you mean clouds?)"),
+    (["render", "--sky", "gradeint"], "pywarp render: error: --sky must be one of 'preetham', 'gradient', got "
+                                      "'gradeint' (did you mean gradient?)"),
 ])
 def test_every_bad_value_is_one_line_exit_2(tmp_path, args, expected):
     _one_error_line(_cli(*args, cwd=tmp_path), expected)
