@@ -19,6 +19,11 @@ DOCS = Path(__file__).resolve().parent
 sys.path.insert(0, str(DOCS / "_ext"))
 
 import pywarp  # noqa: E402  (the installed package, or the source tree with CCLOUDS_LIBRARY)
+from pywarp.core.runtime import init as _init_warp  # noqa: E402
+
+# Warp initialised once, quietly and without the no-CUDA-driver notice of a CPU machine, before any tutorial of the
+# gallery touches it (a later wp.init() is a no-op)
+_init_warp()
 import pywarp_docs  # noqa: E402
 
 QUICK = pywarp_docs.quick_mode()
