@@ -224,15 +224,20 @@ class RainTechnique(Technique):
 
     def rebuild(self, stale: set, changed: set) -> None:
         """What each change invalidates comes from the specs (``RainSettings.INVALIDATES``): ``background`` the
-        background scene, ``mask`` the drop mask, ``particles`` (or more drops than it holds) the particle system; a
-        device switch all three."""
+        background scene, ``mask`` the drop mask, ``particles`` the particle system; a device switch all three.
+
+        ``drops`` is handled here, so that the particles in view are those of a fresh technique with the new count
+        (the G / H keys, fig 6.12): each particle's draws depend on its index and generation only, so a lower count
+        keeps the first ``drops`` particles (:meth:`_advance` drops the rest at once), which ARE the fresh system's;
+        a higher count respawns the system (warm, when ``warm_start``) and re-advances it to the current time -- the
+        particles past the old count were never simulated (or stopped when the count was lowered)."""
         s = self.settings
         if stale & {"background", "device"}:
             self.background = make_background(s)
             self._cache.clear()
         if stale & {"mask", "device"}:
             self.mask, self.extent, self.normals = drop_mask(s.shape, s.mask, s.mask_size)
-        if stale & {"particles", "device"} or s.drops > self.system.capacity:
+        if stale & {"particles", "device"} or ("drops" in changed and s.drops > self.system.count):
             self._reset_particles()
 
     def _reset_particles(self) -> None:

@@ -105,6 +105,29 @@ def test_animation_makes_the_rain_fall():
     assert tech.system.count == 100  # the G key takes effect at once
 
 
+@pytest.mark.spec("rr-code-5.2.2", "rr-tab-A")
+@pytest.mark.parametrize("warm, counts", [(True, (3000, 500, 3000, 12000, 1500, 0, 12000)),
+                                          (False, (30, 100, 10, 100, 40))])
+def test_drop_count_follows_drops_up_and_down(warm, counts):
+    """update(drops=N) (the G / H keys, fig 6.12) shows the particles of a fresh technique with N drops, whatever
+    the counts before; with warm_start off the count grows one per 1/30 s step, 60 steps here."""
+    base = dict(SMALL, mode="streaks", seed=4, time_s=2.0 / 0.05, warm_start=warm)
+    tech = RainTechnique(RainSettings(**dict(base, drops=counts[0])))
+    seen = {}
+    for n in counts:
+        tech.update(drops=n)
+        got = tech.frame_inputs()["sprites"]
+        fresh = RainTechnique(RainSettings(**dict(base, drops=n))).frame_inputs()["sprites"]
+        assert len(got) == len(fresh), n
+        np.testing.assert_array_equal(got, fresh)
+        seen[n] = len(got)
+    if warm:  # more drops, more streaks in view (about 1/5 of the spawn box is in this view)
+        assert 0 == seen[0] < seen[500] < seen[1500] < seen[3000] < seen[12000]
+        assert 3 < seen[3000] / seen[500] < 9 and 3 < seen[12000] / seen[3000] < 5
+    else:
+        assert tech.system.count == 40
+
+
 def test_cli_render_rain(tmp_path):
     from pywarp.cli.main import main
 
@@ -142,5 +165,5 @@ def test_particle_settings_invalidate_the_particles():
     for name, value in {"size_mm": 1.0, "slowdown": 2.0, "wind_x": 1.0, "seed": 5, "variant": "thesis",
                         "warm_start": False}.items():
         assert dataclasses.replace(base, **{name: value}).invalidated(base) == {"particles"}, name
-    assert dataclasses.replace(base, drops=10).invalidated(base) == set()  # the technique grows the system itself
+    assert dataclasses.replace(base, drops=10).invalidated(base) == set()  # the technique follows the count itself
     assert dataclasses.replace(base, mask_size=256).invalidated(base) == {"mask"}

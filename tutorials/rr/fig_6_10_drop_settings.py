@@ -11,7 +11,9 @@ Outputs: figures/rr/fig-6.10.png, figures/rr/fig-6.11.png, figures/rr/fig-6.12.p
 # The keys of the application change three fields of `RainSettings`: `size_mm` (the mean radius of the particle
 # sizes, Gauss(1, 1.3, 8) in our reading), `shape` (which Table 2.1 drop the mask's outline comes from) and `drops`.
 # `RainTechnique.update(...)` applies them without re-rendering the background: the view and the capture stay cached,
-# a new shape rebuilds the mask, a new size respawns the particles (same seed: the same positions).
+# a new shape rebuilds the mask, a new size respawns the particles (same seed: the same positions). A new count shows
+# what a fresh technique with that many drops would: a lower one keeps the first drops, a higher one respawns the
+# system at the current time.
 #
 # As in the application, the shape changes the OUTLINE only ("outline" mask: the Beard-Chuang silhouette, a sphere's
 # refraction -- spec erratum 12); `mask="exact"` traces the rays through the true shape instead.
