@@ -98,7 +98,8 @@ class RainControls(Controls):
 
     def _move(self, settings, fwd: int, up: int) -> tuple[dict, str]:
         """background_options with the background camera moved ``fwd`` steps along the level view and ``up``
-        steps up; the status text."""
+        steps up (from where the background's camera is: the options, the rain scene's own for that scene, or the
+        scene's default); the status text."""
         fields, sp = self.background_fields(settings)
         if not fields:
             return {}, "W/S/Q/E move a scene background's camera; the panorama has no position"
@@ -106,6 +107,7 @@ class RainControls(Controls):
 
         base = scene(settings.background).settings()
         opts = dict(settings.background_options)
+        at = settings.background_values()
         unit = next(iter(sp.values())).unit
         d = move_step(unit)
         yaw = math.radians(settings.camera_yaw_deg)
@@ -113,7 +115,7 @@ class RainControls(Controls):
         for role, name in fields.items():
             if not delta[role]:
                 continue
-            v = float(opts.get(name, getattr(base, name))) + delta[role]
+            v = float(at.get(name, getattr(base, name))) + delta[role]
             p = sp[role]
             v = min(max(v, -math.inf if p.lo is None else p.lo), math.inf if p.hi is None else p.hi)
             opts[name] = round(v, 9)

@@ -19,6 +19,9 @@ FILTERS = ("nearest", "linear")
 #: A built-in analytic background (sky gradient, horizon, checkered ground, coloured posts): fast, for tests and
 #: figures. Any registered scene other than rain is a background too.
 PANORAMA = "panorama"
+#: The rain scene's own settings for a background scene, under ``background_options`` (which overrides them key by
+#: key): the clouds an overcast, dark rain sky seen from 50 m; a scene not named here its own defaults.
+BACKGROUND_OPTIONS = {"clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05}}
 
 
 def _check_background(obj, name, v):
@@ -29,6 +32,31 @@ def _check_background(obj, name, v):
     names = [n for n in scenes() if n != "rain"]
     if v not in names:
         raise ValueError(f"{name} must be one of {', '.join(map(repr, [PANORAMA] + names))}, got {v!r}")
+
+
+def background_fields(background: str) -> set[str]:
+    """Names of the settings fields of a background (none for the panorama)."""
+    if background == PANORAMA:
+        return set()
+    import dataclasses
+
+    from ..core.scenes import scene
+
+    return {f.name for f in dataclasses.fields(scene(background).settings)}
+
+
+def check_background_options(background: str, options: dict, name: str = "background_options") -> None:
+    """A key of ``options`` that is no field of the background's settings is an error that names it (checked
+    against the scene the options are given for: a key is never dropped silently)."""
+    unknown = set(options) - background_fields(background)
+    if unknown:
+        raise ValueError(f"{name} has no field(s) {sorted(unknown)} in "
+                         + ("the built-in panorama (it has no settings)" if background == PANORAMA
+                            else f"scene {background!r}"))
+
+
+def _check_background_options(obj, name, v):
+    check_background_options(obj.background, v, name)
 
 
 def _check_size(obj, name, v):
@@ -191,15 +219,23 @@ class RainSettings(Settings):
                                 "(its settings' width, height, fov_y_deg, camera_yaw_deg and camera_pitch_deg are set "
                                 "from ours)",
                             reason="clouds: the vc cloudscape, a real rendered background")
-    background_options: dict = param({"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05}, cli=None,
-                                     invalidates="background", group=_G_BG,
-                                     doc="settings of the background scene by name",
-                                     reason="clouds: an overcast, dark rain sky seen from 50 m")
+    background_options: dict = param({}, cli=None, check=_check_background_options, invalidates="background",
+                                     group=_G_BG,
+                                     doc="settings of the background scene by name, over the rain scene's own for "
+                                         "that scene (BACKGROUND_OPTIONS: the clouds overcast from 50 m); a name "
+                                         "that is no field of the background's settings is an error",
+                                     reason="empty: every background with the rain scene's settings for it, or its "
+                                            "own defaults")
     device: str = param("cpu", invalidates="device", group=_G_RUN, doc="Warp device: cpu, or cuda:N where present",
                         reason="cpu: nothing requires a GPU")
     threads: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, invalidates="device", group=_G_RUN,
                                 default_text="one per core", doc="worker threads of the tile launcher",
                                 reason="None: one per core (PYWARP_THREADS overrides)")
+
+    def background_values(self) -> dict:
+        """The settings of the background scene: ``BACKGROUND_OPTIONS`` of this background, then
+        ``background_options``."""
+        return {**BACKGROUND_OPTIONS.get(self.background, {}), **self.background_options}
 
     def light_values(self) -> dict:
         """The lights of these settings as ``pywarp.kernels.particles.LIGHT_DEFAULTS`` fields (without the view

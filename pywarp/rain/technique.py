@@ -17,7 +17,6 @@
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import replace
 
@@ -30,7 +29,7 @@ from ..core.technique import Technique
 init()
 
 from . import particles as P  # noqa: E402
-from .settings import PANORAMA, RainSettings  # noqa: E402
+from .settings import PANORAMA, RainSettings, background_fields, check_background_options  # noqa: E402
 
 
 # --- backgrounds ---------------------------------------------------------------------------------------------------------
@@ -85,11 +84,9 @@ class SceneBackground:
     def __init__(self, name: str, options: dict, device: str = "cpu", threads=None):
         from ..core.scenes import scene
 
+        check_background_options(name, options, "options")
         self.scene = scene(name)
-        fields = {f.name for f in dataclasses.fields(self.scene.settings)}
-        unknown = set(options) - fields
-        if unknown:
-            raise ValueError(f"background_options has no field(s) {sorted(unknown)} in scene {name!r}")
+        fields = background_fields(name)
         base = dict(options)
         for k, v in (("device", device), ("threads", threads)):
             if k in fields:
@@ -114,7 +111,7 @@ class SceneBackground:
 def make_background(s: RainSettings):
     if s.background == PANORAMA:
         return Panorama()
-    return SceneBackground(s.background, s.background_options, s.device, s.threads)
+    return SceneBackground(s.background, s.background_values(), s.device, s.threads)
 
 
 # --- the drop mask (DROP) ------------------------------------------------------------------------------------------------

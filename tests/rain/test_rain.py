@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from pywarp.core.pose import Pose
-from pywarp.core.scenes import scene
+from pywarp.core.scenes import scene, scenes
 from pywarp.rain import particles as P
 from pywarp.rain.settings import CONTROLS, RainSettings
 from pywarp.rain.technique import Panorama, RainTechnique, sphere_mask
@@ -135,6 +135,46 @@ def test_cli_render_rain(tmp_path):
     assert main(["render", "rain", "--background", "panorama", "--width", "96", "--height", "64", "--drops", "300",
                  "--capture-size", "64", "--mask-size", "64", "--out", str(out), "--no-progress"]) == 0
     assert out.stat().st_size > 1000
+
+
+def _cli_rain_background(tmp_path, background: str) -> np.ndarray:
+    """The rain scene's image without drops over ``background`` at 48 x 32 (the command's defaults otherwise)."""
+    from PIL import Image
+
+    from pywarp.cli.main import main
+
+    out = tmp_path / f"rain_{background}.png"
+    assert main(["render", "rain", "--background", background, "--width", "48", "--height", "32", "--drops", "0",
+                 "--capture-size", "32", "--mask-size", "32", "--out", str(out), "--no-progress"]) == 0
+    return np.asarray(Image.open(out).convert("RGB"), dtype=np.float64)
+
+
+@pytest.fixture(scope="module")
+def clouds_background(tmp_path_factory):
+    return _cli_rain_background(tmp_path_factory.mktemp("clouds"), "clouds")
+
+
+@pytest.mark.parametrize("background", sorted(set(scenes()) - {"rain", "clouds"}))
+def test_cli_render_rain_over_every_registered_background(tmp_path, clouds_background, background):
+    """Every registered scene is a background with the default options (the rain scene's own for the clouds apply
+    to the clouds only)."""
+    img = _cli_rain_background(tmp_path, background)
+    assert img.shape == clouds_background.shape and img.std() > 5.0  # a picture, not a flat colour
+    assert np.abs(img - clouds_background).mean() > 20.0  # that scene, not the clouds
+
+
+def test_background_options_name_the_keys_the_background_has_not():
+    assert RainSettings(background="terrain").background_values() == {}
+    clouds = RainSettings(background_options={"coverage": 0.3})
+    assert clouds.background_values() == {"coverage": 0.3, "precipitation": 0.7, "camera_altitude_km": 0.05}
+    with pytest.raises(ValueError, match=r"background_options has no field\(s\) \['coverage'\] in scene 'terrain'"):
+        RainSettings(background="terrain", background_options={"coverage": 0.3})
+    with pytest.raises(ValueError, match=r"\['coverage'\] in scene 'terrain'"):  # given for the clouds: not dropped
+        dataclasses.replace(clouds, background="terrain")
+    with pytest.raises(ValueError, match=r"\['bogus'\] in scene 'flight'"):
+        RainSettings(background="flight", background_options={"bogus": 1})
+    with pytest.raises(ValueError, match=r"\['seed'\] in the built-in panorama"):
+        RainSettings(background="panorama", background_options={"seed": 1})
 
 
 @pytest.mark.spec("rr-CF", "rr-A1", "rr-A2", "rr-A3")
