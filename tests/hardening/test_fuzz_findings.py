@@ -493,3 +493,47 @@ def test_cloudscape_far_light_factor_bounded_and_finite_at_the_limit():
     w = render_pixels_warp(t, xs.ravel(), ys.ravel())
     assert np.all(np.isfinite(w))
     np.testing.assert_array_equal(w, render_pixels_c(s, t.textures, xs.ravel(), ys.ravel()))
+
+
+# --- issue 31, N4: the volume samplers bound the voxel coordinate before the cast to int ----------------------------
+
+@wp.kernel
+def _sample_u8(values: wp.array(dtype=wp.uint8), nx: int, ny: int, nz: int, v: wp.array(dtype=wp.vec3),
+               out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = V.volume_sample(values, 0, nx, ny, nz, v[i], V._INV_255)
+
+
+@wp.kernel
+def _sample_f32(values: wp.array(dtype=float), nx: int, ny: int, nz: int, v: wp.array(dtype=wp.vec3),
+                out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = V.volume_sample(values, 0, nx, ny, nz, v[i], 1.0)
+
+
+def test_volume_samplers_give_the_edge_voxel_for_huge_and_infinite_coordinates():
+    """Before: floor(v - 0.5) was converted to int before the clamp, undefined for |v| >= 2^31 or +-Inf; in practice
+    v = 1e10 read voxel 0 (INT_MIN clamped) instead of the far edge, and +-Inf gave NaN (Inf - Inf weights). Now any
+    non-NaN v beyond the grid reads its edge voxel (the clamp's meaning), and a NaN component gives NaN; C and Warp
+    alike, bit for bit."""
+    nx, ny, nz = 5, 4, 3
+    dens = np.arange(nx * ny * nz, dtype=np.uint8).reshape(nz, ny, nx) * np.uint8(4) + np.uint8(3)
+    vals = dens.astype(np.float32) * np.float32(-1.5)
+    inf = float("inf")
+    far = (1e10, 2.0 ** 31, 3e38, inf)
+    pts = [(x, 0.5, 0.5) for x in far] + [(-x, 0.5, 0.5) for x in far] + \
+        [(0.5, x, 0.5) for x in far] + [(0.5, 0.5, -x) for x in far]
+    edge = [(0, 0, nx - 1)] * 4 + [(0, 0, 0)] * 4 + [(0, ny - 1, 0)] * 4 + [(0, 0, 0)] * 4  # (z, y, x) voxel read
+    pts_nan = [(float("nan"), 0.5, 0.5), (0.5, 0.5, float("nan"))]
+    v = wp.array(np.float32(pts + pts_nan), dtype=wp.vec3, device="cpu")
+    for grid, kernel, c_fn, ctype, scale in [
+            (dens, _sample_u8, lib().ccl_volume_sample, "unsigned char[]", np.float32(1.0 / 255.0)),
+            (vals, _sample_f32, lib().ccl_volume_sample_float, "float[]", np.float32(1.0))]:
+        want = np.array([np.float32(grid[e]) * scale for e in edge] + [np.nan, np.nan], np.float32)
+        buf = ffi().from_buffer(ctype, np.ascontiguousarray(grid.ravel()))
+        c = np.array([c_fn(buf, nx, ny, nz, {"x": p[0], "y": p[1], "z": p[2]}) for p in pts + pts_nan], np.float32)
+        out = wp.zeros(len(c), dtype=float, device="cpu")
+        wp.launch(kernel, dim=len(c), inputs=[wp.array(grid.ravel(), device="cpu"), nx, ny, nz, v, out],
+                  device="cpu")
+        for got in (c, out.numpy()):
+            np.testing.assert_array_equal(got, want)

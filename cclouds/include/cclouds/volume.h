@@ -120,7 +120,8 @@ CCL_API ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume
                                     const char **out_field);
 
 /* Trilinear sample of a uint8 grid at a voxel-space position v (voxel centres at i + 0.5, indices clamped to the
- * grid), divided by 255: in [0, 1]. */
+ * grid), divided by 255: in [0, 1]. Any finite or infinite v is accepted (beyond the grid: the edge voxels); a NaN
+ * component gives NaN. */
 CCL_API float ccl_volume_sample(const unsigned char *density, int nx, int ny, int nz, ccl_vec3 v);
 
 /* The same for a float grid (the light volume). */
