@@ -17,6 +17,7 @@ from pywarp.core.registry import get, warp_parameters
 from pywarp.kernels import camera as CAM
 from pywarp.flight import model as F
 from pywarp.kernels import noise
+from pywarp.kernels import particles as PK
 from pywarp.kernels import rain as R
 from pywarp.kernels import sky as sky_mod
 from pywarp.kernels import terrain as K
@@ -537,3 +538,47 @@ def test_volume_samplers_give_the_edge_voxel_for_huge_and_infinite_coordinates()
                   device="cpu")
         for got in (c, out.numpy()):
             np.testing.assert_array_equal(got, want)
+
+
+# --- issue 31, N3: the capture fetch bounds the texel coordinate before the cast to int -----------------------------
+
+@wp.kernel
+def _particles_tap_kernel(mask: wp.array(dtype=float), capture: wp.array(dtype=float), capture_size: int,
+                          filt: int, out: wp.array(dtype=wp.vec3), hits: wp.array(dtype=int)):
+    hit, rgb = PK.particles_tap(mask, 1, capture, capture_size, 0.5, 0.5, wp.vec2(0.5, 0.5), 1.0, filt)
+    out[0] = rgb
+    hits[0] = hit
+
+
+# (mask texel x, y, z, a) -> the capture texel (row, column) read: P_c = (0.5, 0.5) + (x, -y) / z
+TAP_FAR = [((0.5, 0.5, 2e-33, 0.5), (0, -1)),         # the finding's texel: P_c = (2.5e32, -2.5e32), top right
+           ((-3e38, -3e38, 1e-3, 1.0), (-1, 0)),      # P_c = (-Inf, +Inf): bottom left
+           ((3e38, 3e38, 1e-3, 1.0), (0, -1))]        # P_c = (+Inf, -Inf): top right
+
+
+@pytest.mark.parametrize("filt", [PK.NEAREST, PK.LINEAR], ids=["nearest", "linear"])
+def test_particles_tap_reads_the_edge_texel_for_huge_and_infinite_capture_coordinates(filt):
+    """Before: the capture coordinate times the size was converted to int before the clamp, undefined for |u size|
+    >= 2^31 or +-Inf; in practice the far right edge read column 0 (INT_MIN clamped) and an infinite coordinate gave
+    NaN (Inf - Inf weight). Now any non-NaN P_c beyond the capture reads its edge texel, a NaN P_c gives NaN; C and
+    Warp alike."""
+    size = 4
+    cap = (np.arange(size * size * 3, dtype=np.float32).reshape(size, size, 3) + 1.0) / 64.0
+    cases = TAP_FAR + [((float("inf"), 0.0, float("inf"), 1.0), None)]  # x / z = NaN
+    for texel, rc in cases:
+        mask = np.float32(texel)
+        want = np.full(3, np.nan, np.float32) if rc is None else cap[rc]
+        rgb = ffi().new("ccl_vec3 *")
+        p_o = ffi().new("ccl_vec2 *")
+        p_o.x, p_o.y = 0.5, 0.5
+        hit = lib().ccl_particles_tap(ffi().from_buffer("float[]", mask), 1,
+                                      ffi().from_buffer("float[]", np.ascontiguousarray(cap.ravel())), size,
+                                      0.5, 0.5, p_o[0], 1.0, filt, rgb)
+        out = wp.zeros(1, dtype=wp.vec3, device="cpu")
+        hits = wp.zeros(1, dtype=int, device="cpu")
+        wp.launch(_particles_tap_kernel, dim=1, inputs=[wp.array(mask, device="cpu"),
+                                                         wp.array(cap.ravel(), device="cpu"), size, filt],
+                  outputs=[out, hits], device="cpu")
+        assert hit == 1 and hits.numpy()[0] == 1
+        for got in (np.float32([rgb.x, rgb.y, rgb.z]), out.numpy()[0]):
+            np.testing.assert_array_equal(got, want, err_msg=str(texel))

@@ -131,7 +131,8 @@ typedef struct {
  * (mask_u, mask_v) in [0, 1) (outside: no drop); if inside (a > 0) and the ray exists (z > 0), P_c = P_o + scale
  * (x, y) / z with scale = 0.5 / tan(fov_capture/2) (so that a drop in the centre of the view samples its refracted
  * direction exactly; the mask's y points up, capture v down), the capture fetched at P_c (nearest or bilinear,
- * clamped to the edge). Returns 1 and writes rgb when the tap hits, else 0. */
+ * clamped to the edge: any finite or infinite P_c beyond the capture reads its edge texels; a NaN P_c gives NaN
+ * rgb). Returns 1 and writes rgb when the tap hits, else 0. */
 CCL_API int ccl_particles_tap(const float *mask, int mask_size, const float *capture, int capture_size,
                               float mask_u, float mask_v, ccl_vec2 p_o, float scale, int filter, ccl_vec3 *out_rgb);
 
