@@ -582,13 +582,20 @@ void ccl_volume_pixel(const ccl_volume_params *p, const ccl_volume_grid *grids, 
     out_rgb[2] = total.z + total_t * bg.z;
 }
 
+/* the radii whose square is a normal float (2^-60, 2^60) */
+#define METABALL_SQUARE_MIN 8.67361737988403547e-19f
+#define METABALL_SQUARE_MAX 1.152921504606846976e18f
+
 float ccl_volume_metaball(float distance, float radius, float strength)
 {
     float q, w;
     CCL_REQUIRE(!(distance < 0.0f) && !(radius <= 0.0f));
-    /* oc-4.2 in kind: Wyvill, McPheeters & Wyvill 1986 soft objects, (1 - r^2/R^2)^3 inside R */
-    q = (distance * distance) / (radius * radius);
-    if (q >= 1.0f) return 0.0f * strength;
+    /* oc-4.2 in kind: Wyvill, McPheeters & Wyvill 1986 soft objects, (1 - r^2/R^2)^3 inside R. r >= R decides
+     * outside before any square (r^2/R^2 >= 1 there in float too); inside, r^2/R^2 where R^2 is a normal float, else
+     * (r/R)^2: the squares of a radius beyond 2^+-60 under- or overflowed (0/0, Inf/Inf). A NaN r gives NaN. */
+    if (distance >= radius) return 0.0f * strength;
+    if (radius >= METABALL_SQUARE_MIN && radius <= METABALL_SQUARE_MAX) q = (distance * distance) / (radius * radius);
+    else q = (distance / radius) * (distance / radius);
     w = 1.0f - q;
     return strength * (w * w * w);
 }

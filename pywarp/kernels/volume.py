@@ -571,6 +571,10 @@ def pixels_kernel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int
 
 # --- survey extras: metaballs (oc-4.2) and textured ellipsoids (oc-4.3) --------------------------------------------------
 
+_METABALL_SQUARE_MIN = wp.constant(2.0 ** -60)  # the radii whose square is a normal float (METABALL_SQUARE_MIN, _MAX)
+_METABALL_SQUARE_MAX = wp.constant(2.0 ** 60)
+
+
 @declare("oc-4.2", c="ccl_volume_metaball",
          args=(Arg("distance", "distance from the source's centre", lo=0.0, sample_range=(0.0, 10.0)),
                Arg("radius", "the source's radius of influence R", lo=0.0, lo_open=True, sample_range=(0.1, 10.0)),
@@ -583,9 +587,15 @@ def pixels_kernel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int
                                            "The Visual Computer 2(4), 1986"))
 @wp.func
 def volume_metaball(distance: float, radius: float, strength: float) -> float:
-    q = (distance * distance) / (radius * radius)
+    """r >= R decides outside before any square; inside, r^2/R^2 where R^2 is a normal float, else (r/R)^2 (the
+    squares of a radius beyond 2^+-60 under- or overflowed: 0/0, Inf/Inf). A NaN r gives NaN. As C."""
     r = 0.0 * strength
-    if not (q >= 1.0):
+    if not (distance >= radius):
+        q = float(0.0)
+        if radius >= _METABALL_SQUARE_MIN and radius <= _METABALL_SQUARE_MAX:
+            q = (distance * distance) / (radius * radius)
+        else:
+            q = (distance / radius) * (distance / radius)
         w = 1.0 - q
         r = strength * (w * w * w)
     return r

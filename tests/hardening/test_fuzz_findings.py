@@ -582,3 +582,18 @@ def test_particles_tap_reads_the_edge_texel_for_huge_and_infinite_capture_coordi
         assert hit == 1 and hits.numpy()[0] == 1
         for got in (np.float32([rgb.x, rgb.y, rgb.z]), out.numpy()[0]):
             np.testing.assert_array_equal(got, want, err_msg=str(texel))
+
+
+# --- issue 31, N6: the metaball field for radii whose square leaves the floats --------------------------------------
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_metaball_finite_for_tiny_and_huge_radii(impl):
+    """Before: r^2 / R^2 with R = 1e-30 was 0/0 and with r = R = 1e20 Inf/Inf, both NaN. Now r >= R gives 0 before
+    any square, and radii beyond 2^+-60 use (r/R)^2: exact values at powers of two (r/R = 1/2: (3/4)^3)."""
+    m = pywarp.equation("oc-4.2", impl=impl)
+    cases = [((0.0, 1e-30, 1.0), 1.0), ((1e20, 1e20, 1.0), 0.0), ((3e38, 1e20, -2.0), 0.0),
+             ((2.0 ** -101, 2.0 ** -100, 2.0), 2.0 * 27 / 64), ((2.0 ** 65, 2.0 ** 66, 1.0), 27 / 64),
+             ((0.0, 1e-45, 1.0), 1.0), ((1e-45, 3e38, 1.0), 1.0), ((0.5, 1.0, 1.0), 27 / 64)]
+    for (r, radius, strength), want in cases:
+        got = float(m(r, radius, strength))
+        assert got == want, (r, radius, strength, got)
