@@ -597,3 +597,20 @@ def test_metaball_finite_for_tiny_and_huge_radii(impl):
     for (r, radius, strength), want in cases:
         got = float(m(r, radius, strength))
         assert got == want, (r, radius, strength, got)
+
+
+# --- issue 31, N7: the capture parallax for radii whose square leaves the floats ------------------------------------
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_capture_parallax_finite_for_tiny_and_huge_background_radii(impl):
+    """Before: |p|^2 < R^2 and the root used R^2, which overflowed for R = 1e20 (NaN through Inf - Inf) and
+    underflowed for R = 1e-45 (NaN although |p| = 0 < R). The angle is scale-free: p = (R/2, 0, 0) seen along y gives
+    asin(1/2) = pi/6 for every R, p = 0 gives 0, and |p| = R stays NaN."""
+    f = pywarp.equation("rr-alg-3.2.2", impl=impl)
+    e = (0.0, 1.0, 0.0)
+    for R in (1e20, 2.0 ** 70, 3e38, 2.0 ** -140, 1e-30, 1.0):
+        got = float(f((R / 2, 0.0, 0.0), e, R))
+        assert got == pytest.approx(math.pi / 6, rel=1e-6), R
+    for R in (1e-45, 1e20, 3e38):
+        assert float(f((0.0, 0.0, 0.0), e, R)) == 0.0, R
+        assert math.isnan(float(f((R, 0.0, 0.0), e, R))), R
