@@ -155,7 +155,7 @@ ccl_vec2 ccl_particles_capture_uv(ccl_vec2 ndc, float aspect, float fov_view, fl
 {
     ccl_vec2 uv;
     float ratio = tanf(0.5f * fov_view) / tanf(0.5f * fov_capture);
-    CCL_REQUIRE(!(aspect <= 0.0f));
+    CCL_REQUIRE(!(aspect <= 0.0f) && !(fov_capture < CCL_PARTICLES_MIN_FOV_CAPTURE));
     uv.x = 0.5f + 0.5f * (ndc.x * aspect * ratio);
     uv.y = 0.5f - 0.5f * (ndc.y * ratio);
     return uv;
@@ -312,7 +312,8 @@ ccl_status ccl_particles_composite(const float *background, int width, int heigh
     if (!background || !mask || !capture || !out || width < 1 || height < 1 || mask_size < 1 || capture_size < 1)
         return CCL_EINVAL;
     if (n < 0 || n > CCL_PARTICLES_MAX_COUNT || (n > 0 && !sprites)) return CCL_EINVAL;
-    if (!(fov_view > 0.0f && fov_view < CCL_PI_F) || !(fov_capture > 0.0f && fov_capture < CCL_PI_F)) return CCL_EINVAL;
+    if (!(fov_view > 0.0f && fov_view < CCL_PI_F)) return CCL_EINVAL;
+    if (!(fov_capture >= CCL_PARTICLES_MIN_FOV_CAPTURE && fov_capture < CCL_PI_F)) return CCL_EINVAL;
     if (filter != CCL_PARTICLES_NEAREST && filter != CCL_PARTICLES_LINEAR) return CCL_EINVAL;
     if (!(opacity >= 0.0f && opacity <= 1.0f)) return CCL_EINVAL;
     for (j = 0; j < n; ++j)

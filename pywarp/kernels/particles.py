@@ -187,6 +187,9 @@ def particles_streak(speed: float, persistence_s: float, radius: float) -> tuple
 # --- rr-alg-3.1.2: the capture lookup ---------------------------------------------------------------------------------
 
 _FOV = dict(lo=0.0, hi=float(np.float32(math.pi)), lo_open=True, hi_open=True)
+# CCL_PARTICLES_MIN_FOV_CAPTURE: a narrower capture makes tan(fov_capture/2) underflow and the coordinates overflow
+MIN_FOV_CAPTURE = 0.015625
+_FOV_CAPTURE = dict(_FOV, lo=MIN_FOV_CAPTURE, lo_open=False)
 
 
 @declare("rr-alg-3.1.2", c="ccl_particles_capture_uv",
@@ -195,7 +198,7 @@ _FOV = dict(lo=0.0, hi=float(np.float32(math.pi)), lo_open=True, hi_open=True)
                Arg("aspect", "view width / height", lo=0.0, lo_open=True, sample_range=(0.25, 4.0)),
                Arg("fov_view", "vertical field of view of the view camera (rad)", **_FOV, sample_range=(0.1, 2.5)),
                Arg("fov_capture", "vertical field of view of the square capture (rad); the text: 150 deg",
-                   **_FOV, sample_range=(1.0, 3.0))),
+                   **_FOV_CAPTURE, sample_range=(1.0, 3.0))),
          outputs=("uv",),
          summary="The capture camera (viewer's position and orientation, perspective, FOVy 150 deg, 512 x 512): "
                  "texture coordinates (u, v; v = 0 the top row) of the direction seen through a view point -- P_o of "

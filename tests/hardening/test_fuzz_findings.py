@@ -614,3 +614,44 @@ def test_capture_parallax_finite_for_tiny_and_huge_background_radii(impl):
     for R in (1e-45, 1e20, 3e38):
         assert float(f((0.0, 0.0, 0.0), e, R)) == 0.0, R
         assert math.isnan(float(f((R, 0.0, 0.0), e, R))), R
+
+
+# --- issue 31, N8 (and N3's tiny capture FOVs): the capture FOV bounded below ---------------------------------------
+
+def _c_composite_status(fov_capture):
+    bg = np.zeros((2, 2, 3), np.float32)
+    mask = np.zeros((1, 1, 4), np.float32)
+    cap = np.zeros((1, 1, 3), np.float32)
+    out = np.zeros((2, 2, 3), np.float32)
+    buf = lambda a: ffi().from_buffer("float[]", a)  # noqa: E731
+    return lib().ccl_particles_composite(buf(bg), 2, 2, ffi().NULL, 0, buf(mask), 1, buf(cap), 1, 1.0, fov_capture,
+                                         PK.NEAREST, 0, 1.0, buf(out))
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_capture_uv_refuses_a_capture_fov_below_the_minimum_and_is_finite_at_it(impl):
+    """Before: fov_capture = 1e-45 was accepted and tan(fov_capture/2) = 0 made (u, v) = (NaN, NaN) at the view's
+    centre (0 x Inf); the composite accepted 1e-9. The capture FOV is now >= 1/64 rad (CCL_PARTICLES_MIN_FOV_CAPTURE)
+    in C (the composite's check), the registry and the composite's validation; at the limit the lookup is finite."""
+    uv = pywarp.equation("rr-alg-3.1.2", impl=impl)
+    for fov in (1e-45, 1e-9, 0.0155):
+        with pytest.raises(ValueError, match="fov_capture"):
+            uv((0.0, 0.0), 1.0, 1.0, fov)
+    ndc = np.float32([[0.0, 0.0], [1.0, -1.0], [-1.0, 1.0]])
+    got = np.asarray(uv(ndc, 100.0, float(np.float32(math.pi) - np.float32(2e-7)), PK.MIN_FOV_CAPTURE))
+    assert np.all(np.isfinite(got)) and np.all(got[0] == 0.5)
+    rng = np.random.default_rng(3)
+    bg = rng.uniform(0, 1, (4, 4, 3)).astype(np.float32)
+    cap = rng.uniform(0, 1, (8, 8, 3)).astype(np.float32)
+    mask = np.zeros((4, 4, 4), np.float32)
+    sp = np.float32([[2.0, 2.0, 1.5, 1.5, 0.0, 1.0]])
+    f = pywarp.equation("rr-code-5.2.3", impl=impl)
+    with pytest.raises(ValueError, match="fov_capture"):
+        f(bg, cap, mask, sp, 1.0, 1e-9)
+    assert np.all(np.isfinite(f(bg, cap, mask, sp, 1.0, PK.MIN_FOV_CAPTURE)))
+
+
+def test_composite_min_capture_fov_is_the_c_check_limit():
+    limit = np.float32(PK.MIN_FOV_CAPTURE)
+    assert _c_composite_status(float(limit)) == 0
+    assert _c_composite_status(float(np.nextafter(limit, np.float32(0)))) != 0
