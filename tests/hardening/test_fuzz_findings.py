@@ -655,3 +655,22 @@ def test_composite_min_capture_fov_is_the_c_check_limit():
     limit = np.float32(PK.MIN_FOV_CAPTURE)
     assert _c_composite_status(float(limit)) == 0
     assert _c_composite_status(float(np.nextafter(limit, np.float32(0)))) != 0
+
+
+# --- issue 31, N12: the terrain clouds for rays grazing the horizon -------------------------------------------------
+
+@pytest.mark.parametrize("impl", IMPLS)
+@pytest.mark.parametrize("variant", ["corrected", "thesis"])
+def test_terrain_clouds_finite_for_rays_grazing_the_horizon(impl, variant):
+    """Before: for |rd.y| ~1e-36 and below, t = (cloud_height - ro.y) / rd.y or the fBm coordinate q.xz / cloud_scale
+    overflowed, fbm(Inf) was NaN and the colour NaN (rd.x = 0: 0 x Inf already in q). Now such a plane point gives the
+    colour unchanged, the weight's limit as for rd.y = 0; where the coordinate is finite the weight f rd.y is tiny."""
+    clouds = pywarp.equation("pt-code-7.11", impl=impl)
+    colour = np.float32([0.2, 0.4, 0.6])
+    cases = [((1.0, y, 0.0), s) for y in (1e-36, 1e-38, 1e-45) for s in (1.0 / 64, 1.0)] + \
+        [((0.0, 1e-45, 1.0), 1.0)] + ([((0.6, -1e-45, 0.8), 1.0 / 64)] if variant == "thesis" else [])
+    for rd, scale in cases:
+        got = np.asarray(clouds(colour, (0.0, 0.0, 0.0), rd, 100.0, (0.0, 0.0), 0.0, scale, (1.0, 1.0, 1.0), 7,
+                                variant=variant))
+        assert np.all(np.isfinite(got)), (rd, scale, got)
+        assert np.max(np.abs(got - colour)) <= 1e-6, (rd, scale, got)
