@@ -608,12 +608,12 @@ def test_capture_parallax_finite_for_tiny_and_huge_background_radii(impl):
     asin(1/2) = pi/6 for every R, p = 0 gives 0, and |p| = R stays NaN."""
     f = pywarp.equation("rr-alg-3.2.2", impl=impl)
     e = (0.0, 1.0, 0.0)
-    for R in (1e20, 2.0 ** 70, 3e38, 2.0 ** -140, 1e-30, 1.0):
-        got = float(f((R / 2, 0.0, 0.0), e, R))
-        assert got == pytest.approx(math.pi / 6, rel=1e-6), R
-    for R in (1e-45, 1e20, 3e38):
-        assert float(f((0.0, 0.0, 0.0), e, R)) == 0.0, R
-        assert math.isnan(float(f((R, 0.0, 0.0), e, R))), R
+    for radius in (1e20, 2.0 ** 70, 3e38, 2.0 ** -140, 1e-30, 1.0):
+        got = float(f((radius / 2, 0.0, 0.0), e, radius))
+        assert got == pytest.approx(math.pi / 6, rel=1e-6), radius
+    for radius in (1e-45, 1e20, 3e38):
+        assert float(f((0.0, 0.0, 0.0), e, radius)) == 0.0, radius
+        assert math.isnan(float(f((radius, 0.0, 0.0), e, radius))), radius
 
 
 # --- issue 31, N8 (and N3's tiny capture FOVs): the capture FOV bounded below ---------------------------------------
@@ -623,7 +623,9 @@ def _c_composite_status(fov_capture):
     mask = np.zeros((1, 1, 4), np.float32)
     cap = np.zeros((1, 1, 3), np.float32)
     out = np.zeros((2, 2, 3), np.float32)
-    buf = lambda a: ffi().from_buffer("float[]", a)  # noqa: E731
+    def buf(a):
+        return ffi().from_buffer("float[]", a)
+
     return lib().ccl_particles_composite(buf(bg), 2, 2, ffi().NULL, 0, buf(mask), 1, buf(cap), 1, 1.0, fov_capture,
                                          PK.NEAREST, 0, 1.0, buf(out))
 
