@@ -155,7 +155,7 @@ ccl_vec2 ccl_particles_capture_uv(ccl_vec2 ndc, float aspect, float fov_view, fl
 {
     ccl_vec2 uv;
     float ratio = tanf(0.5f * fov_view) / tanf(0.5f * fov_capture);
-    CCL_REQUIRE(!(aspect <= 0.0f));
+    CCL_REQUIRE(!(aspect <= 0.0f) && !(fov_capture < CCL_PARTICLES_MIN_FOV_CAPTURE));
     uv.x = 0.5f + 0.5f * (ndc.x * aspect * ratio);
     uv.y = 0.5f - 0.5f * (ndc.y * ratio);
     return uv;
@@ -173,10 +173,23 @@ static ccl_vec3 texel(const float *img, int size, int x, int y)
     return c;
 }
 
+/* texel coordinate x bounded to [-1, size] before any floor and cast: below -1 or above size every texel read
+ * clamps to the same edge texel, so the fetch is unchanged, and the cast stays within int for any float (+-Inf
+ * included). x is not NaN (fetch returns NaN before). */
+static float bound_texel(float x, int size)
+{
+    return x < -1.0f ? -1.0f : (x > (float)size ? (float)size : x);
+}
+
 static ccl_vec3 fetch(const float *img, int size, float u, float v, int filter)
 {
+    if (!(u == u && v == v)) { /* NaN propagates */
+        ccl_vec3 nan3;
+        nan3.x = nan3.y = nan3.z = u + v;
+        return nan3;
+    }
     if (filter == CCL_PARTICLES_LINEAR) {
-        float fx = u * (float)size - 0.5f, fy = v * (float)size - 0.5f;
+        float fx = bound_texel(u * (float)size - 0.5f, size), fy = bound_texel(v * (float)size - 0.5f, size);
         float x0f = floorf(fx), y0f = floorf(fy);
         float ax = fx - x0f, ay = fy - y0f;
         int x0 = (int)x0f, y0 = (int)y0f;
@@ -194,7 +207,8 @@ static ccl_vec3 fetch(const float *img, int size, float u, float v, int filter)
         out.z = top.z + (bot.z - top.z) * ay;
         return out;
     }
-    return texel(img, size, (int)floorf(u * (float)size), (int)floorf(v * (float)size));
+    return texel(img, size, (int)floorf(bound_texel(u * (float)size, size)),
+                 (int)floorf(bound_texel(v * (float)size, size)));
 }
 
 int ccl_particles_tap(const float *mask, int mask_size, const float *capture, int capture_size, float mask_u,
@@ -298,7 +312,8 @@ ccl_status ccl_particles_composite(const float *background, int width, int heigh
     if (!background || !mask || !capture || !out || width < 1 || height < 1 || mask_size < 1 || capture_size < 1)
         return CCL_EINVAL;
     if (n < 0 || n > CCL_PARTICLES_MAX_COUNT || (n > 0 && !sprites)) return CCL_EINVAL;
-    if (!(fov_view > 0.0f && fov_view < CCL_PI_F) || !(fov_capture > 0.0f && fov_capture < CCL_PI_F)) return CCL_EINVAL;
+    if (!(fov_view > 0.0f && fov_view < CCL_PI_F)) return CCL_EINVAL;
+    if (!(fov_capture >= CCL_PARTICLES_MIN_FOV_CAPTURE && fov_capture < CCL_PI_F)) return CCL_EINVAL;
     if (filter != CCL_PARTICLES_NEAREST && filter != CCL_PARTICLES_LINEAR) return CCL_EINVAL;
     if (!(opacity >= 0.0f && opacity <= 1.0f)) return CCL_EINVAL;
     for (j = 0; j < n; ++j)

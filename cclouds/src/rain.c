@@ -492,11 +492,24 @@ ccl_status ccl_rain_shade_drop(const float *capture, int cap_w, int cap_h, const
     return CCL_OK;
 }
 
+/* the radii whose square is a normal float (2^-60, 2^60) */
+#define PARALLAX_SQUARE_MIN 8.67361737988403547e-19f
+#define PARALLAX_SQUARE_MAX 1.152921504606846976e18f
+
 float ccl_rain_capture_parallax(ccl_vec3 p, ccl_vec3 e, float R)
 {
-    float pp = ccl_vec3_dot(p, p), pe, s;
+    float pp, pe, s;
     ccl_vec3 q;
     CCL_REQUIRE(!(R <= 0.0f));
+    /* the angle does not depend on the scale: a radius whose square under- or overflows (0 or Inf: NaN below) is
+     * divided out, p / R and R = 1; any other radius is used as it is */
+    if (!(R >= PARALLAX_SQUARE_MIN && R <= PARALLAX_SQUARE_MAX)) {
+        p.x /= R;
+        p.y /= R;
+        p.z /= R;
+        R = 1.0f;
+    }
+    pp = ccl_vec3_dot(p, p);
     if (!(pp < R * R)) return NAN; /* the drop is not inside the background sphere */
     pe = ccl_vec3_dot(p, e);
     s = -pe + sqrtf(fmaxf(pe * pe - pp + R * R, 0.0f));

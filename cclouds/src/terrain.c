@@ -5,6 +5,7 @@
 #include "cclouds/camera.h"
 #include "cclouds/interp.h"
 
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -375,16 +376,26 @@ ccl_vec3 ccl_terrain_sky(ccl_vec3 rd, ccl_vec3 sun, ccl_vec3 sky_colour, ccl_vec
     return v3(sky_colour.x + sun_colour.x * g, sky_colour.y + sun_colour.y * g, sky_colour.z + sun_colour.z * g);
 }
 
+/* largest fBm coordinate of the clouds: the top one of their 4 octaves, 2^3 times it, stays finite */
+#define CLOUD_COORD_MAX (FLT_MAX / 8.0f)
+
 static ccl_vec3 clouds_perm(ccl_vec3 colour, ccl_vec3 ro, ccl_vec3 rd, float cloud_height, ccl_vec2 wind, float time,
                             float cloud_scale, ccl_vec3 cloud_colour, const uint8_t *perm, int32_t variant)
 {
-    float t, qx, qz, f, w;
+    float t, qx, qz, u, v, f, w;
     if (!(rd.y != 0.0f)) return colour;
     t = (cloud_height - ro.y) / rd.y;
     if (variant != CCL_VARIANT_THESIS && !(t > 0.0f)) return colour;
+    /* a plane point beyond the floats (t overflows for |rd.y| below ~1e-36 |cloud_height - ro.y|, the fBm's top
+     * octave coordinate 8 q.xz / cloud_scale soon after) has no fBm value: the weight f rd.y takes its limit there, 0,
+     * as for rd.y == 0 (the fBm is bounded). NaN passes on. */
+    if (isinf(t)) return colour;
     qx = ro.x + rd.x * t + wind.x * time;
     qz = ro.z + rd.z * t + wind.y * time;
-    f = fbm_perm(qx / cloud_scale, qz / cloud_scale, 4, perm);
+    u = qx / cloud_scale;
+    v = qz / cloud_scale;
+    if (fabsf(u) > CLOUD_COORD_MAX || fabsf(v) > CLOUD_COORD_MAX) return colour;
+    f = fbm_perm(u, v, 4, perm);
     w = clamp01(f * rd.y);
     return mix3(colour, cloud_colour, w);
 }

@@ -123,10 +123,18 @@ typedef struct {
     float fx, fy, fz;
 } tri_t;
 
+/* u bounded to [-1, n] before any floor and cast: below -1 or above n both corners clamp to the same edge voxel,
+ * whatever the weight, so the sample is unchanged there, and the cast stays within int for any float (+-Inf and
+ * |u| >= 2^31 included). u is not NaN (the samplers return NaN before). */
+static float bound_voxel(float u, int n)
+{
+    return u < -1.0f ? -1.0f : (u > (float)n ? (float)n : u);
+}
+
 static tri_t tri_setup(int nx, int ny, int nz, ccl_vec3 v)
 {
     tri_t t;
-    float ux = v.x - 0.5f, uy = v.y - 0.5f, uz = v.z - 0.5f;
+    float ux = bound_voxel(v.x - 0.5f, nx), uy = bound_voxel(v.y - 0.5f, ny), uz = bound_voxel(v.z - 0.5f, nz);
     float ix = floorf(ux), iy = floorf(uy), iz = floorf(uz);
     t.fx = ux - ix; t.fy = uy - iy; t.fz = uz - iz;
     t.x0 = clampi((int)ix, 0, nx - 1); t.x1 = clampi((int)ix + 1, 0, nx - 1);
@@ -574,13 +582,20 @@ void ccl_volume_pixel(const ccl_volume_params *p, const ccl_volume_grid *grids, 
     out_rgb[2] = total.z + total_t * bg.z;
 }
 
+/* the radii whose square is a normal float (2^-60, 2^60) */
+#define METABALL_SQUARE_MIN 8.67361737988403547e-19f
+#define METABALL_SQUARE_MAX 1.152921504606846976e18f
+
 float ccl_volume_metaball(float distance, float radius, float strength)
 {
     float q, w;
     CCL_REQUIRE(!(distance < 0.0f) && !(radius <= 0.0f));
-    /* oc-4.2 in kind: Wyvill, McPheeters & Wyvill 1986 soft objects, (1 - r^2/R^2)^3 inside R */
-    q = (distance * distance) / (radius * radius);
-    if (q >= 1.0f) return 0.0f * strength;
+    /* oc-4.2 in kind: Wyvill, McPheeters & Wyvill 1986 soft objects, (1 - r^2/R^2)^3 inside R. r >= R decides
+     * outside before any square (r^2/R^2 >= 1 there in float too); inside, r^2/R^2 where R^2 is a normal float, else
+     * (r/R)^2: the squares of a radius beyond 2^+-60 under- or overflowed (0/0, Inf/Inf). A NaN r gives NaN. */
+    if (distance >= radius) return 0.0f * strength;
+    if (radius >= METABALL_SQUARE_MIN && radius <= METABALL_SQUARE_MAX) q = (distance * distance) / (radius * radius);
+    else q = (distance / radius) * (distance / radius);
     w = 1.0f - q;
     return strength * (w * w * w);
 }

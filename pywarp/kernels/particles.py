@@ -187,6 +187,9 @@ def particles_streak(speed: float, persistence_s: float, radius: float) -> tuple
 # --- rr-alg-3.1.2: the capture lookup ---------------------------------------------------------------------------------
 
 _FOV = dict(lo=0.0, hi=float(np.float32(math.pi)), lo_open=True, hi_open=True)
+# CCL_PARTICLES_MIN_FOV_CAPTURE: a narrower capture makes tan(fov_capture/2) underflow and the coordinates overflow
+MIN_FOV_CAPTURE = 0.015625
+_FOV_CAPTURE = dict(_FOV, lo=MIN_FOV_CAPTURE, lo_open=False)
 
 
 @declare("rr-alg-3.1.2", c="ccl_particles_capture_uv",
@@ -195,7 +198,7 @@ _FOV = dict(lo=0.0, hi=float(np.float32(math.pi)), lo_open=True, hi_open=True)
                Arg("aspect", "view width / height", lo=0.0, lo_open=True, sample_range=(0.25, 4.0)),
                Arg("fov_view", "vertical field of view of the view camera (rad)", **_FOV, sample_range=(0.1, 2.5)),
                Arg("fov_capture", "vertical field of view of the square capture (rad); the text: 150 deg",
-                   **_FOV, sample_range=(1.0, 3.0))),
+                   **_FOV_CAPTURE, sample_range=(1.0, 3.0))),
          outputs=("uv",),
          summary="The capture camera (viewer's position and orientation, perspective, FOVy 150 deg, 512 x 512): "
                  "texture coordinates (u, v; v = 0 the top row) of the direction seen through a view point -- P_o of "
@@ -218,11 +221,27 @@ def _texel(img: wp.array(dtype=float), size: int, x: int, y: int) -> wp.vec3:
 
 
 @wp.func
+def _bound_texel(x: float, size: int) -> float:
+    """Texel coordinate ``x`` bounded to [-1, size] before the floor and the cast: beyond it every read clamps to the
+    same edge texel, so the fetch is unchanged, and the cast stays within int for any non-NaN float. Twin of C's
+    ``bound_texel``."""
+    r = x
+    if x < -1.0:
+        r = -1.0
+    elif x > float(size):
+        r = float(size)
+    return r
+
+
+@wp.func
 def particles_fetch(img: wp.array(dtype=float), size: int, u: float, v: float, filt: int) -> wp.vec3:
-    """Capture fetch at (u, v), clamped to the edge: nearest (0) or bilinear (1), as the C ``fetch``."""
+    """Capture fetch at (u, v), clamped to the edge: nearest (0) or bilinear (1), as the C ``fetch``; any non-NaN
+    (u, v) beyond the capture reads its edge texels, a NaN gives NaN."""
+    if not (u == u and v == v):
+        return wp.vec3(u + v, u + v, u + v)
     if filt == LINEAR:
-        fx = u * float(size) - 0.5
-        fy = v * float(size) - 0.5
+        fx = _bound_texel(u * float(size) - 0.5, size)
+        fy = _bound_texel(v * float(size) - 0.5, size)
         x0f = wp.floor(fx)
         y0f = wp.floor(fy)
         ax = fx - x0f
@@ -237,7 +256,8 @@ def particles_fetch(img: wp.array(dtype=float), size: int, u: float, v: float, f
         bot = wp.vec3(c[0] + (d[0] - c[0]) * ax, c[1] + (d[1] - c[1]) * ax, c[2] + (d[2] - c[2]) * ax)
         return wp.vec3(top[0] + (bot[0] - top[0]) * ay, top[1] + (bot[1] - top[1]) * ay,
                        top[2] + (bot[2] - top[2]) * ay)
-    return _texel(img, size, int(wp.floor(u * float(size))), int(wp.floor(v * float(size))))
+    return _texel(img, size, int(wp.floor(_bound_texel(u * float(size), size))),
+                  int(wp.floor(_bound_texel(v * float(size), size))))
 
 
 @wp.func

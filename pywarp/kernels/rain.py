@@ -612,6 +612,10 @@ def _parallax_samples(rng, n):
             "R": rng.uniform(6.0, 1000.0, n).astype(np.float32)}
 
 
+_PARALLAX_SQUARE_MIN = wp.constant(2.0 ** -60)  # the radii whose square is a normal float (C: PARALLAX_SQUARE_MIN)
+_PARALLAX_SQUARE_MAX = wp.constant(2.0 ** 60)
+
+
 @declare("rr-alg-3.2.2", c="ccl_rain_capture_parallax",
          args=(Arg("p", "drop position relative to the viewer", sample_range=(-5.0, 5.0)),
                Arg("e", "unit direction leaving the drop", unit=True),
@@ -624,13 +628,19 @@ def _parallax_samples(rng, n):
          references=("Rousseau, Jolivet & Ghazanfarpour 2006, §4.3",))
 @wp.func
 def rain_capture_parallax(p: wp.vec3, e: wp.vec3, R: float) -> float:
-    """rr-alg-3.2.2: angular error [rad] of the single viewer-centred capture."""
-    pp = wp.dot(p, p)
-    if not (pp < R * R):
+    """rr-alg-3.2.2: angular error [rad] of the single viewer-centred capture. The angle does not depend on the
+    scale: a radius whose square under- or overflows (0 or Inf: NaN) is divided out, p / R and R = 1, as C."""
+    pr = p
+    r = R
+    if not (R >= _PARALLAX_SQUARE_MIN and R <= _PARALLAX_SQUARE_MAX):
+        pr = wp.vec3(p[0] / R, p[1] / R, p[2] / R)
+        r = 1.0
+    pp = wp.dot(pr, pr)
+    if not (pp < r * r):
         return wp.nan
-    pe = wp.dot(p, e)
-    s = -pe + wp.sqrt(wp.max(pe * pe - pp + R * R, 0.0))
-    q = p + e * s
+    pe = wp.dot(pr, e)
+    s = -pe + wp.sqrt(wp.max(pe * pe - pp + r * r, 0.0))
+    q = pr + e * s
     return wp.atan2(wp.length(wp.cross(e, q)), wp.dot(e, q))
 
 

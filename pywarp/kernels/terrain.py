@@ -55,6 +55,8 @@ MAX_FIXED_STEPS = 1000000  # CCL_TERRAIN_MAX_FIXED_STEPS
 _MAX_FIXED = wp.constant(MAX_FIXED_STEPS)
 #: hmax of the element-wise functions (the printed listings): y - NO_SLAB > precision never holds (C: NO_SLAB)
 _NO_SLAB = wp.constant(3.0e38)
+# largest fBm coordinate of the clouds (C: CLOUD_COORD_MAX, FLT_MAX / 8): the top of their 4 octaves stays finite
+_CLOUD_COORD_MAX = wp.constant(3.4028234663852886e38 / 8.0)
 
 HEIGHTMAP = Option("heightmap", HEIGHTMAPS, "test",
                    "'test': 10 sin(0.1 x) sin(0.1 z), the text's test heightmap (default; octaves, height_scale, "
@@ -517,9 +519,17 @@ def clouds_perm(colour: wp.vec3, ro: wp.vec3, rd: wp.vec3, cloud_height: float, 
     t = (cloud_height - ro[1]) / rd[1]
     if variant != VARIANT_THESIS and not (t > 0.0):
         return colour
+    # a plane point beyond the floats (t, or the fBm's top octave coordinate 8 q.xz / cloud_scale) has no fBm value:
+    # the weight f rd.y takes its limit there, 0, as for rd.y = 0 (the fBm is bounded); NaN passes on. As C.
+    if wp.isinf(t):
+        return colour
     qx = ro[0] + rd[0] * t + wind[0] * time
     qz = ro[2] + rd[2] * t + wind[1] * time
-    f = fbm_perm(qx / cloud_scale, qz / cloud_scale, 4, perm)
+    u = qx / cloud_scale
+    v = qz / cloud_scale
+    if wp.abs(u) > _CLOUD_COORD_MAX or wp.abs(v) > _CLOUD_COORD_MAX:
+        return colour
+    f = fbm_perm(u, v, 4, perm)
     w = clamp01(f * rd[1])
     return mix3(colour, cloud_colour, w)
 

@@ -137,15 +137,31 @@ def _idx(offset: int, nx: int, ny: int, x: int, y: int, z: int) -> int:
 
 
 @wp.func
+def _bound_voxel(u: float, n: int) -> float:
+    """``u`` bounded to [-1, n] before the floor and the cast: below -1 or above n both corners clamp to the same edge
+    voxel, so the sample is unchanged, and the cast stays within int for any non-NaN float. Twin of C's
+    ``bound_voxel``."""
+    r = u
+    if u < -1.0:
+        r = -1.0
+    elif u > float(n):
+        r = float(n)
+    return r
+
+
+@wp.func
 def volume_sample(values: wp.array(dtype=Any), offset: int, nx: int, ny: int, nz: int, v: wp.vec3,
                   scale: float) -> float:
     """Trilinear sample of a grid at voxel coordinates ``v`` (clamped to the edge voxels), times ``scale``; the grid's
     voxels start at ``offset`` of the flat array ``values``, each converted to float32 first (exactly). Twin of
     ``ccl_volume_sample`` (uint8 densities, ``scale`` = 1/255) and of ``ccl_volume_sample_float`` (float32 values,
-    ``scale`` = 1, an exact product)."""
-    ux = v[0] - 0.5
-    uy = v[1] - 0.5
-    uz = v[2] - 0.5
+    ``scale`` = 1, an exact product). Beyond the grid, infinities included, the edge voxels; a NaN component gives
+    NaN (``_bound_voxel`` keeps every conversion to int within range)."""
+    if not (v[0] == v[0] and v[1] == v[1] and v[2] == v[2]):
+        return v[0] + v[1] + v[2]
+    ux = _bound_voxel(v[0] - 0.5, nx)
+    uy = _bound_voxel(v[1] - 0.5, ny)
+    uz = _bound_voxel(v[2] - 0.5, nz)
     ix = wp.floor(ux)
     iy = wp.floor(uy)
     iz = wp.floor(uz)
@@ -555,6 +571,10 @@ def pixels_kernel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int
 
 # --- survey extras: metaballs (oc-4.2) and textured ellipsoids (oc-4.3) --------------------------------------------------
 
+_METABALL_SQUARE_MIN = wp.constant(2.0 ** -60)  # the radii whose square is a normal float (METABALL_SQUARE_MIN, _MAX)
+_METABALL_SQUARE_MAX = wp.constant(2.0 ** 60)
+
+
 @declare("oc-4.2", c="ccl_volume_metaball",
          args=(Arg("distance", "distance from the source's centre", lo=0.0, sample_range=(0.0, 10.0)),
                Arg("radius", "the source's radius of influence R", lo=0.0, lo_open=True, sample_range=(0.1, 10.0)),
@@ -567,9 +587,15 @@ def pixels_kernel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int
                                            "The Visual Computer 2(4), 1986"))
 @wp.func
 def volume_metaball(distance: float, radius: float, strength: float) -> float:
-    q = (distance * distance) / (radius * radius)
+    """r >= R decides outside before any square; inside, r^2/R^2 where R^2 is a normal float, else (r/R)^2 (the
+    squares of a radius beyond 2^+-60 under- or overflowed: 0/0, Inf/Inf). A NaN r gives NaN. As C."""
     r = 0.0 * strength
-    if not (q >= 1.0):
+    if not (distance >= radius):
+        q = float(0.0)
+        if radius >= _METABALL_SQUARE_MIN and radius <= _METABALL_SQUARE_MAX:
+            q = (distance * distance) / (radius * radius)
+        else:
+            q = (distance / radius) * (distance / radius)
         w = 1.0 - q
         r = strength * (w * w * w)
     return r

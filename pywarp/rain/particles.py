@@ -14,7 +14,7 @@ import warp as wp
 from ..core.cbridge import PARTICLES_PARAMS, read
 from ..core.registry import VARIANT, Arg
 from ..kernels import VARIANT_CORRECTED
-from ..kernels.particles import (_FOV, FILTERS, MAX_COUNT, ParticlesLights, c_lights, check_lights,
+from ..kernels.particles import (_FOV, _FOV_CAPTURE, FILTERS, MAX_COUNT, ParticlesLights, c_lights, check_lights,
                                  composite_kernel, composite_tile_kernel, light_params, lights_on,
                                  pixels_kernel, spawn_kernel, step_kernel, uv_ratio_kernel)
 
@@ -252,7 +252,7 @@ def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, s
     if len(sp) and not np.all(sp[:, 3] >= sp[:, 2]):
         raise ValueError("sprites half_height (column 3) must be >= radius (column 2)")
     fv = Arg("fov_view", **_FOV).check(fov_view).item()
-    fc = Arg("fov_capture", **_FOV).check(fov_capture).item()
+    fc = Arg("fov_capture", **_FOV_CAPTURE).check(fov_capture).item()
     if not isinstance(streaks, (bool, np.bool_)):
         raise TypeError(f"streaks must be True or False, got {streaks!r}")
     if filter not in FILTERS:

@@ -17,6 +17,7 @@ from pywarp.core.registry import get, warp_parameters
 from pywarp.kernels import camera as CAM
 from pywarp.flight import model as F
 from pywarp.kernels import noise
+from pywarp.kernels import particles as PK
 from pywarp.kernels import rain as R
 from pywarp.kernels import sky as sky_mod
 from pywarp.kernels import terrain as K
@@ -493,3 +494,185 @@ def test_cloudscape_far_light_factor_bounded_and_finite_at_the_limit():
     w = render_pixels_warp(t, xs.ravel(), ys.ravel())
     assert np.all(np.isfinite(w))
     np.testing.assert_array_equal(w, render_pixels_c(s, t.textures, xs.ravel(), ys.ravel()))
+
+
+# --- issue 31, N4: the volume samplers bound the voxel coordinate before the cast to int ----------------------------
+
+@wp.kernel
+def _sample_u8(values: wp.array(dtype=wp.uint8), nx: int, ny: int, nz: int, v: wp.array(dtype=wp.vec3),
+               out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = V.volume_sample(values, 0, nx, ny, nz, v[i], V._INV_255)
+
+
+@wp.kernel
+def _sample_f32(values: wp.array(dtype=float), nx: int, ny: int, nz: int, v: wp.array(dtype=wp.vec3),
+                out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = V.volume_sample(values, 0, nx, ny, nz, v[i], 1.0)
+
+
+def test_volume_samplers_give_the_edge_voxel_for_huge_and_infinite_coordinates():
+    """Before: floor(v - 0.5) was converted to int before the clamp, undefined for |v| >= 2^31 or +-Inf; in practice
+    v = 1e10 read voxel 0 (INT_MIN clamped) instead of the far edge, and +-Inf gave NaN (Inf - Inf weights). Now any
+    non-NaN v beyond the grid reads its edge voxel (the clamp's meaning), and a NaN component gives NaN; C and Warp
+    alike, bit for bit."""
+    nx, ny, nz = 5, 4, 3
+    dens = np.arange(nx * ny * nz, dtype=np.uint8).reshape(nz, ny, nx) * np.uint8(4) + np.uint8(3)
+    vals = dens.astype(np.float32) * np.float32(-1.5)
+    inf = float("inf")
+    far = (1e10, 2.0 ** 31, 3e38, inf)
+    pts = [(x, 0.5, 0.5) for x in far] + [(-x, 0.5, 0.5) for x in far] + \
+        [(0.5, x, 0.5) for x in far] + [(0.5, 0.5, -x) for x in far]
+    edge = [(0, 0, nx - 1)] * 4 + [(0, 0, 0)] * 4 + [(0, ny - 1, 0)] * 4 + [(0, 0, 0)] * 4  # (z, y, x) voxel read
+    pts_nan = [(float("nan"), 0.5, 0.5), (0.5, 0.5, float("nan"))]
+    v = wp.array(np.float32(pts + pts_nan), dtype=wp.vec3, device="cpu")
+    for grid, kernel, c_fn, ctype, scale in [
+            (dens, _sample_u8, lib().ccl_volume_sample, "unsigned char[]", np.float32(1.0 / 255.0)),
+            (vals, _sample_f32, lib().ccl_volume_sample_float, "float[]", np.float32(1.0))]:
+        want = np.array([np.float32(grid[e]) * scale for e in edge] + [np.nan, np.nan], np.float32)
+        buf = ffi().from_buffer(ctype, np.ascontiguousarray(grid.ravel()))
+        c = np.array([c_fn(buf, nx, ny, nz, {"x": p[0], "y": p[1], "z": p[2]}) for p in pts + pts_nan], np.float32)
+        out = wp.zeros(len(c), dtype=float, device="cpu")
+        wp.launch(kernel, dim=len(c), inputs=[wp.array(grid.ravel(), device="cpu"), nx, ny, nz, v, out],
+                  device="cpu")
+        for got in (c, out.numpy()):
+            np.testing.assert_array_equal(got, want)
+
+
+# --- issue 31, N3: the capture fetch bounds the texel coordinate before the cast to int -----------------------------
+
+@wp.kernel
+def _particles_tap_kernel(mask: wp.array(dtype=float), capture: wp.array(dtype=float), capture_size: int,
+                          filt: int, out: wp.array(dtype=wp.vec3), hits: wp.array(dtype=int)):
+    hit, rgb = PK.particles_tap(mask, 1, capture, capture_size, 0.5, 0.5, wp.vec2(0.5, 0.5), 1.0, filt)
+    out[0] = rgb
+    hits[0] = hit
+
+
+# (mask texel x, y, z, a) -> the capture texel (row, column) read: P_c = (0.5, 0.5) + (x, -y) / z
+TAP_FAR = [((0.5, 0.5, 2e-33, 0.5), (0, -1)),         # the finding's texel: P_c = (2.5e32, -2.5e32), top right
+           ((-3e38, -3e38, 1e-3, 1.0), (-1, 0)),      # P_c = (-Inf, +Inf): bottom left
+           ((3e38, 3e38, 1e-3, 1.0), (0, -1))]        # P_c = (+Inf, -Inf): top right
+
+
+@pytest.mark.parametrize("filt", [PK.NEAREST, PK.LINEAR], ids=["nearest", "linear"])
+def test_particles_tap_reads_the_edge_texel_for_huge_and_infinite_capture_coordinates(filt):
+    """Before: the capture coordinate times the size was converted to int before the clamp, undefined for |u size|
+    >= 2^31 or +-Inf; in practice the far right edge read column 0 (INT_MIN clamped) and an infinite coordinate gave
+    NaN (Inf - Inf weight). Now any non-NaN P_c beyond the capture reads its edge texel, a NaN P_c gives NaN; C and
+    Warp alike."""
+    size = 4
+    cap = (np.arange(size * size * 3, dtype=np.float32).reshape(size, size, 3) + 1.0) / 64.0
+    cases = TAP_FAR + [((float("inf"), 0.0, float("inf"), 1.0), None)]  # x / z = NaN
+    for texel, rc in cases:
+        mask = np.float32(texel)
+        want = np.full(3, np.nan, np.float32) if rc is None else cap[rc]
+        rgb = ffi().new("ccl_vec3 *")
+        p_o = ffi().new("ccl_vec2 *")
+        p_o.x, p_o.y = 0.5, 0.5
+        hit = lib().ccl_particles_tap(ffi().from_buffer("float[]", mask), 1,
+                                      ffi().from_buffer("float[]", np.ascontiguousarray(cap.ravel())), size,
+                                      0.5, 0.5, p_o[0], 1.0, filt, rgb)
+        out = wp.zeros(1, dtype=wp.vec3, device="cpu")
+        hits = wp.zeros(1, dtype=int, device="cpu")
+        wp.launch(_particles_tap_kernel, dim=1, inputs=[wp.array(mask, device="cpu"),
+                                                         wp.array(cap.ravel(), device="cpu"), size, filt],
+                  outputs=[out, hits], device="cpu")
+        assert hit == 1 and hits.numpy()[0] == 1
+        for got in (np.float32([rgb.x, rgb.y, rgb.z]), out.numpy()[0]):
+            np.testing.assert_array_equal(got, want, err_msg=str(texel))
+
+
+# --- issue 31, N6: the metaball field for radii whose square leaves the floats --------------------------------------
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_metaball_finite_for_tiny_and_huge_radii(impl):
+    """Before: r^2 / R^2 with R = 1e-30 was 0/0 and with r = R = 1e20 Inf/Inf, both NaN. Now r >= R gives 0 before
+    any square, and radii beyond 2^+-60 use (r/R)^2: exact values at powers of two (r/R = 1/2: (3/4)^3)."""
+    m = pywarp.equation("oc-4.2", impl=impl)
+    cases = [((0.0, 1e-30, 1.0), 1.0), ((1e20, 1e20, 1.0), 0.0), ((3e38, 1e20, -2.0), 0.0),
+             ((2.0 ** -101, 2.0 ** -100, 2.0), 2.0 * 27 / 64), ((2.0 ** 65, 2.0 ** 66, 1.0), 27 / 64),
+             ((0.0, 1e-45, 1.0), 1.0), ((1e-45, 3e38, 1.0), 1.0), ((0.5, 1.0, 1.0), 27 / 64)]
+    for (r, radius, strength), want in cases:
+        got = float(m(r, radius, strength))
+        assert got == want, (r, radius, strength, got)
+
+
+# --- issue 31, N7: the capture parallax for radii whose square leaves the floats ------------------------------------
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_capture_parallax_finite_for_tiny_and_huge_background_radii(impl):
+    """Before: |p|^2 < R^2 and the root used R^2, which overflowed for R = 1e20 (NaN through Inf - Inf) and
+    underflowed for R = 1e-45 (NaN although |p| = 0 < R). The angle is scale-free: p = (R/2, 0, 0) seen along y gives
+    asin(1/2) = pi/6 for every R, p = 0 gives 0, and |p| = R stays NaN."""
+    f = pywarp.equation("rr-alg-3.2.2", impl=impl)
+    e = (0.0, 1.0, 0.0)
+    for radius in (1e20, 2.0 ** 70, 3e38, 2.0 ** -140, 1e-30, 1.0):
+        got = float(f((radius / 2, 0.0, 0.0), e, radius))
+        assert got == pytest.approx(math.pi / 6, rel=1e-6), radius
+    for radius in (1e-45, 1e20, 3e38):
+        assert float(f((0.0, 0.0, 0.0), e, radius)) == 0.0, radius
+        assert math.isnan(float(f((radius, 0.0, 0.0), e, radius))), radius
+
+
+# --- issue 31, N8 (and N3's tiny capture FOVs): the capture FOV bounded below ---------------------------------------
+
+def _c_composite_status(fov_capture):
+    bg = np.zeros((2, 2, 3), np.float32)
+    mask = np.zeros((1, 1, 4), np.float32)
+    cap = np.zeros((1, 1, 3), np.float32)
+    out = np.zeros((2, 2, 3), np.float32)
+    def buf(a):
+        return ffi().from_buffer("float[]", a)
+
+    return lib().ccl_particles_composite(buf(bg), 2, 2, ffi().NULL, 0, buf(mask), 1, buf(cap), 1, 1.0, fov_capture,
+                                         PK.NEAREST, 0, 1.0, buf(out))
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_capture_uv_refuses_a_capture_fov_below_the_minimum_and_is_finite_at_it(impl):
+    """Before: fov_capture = 1e-45 was accepted and tan(fov_capture/2) = 0 made (u, v) = (NaN, NaN) at the view's
+    centre (0 x Inf); the composite accepted 1e-9. The capture FOV is now >= 1/64 rad (CCL_PARTICLES_MIN_FOV_CAPTURE)
+    in C (the composite's check), the registry and the composite's validation; at the limit the lookup is finite."""
+    uv = pywarp.equation("rr-alg-3.1.2", impl=impl)
+    for fov in (1e-45, 1e-9, 0.0155):
+        with pytest.raises(ValueError, match="fov_capture"):
+            uv((0.0, 0.0), 1.0, 1.0, fov)
+    ndc = np.float32([[0.0, 0.0], [1.0, -1.0], [-1.0, 1.0]])
+    got = np.asarray(uv(ndc, 100.0, float(np.float32(math.pi) - np.float32(2e-7)), PK.MIN_FOV_CAPTURE))
+    assert np.all(np.isfinite(got)) and np.all(got[0] == 0.5)
+    rng = np.random.default_rng(3)
+    bg = rng.uniform(0, 1, (4, 4, 3)).astype(np.float32)
+    cap = rng.uniform(0, 1, (8, 8, 3)).astype(np.float32)
+    mask = np.zeros((4, 4, 4), np.float32)
+    sp = np.float32([[2.0, 2.0, 1.5, 1.5, 0.0, 1.0]])
+    f = pywarp.equation("rr-code-5.2.3", impl=impl)
+    with pytest.raises(ValueError, match="fov_capture"):
+        f(bg, cap, mask, sp, 1.0, 1e-9)
+    assert np.all(np.isfinite(f(bg, cap, mask, sp, 1.0, PK.MIN_FOV_CAPTURE)))
+
+
+def test_composite_min_capture_fov_is_the_c_check_limit():
+    limit = np.float32(PK.MIN_FOV_CAPTURE)
+    assert _c_composite_status(float(limit)) == 0
+    assert _c_composite_status(float(np.nextafter(limit, np.float32(0)))) != 0
+
+
+# --- issue 31, N12: the terrain clouds for rays grazing the horizon -------------------------------------------------
+
+@pytest.mark.parametrize("impl", IMPLS)
+@pytest.mark.parametrize("variant", ["corrected", "thesis"])
+def test_terrain_clouds_finite_for_rays_grazing_the_horizon(impl, variant):
+    """Before: for |rd.y| ~1e-36 and below, t = (cloud_height - ro.y) / rd.y or the fBm coordinate q.xz / cloud_scale
+    overflowed, fbm(Inf) was NaN and the colour NaN (rd.x = 0: 0 x Inf already in q). Now such a plane point gives the
+    colour unchanged, the weight's limit as for rd.y = 0; where the coordinate is finite the weight f rd.y is tiny."""
+    clouds = pywarp.equation("pt-code-7.11", impl=impl)
+    colour = np.float32([0.2, 0.4, 0.6])
+    cases = [((1.0, y, 0.0), s) for y in (1e-36, 1e-38, 1e-45) for s in (1.0 / 64, 1.0)] + \
+        [((0.0, 1e-45, 1.0), 1.0)] + ([((0.6, -1e-45, 0.8), 1.0 / 64)] if variant == "thesis" else [])
+    for rd, scale in cases:
+        got = np.asarray(clouds(colour, (0.0, 0.0, 0.0), rd, 100.0, (0.0, 0.0), 0.0, scale, (1.0, 1.0, 1.0), 7,
+                                variant=variant))
+        assert np.all(np.isfinite(got)), (rd, scale, got)
+        assert np.max(np.abs(got - colour)) <= 1e-6, (rd, scale, got)

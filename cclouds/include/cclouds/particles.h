@@ -29,6 +29,9 @@ extern "C" {
 #define CCL_PARTICLES_STREAK_TAPS 7
 /* Largest particle count of one system (the loop bound of ccl_particles_simulate and the shaders). */
 #define CCL_PARTICLES_MAX_COUNT 1000000
+/* Narrowest capture FOV [rad] (1/64: about 0.9 deg): below it tan(fov_capture/2) underflows towards 0 and the capture
+ * coordinates overflow (NaN at the view's centre, 0 x Inf). */
+#define CCL_PARTICLES_MIN_FOV_CAPTURE 0.015625f
 
 /* Capture filtering (rr-alg-3.1.2 says nearest suffices; rr-code-5.2.1-c sets GL_LINEAR). */
 typedef enum ccl_particles_filter {
@@ -115,7 +118,8 @@ CCL_API float ccl_particles_streak(float speed, float persistence_s, float radiu
  * orientation, vertical FOV fov_capture and a square image; the view camera has vertical FOV fov_view and aspect
  * `aspect` (width / height). ndc = the point's normalised device coordinates in the view, (-1, -1) bottom-left.
  * Returns (u, v) in capture texture units, v = 0 the TOP row: u = 0.5 + 0.5 ndc.x aspect tan(fov_view/2) /
- * tan(fov_capture/2), v = 0.5 - 0.5 ndc.y tan(fov_view/2) / tan(fov_capture/2). fov in (0, pi) rad, aspect > 0. */
+ * tan(fov_capture/2), v = 0.5 - 0.5 ndc.y tan(fov_view/2) / tan(fov_capture/2). fov_view in (0, pi) rad,
+ * fov_capture in [CCL_PARTICLES_MIN_FOV_CAPTURE, pi) rad, aspect > 0. */
 CCL_API ccl_vec2 ccl_particles_capture_uv(ccl_vec2 ndc, float aspect, float fov_view, float fov_capture);
 
 /* A drop or streak on screen (what the vertex stage of rr-code-5.2.3/5.2.4 produces), in view pixels. */
@@ -131,7 +135,8 @@ typedef struct {
  * (mask_u, mask_v) in [0, 1) (outside: no drop); if inside (a > 0) and the ray exists (z > 0), P_c = P_o + scale
  * (x, y) / z with scale = 0.5 / tan(fov_capture/2) (so that a drop in the centre of the view samples its refracted
  * direction exactly; the mask's y points up, capture v down), the capture fetched at P_c (nearest or bilinear,
- * clamped to the edge). Returns 1 and writes rgb when the tap hits, else 0. */
+ * clamped to the edge: any finite or infinite P_c beyond the capture reads its edge texels; a NaN P_c gives NaN
+ * rgb). Returns 1 and writes rgb when the tap hits, else 0. */
 CCL_API int ccl_particles_tap(const float *mask, int mask_size, const float *capture, int capture_size,
                               float mask_u, float mask_v, ccl_vec2 p_o, float scale, int filter, ccl_vec3 *out_rgb);
 
@@ -178,8 +183,8 @@ CCL_API ccl_vec3 ccl_particles_shade_pixel_lit(const ccl_particles_sprite *sprit
  * scale = 0.5 / tan(fov_capture/2). Ref: rr-code-5.2.3, rr-code-5.2.4 (the C reference of the Warp kernel, which
  * tests only the sprites of each pixel's screen tile). sprites: n sprites, far first; mask: mask_size^2 x 4 floats;
  * capture: capture_size^2 x 3 floats; opacity in [0, 1]; out: width x height x 3 floats (may not alias the inputs).
- * Returns CCL_EINVAL (nothing written) for a bad size, fov, filter, opacity or a sprite with radius <= 0 or
- * half_height < radius. */
+ * Returns CCL_EINVAL (nothing written) for a bad size, fov (fov_view in (0, pi), fov_capture in
+ * [CCL_PARTICLES_MIN_FOV_CAPTURE, pi)), filter, opacity or a sprite with radius <= 0 or half_height < radius. */
 CCL_API ccl_status ccl_particles_composite(const float *background, int width, int height,
                                            const ccl_particles_sprite *sprites, int n, const float *mask,
                                            int mask_size, const float *capture, int capture_size, float fov_view,

@@ -178,8 +178,9 @@ CCL_API ccl_status ccl_rain_shade_drop(const float *capture, int cap_w, int cap_
  * drop at p and the direction from the viewer (origin) to the background point the drop really sees, with the
  * background a sphere of radius R around the viewer.  s = -p.e + sqrt((p.e)^2 - |p|^2 + R^2), q = p + s e,
  * angle = atan2(|e x q|, e.q).
- * Ref: rr-alg-3.2.2. p [scene units]; e unit; R > 0. Output: [rad] in [0, pi], ~ |p| sin(angle(p, e)) / R for a far
- * background; NaN where |p| >= R (the drop is not inside the background). */
+ * Ref: rr-alg-3.2.2. p [scene units]; e unit; R > 0 (any: a radius whose square is not a normal float, beyond
+ * 2^+-60, is divided out of p first, the angle being scale-free). Output: [rad] in [0, pi], ~ |p| sin(angle(p, e)) / R
+ * for a far background; NaN where |p| >= R (the drop is not inside the background). */
 CCL_API float ccl_rain_capture_parallax(ccl_vec3 p, ccl_vec3 e, float R);
 
 /* --- light-drop interaction (described by the text, never implemented in it) ------------------------------------- */

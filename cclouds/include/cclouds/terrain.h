@@ -231,8 +231,11 @@ CCL_API ccl_vec3 ccl_terrain_sky(ccl_vec3 rd, ccl_vec3 sun, ccl_vec3 sky_colour,
  * / cloud_scale, 4 octaves) rd.y, 0, 1), colour + (cloud_colour - colour) w. cloud_scale = 1 is the listing (which
  * has no scale). variant CCL_VARIANT_THESIS: as printed, also for rd.y < 0 (spurious clouds below the horizon where
  * the fBm is negative; rd.y == 0 gives the colour unchanged, the limit of the weight); CCL_VARIANT_CORRECTED: clouds
- * only where the plane lies ahead of the ray (t = (cloud_height - ro.y) / rd.y > 0). rd: unit; seed: Perlin seed;
- * time >= 0 (s); wind: (x, z) units/s. */
+ * only where the plane lies ahead of the ray (t = (cloud_height - ro.y) / rd.y > 0). Where t or the fBm's top
+ * octave coordinate 8 q.xz / cloud_scale overflows the floats (for a ray near the horizon: |rd.y| below ~1e-37
+ * |cloud_height - ro.y| / cloud_scale), the plane point has no fBm value: the colour unchanged, the limit of the
+ * weight as for rd.y == 0.
+ * rd: unit; seed: Perlin seed; time >= 0 (s); wind: (x, z) units/s. */
 CCL_API ccl_vec3 ccl_terrain_clouds(ccl_vec3 colour, ccl_vec3 ro, ccl_vec3 rd, float cloud_height, ccl_vec2 wind,
                                     float time, float cloud_scale, ccl_vec3 cloud_colour, uint32_t seed,
                                     ccl_variant variant);

@@ -120,7 +120,8 @@ CCL_API ccl_status ccl_volume_check(const ccl_volume_params *p, const ccl_volume
                                     const char **out_field);
 
 /* Trilinear sample of a uint8 grid at a voxel-space position v (voxel centres at i + 0.5, indices clamped to the
- * grid), divided by 255: in [0, 1]. */
+ * grid), divided by 255: in [0, 1]. Any finite or infinite v is accepted (beyond the grid: the edge voxels); a NaN
+ * component gives NaN. */
 CCL_API float ccl_volume_sample(const unsigned char *density, int nx, int ny, int nz, ccl_vec3 v);
 
 /* The same for a float grid (the light volume). */
@@ -171,8 +172,9 @@ CCL_API void ccl_volume_pixel(const ccl_volume_params *p, const ccl_volume_grid 
 
 /* Metaball field contribution of one source (Ref: oc-4.2: sources with a centre, a radius and a strength; the text
  * gives no field function: Wyvill's soft-object kernel is used, strength (1 - r^2/R^2)^3 for r < R, else 0).
- * distance r >= 0 from the source's centre, radius R > 0, strength any finite; returns the contribution, between 0
- * and strength. A cloud base is the sum over the sources, thresholded. */
+ * distance r >= 0 from the source's centre, radius R > 0 (any, infinite included), strength any finite; returns the
+ * contribution, between 0 and strength (0 for r >= R; NaN for a NaN r). A cloud base is the sum over the sources,
+ * thresholded. */
 CCL_API float ccl_volume_metaball(float distance, float radius, float strength);
 
 /* Opacity of a textured ellipsoid (Ref: oc-4.3, Gardner 1985's translucency; the text gives no formulas). p: the
