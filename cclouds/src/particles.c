@@ -23,22 +23,28 @@ void ccl_particles_params_default(ccl_particles_params *out)
     out->seed = 0u;
 }
 
+static int within3(ccl_vec3 v)
+{
+    return fabsf(v.x) <= CCL_PARTICLES_MAX_EXTENT && fabsf(v.y) <= CCL_PARTICLES_MAX_EXTENT
+           && fabsf(v.z) <= CCL_PARTICLES_MAX_EXTENT;
+}
+
 static int finite3(ccl_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 ccl_status ccl_particles_params_check(const ccl_particles_params *p, const char **field)
 {
     const char *bad = NULL;
     if (!p) bad = "params";
-    else if (!finite3(p->box_min)) bad = "box_min";
-    else if (!finite3(p->box_max) || !(p->box_min.x < p->box_max.x) || !(p->box_min.y < p->box_max.y)
+    else if (!within3(p->box_min)) bad = "box_min";
+    else if (!within3(p->box_max) || !(p->box_min.x < p->box_max.x) || !(p->box_min.y < p->box_max.y)
              || !(p->box_min.z < p->box_max.z)) bad = "box_max";
-    else if (!isfinite(p->respawn_y) || !(p->respawn_y < p->box_min.y)) bad = "respawn_y";
+    else if (!(p->respawn_y >= -CCL_PARTICLES_MAX_EXTENT && p->respawn_y < p->box_min.y)) bad = "respawn_y";
     else if (!isfinite(p->size_spread_mm) || !(p->size_spread_mm >= 0.0f)) bad = "size_spread_mm";
     else if (!isfinite(p->size_mean_mm) || !(p->size_mean_mm - 0.5f * p->size_spread_mm >= 0.1f)
              || !(p->size_mean_mm + 0.5f * p->size_spread_mm <= 4.5f)) bad = "size_mean_mm";
     else if (p->size_samples < 1 || p->size_samples > CCL_PARTICLES_MAX_SIZE_SAMPLES) bad = "size_samples";
     else if (!isfinite(p->slowdown) || !(p->slowdown >= 0.015625f && p->slowdown <= 1000.0f)) bad = "slowdown";
-    else if (!isfinite(p->metres_per_unit) || !(p->metres_per_unit > 0.0f)) bad = "metres_per_unit";
+    else if (!isfinite(p->metres_per_unit) || !(p->metres_per_unit >= CCL_PARTICLES_MIN_METRES_PER_UNIT)) bad = "metres_per_unit";
     else if (!finite3(p->wind) || p->wind.y != 0.0f) bad = "wind";
     if (field) *field = bad;
     return bad ? CCL_EINVAL : CCL_OK;

@@ -40,6 +40,12 @@ _U3 = wp.constant(wp.uint32(3))
 _U1 = wp.constant(wp.uint32(1))
 
 
+# CCL_PARTICLES_MAX_EXTENT, CCL_PARTICLES_MIN_METRES_PER_UNIT (checked by ccl_particles_params_check): a larger box
+# makes its widths overflow, a smaller scene unit the fall speed
+MAX_EXTENT = 1048576.0
+MIN_METRES_PER_UNIT = 0.0009765625
+
+
 @wp.struct
 class ParticlesParams:
     """Warp twin of ``ccl_particles_params`` (field by field; built by :mod:`pywarp.core.cbridge`)."""

@@ -120,9 +120,10 @@ class RainSettings(Settings):
                               reason="8: the printed argument")
     slowdown: float = param(4.0, lo=0.015625, hi=1000.0, c="slowdown", invalidates="particles", group=_G_RAIN,
                             doc="terminal speeds of Table 2.2 divided by this", reason="4: the application's")
-    metres_per_unit: float = param(1.0, unit="m", lo=0.0, lo_open=True, hi=1000.0, c="metres_per_unit",
+    metres_per_unit: float = param(1.0, unit="m", lo=0.001, hi=1000.0, c="metres_per_unit",
                                    invalidates="particles", group=_G_RAIN,
-                                   doc="one scene unit in metres (speeds in m/s become units/s)",
+                                   doc="one scene unit in metres (speeds in m/s become units/s; a millimetre at "
+                                       "least, within ccl_particles_params_check's bound)",
                                    reason="1: not given (spec erratum 17); the 2 x 0.25 x 3 box is then a few metres "
                                           "around the viewer")
     wind_x: float = param(0.0, unit="m/s", lo=-50.0, hi=50.0, invalidates="particles", group=_G_RAIN, cli="--wind-x",

@@ -676,3 +676,51 @@ def test_terrain_clouds_finite_for_rays_grazing_the_horizon(impl, variant):
                                 variant=variant))
         assert np.all(np.isfinite(got)), (rd, scale, got)
         assert np.max(np.abs(got - colour)) <= 1e-6, (rd, scale, got)
+
+
+# --- issue 31, N13: the particle box and scene unit bounded -----------------------------------------------------------
+
+def _c_particles_check(**fields):
+    p = ffi().new("ccl_particles_params *")
+    lib().ccl_particles_params_default(p)
+    for name, value in fields.items():
+        setattr(p, name, value)
+    fld = ffi().new("const char **")
+    status = lib().ccl_particles_params_check(p, fld)
+    return status, (ffi().string(fld[0]).decode() if status else None)
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_particles_refuse_a_huge_box_and_a_tiny_scene_unit_and_are_finite_at_the_limits(impl):
+    """Before: a box of +-3e38 passed the check and max - min = Inf made the positions NaN; metres_per_unit = 1e-45
+    made the fall speed Inf and y NaN. The box and the respawn level are now within +-2^20 units
+    (CCL_PARTICLES_MAX_EXTENT) and the scene unit >= 1/1024 m (CCL_PARTICLES_MIN_METRES_PER_UNIT); at these limits,
+    with the fastest drops (slowdown 1/64), every particle is finite."""
+    sim = pywarp.equation("rr-code-5.2.2", impl=impl)
+    for fields, name in (({"box_min": (-3e38, -3e38, -3e38), "box_max": (3e38, 3e38, 3e38), "respawn_y": -3.1e38},
+                          "box_min"),
+                         ({"box_max": (1.0, 3e38, 1.5)}, "box_max"),
+                         ({"respawn_y": -3e38}, "respawn_y"),
+                         ({"metres_per_unit": 1e-45}, "metres_per_unit")):
+        with pytest.raises(ValueError, match=name):
+            sim(10, 10, **fields)
+    e = PK.MAX_EXTENT
+    got = sim(30, 64, dt=1.0, warm=True, box_min=(-e, -e + 1.0, -e), box_max=(e, e, e), respawn_y=-e,
+              slowdown=0.015625, metres_per_unit=PK.MIN_METRES_PER_UNIT, wind=(1e5, 0.0, -1e5))
+    for key in ("pos", "speed"):
+        assert np.all(np.isfinite(np.asarray(got[key]))), key
+
+
+def test_particles_box_and_scene_unit_limits_are_the_c_check_and_settings_limits():
+    e = np.float32(PK.MAX_EXTENT)
+    beyond = float(np.nextafter(e, np.float32(np.inf)))
+    assert _c_particles_check(box_min=(-float(e), -1.0, -1.5), respawn_y=-float(e)) == (0, None)
+    assert _c_particles_check(box_min=(-beyond, -1.0, -1.5))[1] == "box_min"
+    assert _c_particles_check(box_max=(beyond, 1.25, 1.5))[1] == "box_max"
+    assert _c_particles_check(respawn_y=-beyond)[1] == "respawn_y"
+    m = np.float32(PK.MIN_METRES_PER_UNIT)
+    assert _c_particles_check(metres_per_unit=float(m)) == (0, None)
+    assert _c_particles_check(metres_per_unit=float(np.nextafter(m, np.float32(0))))[1] == "metres_per_unit"
+    with pytest.raises(ValueError, match="metres_per_unit"):
+        RainSettings(metres_per_unit=1e-45)
+    assert RainSettings(metres_per_unit=0.001).metres_per_unit >= PK.MIN_METRES_PER_UNIT

@@ -32,6 +32,13 @@ extern "C" {
 /* Narrowest capture FOV [rad] (1/64: about 0.9 deg): below it tan(fov_capture/2) underflows towards 0 and the capture
  * coordinates overflow (NaN at the view's centre, 0 x Inf). */
 #define CCL_PARTICLES_MIN_FOV_CAPTURE 0.015625f
+/* Largest |coordinate| of the spawn box and the respawn level [scene units] (2^20): box widths (max - min, up to
+ * 2^21) and the positions spawned and stepped in the box stay finite (a box of +-3e38 made max - min Inf, NaN
+ * particles). */
+#define CCL_PARTICLES_MAX_EXTENT 1048576.0f
+/* Smallest scene unit [m] (1/1024, about a millimetre): the fall speed v_t / metres_per_unit stays below ~6e5 units/s
+ * (v_t <= ~600 m/s at slowdown 1/64), so a step of dt <= 1 s stays finite (1e-45 made the speed Inf, y NaN). */
+#define CCL_PARTICLES_MIN_METRES_PER_UNIT 0.0009765625f
 
 /* Capture filtering (rr-alg-3.1.2 says nearest suffices; rr-code-5.2.1-c sets GL_LINEAR). */
 typedef enum ccl_particles_filter {
@@ -58,8 +65,9 @@ CCL_API void ccl_particles_params_default(ccl_particles_params *out);
 
 /* Check the parameters: box_min < box_max per axis, respawn_y < box_min.y, size_mean_mm - size_spread_mm / 2 >= 0.1
  * and size_mean_mm + size_spread_mm / 2 <= 4.5 (the radii of Tables 2.1/2.2), size_spread_mm >= 0, size_samples in
- * [1, 64], slowdown in [1/64, 1000] (the domain of ccl_rain_terminal_speed), metres_per_unit > 0, wind.y == 0, every
- * value finite. Returns CCL_EINVAL and the name of the
+ * [1, 64], slowdown in [1/64, 1000] (the domain of ccl_rain_terminal_speed), metres_per_unit >=
+ * CCL_PARTICLES_MIN_METRES_PER_UNIT, |box_min|, |box_max| per component and -respawn_y <= CCL_PARTICLES_MAX_EXTENT,
+ * wind.y == 0, every value finite. Returns CCL_EINVAL and the name of the
  * first bad field in *field (may be NULL), else CCL_OK. */
 CCL_API ccl_status ccl_particles_params_check(const ccl_particles_params *p, const char **field);
 
