@@ -136,19 +136,32 @@ float ccl_sdf_scene(ccl_vec3 p, uint32_t seed, int scene)
     return scene_eval(p, perm, scene);
 }
 
+/* the largest radius whose square is a finite float with room for |oc|^2 (2^60) */
+#define RAY_SPHERE_SQUARE_MAX 1.152921504606846976e18f
+
 float ccl_sdf_ray_sphere(ccl_vec3 ro, ccl_vec3 rd, ccl_vec3 centre, float radius)
 {
     ccl_vec3 oc = ccl_vec3_sub(ro, centre);
-    float b = ccl_vec3_dot(oc, rd);
-    float c = ccl_vec3_dot(oc, oc) - radius * radius;
-    float disc = b * b - c, s, t0, t1;
+    float k = 1.0f, b, c, disc, s, t0, t1;
     CCL_REQUIRE(radius > 0.0f);
+    /* t scales with the sphere: a radius whose square overflows (Inf - Inf: an infinite t) is divided out, the unit
+     * sphere in units of radius, and t scaled back; any other radius is used as it is */
+    if (radius > RAY_SPHERE_SQUARE_MAX) {
+        k = radius;
+        oc.x /= k;
+        oc.y /= k;
+        oc.z /= k;
+        radius = 1.0f;
+    }
+    b = ccl_vec3_dot(oc, rd);
+    c = ccl_vec3_dot(oc, oc) - radius * radius;
+    disc = b * b - c;
     if (disc < 0.0f) return -1.0f;
     s = sqrtf(disc);
     t0 = -b - s;
     t1 = -b + s;
-    if (t0 >= 0.0f) return t0;
-    if (t1 >= 0.0f) return t1;
+    if (t0 >= 0.0f) return k * t0;
+    if (t1 >= 0.0f) return k * t1;
     return -1.0f;
 }
 

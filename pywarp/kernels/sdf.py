@@ -207,6 +207,9 @@ def sdf_scene(p: wp.vec3, perm: wp.array(dtype=wp.int32), scene: int) -> float:
     return _scene(p, perm, scene)
 
 
+_RAY_SPHERE_SQUARE_MAX = wp.constant(2.0 ** 60)  # the largest radius squared as it is (C: RAY_SPHERE_SQUARE_MAX)
+
+
 @declare("pt-alg-5.1", c="ccl_sdf_ray_sphere",
          args=(Arg("ro", "ray origin", lo=-1e4, hi=1e4, sample_range=(-5.0, 5.0)),
                Arg("rd", "unit ray direction", unit=True),
@@ -219,10 +222,17 @@ def sdf_scene(p: wp.vec3, perm: wp.array(dtype=wp.int32), scene: int) -> float:
          references=("P. Shirley & S. Marschner, Fundamentals of Computer Graphics, 3rd ed., 2009, §4.4",))
 @wp.func
 def sdf_ray_sphere(ro: wp.vec3, rd: wp.vec3, centre: wp.vec3, radius: float) -> float:
-    """pt-alg-5.1: nearest non-negative ray parameter of the sphere, or -1."""
+    """pt-alg-5.1: nearest non-negative ray parameter of the sphere, or -1. t scales with the sphere: a radius whose
+    square overflows (an infinite t) is divided out, the unit sphere in units of radius and t scaled back, as C."""
     oc = ro - centre
+    k = float(1.0)
+    r = radius
+    if radius > _RAY_SPHERE_SQUARE_MAX:
+        k = radius
+        oc = wp.vec3(oc[0] / k, oc[1] / k, oc[2] / k)
+        r = 1.0
     b = wp.dot(oc, rd)
-    c = wp.dot(oc, oc) - radius * radius
+    c = wp.dot(oc, oc) - r * r
     disc = b * b - c
     if disc < 0.0:
         return -1.0
@@ -230,9 +240,9 @@ def sdf_ray_sphere(ro: wp.vec3, rd: wp.vec3, centre: wp.vec3, radius: float) -> 
     t0 = -b - s
     t1 = -b + s
     if t0 >= 0.0:
-        return t0
+        return k * t0
     if t1 >= 0.0:
-        return t1
+        return k * t1
     return -1.0
 
 

@@ -19,6 +19,7 @@ from pywarp.flight import model as F
 from pywarp.kernels import noise
 from pywarp.kernels import particles as PK
 from pywarp.kernels import rain as R
+from pywarp.kernels import sdf as SDF
 from pywarp.kernels import sky as sky_mod
 from pywarp.kernels import terrain as K
 from pywarp.kernels import volume as V
@@ -724,3 +725,37 @@ def test_particles_box_and_scene_unit_limits_are_the_c_check_and_settings_limits
     with pytest.raises(ValueError, match="metres_per_unit"):
         RainSettings(metres_per_unit=1e-45)
     assert RainSettings(metres_per_unit=0.001).metres_per_unit >= PK.MIN_METRES_PER_UNIT
+
+
+# --- issue 31, N10: the ray-sphere intersection for radii whose square overflows ------------------------------------
+
+@wp.kernel
+def _ray_sphere(ro: wp.array(dtype=wp.vec3), rd: wp.array(dtype=wp.vec3), radius: wp.array(dtype=float),
+                out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = SDF.sdf_ray_sphere(ro[i], rd[i], wp.vec3(0.0, 0.0, 0.0), radius[i])
+
+
+def test_ray_sphere_finite_for_radii_whose_square_overflows():
+    """Before: radius >= ~1.85e19 made radius^2 Inf and t = -b + sqrt(Inf) Inf (the Python registry refuses radii
+    above 1e4; the C function documents any radius > 0). t scales with the sphere: from the centre, or from 1e4 units
+    off it, the exit is at t = radius (to float precision); C and Warp alike, bit for bit, unchanged up to 2^60."""
+    radii = [1.85e19, 1e20, 2.0 ** 100, 3e38, float(np.finfo(np.float32).max)]
+    ro = [(0.0, 0.0, 0.0), (0.0, 0.0, -1e4), (1e4, -1e4, 1e4)]
+    rd = [(0.0, 0.0, 1.0), (0.0, 0.0, 1.0), (0.0, 1.0, 0.0)]
+    cases = [(o, d, r) for r in radii for o, d in zip(ro, rd)]
+    o, d, r = (np.float32([c[k] for c in cases]) for k in range(3))
+    out = wp.empty(len(cases), dtype=float, device="cpu")
+    wp.launch(_ray_sphere, dim=len(cases), inputs=[wp.array(o, dtype=wp.vec3, device="cpu"),
+                                                   wp.array(d, dtype=wp.vec3, device="cpu"),
+                                                   wp.array(r, device="cpu")], outputs=[out], device="cpu")
+    w = out.numpy()
+    zero = ffi().new("ccl_vec3 *")[0]
+    c = np.float32([lib().ccl_sdf_ray_sphere(tuple(o[i]), tuple(d[i]), zero, float(r[i])) for i in range(len(cases))])
+    assert np.all(np.isfinite(c)), c
+    np.testing.assert_allclose(c, r, rtol=1e-6)
+    np.testing.assert_array_equal(w, c)
+    at = np.float32(2.0 ** 60)
+    for radius in (at, np.nextafter(at, np.float32(np.inf))):
+        assert lib().ccl_sdf_ray_sphere((0.0, 0.0, -1e4), (0.0, 0.0, 1.0), zero, float(radius)) == \
+            pytest.approx(float(radius), rel=1e-6)

@@ -87,8 +87,9 @@ CCL_API float ccl_sdf_scene(ccl_vec3 p, uint32_t seed, int scene);
 
 /* Ray tracing's core step: nearest intersection of the ray ro + t rd (rd unit) with the sphere |x - centre| = radius,
  * solved analytically (t = -b -+ sqrt(b^2 - |oc|^2 + radius^2), b = oc . rd, oc = ro - centre). Ref: pt-alg-5.1.
- * ro, centre components in [-1e4, 1e4]; radius > 0. Returns the smallest t >= 0 (the exit point when ro is inside), or
- * -1 when the ray misses. */
+ * ro, centre components in [-1e4, 1e4]; radius > 0 (above 2^60, where radius^2 overflows, the unit sphere is solved
+ * in units of radius and t scaled back: finite for every float radius). Returns the smallest t >= 0 (the exit point
+ * when ro is inside), or -1 when the ray misses. */
 CCL_API float ccl_sdf_ray_sphere(ccl_vec3 ro, ccl_vec3 rd, ccl_vec3 centre, float radius);
 
 /* Sphere tracing of a demonstration scene (ray marching with the distance as the step): t = 0; repeat at most
