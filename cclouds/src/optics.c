@@ -18,7 +18,17 @@ ccl_vec3 ccl_optics_snell(ccl_vec3 d, ccl_vec3 n, float n1, float n2, ccl_vec3 *
     *out_r = ccl_vec3_add(d, ccl_vec3_scale(nn, 2.0f * cos_i));
     /* Snell: t = eta d + (eta cos_i - sqrt(k)) n' */
     eta = n1 / n2;
-    k = 1.0f - eta * eta * (1.0f - cos_i * cos_i);
+    if (isinf(eta * eta)) {
+        /* eta^2 overflows (n2 below ~5e-20 n1; Inf x 0 at normal incidence): every oblique ray is totally reflected
+         * (eta^2 sin^2 > 1 for the smallest sin^2 > 0, 2^-24), a ray along the normal goes straight on */
+        if (!(1.0f - cos_i * cos_i > 0.0f)) {
+            *out_tir = 0;
+            return d;
+        }
+        k = -1.0f;
+    } else {
+        k = 1.0f - eta * eta * (1.0f - cos_i * cos_i);
+    }
     if (k < 0.0f) {
         t.x = 0.0f;
         t.y = 0.0f;

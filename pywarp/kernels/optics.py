@@ -32,14 +32,21 @@ _N2 = Arg("n2", "refractive index of the medium the light enters (water 1.33)", 
                      "Rousseau, Jolivet & Ghazanfarpour, Computers & Graphics 30 (2006), §3"))
 @wp.func
 def optics_snell(d: wp.vec3, n: wp.vec3, n1: float, n2: float) -> tuple[wp.vec3, wp.vec3, int]:
-    """rr-snell: refracted t (zero on TIR), reflected r, TIR flag."""
+    """rr-snell: refracted t (zero on TIR), reflected r, TIR flag. Where eta^2 overflows (n2 below ~5e-20 n1, outside
+    the registry's domain; Inf x 0 at normal incidence) an oblique ray is totally reflected and one along the normal
+    goes on, t = d, as C."""
     nn = n
     if wp.dot(n, d) > 0.0:
         nn = n * -1.0
     cos_i = -wp.dot(nn, d)
     r = d + nn * (2.0 * cos_i)
     eta = n1 / n2
-    k = 1.0 - eta * eta * (1.0 - cos_i * cos_i)
+    k = float(-1.0)
+    if wp.isinf(eta * eta):
+        if not (1.0 - cos_i * cos_i > 0.0):
+            return d, r, 0
+    else:
+        k = 1.0 - eta * eta * (1.0 - cos_i * cos_i)
     if k < 0.0:
         return wp.vec3(0.0, 0.0, 0.0), r, 1
     return d * eta + nn * (eta * cos_i - wp.sqrt(k)), r, 0

@@ -17,6 +17,7 @@ from pywarp.core.registry import get, warp_parameters
 from pywarp.kernels import camera as CAM
 from pywarp.flight import model as F
 from pywarp.kernels import noise
+from pywarp.kernels import optics as OPT
 from pywarp.kernels import particles as PK
 from pywarp.kernels import rain as R
 from pywarp.kernels import sdf as SDF
@@ -759,3 +760,39 @@ def test_ray_sphere_finite_for_radii_whose_square_overflows():
     for radius in (at, np.nextafter(at, np.float32(np.inf))):
         assert lib().ccl_sdf_ray_sphere((0.0, 0.0, -1e4), (0.0, 0.0, 1.0), zero, float(radius)) == \
             pytest.approx(float(radius), rel=1e-6)
+
+
+# --- issue 31, N9: Snell's law for index ratios whose square overflows ------------------------------------------------
+
+@wp.kernel
+def _snell(d: wp.array(dtype=wp.vec3), n: wp.array(dtype=wp.vec3), n2: wp.array(dtype=float),
+           t: wp.array(dtype=wp.vec3), tir: wp.array(dtype=int)):
+    i = wp.tid()
+    ti, ri, fi = OPT.optics_snell(d[i], n[i], 1.0, n2[i])
+    t[i] = ti
+    tir[i] = fi
+
+
+def test_snell_finite_where_the_index_ratio_squared_overflows():
+    """Before: with n2 below ~5e-20 (n1 = 1; the registry refuses n2 < 1e-3, the C header allowed any index > 0)
+    eta^2 = Inf and at normal incidence k = 1 - Inf x 0 was NaN, the refracted ray NaN. Now a ray along the normal
+    goes on unchanged (t = d) and an oblique one is totally reflected (eta^2 sin^2 > 1); C and Warp alike."""
+    s = math.sqrt(0.5)
+    cases = [((0.0, 0.0, -1.0), (0.0, 0.0, 1.0), False), ((0.0, -1.0, 0.0), (0.0, -1.0, 0.0), False),
+             ((0.0, -s, -s), (0.0, 0.0, 1.0), True), ((0.6, -0.8, 0.0), (0.0, 1.0, 0.0), True)]
+    n2s = (5e-20, 1e-30, 1e-45)
+    rows = [(d, n, n2, tir) for d, n, tir in cases for n2 in n2s]
+    d, n, n2 = (np.float32([r[k] for r in rows]) for k in range(3))
+    t_w = wp.empty(len(rows), dtype=wp.vec3, device="cpu")
+    tir_w = wp.empty(len(rows), dtype=int, device="cpu")
+    wp.launch(_snell, dim=len(rows), inputs=[wp.array(d, dtype=wp.vec3, device="cpu"),
+                                             wp.array(n, dtype=wp.vec3, device="cpu"), wp.array(n2, device="cpu")],
+              outputs=[t_w, tir_w], device="cpu")
+    r_c = ffi().new("ccl_vec3 *")
+    tir_c = ffi().new("int *")
+    for i, (di, ni, n2i, tir) in enumerate(rows):
+        got = lib().ccl_optics_snell(tuple(d[i]), tuple(n[i]), 1.0, float(n2[i]), r_c, tir_c)
+        got = np.float32([got.x, got.y, got.z])
+        want = np.zeros(3, np.float32) if tir else d[i]
+        assert tir_c[0] == int(tir) and np.array_equal(got, want), (di, ni, n2i, got)
+        assert tir_w.numpy()[i] == int(tir) and np.array_equal(t_w.numpy()[i], want), (di, ni, n2i, t_w.numpy()[i])

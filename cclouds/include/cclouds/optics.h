@@ -28,6 +28,8 @@ extern "C" {
  *   reflected r = d + 2 cos_i n'  (theta_r = theta_i);
  *   refracted t = eta d + (eta cos_i - sqrt(k)) n'  (n1 sin theta_i = n2 sin theta_t), a unit vector;
  *   k < 0: total internal reflection, t = (0, 0, 0) (the convention of GLSL/Cg refract) and *out_tir = 1.
+ *   Where eta^2 overflows (n2 below ~5e-20 n1), an oblique ray is totally reflected and one along the normal
+ *   (1 - cos_i^2 = 0) goes on unchanged, t = d: finite for every index in (0, 10].
  * Ref: rr-snell (Snell / law of reflection; rr §2.2 Obrazek 2.2). d -> incident direction (unit), n -> surface normal
  * (unit, either side), n1, n2 -> refractive indices in (0, 10]. Returns t; writes *out_r = r (unit) and *out_tir
  * (0 or 1). NaN propagates. */
