@@ -372,6 +372,8 @@ ccl_vec3 ccl_terrain_sky(ccl_vec3 rd, ccl_vec3 sun, ccl_vec3 sky_colour, ccl_vec
     float sun_dot = ccl_vec3_dot(rd, sun);
     float g;
     if (!(sun_dot > 0.0f)) sun_dot = 0.0f;
+    /* the dot of two unit vectors can round to 1 + 2^-23; its power then overflows for power above ~7e8: clamp to 1 */
+    if (sun_dot > 1.0f) sun_dot = 1.0f;
     g = powf(sun_dot, power);
     return v3(sky_colour.x + sun_colour.x * g, sky_colour.y + sun_colour.y * g, sky_colour.z + sun_colour.z * g);
 }

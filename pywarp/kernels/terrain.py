@@ -506,6 +506,9 @@ def terrain_sky(rd: wp.vec3, sun: wp.vec3, sky_colour: wp.vec3, sun_colour: wp.v
     sun_dot = _dot(rd, sun)
     if not (sun_dot > 0.0):
         sun_dot = 0.0
+    # the dot of two unit vectors can round to 1 + 2^-23; its power then overflows for power above ~7e8: clamp to 1
+    if sun_dot > 1.0:
+        sun_dot = 1.0
     g = wp.pow(sun_dot, power)
     return wp.vec3(sky_colour[0] + sun_colour[0] * g, sky_colour[1] + sun_colour[1] * g,
                    sky_colour[2] + sun_colour[2] * g)

@@ -796,3 +796,35 @@ def test_snell_finite_where_the_index_ratio_squared_overflows():
         want = np.zeros(3, np.float32) if tir else d[i]
         assert tir_c[0] == int(tir) and np.array_equal(got, want), (di, ni, n2i, got)
         assert tir_w.numpy()[i] == int(tir) and np.array_equal(t_w.numpy()[i], want), (di, ni, n2i, t_w.numpy()[i])
+
+
+# --- issue 31, N11: the terrain sky for a ray on the sun --------------------------------------------------------------
+
+@wp.kernel
+def _terrain_sky(v: wp.vec3, power: wp.array(dtype=float), out: wp.array(dtype=wp.vec3)):
+    i = wp.tid()
+    out[i] = K.terrain_sky(v, v, wp.vec3(0.2, 0.4, 0.6), wp.vec3(1.0, 0.0, 0.5), power[i])
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_terrain_sky_glow_at_most_the_sun_colour_for_a_ray_on_the_sun(impl):
+    """Before: rd.sun of two unit vectors rounded to 1 + 2^-22 for rd = sun = 0.577350318 (1, 1, 1), and its power was
+    not clamped: 1.0024 times the sun colour at power 1e4 (the registry's limit), Inf above ~7e8 (NaN with a zero
+    sun colour component). The cosine is now taken in [0, 1], as in the gradient and volume skies."""
+    v = (0.577350318,) * 3
+    sky = pywarp.equation("pt-code-7.10", impl=impl)
+    got = np.asarray(sky(v, v, (0.2, 0.4, 0.6), (1.0, 0.0, 0.5), 1.0e4), np.float32)
+    np.testing.assert_array_equal(got, np.float32([0.2, 0.4, 0.6]) + np.float32([1.0, 0.0, 0.5]))
+
+
+def test_terrain_sky_finite_for_huge_powers_on_the_sun():
+    v = np.float32([0.577350318] * 3)
+    powers = np.float32([1e9, 1e20, np.finfo(np.float32).max])
+    out = wp.empty(len(powers), dtype=wp.vec3, device="cpu")
+    wp.launch(_terrain_sky, dim=len(powers), inputs=[wp.vec3(*v), wp.array(powers, device="cpu")], outputs=[out],
+              device="cpu")
+    want = np.float32([1.2, 0.4, 1.1])
+    for i, power in enumerate(powers):
+        c = lib().ccl_terrain_sky(tuple(v), tuple(v), (0.2, 0.4, 0.6), (1.0, 0.0, 0.5), float(power))
+        np.testing.assert_array_equal(np.float32([c.x, c.y, c.z]), want)
+        np.testing.assert_array_equal(out.numpy()[i], want)

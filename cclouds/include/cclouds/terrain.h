@@ -224,7 +224,8 @@ CCL_API float ccl_terrain_fog(float d, float rho, ccl_variant variant);
 
 /* Sky with the sun. Ref: pt-code-7.10: sky_colour + max(rd.sun, 0)^power sun_colour. rd, sun: unit vectors (sun:
  * the direction towards the sun, not a position); power > 0 (Kod 7.10: 80; the glow halves at acos(0.5^(1/80)) =
- * 7.53 deg). Not clamped. */
+ * 7.53 deg). rd.sun is taken in [0, 1] (two unit vectors' dot can round to 1 + 2^-23, whose power overflowed for
+ * power above ~7e8); the colour is not clamped. */
 CCL_API ccl_vec3 ccl_terrain_sky(ccl_vec3 rd, ccl_vec3 sun, ccl_vec3 sky_colour, ccl_vec3 sun_colour, float power);
 
 /* 2-D fBm clouds. Ref: pt-code-7.11: q = ro + rd (cloud_height - ro.y) / rd.y, q.xz += wind time, w = clamp(fbm(q.xz
