@@ -37,4 +37,12 @@ static inline ccl_vec3 mix3(ccl_vec3 a, ccl_vec3 b, float f)
     return v3(a.x + (b.x - a.x) * f, a.y + (b.y - a.y) * f, a.z + (b.z - a.z) * f);
 }
 
+/* A cell coordinate x (voxel, texel) bounded to [-1, n] before any floor and cast: below -1 or above n every read
+ * clamps to the same edge cell, so a trilinear or bilinear fetch is unchanged, and the cast stays within int for any
+ * float (+-Inf and |x| >= 2^31 included). x must not be NaN (the callers return NaN before). */
+static inline float bound_cell(float x, int n)
+{
+    return x < -1.0f ? -1.0f : (x > (float)n ? (float)n : x);
+}
+
 #endif /* CCLOUDS_INTERNAL_H */

@@ -179,14 +179,6 @@ static ccl_vec3 texel(const float *img, int size, int x, int y)
     return c;
 }
 
-/* texel coordinate x bounded to [-1, size] before any floor and cast: below -1 or above size every texel read
- * clamps to the same edge texel, so the fetch is unchanged, and the cast stays within int for any float (+-Inf
- * included). x is not NaN (fetch returns NaN before). */
-static float bound_texel(float x, int size)
-{
-    return x < -1.0f ? -1.0f : (x > (float)size ? (float)size : x);
-}
-
 static ccl_vec3 fetch(const float *img, int size, float u, float v, int filter)
 {
     if (!(u == u && v == v)) { /* NaN propagates */
@@ -195,7 +187,7 @@ static ccl_vec3 fetch(const float *img, int size, float u, float v, int filter)
         return nan3;
     }
     if (filter == CCL_PARTICLES_LINEAR) {
-        float fx = bound_texel(u * (float)size - 0.5f, size), fy = bound_texel(v * (float)size - 0.5f, size);
+        float fx = bound_cell(u * (float)size - 0.5f, size), fy = bound_cell(v * (float)size - 0.5f, size);
         float x0f = floorf(fx), y0f = floorf(fy);
         float ax = fx - x0f, ay = fy - y0f;
         int x0 = (int)x0f, y0 = (int)y0f;
@@ -213,8 +205,8 @@ static ccl_vec3 fetch(const float *img, int size, float u, float v, int filter)
         out.z = top.z + (bot.z - top.z) * ay;
         return out;
     }
-    return texel(img, size, (int)floorf(bound_texel(u * (float)size, size)),
-                 (int)floorf(bound_texel(v * (float)size, size)));
+    return texel(img, size, (int)floorf(bound_cell(u * (float)size, size)),
+                 (int)floorf(bound_cell(v * (float)size, size)));
 }
 
 int ccl_particles_tap(const float *mask, int mask_size, const float *capture, int capture_size, float mask_u,

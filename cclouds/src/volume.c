@@ -123,18 +123,10 @@ typedef struct {
     float fx, fy, fz;
 } tri_t;
 
-/* u bounded to [-1, n] before any floor and cast: below -1 or above n both corners clamp to the same edge voxel,
- * whatever the weight, so the sample is unchanged there, and the cast stays within int for any float (+-Inf and
- * |u| >= 2^31 included). u is not NaN (the samplers return NaN before). */
-static float bound_voxel(float u, int n)
-{
-    return u < -1.0f ? -1.0f : (u > (float)n ? (float)n : u);
-}
-
 static tri_t tri_setup(int nx, int ny, int nz, ccl_vec3 v)
 {
     tri_t t;
-    float ux = bound_voxel(v.x - 0.5f, nx), uy = bound_voxel(v.y - 0.5f, ny), uz = bound_voxel(v.z - 0.5f, nz);
+    float ux = bound_cell(v.x - 0.5f, nx), uy = bound_cell(v.y - 0.5f, ny), uz = bound_cell(v.z - 0.5f, nz);
     float ix = floorf(ux), iy = floorf(uy), iz = floorf(uz);
     t.fx = ux - ix; t.fy = uy - iy; t.fz = uz - iz;
     t.x0 = clampi((int)ix, 0, nx - 1); t.x1 = clampi((int)ix + 1, 0, nx - 1);

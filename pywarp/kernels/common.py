@@ -20,6 +20,18 @@ def clamp01(x: float) -> float:
 
 
 @wp.func
+def bound_cell(x: float, n: int) -> float:
+    """A cell coordinate (voxel, texel) bounded to [-1, n] before the floor and the cast: beyond it every read clamps
+    to the same edge cell, so the fetch is unchanged, and the cast stays within int for any non-NaN float."""
+    r = x
+    if x < -1.0:
+        r = -1.0
+    elif x > float(n):
+        r = float(n)
+    return r
+
+
+@wp.func
 def mix3(a: wp.vec3, b: wp.vec3, f: float) -> wp.vec3:
     """a + (b - a) f, component-wise (GLSL mix)."""
     return wp.vec3(a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f, a[2] + (b[2] - a[2]) * f)

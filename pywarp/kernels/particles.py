@@ -26,6 +26,7 @@ import warp as wp
 
 from ..core.cbridge import c_constant
 from ..core.registry import VARIANT, Arg, declare
+from .common import bound_cell
 from .hash import hash_pcg, hash_unit
 from .rain import rain_light_colour, rain_terminal_speed
 
@@ -227,27 +228,14 @@ def _texel(img: wp.array(dtype=float), size: int, x: int, y: int) -> wp.vec3:
 
 
 @wp.func
-def _bound_texel(x: float, size: int) -> float:
-    """Texel coordinate ``x`` bounded to [-1, size] before the floor and the cast: beyond it every read clamps to the
-    same edge texel, so the fetch is unchanged, and the cast stays within int for any non-NaN float. Twin of C's
-    ``bound_texel``."""
-    r = x
-    if x < -1.0:
-        r = -1.0
-    elif x > float(size):
-        r = float(size)
-    return r
-
-
-@wp.func
 def particles_fetch(img: wp.array(dtype=float), size: int, u: float, v: float, filt: int) -> wp.vec3:
     """Capture fetch at (u, v), clamped to the edge: nearest (0) or bilinear (1), as the C ``fetch``; any non-NaN
     (u, v) beyond the capture reads its edge texels, a NaN gives NaN."""
     if not (u == u and v == v):
         return wp.vec3(u + v, u + v, u + v)
     if filt == LINEAR:
-        fx = _bound_texel(u * float(size) - 0.5, size)
-        fy = _bound_texel(v * float(size) - 0.5, size)
+        fx = bound_cell(u * float(size) - 0.5, size)
+        fy = bound_cell(v * float(size) - 0.5, size)
         x0f = wp.floor(fx)
         y0f = wp.floor(fy)
         ax = fx - x0f
@@ -262,8 +250,8 @@ def particles_fetch(img: wp.array(dtype=float), size: int, u: float, v: float, f
         bot = wp.vec3(c[0] + (d[0] - c[0]) * ax, c[1] + (d[1] - c[1]) * ax, c[2] + (d[2] - c[2]) * ax)
         return wp.vec3(top[0] + (bot[0] - top[0]) * ay, top[1] + (bot[1] - top[1]) * ay,
                        top[2] + (bot[2] - top[2]) * ay)
-    return _texel(img, size, int(wp.floor(_bound_texel(u * float(size), size))),
-                  int(wp.floor(_bound_texel(v * float(size), size))))
+    return _texel(img, size, int(wp.floor(bound_cell(u * float(size), size))),
+                  int(wp.floor(bound_cell(v * float(size), size))))
 
 
 @wp.func

@@ -25,7 +25,7 @@ from ..core.cbridge import VOLUME_PARAMS
 from ..core.registry import Arg, declare
 from .camera import camera_ray
 from .colour import colour_srgb_encode
-from .common import mix3
+from .common import bound_cell, mix3
 from .flight import flight_aircraft
 from .hash import hash_pcg, hash_unit
 from .phase import phase_hg
@@ -137,31 +137,18 @@ def _idx(offset: int, nx: int, ny: int, x: int, y: int, z: int) -> int:
 
 
 @wp.func
-def _bound_voxel(u: float, n: int) -> float:
-    """``u`` bounded to [-1, n] before the floor and the cast: below -1 or above n both corners clamp to the same edge
-    voxel, so the sample is unchanged, and the cast stays within int for any non-NaN float. Twin of C's
-    ``bound_voxel``."""
-    r = u
-    if u < -1.0:
-        r = -1.0
-    elif u > float(n):
-        r = float(n)
-    return r
-
-
-@wp.func
 def volume_sample(values: wp.array(dtype=Any), offset: int, nx: int, ny: int, nz: int, v: wp.vec3,
                   scale: float) -> float:
     """Trilinear sample of a grid at voxel coordinates ``v`` (clamped to the edge voxels), times ``scale``; the grid's
     voxels start at ``offset`` of the flat array ``values``, each converted to float32 first (exactly). Twin of
     ``ccl_volume_sample`` (uint8 densities, ``scale`` = 1/255) and of ``ccl_volume_sample_float`` (float32 values,
     ``scale`` = 1, an exact product). Beyond the grid, infinities included, the edge voxels; a NaN component gives
-    NaN (``_bound_voxel`` keeps every conversion to int within range)."""
+    NaN (``bound_cell`` keeps every conversion to int within range)."""
     if not (v[0] == v[0] and v[1] == v[1] and v[2] == v[2]):
         return v[0] + v[1] + v[2]
-    ux = _bound_voxel(v[0] - 0.5, nx)
-    uy = _bound_voxel(v[1] - 0.5, ny)
-    uz = _bound_voxel(v[2] - 0.5, nz)
+    ux = bound_cell(v[0] - 0.5, nx)
+    uy = bound_cell(v[1] - 0.5, ny)
+    uz = bound_cell(v[2] - 0.5, nz)
     ix = wp.floor(ux)
     iy = wp.floor(uy)
     iz = wp.floor(uz)
