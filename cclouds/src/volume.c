@@ -4,6 +4,7 @@
 #include "cclouds/flight.h"
 #include "cclouds/hash.h"
 #include "cclouds/phase.h"
+#include "cclouds/valuenoise.h"
 #include "internal.h"
 
 #include <stddef.h>
@@ -28,7 +29,7 @@ void ccl_volume_params_default(ccl_volume_params *out)
     out->ground_b = v3(0.36f, 0.33f, 0.18f);
     out->sun_glow = 0.6f;                          /* a visible glow when the view turns to the sun */
     out->sun_glow_power = 64.0f;                   /* a few degrees wide */
-    out->field_size = 180.0f;                      /* fields of 180 m: motion cue at 60 m/s */
+    out->field_size = 180.0f;                      /* noise cells of 180 m: fields and woods, motion cue at 60 m/s */
     out->fog_distance = 6000.0f;                   /* 6 km: a hazy summer day, the horizon dissolves */
     out->tau_per_voxel = 0.35f;                    /* a core of 255 is opaque after ~13 voxels, the edges stay soft */
     out->light_tau_per_voxel = 0.25f;              /* lighter than the view (forward scattering through the cloud) */
@@ -422,6 +423,34 @@ static ccl_vec3 aircraft_colour(const ccl_volume_params *p, ccl_vec3 q, int part
     return v3(base.x * lit.x, base.y * lit.y, base.z * lit.z);
 }
 
+/* Ground lattice coordinate of g [m]: g / field_size + PERIOD / 2 wrapped into [0, PERIOD) (exact: PERIOD is a power
+ * of two); a NaN or infinite g gives 0 (fogged out where it happens: grazing rays). */
+static float ground_coord(float g, float field_size)
+{
+    const float period = (float)CCL_VOLUME_GROUND_PERIOD;
+    float u = g / field_size + 0.5f * period;
+    u = u - floorf(u / period) * period;
+    return u >= 0.0f && u < period ? u : 0.0f;
+}
+
+static float ground_fbm(float x, float z, uint32_t seed)
+{
+    return ccl_valuenoise_fbm(x, z, 0.0f, seed, 2, CCL_VOLUME_GROUND_OCTAVES, 0.5f, CCL_VALUENOISE_SMOOTH_NONE,
+                              CCL_VALUENOISE_COSINE, CCL_VARIANT_CORRECTED, CCL_VALUENOISE_UNIT);
+}
+
+ccl_vec3 ccl_volume_ground(const ccl_volume_params *p, float gx, float gz)
+{
+    float x = ground_coord(gx, p->field_size), z = ground_coord(gz, p->field_size);
+    float a = clamp01(2.5f * (ground_fbm(x, z, CCL_VOLUME_GROUND_SEED) - 0.5f) + 0.5f);
+    float b = clamp01(12.0f * (ground_fbm(x, z, CCL_VOLUME_GROUND_SEED + 1u) - 0.56f));
+    float r = ground_fbm(0.25f * x, 0.25f * z, CCL_VOLUME_GROUND_SEED + 2u) - 0.5f;
+    float w = clamp01((0.012f - (r < 0.0f ? -r : r)) / 0.004f);
+    ccl_vec3 alb = mix3(p->ground_a, p->ground_b, a);
+    alb = mix3(alb, ccl_vec3_scale(p->ground_a, 0.45f), b);
+    return mix3(alb, v3(0.06f, 0.09f, 0.12f), w);
+}
+
 ccl_vec3 ccl_volume_background(const ccl_volume_params *p, ccl_vec3 eye, ccl_vec3 d, float *out_t)
 {
     float t_hit = BIG_T;
@@ -437,18 +466,10 @@ ccl_vec3 ccl_volume_background(const ccl_volume_params *p, ccl_vec3 eye, ccl_vec
     }
     if (d.y < 0.0f && eye.y > 0.0f) {
         float t = -eye.y / d.y;
-        float gx = eye.x + t * d.x, gz = eye.z + t * d.z;
-        /* field cell, clamped so that the int conversion is defined for grazing rays (fogged out anyway) */
-        float fx = floorf(gx / p->field_size), fz = floorf(gz / p->field_size);
-        int cx, cz;
-        fx = fx < -1.0e9f ? -1.0e9f : (fx > 1.0e9f ? 1.0e9f : fx);
-        fz = fz < -1.0e9f ? -1.0e9f : (fz > 1.0e9f ? 1.0e9f : fz);
-        cx = (int)fx;
-        cz = (int)fz;
-        uint32_t h = ccl_hash_pcg((uint32_t)cx * 73856093u ^ ccl_hash_pcg((uint32_t)cz));
-        float u = ccl_hash_unit(h);
         float sun_up = p->sun.y > 0.0f ? p->sun.y : 0.0f;
-        ccl_vec3 col = ccl_vec3_scale(mix3(p->ground_a, p->ground_b, u), 0.35f + 0.65f * sun_up);
+        ccl_vec3 alb = ccl_volume_ground(p, eye.x + t * d.x, eye.z + t * d.z);
+        ccl_vec3 lit = ccl_vec3_add(ccl_vec3_scale(p->sun_colour, sun_up), p->ambient_top);
+        ccl_vec3 col = v3(alb.x * lit.x, alb.y * lit.y, alb.z * lit.z);
         float f = expf(-t / p->fog_distance);
         return mix3(p->sky_horizon, col, f);
     }

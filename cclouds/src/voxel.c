@@ -23,6 +23,8 @@ ccl_voxel_settings ccl_voxel_settings_default(void)
     s.sin_radius = 0.125f;
     s.cover = 128.0f;
     s.sharpness = 0.96f;
+    s.envelope = 0.0f;
+    s.envelope_base = 0.35f;
     return s;
 }
 
@@ -58,6 +60,10 @@ ccl_status ccl_voxel_settings_check(const ccl_voxel_settings *s, const char **ou
         bad = "cover";
     } else if (!finite_f(s->sharpness) || !(s->sharpness > 0.0f && s->sharpness < 1.0f)) {
         bad = "sharpness";
+    } else if (!finite_f(s->envelope) || !(s->envelope >= 0.0f && s->envelope <= 1.0f)) {
+        bad = "envelope";
+    } else if (!finite_f(s->envelope_base) || !(s->envelope_base > 0.0f && s->envelope_base <= 1.0f)) {
+        bad = "envelope_base";
     }
     if (out_field != NULL) *out_field = bad;
     return bad == NULL ? CCL_OK : CCL_EINVAL;
@@ -77,6 +83,19 @@ float ccl_voxel_sin_window(int32_t d, float radius)
     CCL_REQUIRE(d >= 0 && radius > 0.0f);
     if (fd >= radius) return 1.0f;
     return sinf(HALF_PI_F * (fd / radius));
+}
+
+float ccl_voxel_envelope(int32_t x, int32_t y, int32_t z, int32_t n, float base)
+{
+    float m, dx, dy, dz, c, u;
+    CCL_REQUIRE(n >= 2 && base > 0.0f);
+    m = (float)(n - 1);
+    dx = (2.0f * (float)x - m) / m;
+    dz = (2.0f * (float)z - m) / m;
+    c = base / (1.0f + base);
+    u = (float)y / m;
+    dy = u >= c ? (u - c) / (1.0f - c) : (c - u) / c;
+    return dx * dx + dy * dy + dz * dz;
 }
 
 /* Distance of index i from the nearer end of an axis of n cells. */
@@ -199,6 +218,7 @@ ccl_status ccl_voxel_noise(const ccl_voxel_settings *s, float *out, size_t out_l
                     v = v * ccl_voxel_sin_window(face_distance(x, n), radius)
                         * ccl_voxel_sin_window(face_distance(y, n), radius)
                         * ccl_voxel_sin_window(face_distance(z, n), radius);
+                if (s->envelope > 0.0f) v = v - s->envelope * ccl_voxel_envelope(x, y, z, n, s->envelope_base);
                 out[k] = clamp01(v);
             }
     return CCL_OK;

@@ -89,6 +89,17 @@ class CloudArraySettings(Settings):
                              doc="cloudSharpness in (0, 1): near 0 hard edges, near 1 soft, faint edges",
                              reason="0.96: half density 17 units above the cover -- soft but visible edges, of the "
                                     "order of Elias's values")
+    envelope: float = param(0.0, unit="noise", lo=0.0, hi=1.0, invalidates="textures", group="cloud array",
+                            doc="falloff envelope (beyond the text): n - envelope * q, q the squared radius of the "
+                                "ellipsoids inscribed in the box (1 on the inscribed one, their centre lowered by "
+                                "envelope_base), so the cloud is compact, ends inside its box and shows no face; 0 "
+                                "the text's array as printed",
+                            reason="0: the text's pipeline; the flight scene and the oc figures ask for 0.2 "
+                                   "(FlightSettings.cloud_envelope)")
+    envelope_base: float = param(0.35, lo=0.0, lo_open=True, hi=1.0, invalidates="textures", group="cloud array",
+                                 doc="lower semi-axis of the envelope's ellipsoids over the upper one (1: centred)",
+                                 reason="0.35: the base falls off about three times as fast as the top -- the flat "
+                                        "base at the condensation level under the dome of a fair-weather cumulus")
 
     @property
     def shape(self) -> tuple[int, int, int]:
@@ -119,6 +130,7 @@ def settings_struct(s: CloudArraySettings):
     st.variant = VARIANTS[s.variant]
     st.border = BORDERS[s.border]
     st.sin_radius, st.cover, st.sharpness = s.sin_radius, s.cover, s.sharpness
+    st.envelope, st.envelope_base = s.envelope, s.envelope_base
     return st
 
 
@@ -174,8 +186,8 @@ def _build_warp(s: CloudArraySettings, filtered: bool, device, launcher):
     noise = wp.empty(n ** 3, dtype=float, device=dev)
     cloud = wp.empty(n ** 3 if filtered else 1, dtype=wp.uint8, device=dev)
     lau.launch(finish_kernel, n * n, n,
-               [n, float(norm), BORDERS[s.border], float(np.float32(s.sin_radius) * np.float32(n)), s.cover,
-                s.sharpness, int(filtered), prev], [noise, cloud])
+               [n, float(norm), BORDERS[s.border], float(np.float32(s.sin_radius) * np.float32(n)),
+                s.envelope, s.envelope_base, s.cover, s.sharpness, int(filtered), prev], [noise, cloud])
     if filtered:
         return np.array(cloud.numpy(), copy=True).reshape(s.shape)
     return np.array(noise.numpy(), dtype=np.float32, copy=True).reshape(s.shape)

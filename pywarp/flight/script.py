@@ -25,6 +25,10 @@ DEFAULT_SCRIPT = (
     ("down", 29.5, 30.0),     # level off
 )
 
+#: draws of a cloud's position before it is placed even if its box still overlaps another (20: with the default 9
+#: clouds a clear place is found within a few draws)
+PLACEMENT_TRIES = 20
+
 #: fixed simulation step [s]
 DT = 1.0 / 60.0
 
@@ -37,11 +41,17 @@ def trajectory(settings, device: str | None = None):
                     model=settings.flight_model(), device=device)
 
 
+def _overlap(centre, extent, box) -> bool:
+    """Whether the box of ``centre`` and ``extent`` intersects ``box`` = (origin, extent)."""
+    o, e = box
+    return all(abs(c - (oo + ee / 2)) < (x + ee) / 2 for c, x, oo, ee in zip(centre, extent, o, e))
+
+
 def cloud_boxes(settings, traj) -> list[tuple[tuple, tuple]]:
-    """(origin, extent) of every cloud box [m]: cloud 0 centred on the flight path at 22 %% of the flight and smaller
-    (the aircraft flies through it in about 5 s), the others beside the path (alternately left and right, 0.6 - 1.1 box widths from
-    it, 0.2 - 1.4 widths ahead of a point of the path), at the cloud altitude; sizes varied per cloud (+-25 %% wide, +-20 %% high). Deterministic per
-    seed."""
+    """(origin, extent) of every cloud box [m]: cloud 0 centred on the flight path at 22 %% of the flight and
+    smaller (the aircraft flies through it in about 5 s), the others beside the path (alternately left and right,
+    0.6 - 1.1 box widths from it, 0.2 - 1.4 widths ahead of a point of the path, drawn again while the box overlaps
+    another), at the cloud altitude; sizes varied per cloud (+-25 %% wide, +-20 %% high). Deterministic per seed."""
     rng = np.random.default_rng(settings.seed)
     n = settings.cloud_count
     boxes = []
@@ -63,9 +73,15 @@ def cloud_boxes(settings, traj) -> list[tuple[tuple, tuple]]:
             side = 1.0 if k % 2 else -1.0
             right = np.array([math.cos(head[i]), 0.0, math.sin(head[i])])
             ahead = np.array([math.sin(head[i]), 0.0, -math.cos(head[i])])
-            centre = (pos[i] + right * side * settings.cloud_width_m * rng.uniform(0.6, 1.1)
-                      + ahead * settings.cloud_width_m * rng.uniform(0.2, 1.4))
-            centre[1] = settings.cloud_altitude_m + rng.uniform(-0.15, 0.15) * settings.cloud_height_m
+            # boxes that overlap are composited one after the other (cclouds/volume.h): a later box's cloud would be
+            # cut by the earlier box's face. Draw again (at most PLACEMENT_TRIES times) until the box is clear of
+            # the others
+            for _ in range(PLACEMENT_TRIES):
+                centre = (pos[i] + right * side * settings.cloud_width_m * rng.uniform(0.6, 1.1)
+                          + ahead * settings.cloud_width_m * rng.uniform(0.2, 1.4))
+                centre[1] = settings.cloud_altitude_m + rng.uniform(-0.15, 0.15) * settings.cloud_height_m
+                if not any(_overlap(centre, (w, h, d), b) for b in boxes):
+                    break
         extent = (w, h, d)
         origin = tuple(float(c - e / 2) for c, e in zip(centre, extent))
         boxes.append((origin, tuple(float(e) for e in extent)))

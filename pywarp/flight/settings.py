@@ -48,17 +48,20 @@ class FlightSettings(Settings):
     cloud_size: int = param(64, unit="voxels", kind="int", lo=32, hi=256, check=_size_check, invalidates="clouds",
                             group="clouds", cli="--cloud-size", doc="edge of each cloud array (oc-5.2.1)",
                             reason="64: the noise64 of the filter listing (oc-5.2.2)")
-    # the four fields below mirror pywarp.flight.clouds.CloudArraySettings (cover, sharpness, persistence,
-    # interpolation), declared here so that registering the scene imports no Warp (tests/flight check they agree)
-    cloud_cover: float = param(128.0, unit="0..255", lo=0.0, hi=255.0, invalidates="clouds", group="clouds",
+    # the fields below mirror pywarp.flight.clouds.CloudArraySettings (cover, sharpness, persistence, interpolation,
+    # smoothing, envelope, envelope_base), declared here so that registering the scene imports no Warp (tests/flight check they agree)
+    cloud_cover: float = param(80.0, unit="0..255", lo=0.0, hi=255.0, invalidates="clouds", group="clouds",
                                cli="--cloud-cover",
                                doc="cloudCover of the filter (oc-5.2.2): a LARGER cover gives LESS cloud",
-                               reason="128: compact clouds with clear sky around them inside their boxes (the cloud "
-                                      "array's own default 96 fills about half of its box: a cloud mass)")
-    cloud_sharpness: float = param(0.96, lo=0.0, hi=1.0, lo_open=True, hi_open=True, invalidates="clouds",
+                               reason="80: with the envelope (cloud_envelope) the noise decides the outline where "
+                                      "it exceeds 80 + 51 q (q the envelope's squared radius): a compact cloud of "
+                                      "about a third of its box; the cloud array's own 128 (without the envelope) "
+                                      "left sparse wisps")
+    cloud_sharpness: float = param(0.92, lo=0.0, hi=1.0, lo_open=True, hi_open=True, invalidates="clouds",
                                    group="clouds", cli="--cloud-sharpness",
                                    doc="cloudSharpness of the filter (oc-5.2.2) in (0, 1): near 0 hard edges",
-                                   reason="0.96: the cloud array's default (soft but visible edges)")
+                                   reason="0.92: half density 8 units above the cover -- a readable outline, still "
+                                          "soft (the cloud array's 0.96 gave a haze at this cover)")
     cloud_persistence: float = param(0.5, lo=0.0, lo_open=True, hi=1.0, invalidates="clouds", group="clouds",
                                      cli="--cloud-persistence", doc="persistence of the cloud array (oc-5.1.2.2)",
                                      reason="0.5: the cloud array's default (Elias's value)")
@@ -66,6 +69,25 @@ class FlightSettings(Settings):
                                      group="clouds", cli="--cloud-interpolation",
                                      doc="up-sampling interpolant of the cloud array (oc-5.1.4)",
                                      reason="'linear': the cloud array's default (trilinear, 'for real time')")
+    cloud_smoothing: str = param("none", choices=("elias", "4-neighbour", "8-neighbour", "none"),
+                                 invalidates="clouds", group="clouds", cli="--cloud-smoothing",
+                                 doc="smoothing of the noise added at each level (oc-5.1.3)",
+                                 reason="'none': inside the envelope the raw lattice's finer levels give the lumpy, "
+                                        "cauliflower outline of a cumulus; Elias's smoothing (the cloud array's "
+                                        "default) rounds every cloud into the same soft blob")
+    cloud_envelope: float = param(0.2, unit="noise", lo=0.0, hi=1.0, invalidates="clouds", group="clouds",
+                                  cli="--cloud-envelope",
+                                  doc="falloff envelope of the cloud array (beyond the text): noise minus this times "
+                                      "the squared radius of the ellipsoids inscribed in the box; 0 = the text's "
+                                      "array as printed (the cloud fills its box and shows its faces)",
+                                  reason="0.2: about 5 standard deviations of the noise at the inscribed ellipsoid "
+                                         "-- every cloud ends inside its box, while in the core (q < 0.3) the "
+                                         "envelope moves the threshold by less than 1.5 of them, so the noise draws "
+                                         "the outline")
+    cloud_envelope_base: float = param(0.35, lo=0.0, lo_open=True, hi=1.0, invalidates="clouds", group="clouds",
+                                       doc="lower semi-axis of the envelope's ellipsoids over the upper one",
+                                       reason="0.35: the base falls off three times as fast as the top: a flat base "
+                                              "under a dome (the cloud array's default)")
     cloud_width_m: float = param(700.0, unit="m", lo=10.0, hi=20000.0, invalidates="clouds", group="clouds",
                                  doc="horizontal size of a cloud's box (oc-5.2.3-scale: the per-axis scale), varied "
                                      "by up to +-25 %% per cloud",
@@ -151,12 +173,18 @@ class FlightSettings(Settings):
                       doc="camera of `render`: chase (behind and above the aircraft) or cockpit (at the pilot's "
                           "eye, banking with the aircraft; the aircraft itself is not drawn)",
                       reason="'chase': shows the aircraft and its attitude in the clouds")
-    chase_distance_m: float = param(22.0, unit="m", lo=1.0, hi=10000.0, group="camera", cli="--chase-distance",
-                                    doc="distance of the chase camera behind the aircraft",
-                                    reason="22: the aircraft (12 m span) fills about a quarter of the width")
-    chase_height_m: float = param(7.0, unit="m", lo=-1000.0, hi=1000.0, group="camera", cli="--chase-height",
+    chase_distance_m: float = param(20.0, unit="m", lo=1.0, hi=10000.0, group="camera", cli="--chase-distance",
+                                    doc="distance of the chase camera behind the aircraft (along its heading)",
+                                    reason="20: with the side offset the aircraft (12 m span) fills about a third "
+                                           "of the width, the clouds ahead stay in view")
+    chase_side_m: float = param(14.0, unit="m", lo=-10000.0, hi=10000.0, group="camera", cli="--chase-side",
+                                doc="offset of the chase camera to the aircraft's right (negative: left)",
+                                reason="14: a three-quarter view from behind, 35 deg off the tail -- wings, tail "
+                                       "and fuselage all read and the bank shows as a tilt of the wings (0: "
+                                       "straight behind, a flat 'T')")
+    chase_height_m: float = param(6.0, unit="m", lo=-1000.0, hi=1000.0, group="camera", cli="--chase-height",
                                   doc="height of the chase camera above the aircraft",
-                                  reason="7: looking slightly down onto the wings")
+                                  reason="6: looking slightly down onto the wings")
     fov_y_deg: float = param(60.0, unit="deg", lo=1.0, hi=170.0, group="camera", cli="--fov",
                              doc="vertical field of view", reason="60: a natural view")
     device: str = param("cpu", invalidates="device", group="runtime",
@@ -178,7 +206,9 @@ class FlightSettings(Settings):
 
         return CloudArraySettings(size=self.cloud_size, seed=(self.seed * 7919 + 104729 * k) % 2 ** 32,
                                   cover=self.cloud_cover, sharpness=self.cloud_sharpness,
-                                  persistence=self.cloud_persistence, interpolation=self.cloud_interpolation)
+                                  persistence=self.cloud_persistence, interpolation=self.cloud_interpolation,
+                                  smoothing=self.cloud_smoothing, envelope=self.cloud_envelope,
+                                  envelope_base=self.cloud_envelope_base)
 
     def preview(self) -> "FlightSettings":
         """The settings of a preview frame while the view moves: width and height times ``preview_scale`` (at least

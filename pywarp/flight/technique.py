@@ -118,10 +118,13 @@ class FlightTechnique(Technique):
         aspect = s.width / s.height
         fov = math.radians(s.fov_y_deg)
         if pose.view == "chase":
+            # behind, beside and above the aircraft in the horizontal frame of its heading (a three-quarter view:
+            # the bank and the pitch show as the tilt of the wings and the fuselage), looking past it a little ahead
             fh = np.array([math.sin(a.heading), 0.0, -math.cos(a.heading)])
-            eye = pos - fh * s.chase_distance_m + np.array([0.0, s.chase_height_m, 0.0])
+            rh = np.array([math.cos(a.heading), 0.0, math.sin(a.heading)])
+            eye = pos - fh * s.chase_distance_m + rh * s.chase_side_m + np.array([0.0, s.chase_height_m, 0.0])
             eye[1] = max(eye[1], 2.0)
-            target = pos + fh * 25.0 + np.array([0.0, 2.0, 0.0])
+            target = pos + fh * 10.0 + np.array([0.0, 1.0, 0.0])
             cam = CAM.camera_look_at(eye, target, (0.0, 1.0, 0.0), fov, aspect, 0.1, 1.0e5)
             values.update(aircraft=1, aircraft_position=tuple(pos), aircraft_forward=f, aircraft_right=r,
                           aircraft_up=u)

@@ -25,10 +25,11 @@ from ..core.cbridge import VOLUME_PARAMS
 from ..core.registry import Arg, declare
 from .camera import camera_ray
 from .colour import colour_srgb_encode
-from .common import bound_cell, mix3
+from .common import bound_cell, clamp01, mix3
 from .flight import flight_aircraft
 from .hash import hash_pcg, hash_unit
 from .phase import phase_hg
+from .valuenoise import valuenoise_fbm
 
 BIG_T = wp.constant(3.0e38)
 MAX_GRIDS = 16          # CCL_VOLUME_MAX_GRIDS
@@ -53,7 +54,13 @@ _Vgrid = wp.types.vector(length=MAX_GRIDS, dtype=wp.float32)  # per-grid values 
 FOUR_PI = wp.constant(float(np.float32(4.0) * np.float32(math.pi)))  # 4.0f * CCL_PI_F, folded as in C
 _INV_255 = wp.constant(float(np.float32(1.0) / np.float32(255.0)))
 _U65536 = wp.constant(wp.uint32(65536))
-_U73856093 = wp.constant(wp.uint32(73856093))
+#: The generated ground (CCL_VOLUME_GROUND_*, reasons in cclouds/volume.h): octaves, period in lattice cells, seed.
+GROUND_OCTAVES = 5
+GROUND_PERIOD = 256
+GROUND_SEED = 7
+_GROUND_OCTAVES = wp.constant(GROUND_OCTAVES)
+_GROUND_PERIOD = wp.constant(float(GROUND_PERIOD))
+_GROUND_SEED = wp.constant(wp.uint32(GROUND_SEED))
 
 
 @wp.struct
@@ -332,6 +339,36 @@ def _aircraft_colour(p: VolumeParams, q: wp.vec3, part: int) -> wp.vec3:
 
 
 @wp.func
+def _ground_coord(g: float, field_size: float) -> float:
+    u = g / field_size + 0.5 * _GROUND_PERIOD
+    u = u - wp.floor(u / _GROUND_PERIOD) * _GROUND_PERIOD
+    if u >= 0.0 and u < _GROUND_PERIOD:
+        return u
+    return 0.0
+
+
+@wp.func
+def _ground_fbm(x: float, z: float, seed: wp.uint32) -> float:
+    # 2-D octave sum: raw lattice (smoothing 3), cosine (1), corrected persistence (0), unit range (0)
+    return valuenoise_fbm(x, z, 0.0, seed, 2, _GROUND_OCTAVES, 0.5, 3, 1, 0, 0)
+
+
+@wp.func
+def volume_ground(p: VolumeParams, gx: float, gz: float) -> wp.vec3:
+    """Twin of ``ccl_volume_ground``: the albedo of the generated ground at (gx, gz) [m] -- value-noise octave sums
+    for meadows and fields (ground_a .. ground_b), forest and a river (the formulas in cclouds/volume.h)."""
+    x = _ground_coord(gx, p.field_size)
+    z = _ground_coord(gz, p.field_size)
+    a = clamp01(2.5 * (_ground_fbm(x, z, _GROUND_SEED) - 0.5) + 0.5)
+    b = clamp01(12.0 * (_ground_fbm(x, z, _GROUND_SEED + wp.uint32(1)) - 0.56))
+    r = _ground_fbm(0.25 * x, 0.25 * z, _GROUND_SEED + wp.uint32(2)) - 0.5
+    w = clamp01((0.012 - wp.abs(r)) / 0.004)
+    alb = mix3(p.ground_a, p.ground_b, a)
+    alb = mix3(alb, p.ground_a * 0.45, b)
+    return mix3(alb, wp.vec3(0.06, 0.09, 0.12), w)
+
+
+@wp.func
 def volume_background(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
     """Twin of ``ccl_volume_background``: (colour, aircraft distance or BIG_T)."""
     col = wp.vec3(0.0, 0.0, 0.0)
@@ -346,20 +383,12 @@ def volume_background(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
     if done == 0:
         if d[1] < 0.0 and eye[1] > 0.0:
             t = -eye[1] / d[1]
-            gx = eye[0] + t * d[0]
-            gz = eye[2] + t * d[2]
-            fx = wp.floor(gx / p.field_size)
-            fz = wp.floor(gz / p.field_size)
-            fx = wp.clamp(fx, -1.0e9, 1.0e9)
-            fz = wp.clamp(fz, -1.0e9, 1.0e9)
-            cx = wp.uint32(int(fx))
-            cz = wp.uint32(int(fz))
-            h = hash_pcg((cx * _U73856093) ^ hash_pcg(cz))
-            u = hash_unit(h)
             sun_up = wp.where(p.sun[1] > 0.0, p.sun[1], 0.0)
-            ground = mix3(p.ground_a, p.ground_b, u) * (0.35 + 0.65 * sun_up)
+            alb = volume_ground(p, eye[0] + t * d[0], eye[2] + t * d[2])
+            lit = p.sun_colour * sun_up + p.ambient_top
+            col = wp.vec3(alb[0] * lit[0], alb[1] * lit[1], alb[2] * lit[2])
             f = wp.exp(-t / p.fog_distance)
-            col = mix3(p.sky_horizon, ground, f)
+            col = mix3(p.sky_horizon, col, f)
         else:
             col = volume_sky(p, d)
     return col, t_out

@@ -7,6 +7,8 @@
 * :func:`voxel_filter` (oc-5.2.2) -- Elias's exponential cut-out, density = 255 (1 - sharpness^max(255 n - cover,
   0)).
 * :func:`voxel_sin_window` (oc-5.2.3.1) -- the SIN weight at a distance from the nearest face.
+* :func:`voxel_envelope` -- beyond the text: the squared radius of the ellipsoids of the falloff envelope
+  (n - envelope q) that makes a compact cloud with no box face (``ccl_voxel_envelope``; reasons in ``cclouds/voxel.h``).
 * :func:`voxel_scale_sample` (oc-5.2.3-scale) -- per-axis scaling by trilinear resampling (corners aligned: a zero
   border stays zero).
 
@@ -76,6 +78,24 @@ def voxel_sin_window(d: int, radius: float) -> float:
     if fd >= radius:
         return 1.0
     return wp.sin(_HALF_PI * (fd / radius))
+
+
+@wp.func
+def voxel_envelope(x: int, y: int, z: int, n: int, base: float) -> float:
+    """Twin of ``ccl_voxel_envelope``: q = dx^2 + dy^2 + dz^2 on the ellipsoids inscribed in the cube of edge n (y up,
+    q = 1 on the inscribed one), their centre at height base / (1 + base) of the edge: the lower semi-axis is
+    ``base`` times the upper, so the base falls off faster than the top."""
+    m = float(n - 1)
+    dx = (2.0 * float(x) - m) / m
+    dz = (2.0 * float(z) - m) / m
+    c = base / (1.0 + base)
+    u = float(y) / m
+    dy = float(0.0)
+    if u >= c:
+        dy = (u - c) / (1.0 - c)
+    else:
+        dy = (c - u) / c
+    return dx * dx + dy * dy + dz * dz
 
 
 # --- the build (mirrors voxel.c) -----------------------------------------------------------------------------------------
@@ -202,10 +222,10 @@ def _to_u8(d: float) -> wp.uint8:
 
 
 @wp.kernel
-def finish_kernel(row0: int, n: int, norm: float, border: int, radius: float, cover: float, sharpness: float,
-                  filtered: int, raw: wp.array(dtype=float), noise: wp.array(dtype=float),
-                  cloud: wp.array(dtype=wp.uint8)):
-    # n = clamp(A / norm * SIN windows, 0, 1); cloud = round(filter(n)) when filtered
+def finish_kernel(row0: int, n: int, norm: float, border: int, radius: float, envelope: float, envelope_base: float,
+                  cover: float, sharpness: float, filtered: int, raw: wp.array(dtype=float),
+                  noise: wp.array(dtype=float), cloud: wp.array(dtype=wp.uint8)):
+    # n = clamp(A / norm * SIN windows - envelope q, 0, 1); cloud = round(filter(n)) when filtered
     i, x = wp.tid()
     row = row0 + i
     z = row // n
@@ -215,6 +235,8 @@ def finish_kernel(row0: int, n: int, norm: float, border: int, radius: float, co
     if border == _BORDER_SIN:
         v = v * voxel_sin_window(_face_distance(x, n), radius) * voxel_sin_window(_face_distance(y, n), radius) \
             * voxel_sin_window(_face_distance(z, n), radius)
+    if envelope > 0.0:
+        v = v - envelope * voxel_envelope(x, y, z, n, envelope_base)
     v = clamp01(v)
     noise[k] = v
     if filtered != 0:

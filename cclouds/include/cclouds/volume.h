@@ -49,6 +49,12 @@ extern "C" {
 #endif
 
 #define CCL_VOLUME_MAX_GRIDS 16
+/* The generated ground (ccl_volume_ground): 5 octaves (a field's edge down to 1/16 of it: 11 m at the defaults, the
+ * pixel size at 2 km); a period of 256 lattice cells, so that u 2^(octaves - 1) <= 4096 (CCL_VALUENOISE_MAX_COORD);
+ * the seed of its three noise fields (any: fixed, the ground is the same in every flight). */
+#define CCL_VOLUME_GROUND_OCTAVES 5
+#define CCL_VOLUME_GROUND_PERIOD 256
+#define CCL_VOLUME_GROUND_SEED 7u
 /* Largest colour component (and sun_glow) ccl_volume_check accepts: 10^6, far above display-linear use (<= a few),
  * low enough that colour x phase x glow stays finite (with FLT_MAX the aircraft's Inf x 0 was a NaN pixel). */
 #define CCL_VOLUME_MAX_COLOUR 1000000
@@ -86,11 +92,11 @@ typedef struct ccl_volume_params {
     ccl_vec3 ambient_bottom;    /* ambient light at the bottom of a cloud box */
     ccl_vec3 sky_zenith;        /* sky colour straight up */
     ccl_vec3 sky_horizon;       /* sky colour at the horizon; also the colour of the aerial fog */
-    ccl_vec3 ground_a;          /* the two colours the fields of the ground are mixed from */
+    ccl_vec3 ground_a;          /* the two colours the ground's albedo noise mixes (ccl_volume_ground) */
     ccl_vec3 ground_b;
     float sun_glow;             /* strength of the glow around the sun in the sky */
     float sun_glow_power;       /* its falloff: glow * max(dot(d, sun), 0)^power */
-    float field_size;           /* edge of one field of the ground pattern [m] */
+    float field_size;           /* edge of one lattice cell of the ground's value noise at its first octave [m] */
     float fog_distance;         /* e-folding distance of the aerial fog [m] */
     float tau_per_voxel;        /* optical depth of one voxel length at density 255, view rays */
     float light_tau_per_voxel;  /* the same towards the sun (ccl_volume_light) */
@@ -159,9 +165,24 @@ CCL_API ccl_status ccl_volume_skip(const ccl_volume_grid *grid, unsigned char *o
  * Display-linear. */
 CCL_API ccl_vec3 ccl_volume_sky(const ccl_volume_params *p, ccl_vec3 d);
 
-/* The background of a ray without clouds: the aircraft (when hit), else the ground (d.y < 0 and eye.y > 0: field
- * colour mix(ground_a, ground_b, ccl_hash_unit(hash of the field cell)) lit by (0.35 + 0.65 max(sun.y, 0)) and
- * fogged towards sky_horizon by exp(-t / fog_distance)), else ccl_volume_sky. *out_t: the distance of the aircraft
+/* Albedo of the generated ground at (gx, gz) [m], made with the text's own tools: 2-D value-noise octave sums
+ * (ccl_valuenoise_fbm, CCL_VOLUME_GROUND_OCTAVES octaves, persistence 0.5, raw lattice, cosine interpolation) at
+ * lattice coordinates u = (g / field_size + CCL_VOLUME_GROUND_PERIOD / 2) wrapped into [0, CCL_VOLUME_GROUND_PERIOD)
+ * (the noise repeats every PERIOD field sizes, 46 km at the defaults: far in the fog). Three fields, octave seeds
+ * CCL_VOLUME_GROUND_SEED + 0, 1, 2:
+ *   meadows and fields  a = fbm(u), albedo = mix(ground_a, ground_b, clamp(2.5 (a - 0.5) + 0.5, 0, 1))
+ *   forest              b = fbm(u), albedo = mix(albedo, 0.45 ground_a, clamp(12 (b - 0.56), 0, 1))
+ *   a river             r = fbm(u / 4) (its slow octaves meander), albedo = mix(albedo, water,
+ *                       clamp((0.012 - |r - 0.5|) / 0.004, 0, 1)): the level line r = 0.5, ~ a field wide;
+ *                       water = (0.06, 0.09, 0.12), a dark blue-grey river seen from above.
+ * Beyond the text (it shows no ground); the contrast 2.5, the forest threshold 0.56 (about a fifth of the land) and
+ * ramp 12, and the river's half-width 0.012 and ramp 0.004 were chosen by eye from the air at 500 m.
+ * Display-linear reflectances. */
+CCL_API ccl_vec3 ccl_volume_ground(const ccl_volume_params *p, float gx, float gz);
+
+/* The background of a ray without clouds: the aircraft (when hit), else the ground (d.y < 0 and eye.y > 0:
+ * ccl_volume_ground at the hit, Lambertian under the sun and the sky: albedo (sun_colour max(sun.y, 0) +
+ * ambient_top), fogged towards sky_horizon by exp(-t / fog_distance)), else ccl_volume_sky. *out_t: the distance of the aircraft
  * hit (the clouds are marched up to it) or +inf. Display-linear. */
 CCL_API ccl_vec3 ccl_volume_background(const ccl_volume_params *p, ccl_vec3 eye, ccl_vec3 d, float *out_t);
 

@@ -27,6 +27,16 @@
  *             level is 0 and never filled (neither by the up-sampling nor by the added noise), so every level can
  *             interpolate toward zero on all sides; the array of edge `size` is the cloud's interior (size - 2)
  *             plus the zero border (the text does not give the border width: one cell per level).
+ *   envelope  (beyond the text) n = n - envelope * q(x, y, z), q = ccl_voxel_envelope(x, y, z, size,
+ *             envelope_base): the squared radius of the ellipsoids inscribed in the box (1 on the inscribed one, up to
+ *             3 in the corners), their centre lowered so that the base falls off faster than the top; after the border
+ *             handling, before the clamp. envelope = 0 (default): the text's array as printed. The zero border only
+ *             stops the noise at the faces: a cloud that fills its box still shows the box's flat faces. The falloff
+ *             subtracts little in the core, where the noise and the cover decide the outline (lumps the size of the
+ *             noise's features), and ever more towards the faces, so the cloud is compact and ends well inside its
+ *             box with no face to show: a lumpy top and a flatter base (Gardner's textured ellipsoids, oc-4.3, in
+ *             the text's pipeline). Subtracted, not multiplied: a weight in [0, 1] times the noise moves the
+ *             outline with the weight's steep slope, not with the noise, and every cloud became the same ellipsoid.
  *   filter    density = ccl_voxel_filter(n, cover, sharpness), stored as uint8 round(density).
  *   scaling   the cloud is scaled per axis by resampling the uint8 array (ccl_voxel_scale), corners aligned, so a
  *             zero border stays zero; a renderer may scale its box instead (what a SoScale node does in Coin3D).
@@ -66,7 +76,11 @@ extern "C" {
  *                          around its mean (about 0.4 x 255 with the zero border's fall-off), so 128 keeps the
  *                          brightest 15-30 % of the voxels -- one or a few compact clouds inside the box.
  *   sharpness 0.96      -- soft but visible edges: 255 (1 - 0.96^c) reaches half density at c = 17 units above the
- *                          cover (Elias's tutorial uses values of this order). */
+ *                          cover (Elias's tutorial uses values of this order).
+ *   envelope 0          -- the text's array as printed (the flight scene asks for 0.2).
+ *   envelope_base 0.35  -- lower semi-axis of the ellipsoids over the upper one: the base falls off about three
+ *                          times as fast as the top (a fair-weather cumulus: a flat base at the condensation level
+ *                          under a dome). */
 typedef struct ccl_voxel_settings {
     int32_t size;           /* edge in voxels, [CCL_VOXEL_MIN_BASE << (levels - 1), CCL_VOXEL_MAX_SIZE], a multiple
                                of 2^(levels - 1) */
@@ -80,6 +94,8 @@ typedef struct ccl_voxel_settings {
     float sin_radius;       /* (0, 0.5], fraction of the edge (used by CCL_VOXEL_BORDER_SIN only) */
     float cover;            /* [0, 255] */
     float sharpness;        /* (0, 1) */
+    float envelope;         /* [0, 1], noise subtracted on the inscribed ellipsoid (0: none) */
+    float envelope_base;    /* (0, 1], lower over upper semi-axis of the ellipsoids */
 } ccl_voxel_settings;
 
 /* The documented defaults above. Ref: oc-5.2.1. */
@@ -103,6 +119,13 @@ CCL_API float ccl_voxel_filter(float n, float cover, float sharpness);
  * d = min(i, size - 1 - i) per axis and the weights of the three axes multiply. d -> [0, 4096] voxels;
  * radius -> (0, 4096] voxels. Output [0, 1], 0 on a face (d = 0). pi/2 = 1.57079637f. */
 CCL_API float ccl_voxel_sin_window(int32_t d, float radius);
+
+/* Squared radius of the envelope's ellipsoids at voxel (x, y, z) of a cubic array of edge n (y up): with m = n - 1,
+ * dx = (2x - m) / m, dz = (2z - m) / m, the centre at height c = base / (1 + base) (fraction of the edge),
+ * u = y / m, dy = (u - c) / (1 - c) above the centre, (c - u) / c below; q = dx^2 + dy^2 + dz^2. 0 at the centre,
+ * 1 on the ellipsoid inscribed in the box, at most 3 (a corner); continuous. Ref: the envelope of the cloud array
+ * (beyond the text; oc-4.3 in kind). x, y, z -> [0, n - 1]; n -> [2, 4096]; base -> (0, 1]. */
+CCL_API float ccl_voxel_envelope(int32_t x, int32_t y, int32_t z, int32_t n, float base);
 
 /* The noise array before filtering (the "nebula" of fig. 5.11): float32 in [0, 1], size^3 values indexed
  * (z * size + y) * size + x, built as described at the top of this header (border handling included).
