@@ -58,13 +58,15 @@ def test_cloud_fields_mirror_the_cloud_array_settings():
     theirs = {p.name: p for p in specs(CloudArraySettings)}
     ours = {p.name: p for p in specs(FlightSettings)}
     for mine, their in (("cloud_cover", "cover"), ("cloud_sharpness", "sharpness"),
-                        ("cloud_persistence", "persistence"), ("cloud_interpolation", "interpolation")):
+                        ("cloud_persistence", "persistence"), ("cloud_interpolation", "interpolation"),
+                        ("cloud_smoothing", "smoothing"), ("cloud_envelope", "envelope"),
+                        ("cloud_envelope_base", "envelope_base")):
         a, b = ours[mine], theirs[their]
         assert (a.lo, a.hi, a.lo_open, a.hi_open) == (b.lo, b.hi, b.lo_open, b.hi_open), mine
         if b.choices:
             assert set(a.choices) <= set(b.choices)
     s = FlightSettings(cloud_cover=140.0, seed=5).cloud_array(2)
-    assert s.cover == 140.0 and s.size == 64
+    assert s.cover == 140.0 and s.size == 64 and s.envelope == FlightSettings().cloud_envelope > 0
 
 
 def test_registered_with_paths_and_benchmarks():
