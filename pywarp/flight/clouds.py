@@ -94,7 +94,7 @@ class CloudArraySettings(Settings):
                                 "ellipsoids inscribed in the box (1 on the inscribed one, their centre lowered by "
                                 "envelope_base), so the cloud is compact, ends inside its box and shows no face; 0 "
                                 "the text's array as printed",
-                            reason="0: the text's pipeline; the flight scene and the oc figures ask for 0.2 "
+                            reason="0: the text's pipeline; the flight scene and the oc figures ask for 0.5 "
                                    "(FlightSettings.cloud_envelope)")
     envelope_base: float = param(0.35, lo=0.0, lo_open=True, hi=1.0, invalidates="textures", group="cloud array",
                                  doc="lower semi-axis of the envelope's ellipsoids over the upper one (1: centred)",

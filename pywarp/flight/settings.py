@@ -50,13 +50,13 @@ class FlightSettings(Settings):
                             reason="64: the noise64 of the filter listing (oc-5.2.2)")
     # the fields below mirror pywarp.flight.clouds.CloudArraySettings (cover, sharpness, persistence, interpolation,
     # smoothing, envelope, envelope_base), declared here so that registering the scene imports no Warp (tests/flight check they agree)
-    cloud_cover: float = param(80.0, unit="0..255", lo=0.0, hi=255.0, invalidates="clouds", group="clouds",
+    cloud_cover: float = param(50.0, unit="0..255", lo=0.0, hi=255.0, invalidates="clouds", group="clouds",
                                cli="--cloud-cover",
                                doc="cloudCover of the filter (oc-5.2.2): a LARGER cover gives LESS cloud",
-                               reason="80: with the envelope (cloud_envelope) the noise decides the outline where "
-                                      "it exceeds 80 + 51 q (q the envelope's squared radius): a compact cloud of "
-                                      "about a third of its box; the cloud array's own 128 (without the envelope) "
-                                      "left sparse wisps")
+                               reason="50: with the envelope (cloud_envelope) the noise makes cloud where it exceeds "
+                                      "50 + 128 q (q the envelope's squared radius): a compact cloud of about a fifth "
+                                      "of its box; the cloud array's own 128 (without the envelope) left sparse "
+                                      "wisps")
     cloud_sharpness: float = param(0.92, lo=0.0, hi=1.0, lo_open=True, hi_open=True, invalidates="clouds",
                                    group="clouds", cli="--cloud-sharpness",
                                    doc="cloudSharpness of the filter (oc-5.2.2) in (0, 1): near 0 hard edges",
@@ -75,15 +75,16 @@ class FlightSettings(Settings):
                                  reason="'none': inside the envelope the raw lattice's finer levels give the lumpy, "
                                         "cauliflower outline of a cumulus; Elias's smoothing (the cloud array's "
                                         "default) rounds every cloud into the same soft blob")
-    cloud_envelope: float = param(0.2, unit="noise", lo=0.0, hi=1.0, invalidates="clouds", group="clouds",
+    cloud_envelope: float = param(0.5, unit="noise", lo=0.0, hi=1.0, invalidates="clouds", group="clouds",
                                   cli="--cloud-envelope",
                                   doc="falloff envelope of the cloud array (beyond the text): noise minus this times "
                                       "the squared radius of the ellipsoids inscribed in the box; 0 = the text's "
                                       "array as printed (the cloud fills its box and shows its faces)",
-                                  reason="0.2: about 5 standard deviations of the noise at the inscribed ellipsoid "
-                                         "-- every cloud ends inside its box, while in the core (q < 0.3) the "
-                                         "envelope moves the threshold by less than 1.5 of them, so the noise draws "
-                                         "the outline")
+                                  reason="0.5: about 7 standard deviations of the raw-lattice noise (0.07) at the "
+                                         "inscribed ellipsoid -- every cloud ends inside it, rounded; in the core "
+                                         "(q < 0.2) the threshold moves by less than 1.5 of them, so the noise draws "
+                                         "the lumps. 0.2 left flat, box-like sides (the zero border's falloff is "
+                                         "separable per axis)")
     cloud_envelope_base: float = param(0.35, lo=0.0, lo_open=True, hi=1.0, invalidates="clouds", group="clouds",
                                        doc="lower semi-axis of the envelope's ellipsoids over the upper one",
                                        reason="0.35: the base falls off three times as fast as the top: a flat base "
@@ -148,9 +149,10 @@ class FlightSettings(Settings):
                                                            "frames over it)",
                                      reason="32: the default script (pywarp.flight.script): a bank, a climb through "
                                             "the first cloud, turns around the others")
-    time_s: float = param(4.0, unit="s", lo=0.0, check=_time_check, group="flight", cli="--time",
+    time_s: float = param(10.0, unit="s", lo=0.0, check=_time_check, group="flight", cli="--time",
                           doc="moment of the flight that `render` shows",
-                          reason="4: the aircraft climbing into the first cloud")
+                          reason="10: the aircraft banking right out of the first cloud, the next clouds ahead and "
+                                 "beside it (the README picture)")
     start_altitude_m: float = param(560.0, unit="m", lo=10.0, hi=20000.0, invalidates="flight", group="flight",
                                     cli="--start-altitude", doc="altitude of the aircraft at t = 0",
                                     reason="560: just below the cloud level; the script's climb enters the first "

@@ -12,7 +12,9 @@ small fragments (the core, up to 3.2, stays solid). Fig. 4.2 (oc-4.3): one ellip
 of the box) with the texturing function 0.5 + n (clamped to [0, 1]; n the same fBm, 5 octaves from 4 cells per box
 width, seed 5: Perlin-type noise, as the text's OpenGL version of Gardner's sums of sines) and Gardner's translucency
 (pywarp.equation("oc-4.3"), T1 = 0.25, D = 0.25). Fig. 4.3 (oc-4.3): five such ellipsoids joined (the largest opacity
-wins). Every volume is uint8 (0 .. 255) and rendered by the volume renderer of the flight scene
+wins). Figs. 4.2 and 4.3 show the ellipsoids' outlines (their projections over the
+empty scene) beside the textured result. Every volume is uint8 (0 .. 255) and rendered by the volume renderer of the
+flight scene
 (pywarp.flight.volumes.render: emission-absorption raymarch, light volume towards a sun 35 deg high at azimuth 110 deg,
 from the right; optical depth 0.3 per voxel, so the texture's holes read as holes).
 Outputs: figures/oc/fig-4.1.png, figures/oc/fig-4.2.png, figures/oc/fig-4.3.png.
@@ -102,20 +104,62 @@ def ellipsoid_opacity(p: np.ndarray, centre, radii, texture: np.ndarray) -> np.n
     return np.asarray(op).reshape(p.shape[:3])
 
 
+ORIGIN = (-EXTENT[0] / 2, 40.0, -EXTENT[2] / 2)  # the box's corner [m]
+
+
+def camera(width: int, height: int):
+    eye = np.array([0.0, 80.0, 118.0])
+    return CAM.camera_look_at(eye, np.array([0.0, 68.0, 0.0]), (0.0, 1.0, 0.0), math.radians(45.0), width / height,
+                              0.1, 1e5)
+
+
 def render_volume(density: np.ndarray, width: int, height: int) -> np.ndarray:
     values = VOLUME_PARAMS.defaults()
     values["sky_zenith"], values["sky_horizon"] = (0.20, 0.38, 0.70), (0.55, 0.68, 0.86)
-    # the sun from the right and a little behind, 35 deg high: lit right sides, shaded left and bottom; fields of
-    # 30 m for a ground seen from 150 m
+    # the sun from the right and a little behind, 35 deg high: lit right sides, shaded left and bottom; the ground's
+    # noise cells of 30 m for a ground seen from 150 m
     values["sun"] = V.sun_direction(35.0, 110.0)
     values["field_size"] = 30.0
     values["tau_per_voxel"] = 0.3  # a little thinner than the flight scene's 0.35: holes and turrets read
-    vs = VS.VolumeSet([VS.PlacedVolume(density, (-EXTENT[0] / 2, 40.0, -EXTENT[2] / 2), EXTENT)])
+    vs = VS.VolumeSet([VS.PlacedVolume(density, ORIGIN, EXTENT)])
     vs.compute_light(values)
-    eye = np.array([0.0, 80.0, 118.0])
-    cam = CAM.camera_look_at(eye, np.array([0.0, 68.0, 0.0]), (0.0, 1.0, 0.0), math.radians(45.0), width / height,
-                             0.1, 1e5)
-    return VS.render(vs, values, cam, width, height)
+    return VS.render(vs, values, camera(width, height), width, height)
+
+
+def ellipse_outline(centre, radii, width: int, height: int) -> np.ndarray:
+    """The outline of an ellipsoid (box units) in the image of :func:`camera`: the convex hull of its projected
+    surface (the projection of an ellipsoid is convex), closed, pixel coordinates (k, 2)."""
+    from scipy.spatial import ConvexHull
+
+    th, ph = np.meshgrid(np.linspace(0, np.pi, 48), np.linspace(0, 2 * np.pi, 96), indexing="ij")
+    unit = np.stack([np.sin(th) * np.cos(ph), np.cos(th), np.sin(th) * np.sin(ph)], axis=-1).reshape(-1, 3)
+    world = np.float64(ORIGIN) + (np.float64(centre) + unit * np.float64(radii)) * np.float64(EXTENT)
+    clip = np.c_[world, np.ones(len(world))] @ camera(width, height).view_proj.astype(np.float64).T
+    ndc = clip[:, :2] / clip[:, 3:]
+    px = np.stack([(ndc[:, 0] + 1) * 0.5 * width, (1 - ndc[:, 1]) * 0.5 * height], axis=-1)
+    hull = px[ConvexHull(px).vertices]
+    return np.vstack([hull, hull[:1]])
+
+
+def save_with_outlines(background: np.ndarray, result: np.ndarray, ellipsoids, title: str, path: Path) -> Path:
+    """Two panels: the ellipsoids' outlines over the empty scene (left) and the textured result (right)."""
+    h, w = result.shape[:2]
+    fig = plt.figure(figsize=(2 * w / 100, h / 100 + 0.35), dpi=100)
+    for k, (img, label) in enumerate(((background, "the ellipsoids"), (result, "textured, Gardner translucency"))):
+        ax = fig.add_axes([k * 0.5, 0, 0.5, h / (h + 35)])
+        ax.imshow(img)
+        if k == 0:
+            for centre, radii in ellipsoids:
+                o = ellipse_outline(centre, radii, w, h)
+                ax.plot(o[:, 0], o[:, 1], color="white", lw=1.2)
+        ax.text(6, 14, label, color="white", fontsize=8)
+        ax.set_xlim(0, w)
+        ax.set_ylim(h, 0)
+        ax.axis("off")
+    fig.text(0.5, 1 - 17 / (h + 35), title, ha="center", va="center", fontsize=9)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
 
 
 def save(img: np.ndarray, title: str, path: Path) -> Path:
@@ -149,20 +193,25 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # the texturing function of the ellipsoids: a high-contrast fBm in [0, 1]
     noise = np.clip(0.5 + 1.0 * fbm(p, 4.0, 5), 0.0, 1.0).astype(np.float32)
 
-    # fig 4.2: one textured ellipsoid
-    one = ellipsoid_opacity(p, (0.5, 0.5, 0.5), (0.42, 0.26 / 0.6, 0.34), noise)
-    written.append(save(render_volume(to_u8(one), w, h), "one ellipsoid: noise texture, Gardner translucency "
-                                                         "(T1 0.25, D 0.25)", out_dir / "fig-4.2.png"))
+    # fig 4.2: one textured ellipsoid, its outline beside it
+    empty = render_volume(np.zeros((n, n, n), np.uint8), w, h)
+    single = [((0.5, 0.5, 0.5), (0.42, 0.26 / 0.6, 0.34))]
+    one = ellipsoid_opacity(p, *single[0], noise)
+    written.append(save_with_outlines(empty, render_volume(to_u8(one), w, h), single,
+                                      "one ellipsoid: noise texture, Gardner translucency (T1 0.25, D 0.25)",
+                                      out_dir / "fig-4.2.png"))
 
-    # fig 4.3: several ellipsoids joined
+    # fig 4.3: several ellipsoids joined, their outlines beside them
     parts = [((0.5, 0.45, 0.5), (0.30, 0.30, 0.26)), ((0.28, 0.38, 0.52), (0.20, 0.22, 0.18)),
              ((0.72, 0.40, 0.46), (0.22, 0.25, 0.20)), ((0.45, 0.68, 0.48), (0.18, 0.25, 0.16)),
              ((0.62, 0.62, 0.58), (0.15, 0.22, 0.14))]
+    parts = [(centre, (radii[0], radii[1] / 0.6, radii[2])) for centre, radii in parts]
     joined = np.zeros(p.shape[:3], np.float32)
     for centre, radii in parts:
-        joined = np.maximum(joined, ellipsoid_opacity(p, centre, (radii[0], radii[1] / 0.6, radii[2]), noise))
-    written.append(save(render_volume(to_u8(joined), w, h), "five textured ellipsoids joined (max of the opacities)",
-                        out_dir / "fig-4.3.png"))
+        joined = np.maximum(joined, ellipsoid_opacity(p, centre, radii, noise))
+    written.append(save_with_outlines(empty, render_volume(to_u8(joined), w, h), parts,
+                                      "five textured ellipsoids joined (max of the opacities)",
+                                      out_dir / "fig-4.3.png"))
     return written
 
 

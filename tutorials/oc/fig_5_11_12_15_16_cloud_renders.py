@@ -33,6 +33,24 @@ import numpy as np  # noqa: E402
 from scipy import ndimage  # noqa: E402
 
 from pywarp.flight.clouds import CloudArraySettings, cloud_volume, noise_volume, scale_volume  # noqa: E402
+from pywarp.flight.settings import FlightSettings  # noqa: E402
+
+
+def render_scene(volumes, width: int, height: int, eye, target, fov: float) -> np.ndarray:
+    """The flight scene's volume renderer (pywarp.flight.volumes.render, its default look: sun 35 deg high at azimuth
+    150 deg, the generated ground) of ``volumes`` = [(uint8 [z, y, x] with y up, origin, extent)], seen from ``eye``
+    towards ``target`` [m] with a vertical field of view ``fov`` [deg]. uint8 sRGB."""
+    import math
+
+    from pywarp.flight import volumes as VS
+    from pywarp.kernels import camera as CAM
+
+    values = FlightSettings().c_values()
+    vs = VS.VolumeSet([VS.PlacedVolume(v, o, e) for v, o, e in volumes])
+    vs.compute_light(values)
+    cam = CAM.camera_look_at(np.array(eye, float), np.array(target, float), (0.0, 1.0, 0.0), math.radians(fov),
+                             width / height, 0.1, 1e5)
+    return VS.render(vs, values, cam, width, height)
 
 
 def render(vol, size=200, steps=160, tau=20.0, yaw=35.0, pitch=25.0, zoom=1.0, aspect=1.0):
@@ -117,50 +135,50 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     outs.append(_save(fig, out_dir / "fig-5.12.png"))
 
     # %% [markdown]
-    # Fig. 5.15: noise + filter + larger array (the default settings): every face voxel is 0 and the cloud has its
-    # own shape. The three interpolations of the up-sampling side by side (the text: the cubic "differs only in
-    # small details" from the cosine).
+    # Fig. 5.15: noise + filter + larger array, with the flight scene's cloud settings (FlightSettings: cover 80,
+    # sharpness 0.92, raw lattice noise, and the falloff envelope 0.2 -- beyond the text, ``cclouds/voxel.h``): every
+    # face voxel is 0, the cloud ends inside its box, its outline is the noise's. The three interpolations of the
+    # up-sampling side by side (the text: the cubic "differs only in small details" from the cosine), rendered by the
+    # flight scene's volume renderer: sun light through the cloud's light volume and the Henyey-Greenstein phase (lit
+    # tops, darker bases).
 
     # %%
-    fig, axes = plt.subplots(1, 3, figsize=(14, 5.2), dpi=dpi)
+    fs = FlightSettings()
+    look = dict(cover=fs.cloud_cover, sharpness=fs.cloud_sharpness, smoothing=fs.cloud_smoothing,
+                envelope=fs.cloud_envelope, envelope_base=fs.cloud_envelope_base)
+    w, h = (96, 72) if quick else (400, 300)
+    fig, axes = plt.subplots(1, 3, figsize=(3 * w / 100 + 0.3, h / 100 + 0.6), dpi=100)
     for ax, kind in zip(axes, ("linear", "cosine", "cubic")):
-        cloud = cloud_volume(s, interpolation=kind)
+        cloud = cloud_volume(s, interpolation=kind, **look)
         assert cloud[0].max() == 0 and cloud[:, :, -1].max() == 0
-        ax.imshow(render(cloud, px, steps))
+        box = (-50.0, 0.0, -50.0), (100.0, 50.0, 100.0)
+        ax.imshow(render_scene([(cloud, *box)], w, h, eye=(0.0, 55.0, 135.0), target=(0.0, 22.0, 0.0), fov=40.0))
         ax.set_title(f"{kind} up-sampling ({np.count_nonzero(cloud) / cloud.size:.0%} of the voxels)", fontsize=9)
-    fig.text(0.5, 0.02, "the printed cubic overshoots (its slopes are twice Catmull-Rom's) and the repeated "
-             "up-sampling compounds it: the noise gains contrast and more voxels pass the same cover",
-             ha="center", fontsize=9)
-    for ax in axes:
         ax.axis("off")
-    fig.suptitle("oc fig. 5.15: cloud = noise + filtering + larger array (zero borders)", fontsize=11)
-    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    fig.suptitle("oc fig. 5.15: cloud = noise + filtering + larger array (+ falloff envelope)", fontsize=11)
+    fig.tight_layout()
     outs.append(_save(fig, out_dir / "fig-5.15.png"))
 
     # %% [markdown]
-    # Fig. 5.16: several clouds in one scene, each its own seed and per-axis scale (oc-5.2.3-scale: the uint8 array is
-    # resampled, corners aligned, so the zero border stays zero), placed side by side in one larger array.
+    # Fig. 5.16: several clouds in one scene, each its own seed and per-axis scale (oc-5.2.3-scale: the uint8 array
+    # is resampled, corners aligned, so the zero border stays zero), placed in boxes of their scaled shape (1 voxel =
+    # 1.6 m) over the generated ground, rendered as in the flight scene.
 
     # %%
-    layout = [(2, (1.6, 1.3, 0.7), (0, 4)), (3, (1.0, 1.0, 1.2), (1, 0)), (5, (1.3, 1.0, 0.55), (2, 8))]
-    clouds = [scale_volume(cloud_volume(s, seed=seed), scale) for seed, scale, _ in layout]
-    width = sum(c.shape[2] for c in clouds)
-    depth = max(c.shape[1] for c in clouds)
-    height = max(c.shape[0] for c in clouds) + size // 4
-    scene = np.zeros((height, depth, width), dtype=np.uint8)
-    x0 = 0
-    for c, (_, _, (_, z_off)) in zip(clouds, layout):
-        z0 = min(z_off * size // 64, height - c.shape[0])
-        y0 = (depth - c.shape[1]) // 2
-        scene[z0:z0 + c.shape[0], y0:y0 + c.shape[1], x0:x0 + c.shape[2]] = np.maximum(
-            scene[z0:z0 + c.shape[0], y0:y0 + c.shape[1], x0:x0 + c.shape[2]], c)
-        x0 += c.shape[2]
-    fig, ax = plt.subplots(figsize=(12, 5), dpi=dpi)
-    ax.imshow(render(scene, int(px * 0.8), steps, yaw=12.0, pitch=12.0, zoom=2.2, aspect=2.4))
-    ax.set_title("oc fig. 5.16: clouds in the scene, per-axis scaled (x, y, z): "
-                 + ", ".join(f"{sc}" for _, sc, _ in layout), fontsize=10)
+    layout = [(2, (1.6, 0.7, 1.3), (-190.0, 0.0)), (3, (1.0, 1.2, 1.0), (-20.0, -120.0)),
+              (5, (1.3, 0.55, 1.0), (150.0, -20.0)), (7, (2.0, 0.8, 1.6), (20.0, -420.0))]
+    placed = []
+    for seed, scale, (x, z) in layout:
+        c = scale_volume(cloud_volume(s, seed=seed, **look), scale)  # (x, y, z) factors, y up
+        ext = tuple(1.6 * n for n in c.shape[::-1])  # (x, y, z) metres: 1.6 m per voxel on every axis
+        placed.append((c, (x - ext[0] / 2, 420.0, z - ext[2] / 2), ext))
+    w, h = (160, 68) if quick else (960, 400)
+    fig = plt.figure(figsize=(w / 100, h / 100 + 0.35), dpi=100)
+    ax = fig.add_axes([0, 0, 1, h / (h + 35)])
+    ax.imshow(render_scene(placed, w, h, eye=(0.0, 470.0, 330.0), target=(0.0, 440.0, -100.0), fov=50.0))
     ax.axis("off")
-    fig.tight_layout()
+    fig.text(0.5, 1 - 17 / (h + 35), "oc fig. 5.16: clouds in the scene, per-axis scaled (x, y, z): "
+             + ", ".join(f"{sc}" for _, sc, _ in layout), ha="center", va="center", fontsize=10)
     outs.append(_save(fig, out_dir / "fig-5.16.png"))
     return outs
 

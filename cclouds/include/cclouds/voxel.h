@@ -77,7 +77,7 @@ extern "C" {
  *                          brightest 15-30 % of the voxels -- one or a few compact clouds inside the box.
  *   sharpness 0.96      -- soft but visible edges: 255 (1 - 0.96^c) reaches half density at c = 17 units above the
  *                          cover (Elias's tutorial uses values of this order).
- *   envelope 0          -- the text's array as printed (the flight scene asks for 0.2).
+ *   envelope 0          -- the text's array as printed (the flight scene asks for 0.5).
  *   envelope_base 0.35  -- lower semi-axis of the ellipsoids over the upper one: the base falls off about three
  *                          times as fast as the top (a fair-weather cumulus: a flat base at the condensation level
  *                          under a dome). */
