@@ -11,8 +11,6 @@ import pytest
 
 from pywarp.flight.settings import FlightSettings
 
-pytestmark = pytest.mark.spec("oc-5.2.3", "oc-5.2.3.2")
-
 
 def _set_densities(tech, densities):
     from pywarp.flight import volumes as V
@@ -61,6 +59,7 @@ def frames():
     return out
 
 
+@pytest.mark.spec("oc-5.2.3", "oc-5.2.3.2")
 def test_no_box_face_shows_in_rendered_frames(frames):
     """What the clouds add to a frame (the frame minus the frame without clouds) is 0 outside the boxes' projections;
     across the outline of a projection it must change no more than between neighbouring pixels inside it -- else a
