@@ -152,7 +152,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         cloud = cloud_volume(s, interpolation=kind, **look)
         assert cloud[0].max() == 0 and cloud[:, :, -1].max() == 0
         box = (-50.0, 0.0, -50.0), (100.0, 50.0, 100.0)
-        ax.imshow(render_scene([(cloud, *box)], w, h, eye=(0.0, 55.0, 135.0), target=(0.0, 22.0, 0.0), fov=40.0))
+        ax.imshow(render_scene([(cloud, *box)], w, h, eye=(0.0, 28.0, 140.0), target=(0.0, 24.0, 0.0), fov=40.0))
         ax.set_title(f"{kind} up-sampling ({np.count_nonzero(cloud) / cloud.size:.0%} of the voxels)", fontsize=9)
         ax.axis("off")
     fig.suptitle("oc fig. 5.15: cloud = noise + filtering + larger array (+ falloff envelope)", fontsize=11)
@@ -165,8 +165,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # 1.6 m) over the generated ground, rendered as in the flight scene.
 
     # %%
-    layout = [(2, (1.6, 0.7, 1.3), (-190.0, 0.0)), (3, (1.0, 1.2, 1.0), (-20.0, -120.0)),
-              (5, (1.3, 0.55, 1.0), (150.0, -20.0)), (7, (2.0, 0.8, 1.6), (20.0, -420.0))]
+    layout = [(2, (1.6, 0.7, 1.3), (-190.0, 0.0)), (3, (1.1, 0.9, 1.1), (-10.0, -140.0)),
+              (5, (1.3, 0.55, 1.0), (160.0, -10.0)), (7, (2.0, 0.8, 1.6), (-330.0, -600.0))]
     placed = []
     for seed, scale, (x, z) in layout:
         c = scale_volume(cloud_volume(s, seed=seed, **look), scale)  # (x, y, z) factors, y up
