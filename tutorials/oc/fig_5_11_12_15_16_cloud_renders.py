@@ -1,14 +1,17 @@
 """Figures oc-fig-5.11, oc-fig-5.12, oc-fig-5.15 and oc-fig-5.16: the cloud array rendered as a volume -- the noise
-without filtering (5.11), filtered without the border fix (5.12, the border problem; cover 112 there), noise + filter + larger array
-(5.15), and several clouds, scaled per axis, in one scene (5.16).
+without filtering (5.11), filtered without the border fix (5.12, the border problem; cover 112 there), noise + filter +
+larger array (5.15), and several clouds, scaled per axis, in one scene (5.16).
 
 The arrays are the library's (pywarp.flight.clouds): oc-5.2.1 (size/8 -> size up-sampling with added noise), the
-filter oc-5.2.2 (cover 128, sharpness 0.96 -- the text gives no values), border 'none' (oc-5.2.3), 'sin' (the
-rejected rounding oc-5.2.3.1, beside 5.12) and 'zero' (the larger array, oc-5.2.3.2), per-axis scaling oc-5.2.3-scale.
-The text displays them with SimVoleon; here a small orthographic emission-absorption raymarch written in this
-tutorial with NumPy stands in (opacity = voxel / 255 times an optical depth, single light from above through the
-volume, ambient term, blue-sky background) -- the flight scene has the library's renderer. Outputs:
-figures/oc/fig-5.11.png, figures/oc/fig-5.12.png, figures/oc/fig-5.15.png, figures/oc/fig-5.16.png.
+filter oc-5.2.2, border 'none' (oc-5.2.3), 'sin' (the rejected rounding oc-5.2.3.1, beside 5.12) and 'zero' (the
+larger array, oc-5.2.3.2), per-axis scaling oc-5.2.3-scale. Figs. 5.11 and 5.12 use the cloud array's defaults (cover
+128, sharpness 0.96 -- the text gives no values) and a small orthographic emission-absorption raymarch written in this
+tutorial with NumPy (light from above through the volume, ambient term, blue-sky background). Figs. 5.15 and 5.16 use
+the flight scene's cloud settings (FlightSettings: cover 50, sharpness 0.92, raw lattice noise, the falloff envelope
+0.5 with its base at 0.35 -- the envelope is beyond the text, cclouds/voxel.h) and the flight scene's volume renderer
+(pywarp.flight.volumes.render: the sun through each cloud's light volume, the Henyey-Greenstein phase, the generated
+ground) -- the stand-in for SimVoleon, which the text displays them with. Outputs: figures/oc/fig-5.11.png,
+figures/oc/fig-5.12.png, figures/oc/fig-5.15.png, figures/oc/fig-5.16.png.
 """
 # %% [markdown]
 # The noise array is a fog that fills its whole box (fig. 5.11). The exponential filter cuts a cloud out of it:
