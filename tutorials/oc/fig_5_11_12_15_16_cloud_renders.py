@@ -19,7 +19,9 @@ figures/oc/fig-5.12.png, figures/oc/fig-5.15.png, figures/oc/fig-5.16.png.
 # the smaller `sharpness` is. Without precautions the cloud is cut flat by the faces of the box (fig. 5.12): the
 # border values of the coarse arrays survive every interpolation (fig. 5.13). Attenuating toward the faces with a
 # sine removes the cut but leaves a rounded box (the author rejected it); keeping a zero border at every level lets
-# the noise itself fall to zero on all sides, and the cloud takes its own shape (fig. 5.15). A larger `cover` gives
+# the noise itself fall to zero on all sides. A falloff envelope (beyond the text: the noise lowered by 0.5 times the
+# squared radius of the ellipsoid inscribed in the box) keeps the cloud well inside, so it takes a compact, rounded
+# shape of its own (fig. 5.15). A larger `cover` gives
 # *less* cloud -- the text's "how big a cloud we want" reads inverted.
 
 # %%
