@@ -49,7 +49,8 @@ class FlightSettings(Settings):
                             group="clouds", cli="--cloud-size", doc="edge of each cloud array (oc-5.2.1)",
                             reason="64: the noise64 of the filter listing (oc-5.2.2)")
     # the fields below mirror pywarp.flight.clouds.CloudArraySettings (cover, sharpness, persistence, interpolation,
-    # smoothing, envelope, envelope_base), declared here so that registering the scene imports no Warp (tests/flight check they agree)
+    # smoothing, envelope, envelope_base), declared here so that registering the scene imports no Warp (tests/flight
+    # check they agree)
     cloud_cover: float = param(50.0, unit="0..255", lo=0.0, hi=255.0, invalidates="clouds", group="clouds",
                                cli="--cloud-cover",
                                doc="cloudCover of the filter (oc-5.2.2): a LARGER cover gives LESS cloud",

@@ -170,8 +170,8 @@ def test_ground_c_and_warp_agree_and_is_not_a_checkerboard():
         out[i] = VK.volume_ground(p, pts[i][0], pts[i][1])
 
     out = wp.zeros(len(pts), dtype=wp.vec3, device="cpu")
-    wp.launch(ground_kernel, len(pts), [VOLUME_PARAMS.warp_struct(p), wp.array(pts, dtype=wp.vec2, device="cpu")], [out],
-              device="cpu")
+    wp.launch(ground_kernel, len(pts), [VOLUME_PARAMS.warp_struct(p), wp.array(pts, dtype=wp.vec2, device="cpu")],
+              [out], device="cpu")
     np.testing.assert_allclose(out.numpy(), c, rtol=1e-5, atol=1e-6)
     assert np.all(np.isfinite(c)) and c.min() >= 0.0
     # along a line: many distinct values within one 180 m cell, small steps between 5 m neighbours

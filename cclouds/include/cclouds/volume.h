@@ -182,8 +182,8 @@ CCL_API ccl_vec3 ccl_volume_ground(const ccl_volume_params *p, float gx, float g
 
 /* The background of a ray without clouds: the aircraft (when hit), else the ground (d.y < 0 and eye.y > 0:
  * ccl_volume_ground at the hit, Lambertian under the sun and the sky: albedo (sun_colour max(sun.y, 0) +
- * ambient_top), fogged towards sky_horizon by exp(-t / fog_distance)), else ccl_volume_sky. *out_t: the distance of the aircraft
- * hit (the clouds are marched up to it) or +inf. Display-linear. */
+ * ambient_top), fogged towards sky_horizon by exp(-t / fog_distance)), else ccl_volume_sky. *out_t: the distance of
+ * the aircraft hit (the clouds are marched up to it) or +inf. Display-linear. */
 CCL_API ccl_vec3 ccl_volume_background(const ccl_volume_params *p, ccl_vec3 eye, ccl_vec3 d, float *out_t);
 
 /* The display-linear colour of pixel (x, y) of a width x height frame (see the top of this header). grids[count]
