@@ -7,7 +7,8 @@ The aircraft is flown live by the flight model of :mod:`pywarp.kernels.flight` (
 the keys held in that frame, so a script (fixed frame time) always flies the same path. The flight starts from the
 scripted flight's state at the settings' ``time_s`` (the frame ``pywarp render flight`` shows) and goes back there
 when ``time_s`` or the start fields change in the panel. The camera is the settings' ``view``: the chase camera
-(behind and above the aircraft, ``chase_distance_m``, ``chase_height_m``) or the cockpit.
+(behind, beside and above the aircraft: ``chase_distance_m``, ``chase_side_m``, ``chase_height_m``) or the
+cockpit.
 
 The aircraft state lives here, not in the settings: once it has flown, every step returns a
 :class:`pywarp.flight.technique.FlightPose` that carries the aircraft (before, None: the settings' own camera, the

@@ -15,8 +15,8 @@ SCENE = register(Scene(
     settings=FlightSettings,
     technique="pywarp.flight.technique:FlightTechnique",
     paths={"chase": CameraPath("chase", "the whole scripted flight (pywarp.flight.script.DEFAULT_SCRIPT: a climb into "
-                                        "the first cloud, turns around the others) seen by a camera behind and above "
-                                        "the aircraft; the frames are spread over --duration seconds",
+                                        "the first cloud, turns around the others) seen by a camera behind, beside "
+                                        "and above the aircraft (three-quarter view); the frames are spread over --duration seconds",
                                "pywarp.flight.technique:chase_path",
                                start_fields=("start_altitude_m", "start_speed_mps")),
            "cockpit": CameraPath("cockpit", "the same flight from the pilot's eye (the horizon banks)",

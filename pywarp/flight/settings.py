@@ -173,8 +173,8 @@ class FlightSettings(Settings):
                              reason="0.8: at 30 deg bank a full circle in 16 s (ccl_flight_params_default)")
     # --- camera ---
     view: str = param("chase", choices=VIEWS, group="camera",
-                      doc="camera of `render`: chase (behind and above the aircraft) or cockpit (at the pilot's "
-                          "eye, banking with the aircraft; the aircraft itself is not drawn)",
+                      doc="camera of `render`: chase (behind, beside and above the aircraft) or cockpit (at the "
+                          "pilot's eye, banking with the aircraft; the aircraft itself is not drawn)",
                       reason="'chase': shows the aircraft and its attitude in the clouds")
     chase_distance_m: float = param(20.0, unit="m", lo=1.0, hi=10000.0, group="camera", cli="--chase-distance",
                                     doc="distance of the chase camera behind the aircraft (along its heading)",

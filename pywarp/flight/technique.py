@@ -4,7 +4,7 @@ the volume renderer of :mod:`pywarp.kernels.volume` (row bands on every core thr
 :class:`pywarp.core.runtime.TileLauncher`) with the aircraft of :mod:`pywarp.kernels.flight`.
 
     from pywarp.flight.technique import FlightTechnique, FlightPose
-    tech = FlightTechnique()                    # FlightSettings() defaults: 7 clouds of 64^3, 640 x 360
+    tech = FlightTechnique()                    # FlightSettings() defaults: 9 clouds of 64^3, 640 x 360
     img = tech.render(FlightPose(8.0))          # uint8 (360, 640, 3): the chase view 8 s into the flight
 """
 from __future__ import annotations
@@ -173,7 +173,7 @@ def path_poses(frames: int, settings: FlightSettings, view: str) -> list[FlightP
 
 
 def chase_path(frames: int, settings: FlightSettings) -> list[FlightPose]:
-    """The ``chase`` camera path: :func:`path_poses` seen from behind and above the aircraft."""
+    """The ``chase`` camera path: :func:`path_poses` seen from behind, beside and above the aircraft (a three-quarter view)."""
     return path_poses(frames, settings, "chase")
 
 
