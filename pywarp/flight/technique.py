@@ -173,7 +173,8 @@ def path_poses(frames: int, settings: FlightSettings, view: str) -> list[FlightP
 
 
 def chase_path(frames: int, settings: FlightSettings) -> list[FlightPose]:
-    """The ``chase`` camera path: :func:`path_poses` seen from behind, beside and above the aircraft (a three-quarter view)."""
+    """The ``chase`` camera path: :func:`path_poses` seen from behind, beside and above the aircraft (a three-quarter
+    view)."""
     return path_poses(frames, settings, "chase")
 
 

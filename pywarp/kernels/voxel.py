@@ -8,7 +8,8 @@
   0)).
 * :func:`voxel_sin_window` (oc-5.2.3.1) -- the SIN weight at a distance from the nearest face.
 * :func:`voxel_envelope` -- beyond the text: the squared radius of the ellipsoids of the falloff envelope
-  (n - envelope q) that makes a compact cloud with no box face (``ccl_voxel_envelope``; reasons in ``cclouds/voxel.h``).
+  (n - envelope q) that makes a compact cloud with no box face (``ccl_voxel_envelope``; the reasons in
+  ``cclouds/voxel.h``).
 * :func:`voxel_scale_sample` (oc-5.2.3-scale) -- per-axis scaling by trilinear resampling (corners aligned: a zero
   border stays zero).
 
