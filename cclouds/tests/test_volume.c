@@ -166,6 +166,23 @@ static void test_volume_ground_and_aircraft(void)
     /* looking down: the ground; looking up: the sky with a brighter zenith blue */
     c = ccl_volume_background(&p, V(0.0f, 100.0f, 0.0f), V(0.0f, -1.0f, 0.0f), &t);
     CCL_CHECK(c.y > c.z); /* green-brown, not blue */
+    {
+        /* the generated ground: Lambert under the sun and the sky, fogged; its albedo varies within a noise cell
+         * (value noise, not fields of one colour) and between cells, and stays within [0, 1] */
+        ccl_vec3 a = ccl_volume_ground(&p, 0.0f, 0.0f);
+        float fog = expf(-100.0f / p.fog_distance), x, lo = 1.0f, hi = 0.0f, step = 0.0f, prev = a.y;
+        CCL_CHECK_CLOSE(c.y, p.sky_horizon.y + (a.y * (p.sun_colour.y * p.sun.y + p.ambient_top.y)
+                                                - p.sky_horizon.y) * fog, 1e-5);
+        for (x = 5.0f; x < 1800.0f; x += 5.0f) {
+            ccl_vec3 g = ccl_volume_ground(&p, x, 37.0f);
+            CCL_CHECK(g.x >= 0.0f && g.x <= 1.0f && g.y >= 0.0f && g.y <= 1.0f && g.z >= 0.0f && g.z <= 1.0f);
+            lo = g.y < lo ? g.y : lo;
+            hi = g.y > hi ? g.y : hi;
+            step += fabsf(g.y - prev) > 1e-6f;
+            prev = g.y;
+        }
+        CCL_CHECK(hi - lo > 0.1f && step > 300.0f);
+    }
     c = ccl_volume_background(&p, V(0.0f, 100.0f, 0.0f), V(0.0f, 1.0f, 0.0f), &t);
     CCL_CHECK_CLOSE(c.z, p.sky_zenith.z + p.sun_colour.z * p.sun_glow * powf(p.sun.y, p.sun_glow_power), 1e-6);
     /* the aircraft 50 m ahead is hit at 50 m minus the wing's half chord... its top surface seen from above */

@@ -1,7 +1,7 @@
 /* C unit tests of cclouds/voxel.h: the settings check, the exponential filter (oc-5.2.2: range, monotonicity in
  * cover and sharpness), the SIN window (oc-5.2.3.1), the cloud array (oc-5.2.1) with the border problem reproduced
- * (oc-5.2.3) and removed by the zero-border larger array (oc-5.2.3.2), determinism, and per-axis scaling
- * (oc-5.2.3-scale). */
+ * (oc-5.2.3) and removed by the zero-border larger array (oc-5.2.3.2), determinism, per-axis scaling
+ * (oc-5.2.3-scale), and the falloff envelope (beyond the text). */
 #include "cclouds/voxel.h"
 #include "cclouds/valuenoise.h"
 #include "ccl_test.h"
@@ -30,6 +30,41 @@ static void test_settings(void)
     t = s; t.persistence = 0.0f;
     CCL_CHECK(ccl_voxel_settings_check(&t, &field) == CCL_EINVAL && strcmp(field, "persistence") == 0);
     CCL_CHECK(ccl_voxel_settings_check(NULL, &field) == CCL_EINVAL && strcmp(field, "s") == 0);
+    CCL_CHECK(s.envelope == 0.0f && s.envelope_base == 0.35f); /* the text's array by default */
+    t = s; t.envelope = 1.5f;
+    CCL_CHECK(ccl_voxel_settings_check(&t, &field) == CCL_EINVAL && strcmp(field, "envelope") == 0);
+    t = s; t.envelope_base = 0.0f;
+    CCL_CHECK(ccl_voxel_settings_check(&t, &field) == CCL_EINVAL && strcmp(field, "envelope_base") == 0);
+}
+
+/* The envelope's squared radius: 0 at the (lowered) centre, 1 at the centres of the faces, 3 in the corners; with
+ * the base below the centre at 1/3 of the edge (base 0.5), equal distances fall off twice as fast below. The
+ * envelope lowers the noise by envelope * q: 0.5 at the inscribed ellipsoid. */
+static void test_envelope(void)
+{
+    ccl_voxel_settings s = ccl_voxel_settings_default();
+    float *plain = (float *)malloc(32 * 32 * 32 * sizeof(float)), *env = (float *)malloc(32 * 32 * 32 * sizeof(float));
+    size_t k;
+    CCL_CHECK_CLOSE(ccl_voxel_envelope(0, 16, 16, 33, 1.0f), 1.0, 1e-6);
+    CCL_CHECK_CLOSE(ccl_voxel_envelope(16, 16, 16, 33, 1.0f), 0.0, 1e-6);
+    CCL_CHECK_CLOSE(ccl_voxel_envelope(32, 32, 0, 33, 1.0f), 3.0, 1e-6);
+    CCL_CHECK_CLOSE(ccl_voxel_envelope(16, 0, 16, 33, 0.5f), 1.0, 1e-6);   /* the bottom face centre */
+    CCL_CHECK_CLOSE(ccl_voxel_envelope(16, 32, 16, 33, 0.5f), 1.0, 1e-6);  /* the top face centre */
+    /* edge 25, base 0.5: the centre at y = 8; 2 voxels below it (of 8) and 4 above it (of 16) give the same q */
+    CCL_CHECK_CLOSE(ccl_voxel_envelope(12, 6, 12, 25, 0.5f), 0.0625, 1e-6);
+    CCL_CHECK_CLOSE(ccl_voxel_envelope(12, 12, 12, 25, 0.5f), 0.0625, 1e-6);
+    s.size = 32;
+    s.seed = 3;
+    CCL_CHECK(ccl_voxel_noise(&s, plain, 32 * 32 * 32) == CCL_OK);
+    s.envelope = 0.5f;
+    CCL_CHECK(ccl_voxel_noise(&s, env, 32 * 32 * 32) == CCL_OK);
+    for (k = 0; k < 32 * 32 * 32; ++k) {
+        int x = (int)(k % 32), y = (int)(k / 32 % 32), z = (int)(k / 1024);
+        double ref = (double)plain[k] - 0.5 * (double)ccl_voxel_envelope(x, y, z, 32, s.envelope_base);
+        CCL_CHECK_CLOSE(env[k], ref < 0.0 ? 0.0 : ref, 1e-6);
+    }
+    free(plain);
+    free(env);
 }
 
 static void test_filter(void)
@@ -149,5 +184,6 @@ int main(void)
     CCL_RUN(test_sin_window);
     CCL_RUN(test_cloud_borders);
     CCL_RUN(test_scale);
+    CCL_RUN(test_envelope);
     return ccl_test_report();
 }
