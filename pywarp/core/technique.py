@@ -92,3 +92,25 @@ class Technique:
 
     def allocate(self, width: int, height: int) -> None:
         """The frame buffers of a width x height frame on ``self.device`` (override; default none)."""
+
+    # --- what the viewer's temporal reconstruction asks of a scene (pywarp.core.temporal) -------------------------------
+    def pose(self, pose=None):
+        """The pose a ``render(pose)`` uses: ``pose``, or the settings' own (:meth:`Pose.from_settings`) where None.
+        A scene whose camera is not a yaw and a pitch (the flight's chase camera) overrides it."""
+        from .pose import Pose
+
+        return pose if pose is not None else Pose.from_settings(self.settings)
+
+    def camera(self, pose=None):
+        """The camera (:class:`pywarp.kernels.camera.Camera`, without the pose's jitter) that ``render(pose)`` looks
+        through: the matrices depend on the aspect only, not on the size."""
+        from ..kernels.camera import pose_camera
+
+        p = replace(self.pose(pose), jitter_px=(0.0, 0.0))
+        return pose_camera(p, self.settings.width, self.settings.height)
+
+    @staticmethod
+    def jitter(pose, jitter_px: tuple):
+        """``pose`` moved by a sub-pixel offset of the image (``jitter_px`` pixels; every pose class has the
+        field)."""
+        return replace(pose, jitter_px=(float(jitter_px[0]), float(jitter_px[1])))
