@@ -18,7 +18,7 @@ Karis 2014, Yang et al. 2020). :meth:`TemporalUpsampler.resolve` writes the wind
 With the camera and the scene still, the clamp is off (the history is then exact) and after f^2 frames every pixel
 has been rendered once: the picture is the full render. What a scene feeds the pass: its uint8 frame at the reduced
 size rendered with the phase's ``jitter_px`` (:meth:`pywarp.core.technique.Technique.jitter`) and its camera
-(:meth:`pywarp.core.technique.Technique.camera`: the same matrices at any size of the same aspect). Per-pixel depth
+(:func:`pywarp.viewer.session.technique_camera`: the same matrices at any size of the same aspect). Per-pixel depth
 (the terrain's ray distance, the clouds' reprojection depth) would make the reprojection exact under translation too;
 it is not fed yet.
 """

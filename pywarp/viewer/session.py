@@ -31,7 +31,6 @@ from typing import Any
 
 import numpy as np
 
-from ..core import temporal as T
 from ..core.scenes import Scene
 from .controls import Input, make_controls
 
@@ -75,6 +74,7 @@ class Frame:
     fresh: tuple = (0, 0)      # (width, height) of what was rendered this frame (the rest reconstructed)
     source: Any = None         # the settings of the request (the window's size)
     pose: Any = None           # the pose of the request (None: the settings' own)
+    state: Any = None          # the technique's simulation state after the frame (Technique.state)
 
 
 @dataclass
@@ -95,6 +95,19 @@ def settings_diff(new, old) -> dict:
             if getattr(new, f.name) != getattr(old, f.name)}
 
 
+def technique_camera(tech, pose=None):
+    """The camera (:class:`pywarp.kernels.camera.Camera`, without the pose's jitter) that ``tech.render(pose)``
+    looks through: the technique's own ``camera(pose)`` where it has one (flight's chase camera), else
+    :func:`pywarp.kernels.camera.pose_camera` of its pose. The matrices depend on the aspect only, not the size."""
+    own = getattr(tech, "camera", None)
+    if own is not None:
+        return own(pose)
+    from ..kernels.camera import pose_camera
+
+    p = dataclasses.replace(tech.pose(pose), jitter_px=(0.0, 0.0))
+    return pose_camera(p, tech.settings.width, tech.settings.height)
+
+
 class RenderWorker:
     """The render thread of a session (see the module docstring). ``submit`` a request, ``latest`` the newest frame.
     The technique is made on the thread, with the first request's settings (so the window opens at once)."""
@@ -105,7 +118,7 @@ class RenderWorker:
         self.scene = scene
         self.temporal = bool(temporal)
         self.factor = int(factor)
-        self._up: T.TemporalUpsampler | None = None
+        self._up = None  # the temporal reconstruction (pywarp.core.temporal, imported with the first preview)
         self.preview_changes = preview or (lambda s: {})
         self.budget_s = float(budget_s)
         self.scale_index = int(scale_index)
@@ -204,7 +217,9 @@ class RenderWorker:
         """Whether previews of ``s`` go through the temporal reconstruction (the settings have a size)."""
         return self.temporal and hasattr(s, "width") and hasattr(s, "height")
 
-    def _upsampler(self, s) -> T.TemporalUpsampler:
+    def _upsampler(self, s):
+        from ..core import temporal as T
+
         up = self._up
         if up is None or (up.width, up.height) != (s.width, s.height) or up.launcher is not self.tech.launcher:
             up = self._up = T.TemporalUpsampler(self.tech.launcher, s.width, s.height, self.factor)
@@ -215,11 +230,13 @@ class RenderWorker:
     def _adapt_factor(self, seconds: float) -> None:
         """The reduction factor of the temporal previews: doubled when a preview takes over 1.25 budgets, halved when
         the frame it would give (about f^2/(f/2)^2 = 4 times the work) fits in 0.8 of one."""
+        from ..core.temporal import FACTORS
+
         self._ema = seconds if self._ema is None else 0.6 * self._ema + 0.4 * seconds
         self._since_scale += 1
         if self.fixed_scale or self._since_scale < 3:
             return
-        if self._ema > 1.25 * self.budget_s and self.factor < T.FACTORS[-1]:
+        if self._ema > 1.25 * self.budget_s and self.factor < FACTORS[-1]:
             self.factor *= 2
         elif self.factor > 1 and 4.0 * self._ema < 0.8 * self.budget_s:
             self.factor //= 2
@@ -233,8 +250,11 @@ class RenderWorker:
         return {f.name: getattr(s, f.name) for f in dataclasses.fields(s) if f.name not in ("width", "height")}
 
     def _render(self, req: _Request) -> None:
-        temporal = not req.full and self.tech is not None and self._temporal(req.settings)
-        if temporal:
+        own = self.tech is not None and self.tech.previews_at_full_size
+        temporal = not req.full and self.tech is not None and self._temporal(req.settings) and not own
+        if not req.full and own:
+            target = dataclasses.replace(req.settings, **dict(self.preview_changes(req.settings)))
+        elif temporal:
             up = self._upsampler(req.settings)
             lw, lh, jitter = up.plan()
             target = dataclasses.replace(req.settings, **dict(self.preview_changes(req.settings)), width=lw,
@@ -268,7 +288,7 @@ class RenderWorker:
             if temporal:
                 pose = self.tech.pose(req.pose)
                 fresh = np.asarray(self.tech.render(self.tech.jitter(pose, jitter), progress=progress), np.uint8)
-                img = up.resolve(fresh, self.tech.camera(pose), key=self._key(req.settings))
+                img = up.resolve(fresh, technique_camera(self.tech, pose), key=self._key(req.settings))
             else:
                 img = self.tech.render(req.pose, progress=progress)
         finally:
@@ -282,12 +302,13 @@ class RenderWorker:
             self._adapt(dt)
         elif self._temporal(req.settings) and img.shape[:2] == (req.settings.height, req.settings.width):
             # the refined frame is the next preview's history: the first frame of a new motion starts sharp
-            self._upsampler(req.settings).remember(img, self.tech.camera(req.pose), key=self._key(req.settings))
+            self._upsampler(req.settings).remember(img, technique_camera(self.tech, req.pose),
+                                                   key=self._key(req.settings))
         self.frames += 1
         size = (img.shape[1], img.shape[0])
         fresh_size = (fresh.shape[1], fresh.shape[0]) if temporal else size
         self._latest = Frame(img, req.version, req.full, dt, self.frames, target, fresh_size, req.settings,
-                             req.pose)
+                             req.pose, self.tech.state())
         self.error = ""
         self.status = "refined" if req.full else "preview"
         with self._cond:
@@ -723,7 +744,7 @@ def render_args(scene: str, settings) -> list[str]:
 
 def compare_samples(scene: Scene, samples: list[dict], dump=None) -> dict:
     """The quality of the frames shown while moving: each sampled frame against the full render of the same
-    settings and pose (frame counter 0: what ``pywarp render`` gives), SSIM on luminance (scikit-image, 7 x 7
+    settings and pose (a new technique: what ``pywarp render`` gives), SSIM on luminance (scikit-image, 7 x 7
     Gaussian-free window) and the mean CIEDE2000 (on sRGB -> CIELAB). ``ssim_p5`` is the 5th percentile of the
     per-frame SSIMs. ``dump``: a folder for each sample's shown frame, the full render and a JSON of its settings,
     pose and the ``pywarp render`` command."""
@@ -735,19 +756,15 @@ def compare_samples(scene: Scene, samples: list[dict], dump=None) -> dict:
 
     if dump is not None:
         Path(dump).mkdir(parents=True, exist_ok=True)
-    tech = None
     ssims, des = [], []
     for k, smp in enumerate(samples):
         f = smp["frame"]
         st = f.source
-        if tech is None:
-            tech = scene.technique(st)
-        else:
-            ch = settings_diff(st, tech.settings)
-            if ch:
-                tech.update(**ch)
-        if isinstance(getattr(tech, "frame", None), int):
-            tech.frame = 0
+        # a technique of its own, as pywarp render makes, with the shown frame's simulation state (rain's particles:
+        # the same drops, rendered with the full settings)
+        tech = scene.technique(st)
+        if f.state is not None:
+            tech.restore(f.state)
         full = np.asarray(tech.render(f.pose), np.uint8)
         shown = displayed(f.image, full.shape[1], full.shape[0])
         ssims.append(float(structural_similarity(luminance(shown), luminance(full), data_range=255.0)))
