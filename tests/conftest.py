@@ -15,6 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 os.environ.setdefault("PYTHONSAFEPATH", "1")
 
 
+
 #: The quick subset, ``pytest -m smoke``: one or more fast test files (or tests) of every area -- the C core's names
 #: and a C program against the installed library, the registry and its generated contract tests, every kernel topic,
 #: the four scenes (C = Warp pixels), the command line, the viewer's controls, the hardening findings, two
@@ -69,3 +70,13 @@ def pytest_configure(config):
             "pywarp was imported from the source folder, which has no compiled C library: install the package "
             "(pip install '.[test]') and run `pytest` (not `python -m pytest`, which puts the source folder first), or set CCLOUDS_LIBRARY to a built "
             "libcclouds.so to test the source tree")
+    # PYWARP_TEST_DEVICE (default cpu): the Warp device of the equation evaluators that name none (the C/Warp
+    # agreement tests; tools/gpu_check.sh runs them with cuda:0); refused at once where that device does not exist
+    device = os.environ.get("PYWARP_TEST_DEVICE")
+    if device and device != "cpu":
+        from pywarp.core import runtime
+
+        try:
+            runtime.DEFAULT_DEVICE = runtime.resolve_device(device)
+        except ValueError as exc:
+            raise pytest.UsageError(f"PYWARP_TEST_DEVICE: {exc}") from None

@@ -363,9 +363,11 @@ def cmd_view(args) -> int:
                 raise ValueError(f"--screenshot-at must be >= 0 seconds, got {t:g}")
             events.append({"t": t, "screenshot": str(Path(args.screenshot_dir) / f"{sc.name}-{t:g}s.png")})
         script = Script.parse(events)
+    if args.dump is not None and args.benchmark is None:
+        raise ValueError("--dump needs --benchmark (it writes the benchmark's sampled frames)")
     return view(sc, settings, window=window, script=script, benchmark=args.benchmark, as_json=args.json,
                 screenshot_dir=args.screenshot_dir, window_screenshot=args.window_screenshot,
-                state_out=args.state_out, seconds=args.seconds)
+                state_out=args.state_out, seconds=args.seconds, dump=args.dump, temporal=args.previews == "temporal")
 
 
 # --- the parsers ---------------------------------------------------------------------------------------------------------
@@ -458,6 +460,13 @@ def add_scene_commands(sub, help_for: str | None = None) -> None:
                         "at constant altitude) and count the frames shown for SECONDS after a warm-up; prints "
                         "frames/s against the target")
     v.add_argument("--json", action="store_true", help="with --benchmark: print one JSON object as the last line")
+    v.add_argument("--dump", default=None, metavar="DIR",
+                   help="with --benchmark: write each sampled frame as shown (SCENE-NN-shown.png), its full render "
+                        "(-full.png) and its settings, pose and `pywarp render` command (.json) to DIR")
+    v.add_argument("--previews", choices=("temporal", "scaled"), default="temporal",
+                   help="what moving shows: 'temporal' (default) the window's resolution, 1/4 or 1/16 of its pixels "
+                        "rendered per frame and the rest reprojected from the previous frames; 'scaled' the whole "
+                        "picture at a reduced size, enlarged")
     v.add_argument("--script", default=None, metavar="FILE",
                    help="play a JSON list of timed events: {\"t\": 0, \"key\": \"W\", \"hold\": 1.5}, "
                         "{\"t\": 2, \"set\": {\"coverage\": 0.7}}, {\"t\": 3, \"screenshot\": \"a.png\"}, "

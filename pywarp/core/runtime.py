@@ -66,11 +66,19 @@ def _init_without_driver_notice() -> None:
         sys.stderr.flush()
 
 
+#: the device ``resolve_device(None)`` gives (equation evaluators without a device): "cpu". The test suite sets it
+#: from the environment variable PYWARP_TEST_DEVICE (tests/conftest.py) to run the C/Warp agreement tests on a GPU.
+DEFAULT_DEVICE = "cpu"
+
+
 def resolve_device(device: str | None = None) -> str:
-    """Return a Warp device name; ``None`` means ``"cpu"``. Raises ``ValueError`` for an unusable device."""
+    """Return a Warp device name; ``None`` means :data:`DEFAULT_DEVICE` (``"cpu"``). Raises ``ValueError`` for an
+    unusable device."""
     init()
     if device is None:
-        return "cpu"
+        device = DEFAULT_DEVICE
+        if device == "cpu":
+            return "cpu"
     if not isinstance(device, str):
         raise TypeError(f"device must be a string such as 'cpu' or 'cuda:0', got {type(device).__name__}")
     names = [d.alias for d in wp.get_devices()]

@@ -44,6 +44,9 @@ class Technique:
 
     #: the scene's settings class (its default instance is the default settings)
     settings_class: type = None
+    #: True: the viewer renders this scene's previews at the window's size with the controls' preview changes (the
+    #: scene reconstructs what it must itself: rain's background); False: through pywarp.core.temporal
+    previews_at_full_size: bool = False
 
     def __init__(self, settings=None):
         self.settings = settings if settings is not None else self.settings_class()
@@ -92,3 +95,27 @@ class Technique:
 
     def allocate(self, width: int, height: int) -> None:
         """The frame buffers of a width x height frame on ``self.device`` (override; default none)."""
+
+    # --- what the viewer's temporal reconstruction asks of a scene (pywarp.core.temporal) -------------------------------
+    def pose(self, pose=None):
+        """The pose a ``render(pose)`` uses: ``pose``, or the settings' own (:meth:`Pose.from_settings`) where None.
+        A scene whose camera is not a yaw and a pitch (the flight's chase camera) overrides it, and gives its
+        camera as ``camera(pose)`` (:func:`pywarp.viewer.session.technique_camera`)."""
+        from .pose import Pose
+
+        return pose if pose is not None else Pose.from_settings(self.settings)
+
+    def state(self):
+        """What a frame depends on beyond the settings and the pose -- a simulation's state (rain's particles) -- as
+        an opaque value for :meth:`restore`; None for a scene without one (the default). The viewer benchmark keeps
+        it with each sampled frame, so the full render it compares with shows the same particles."""
+        return None
+
+    def restore(self, state) -> None:
+        """Take a :meth:`state` of a technique of the same scene (the default: nothing to take)."""
+
+    @staticmethod
+    def jitter(pose, jitter_px: tuple):
+        """``pose`` moved by a sub-pixel offset of the image (``jitter_px`` pixels; every pose class has the
+        field)."""
+        return replace(pose, jitter_px=(float(jitter_px[0]), float(jitter_px[1])))

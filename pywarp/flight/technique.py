@@ -10,7 +10,7 @@ the volume renderer of :mod:`pywarp.kernels.volume` (row bands on every core thr
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import warp as wp
@@ -44,11 +44,13 @@ class FlightPose:
     """A moment of the scripted flight and the camera that looks at it (``chase`` or ``cockpit``): the flight's
     camera is placed by the aircraft, not by a yaw and a pitch. ``aircraft``: the state to look at (the viewer's live
     flight, :class:`pywarp.flight.controls.FlightControls`; ``time_s`` is then the scripted moment it started from);
-    None: the scripted aircraft at ``time_s``."""
+    None: the scripted aircraft at ``time_s``. ``jitter_px``: a sub-pixel offset of the image (pixels, as
+    :class:`pywarp.core.pose.Pose`'s: the viewer's temporal reconstruction)."""
 
     time_s: float = 6.0
     view: str = "chase"
     aircraft: AircraftState | None = None
+    jitter_px: tuple = (0.0, 0.0)
 
     def __post_init__(self):
         if isinstance(self.time_s, bool) or not isinstance(self.time_s, (int, float)) or not math.isfinite(
@@ -133,7 +135,17 @@ class FlightTechnique(Technique):
             eye = pos + np.asarray(u) * 0.9 + np.asarray(f) * 1.4
             cam = CAM.camera_look_at(eye, eye + np.asarray(f) * 100.0, u, fov, aspect, 0.1, 1.0e5)
             values.update(aircraft=0)
+        if pose.jitter_px != (0.0, 0.0):
+            cam = cam.jittered(pose.jitter_px[0], pose.jitter_px[1], s.width, s.height)
         return cam, values
+
+    def pose(self, pose: FlightPose | None = None) -> FlightPose:
+        """The pose a ``render(pose)`` uses: ``pose``, or the settings' time and view."""
+        return pose if pose is not None else FlightPose(self.settings.time_s, self.settings.view)
+
+    def camera(self, pose: FlightPose | None = None) -> CAM.Camera:
+        """The camera of ``pose`` without its jitter (:meth:`pywarp.core.technique.Technique.camera`)."""
+        return self.view(replace(self.pose(pose), jitter_px=(0.0, 0.0)))[0]
 
     # --- render ---------------------------------------------------------------------------------------------------
     def render(self, pose: FlightPose | None = None, progress=None) -> np.ndarray:

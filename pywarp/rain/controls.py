@@ -33,8 +33,9 @@ from .settings import CONTROLS, MODES, PANORAMA, SHAPES
 REPEAT_DELAY_S = 0.25
 REPEAT_HZ = 10.0
 #: edge of the wide-angle capture in preview frames (px): the capture is seen only through the drops, a few pixels
-#: each in a preview frame; the background (a rendered scene) costs per pixel, and 512 x 512 is 2.3x a 640 x 360 view
-PREVIEW_CAPTURE = 32
+#: each; the background (a rendered scene) costs per pixel, and 512 x 512 is 2.3x a 640 x 360 view. 64: the
+#: default frame with it against the full one, SSIM 0.96 on luminance (32: 0.94, 128: 0.98)
+PREVIEW_CAPTURE = 64
 #: one W / S / Q / E step in seconds of the free-fly camera's speed (FREE_FLY_SPEED): 50 m over the clouds (km),
 #: 2 m in a scene in metres
 MOVE_STEP_S = 0.1
@@ -183,4 +184,6 @@ class RainControls(Controls):
         return Step(changes=changes, moving=bool(look), message=msg)
 
     def preview(self, settings) -> dict:
-        return {"capture_size": min(settings.capture_size, PREVIEW_CAPTURE)}
+        """A small capture, and the background reconstructed from a quarter of its pixels per frame (the drops are
+        drawn whole every frame: the viewer renders rain previews at the window's size)."""
+        return {"capture_size": min(settings.capture_size, PREVIEW_CAPTURE), "background_scale": 2}

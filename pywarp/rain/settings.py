@@ -55,6 +55,11 @@ def check_background_options(background: str, options: dict, name: str = "backgr
                             else f"scene {background!r}"))
 
 
+def _check_background_scale(obj, name, v):
+    if v not in (1, 2, 4):
+        raise ValueError(f"{name} must be 1, 2 or 4 (the reduction of the background's width and height), got {v}")
+
+
 def _check_background_options(obj, name, v):
     check_background_options(obj.background, v, name)
 
@@ -227,6 +232,13 @@ class RainSettings(Settings):
                                          "that is no field of the background's settings is an error",
                                      reason="empty: every background with the rain scene's settings for it, or its "
                                             "own defaults")
+    background_scale: int = param(1, kind="int", lo=1, hi=4, check=_check_background_scale, group=_G_BG,
+                                  doc="the background view rendered at 1/background_scale of the width and height "
+                                      "per frame, a sub-pixel phase each time, the window's picture reconstructed "
+                                      "over frames (pywarp.core.temporal: exact while the view only turns, as the "
+                                      "background's camera does); 1 renders it whole",
+                                  reason="1: pywarp render's full background; the viewer sets 2 while the view "
+                                         "moves (a quarter of the background's pixels per frame)")
     device: str = param("cpu", invalidates="device", group=_G_RUN, doc="Warp device: cpu, or cuda:N where present",
                         reason="cpu: nothing requires a GPU")
     threads: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, invalidates="device", group=_G_RUN,

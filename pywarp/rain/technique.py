@@ -95,7 +95,8 @@ class SceneBackground:
         self.base = self.scene.settings(**base)
         self._techniques: dict = {}
 
-    def render(self, pose: Pose, width: int, height: int, fov_y_deg: float) -> np.ndarray:
+    def technique(self, pose: Pose, width: int, height: int, fov_y_deg: float):
+        """The background scene's technique at this size, its settings following the pose's yaw and pitch."""
         changes = {k: v for k, v in (("width", width), ("height", height), ("fov_y_deg", fov_y_deg),
                                      ("camera_yaw_deg", pose.yaw_deg), ("camera_pitch_deg", pose.pitch_deg))
                    if k in self.fields}
@@ -105,7 +106,26 @@ class SceneBackground:
             tech = self._techniques[key] = self.scene.technique(replace(self.base, **changes))
         else:
             tech.update(**changes)
-        return tech.render().astype(np.float32) / 255.0
+        return tech
+
+    def render(self, pose: Pose, width: int, height: int, fov_y_deg: float) -> np.ndarray:
+        return self.technique(pose, width, height, fov_y_deg).render().astype(np.float32) / 255.0
+
+    def render_reconstructed(self, pose: Pose, width: int, height: int, fov_y_deg: float, up) -> np.ndarray:
+        """The view through the temporal reconstruction ``up`` (:class:`pywarp.core.temporal.TemporalUpsampler` of
+        width x height): the background at its planned reduced size and sub-pixel phase with its scene's own preview
+        changes (the viewer's: clouds reproject, terrain marches fewer octaves), the rest reprojected."""
+        from ..viewer.controls import make_controls
+        from ..viewer.session import technique_camera
+
+        lw, lh, jitter = up.plan()
+        camera = technique_camera(self.technique(pose, width, height, fov_y_deg))  # the window picture's camera
+        tech = self.technique(pose, lw, lh, fov_y_deg)
+        preview = make_controls(self.scene, tech.settings).preview(tech.settings)
+        if any(getattr(tech.settings, k) != v for k, v in preview.items()):
+            tech.update(**preview)
+        fresh = np.asarray(tech.render(tech.jitter(tech.pose(None), jitter)), np.uint8)
+        return up.resolve(fresh, camera, key=self.scene.name).astype(np.float32) / 255.0
 
 
 def make_background(s: RainSettings):
@@ -207,12 +227,21 @@ def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, e
 
 # --- the technique -------------------------------------------------------------------------------------------------------
 
+#: frames a reconstructed background view is refined while the view keeps its direction (background_scale > 1):
+#: 64 = the 2 x 2 phases of the reconstruction times the clouds' 4 x 4 reprojection grid, after which every pixel
+#: has been rendered at least once
+BACKGROUND_REFINE_FRAMES = 64
+
+
 class RainTechnique(Technique):
     """Rain over a background scene: ``init`` (background, mask, particles), ``update`` (settings, time),
     ``render`` (one frame), ``resize``. The background view and capture are cached per pose and size (a still camera
     pays for them once)."""
 
     settings_class = RainSettings
+    #: the viewer renders rain's previews at the window's size (the drops drawn whole every frame; the background
+    #: reconstructed from a fraction of its pixels, ``background_scale``)
+    previews_at_full_size = True
 
     def __init__(self, settings: RainSettings | None = None):
         self._cache: dict = {}
@@ -237,6 +266,23 @@ class RainTechnique(Technique):
         if stale & {"particles", "device"} or ("drops" in changed and s.drops > self.system.count):
             self._reset_particles()
 
+    def state(self) -> dict:
+        """The particles (the system's arrays and count) and the simulated time."""
+        sy = self.system
+        return {"t": self.t, "count": sy.count,
+                "arrays": {n: getattr(sy, n).numpy().copy() for n in ("pos", "radius", "speed", "generation")}}
+
+    def restore(self, state: dict) -> None:
+        """Continue from another rain technique's :meth:`state` (same particle settings)."""
+        import warp as wp
+
+        sy = self.system
+        for n, a in state["arrays"].items():
+            setattr(sy, n, wp.array(a, dtype=getattr(sy, n).dtype, device=self.device))
+        sy.capacity = len(state["arrays"]["pos"])
+        sy.count = state["count"]
+        self.t = state["t"]
+
     def _reset_particles(self) -> None:
         s = self.settings
         self.system = P.ParticleSystem(max(s.drops, 1), device=self.device, variant=s.variant,
@@ -260,16 +306,55 @@ class RainTechnique(Technique):
             self.system.step(s.drops, 0.0)
 
     def images(self, pose: Pose) -> tuple[np.ndarray, np.ndarray]:
-        """(view, capture) of the background for ``pose`` (cached): display-encoded RGB float32."""
+        """(view, capture) of the background for ``pose``: display-encoded RGB float32. Each is cached by what it
+        depends on -- the direction and the field of view, not the position: a background is seen from its own
+        place, turned with the view -- so a camera that moves without turning pays for neither. With
+        ``background_scale`` > 1 a view not yet cached comes from the temporal reconstruction and is refined by
+        another reconstructed frame at each call while the direction stays (:data:`BACKGROUND_REFINE_FRAMES`); a
+        full view cached for the same direction is used as it is."""
         s = self.settings
-        key = (pose, s.width, s.height, s.capture_size, s.capture_fov_deg)
-        if key not in self._cache:
-            self._cache.clear()
-            view = self.background.render(pose, s.width, s.height, pose.fov_y_deg)
-            capture = self.background.render(replace(pose, fov_y_deg=s.capture_fov_deg), s.capture_size,
-                                             s.capture_size, s.capture_fov_deg)
-            self._cache[key] = (np.ascontiguousarray(view, np.float32), np.ascontiguousarray(capture, np.float32))
-        return self._cache[key]
+        look = (pose.yaw_deg, pose.pitch_deg)
+        vkey = (look, pose.fov_y_deg, s.width, s.height)
+        ckey = (look, s.capture_fov_deg, s.capture_size)
+        view = self._cache.get(("view", vkey))  # (image, exact, reconstructed frames)
+        refine = view is not None and not view[1] and (s.background_scale == 1 or view[2] < BACKGROUND_REFINE_FRAMES)
+        if view is None or refine:
+            scene_bg = isinstance(self.background, SceneBackground)
+            if s.background_scale > 1 and scene_bg:  # a new direction, or the same one refined by another frame
+                up = self._upsampler(s.width, s.height, s.background_scale)
+                img = self.background.render_reconstructed(pose, s.width, s.height, pose.fov_y_deg, up)
+                view = (img, False, 1 if view is None else view[2] + 1)
+            else:
+                view = (self.background.render(pose, s.width, s.height, pose.fov_y_deg), True, 0)
+                if scene_bg:  # the next reconstructed view starts from it
+                    from ..viewer.session import technique_camera
+
+                    cam = technique_camera(self.background.technique(pose, s.width, s.height, pose.fov_y_deg))
+                    self._upsampler(s.width, s.height, 2).remember(
+                        (np.clip(view[0], 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8), cam,
+                        key=self.background.scene.name)
+            self._cache = {k: v for k, v in self._cache.items() if k[0] != "view"}
+            self._cache[("view", vkey)] = (np.ascontiguousarray(view[0], np.float32), view[1], view[2])
+            view = self._cache[("view", vkey)]
+        capture = self._cache.get(("capture", ckey))
+        if capture is None:
+            capture = np.ascontiguousarray(self.background.render(replace(pose, fov_y_deg=s.capture_fov_deg),
+                                                                  s.capture_size, s.capture_size,
+                                                                  s.capture_fov_deg), np.float32)
+            self._cache = {k: v for k, v in self._cache.items() if k[0] != "capture"}
+            self._cache[("capture", ckey)] = capture
+        return view[0], capture
+
+    def _upsampler(self, width: int, height: int, factor: int):
+        """The background's temporal reconstruction (one per view size; ``factor`` the reduction asked now)."""
+        from ..core.temporal import TemporalUpsampler
+
+        up = getattr(self, "_up", None)
+        if up is None or (up.width, up.height) != (width, height):
+            up = self._up = TemporalUpsampler(self.launcher, width, height, factor)
+        elif up.factor != factor:
+            up.set_factor(factor)
+        return up
 
     def frame_inputs(self, pose: Pose | None = None) -> dict:
         """Everything the compositing pass takes for the current state (for tests and the C comparison)."""

@@ -66,4 +66,6 @@ class TerrainControls(Controls):
                     message=f"({s.camera_x:.0f}, {s.camera_y:.0f}, {s.camera_z:.0f})")
 
     def preview(self, settings) -> dict:
-        return {"quality": "preview"}
+        """The PREVIEW reductions at the size the viewer asks for (its temporal reconstruction renders 1/4 or 1/16 of
+        the window's pixels itself)."""
+        return {"quality": "preview", "preview_scale": 1}

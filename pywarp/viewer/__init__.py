@@ -42,26 +42,28 @@ def check_window() -> None:
 
 def view(scene, settings, *, window: bool = True, script: Script | None = None, benchmark: float | None = None,
          as_json: bool = False, screenshot_dir=".", window_screenshot=None, state_out=None,
-         warmup_s: float = 3.0, seconds: float | None = None) -> int:
+         warmup_s: float = 3.0, seconds: float | None = None, dump=None, temporal: bool = True) -> int:
     """Run the viewer; returns the exit status (0). ``benchmark``: seconds of the benchmark mode (prints its report,
     or JSON as the last line with ``as_json``); ``state_out``: write the session's final state (settings, frame
-    counts, screenshots) as JSON; ``seconds``: quit after this long (wall time)."""
+    counts, screenshots) as JSON; ``seconds``: quit after this long (wall time); ``dump``: a folder for the
+    benchmark's sampled frames (:func:`pywarp.viewer.session.compare_samples`); ``temporal``: previews through the
+    temporal reconstruction (else enlarged reduced frames)."""
     if window:
         check_window()
     # the panel shows the settings `pywarp view` takes (e.g. not the clouds' accumulate, which only render uses)
     session = Session(scene, settings, script=script, screenshot_dir=screenshot_dir,
-                      exclude=scene.command_exclude.get("view", ()))
+                      exclude=scene.command_exclude.get("view", ()), temporal=temporal)
     result = None
     try:
         if window:
             from .window import Window
 
-            b = Benchmark(session, benchmark, warmup_s) if benchmark is not None else None
+            b = Benchmark(session, benchmark, warmup_s, dump=dump) if benchmark is not None else None
             w = Window(session, benchmark=b, window_screenshot=window_screenshot, seconds=seconds)
             w.run()
             result = w.result
         elif benchmark is not None:
-            result = run_benchmark_headless(session, benchmark, warmup_s)
+            result = run_benchmark_headless(session, benchmark, warmup_s, dump=dump)
         else:
             run_headless(session, seconds=seconds)
     finally:

@@ -5,11 +5,15 @@ session also runs headless (``pywarp view --no-window``, the tests).
 Rendering runs on a thread of its own (:class:`RenderWorker`), one frame at a time, through the technique's
 ``update`` / ``render`` on the tile-parallel launcher; the UI thread only submits requests and picks up finished
 frames, so the window stays responsive while a frame renders. While the view moves (keys held, a slider dragged, time
-playing) the worker renders **previews**: the scene's settings at a reduced resolution (the scale adapts so that a
-preview takes about :data:`PREVIEW_BUDGET_S`) with the controls' preview changes (clouds: temporal reprojection on).
-Once nothing has changed for :data:`STILL_S` it renders the **refined** frame: the settings as they are, full
-resolution, frame counter 0 -- the image ``pywarp render`` gives for the same settings. A refined frame that a newer
-state makes stale is cancelled between bands.
+playing) the worker renders **previews** at the window's full resolution through the temporal reconstruction of
+:mod:`pywarp.core.temporal`: each renders 1/f^2 of the pixels (the scene at 1/f of the width and height, a sub-pixel
+phase per frame; f in 1, 2, 4 adapts so that a preview takes about :data:`PREVIEW_BUDGET_S`) with the controls'
+preview changes (clouds: their own temporal reprojection on), and the rest of the picture is the previous one
+reprojected and clamped. Once nothing has changed for :data:`STILL_S` it renders the **refined** frame: the settings
+as they are, full resolution, frame counter 0 -- the image ``pywarp render`` gives for the same settings (and the
+history of the next preview). A refined frame that a newer state makes stale is cancelled between bands.
+``temporal=False`` gives the former previews: the whole picture at a reduced size (:data:`PREVIEW_SCALES`), enlarged
+by the window.
 """
 from __future__ import annotations
 
@@ -38,6 +42,10 @@ STILL_S = 0.25
 PREVIEW_SCALES = (1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
 #: the scale a session starts with (index into PREVIEW_SCALES): 640 x 360 -> 320 x 180
 START_SCALE = 2
+#: displayed frames the viewer benchmark compares with the full render of the same pose
+QUALITY_SAMPLES = 8
+#: the reduction factor the temporal previews start with (1/4 of the pixels rendered per frame)
+START_FACTOR = 2
 #: smallest preview width (px)
 MIN_PREVIEW_WIDTH = 32
 #: frame-rate targets of the issue (frames/s at 640 x 360 on two cores), by scene
@@ -63,6 +71,10 @@ class Frame:
     render_s: float
     index: int
     settings: Any = None
+    fresh: tuple = (0, 0)      # (width, height) of what was rendered this frame (the rest reconstructed)
+    source: Any = None         # the settings of the request (the window's size)
+    pose: Any = None           # the pose of the request (None: the settings' own)
+    state: Any = None          # the technique's simulation state after the frame (Technique.state)
 
 
 @dataclass
@@ -83,13 +95,30 @@ def settings_diff(new, old) -> dict:
             if getattr(new, f.name) != getattr(old, f.name)}
 
 
+def technique_camera(tech, pose=None):
+    """The camera (:class:`pywarp.kernels.camera.Camera`, without the pose's jitter) that ``tech.render(pose)``
+    looks through: the technique's own ``camera(pose)`` where it has one (flight's chase camera), else
+    :func:`pywarp.kernels.camera.pose_camera` of its pose. The matrices depend on the aspect only, not the size."""
+    own = getattr(tech, "camera", None)
+    if own is not None:
+        return own(pose)
+    from ..kernels.camera import pose_camera
+
+    p = dataclasses.replace(tech.pose(pose), jitter_px=(0.0, 0.0))
+    return pose_camera(p, tech.settings.width, tech.settings.height)
+
+
 class RenderWorker:
     """The render thread of a session (see the module docstring). ``submit`` a request, ``latest`` the newest frame.
     The technique is made on the thread, with the first request's settings (so the window opens at once)."""
 
     def __init__(self, scene: Scene, preview=None, budget_s: float = PREVIEW_BUDGET_S,
-                 scale_index: int = START_SCALE, fixed_scale: bool = False):
+                 scale_index: int = START_SCALE, fixed_scale: bool = False, temporal: bool = True,
+                 factor: int = START_FACTOR):
         self.scene = scene
+        self.temporal = bool(temporal)
+        self.factor = int(factor)
+        self._up = None  # the temporal reconstruction (pywarp.core.temporal, imported with the first preview)
         self.preview_changes = preview or (lambda s: {})
         self.budget_s = float(budget_s)
         self.scale_index = int(scale_index)
@@ -184,8 +213,54 @@ class RenderWorker:
                 with self._cond:
                     self._done_key = req.key
 
+    def _temporal(self, s) -> bool:
+        """Whether previews of ``s`` go through the temporal reconstruction (the settings have a size)."""
+        return self.temporal and hasattr(s, "width") and hasattr(s, "height")
+
+    def _upsampler(self, s):
+        from ..core import temporal as T
+
+        up = self._up
+        if up is None or (up.width, up.height) != (s.width, s.height) or up.launcher is not self.tech.launcher:
+            up = self._up = T.TemporalUpsampler(self.tech.launcher, s.width, s.height, self.factor)
+        if up.factor != T.factor_for(s.width, s.height, self.factor):
+            up.set_factor(self.factor)
+        return up
+
+    def _adapt_factor(self, seconds: float) -> None:
+        """The reduction factor of the temporal previews: doubled when a preview takes over 1.25 budgets, halved when
+        the frame it would give (about f^2/(f/2)^2 = 4 times the work) fits in 0.8 of one."""
+        from ..core.temporal import FACTORS
+
+        self._ema = seconds if self._ema is None else 0.6 * self._ema + 0.4 * seconds
+        self._since_scale += 1
+        if self.fixed_scale or self._since_scale < 3:
+            return
+        if self._ema > 1.25 * self.budget_s and self.factor < FACTORS[-1]:
+            self.factor *= 2
+        elif self.factor > 1 and 4.0 * self._ema < 0.8 * self.budget_s:
+            self.factor //= 2
+        else:
+            return
+        self._since_scale, self._ema = 0, None
+
+    @staticmethod
+    def _key(s) -> dict:
+        """What a picture depends on besides the camera and the size (the history's clamp is off while it stays)."""
+        return {f.name: getattr(s, f.name) for f in dataclasses.fields(s) if f.name not in ("width", "height")}
+
     def _render(self, req: _Request) -> None:
-        target = req.settings if req.full else self._preview_settings(req.settings)
+        own = self.tech is not None and self.tech.previews_at_full_size
+        temporal = not req.full and self.tech is not None and self._temporal(req.settings) and not own
+        if not req.full and own:
+            target = dataclasses.replace(req.settings, **dict(self.preview_changes(req.settings)))
+        elif temporal:
+            up = self._upsampler(req.settings)
+            lw, lh, jitter = up.plan()
+            target = dataclasses.replace(req.settings, **dict(self.preview_changes(req.settings)), width=lw,
+                                         height=lh)
+        else:
+            target = req.settings if req.full else self._preview_settings(req.settings)
         if self.tech is None:
             self.status = "initialising the technique (textures, kernels)"
             self.tech = self.scene.technique(target)
@@ -204,22 +279,36 @@ class RenderWorker:
             if req.full and self._req is not None and self._req.key != req.key:
                 raise Cancelled()
 
-        temporal = req.full and isinstance(getattr(self.tech, "frame", None), int)
-        saved = self.tech.frame if temporal else None
-        if temporal:
+        counted = req.full and isinstance(getattr(self.tech, "frame", None), int)
+        saved = self.tech.frame if counted else None
+        if counted:
             self.tech.frame = 0  # the refined frame is pywarp render's frame
         t0 = time.perf_counter()
         try:
-            img = self.tech.render(req.pose, progress=progress)
-        finally:
             if temporal:
+                pose = self.tech.pose(req.pose)
+                fresh = np.asarray(self.tech.render(self.tech.jitter(pose, jitter), progress=progress), np.uint8)
+                img = up.resolve(fresh, technique_camera(self.tech, pose), key=self._key(req.settings))
+            else:
+                img = self.tech.render(req.pose, progress=progress)
+        finally:
+            if counted:
                 self.tech.frame = saved + 1
         dt = time.perf_counter() - t0
-        if not req.full:
-            self._adapt(dt)
         img = np.ascontiguousarray(np.asarray(img, dtype=np.uint8))
+        if temporal:
+            self._adapt_factor(dt)
+        elif not req.full:
+            self._adapt(dt)
+        elif self._temporal(req.settings) and img.shape[:2] == (req.settings.height, req.settings.width):
+            # the refined frame is the next preview's history: the first frame of a new motion starts sharp
+            self._upsampler(req.settings).remember(img, technique_camera(self.tech, req.pose),
+                                                   key=self._key(req.settings))
         self.frames += 1
-        self._latest = Frame(img, req.version, req.full, dt, self.frames, target)
+        size = (img.shape[1], img.shape[0])
+        fresh_size = (fresh.shape[1], fresh.shape[0]) if temporal else size
+        self._latest = Frame(img, req.version, req.full, dt, self.frames, target, fresh_size, req.settings,
+                             req.pose, self.tech.state())
         self.error = ""
         self.status = "refined" if req.full else "preview"
         with self._cond:
@@ -321,7 +410,7 @@ class _Shot:
 class Stats:
     """The frame counter: frames shown (new frames picked up by the UI), their times, and the UI's own frames."""
 
-    shown: list = field(default_factory=list)        # (wall time, render_s, full, width, height)
+    shown: list = field(default_factory=list)  # (wall time, render_s, full, width, height, fresh width, fresh height)
     ui_frames: int = 0
 
     def fps(self, now: float, window: float = 1.0) -> float:
@@ -335,7 +424,8 @@ class Session:
 
     def __init__(self, scene: Scene, settings, *, script: Script | None = None, exclude=(),
                  budget_s: float = PREVIEW_BUDGET_S, still_s: float = STILL_S, screenshot_dir=".",
-                 scale_index: int = START_SCALE, fixed_scale: bool = False, time_scale: float = 20.0):
+                 scale_index: int = START_SCALE, fixed_scale: bool = False, time_scale: float = 20.0,
+                 temporal: bool = True):
         self.scene = scene
         self.settings = settings
         self.controls = make_controls(scene, settings)
@@ -358,7 +448,7 @@ class Session:
         self.stats = Stats()
         self._shown_index = 0
         self._frame: Frame | None = None
-        self.worker = RenderWorker(scene, self.controls.preview, budget_s, scale_index, fixed_scale)
+        self.worker = RenderWorker(scene, self.controls.preview, budget_s, scale_index, fixed_scale, temporal)
         self._submit(full=True)
 
     # --- state changes -----------------------------------------------------------------------------------------------
@@ -467,7 +557,7 @@ class Session:
         self._shown_index = f.index
         self._frame = f
         now = time.perf_counter() if now is None else now
-        self.stats.shown.append((now, f.render_s, f.full, f.image.shape[1], f.image.shape[0]))
+        self.stats.shown.append((now, f.render_s, f.full, f.image.shape[1], f.image.shape[0], *f.fresh))
         if f.full:
             for s in self.shots:
                 if not s.done and s.version == f.version:
@@ -544,12 +634,16 @@ class Benchmark:
     counter counts the frames shown during ``seconds`` after a warm-up (the technique made, the kernels compiled, the
     preview scale settled). Driven by the window or headless."""
 
-    def __init__(self, session: Session, seconds: float, warmup_s: float = 3.0):
+    def __init__(self, session: Session, seconds: float, warmup_s: float = 3.0, dump=None,
+                 samples: int = QUALITY_SAMPLES):
         self.session = session
         if session.scene.time_field:
             session.time_playing = True
         self.seconds = float(seconds)
         self.warmup_s = float(warmup_s)
+        self.dump = None if dump is None else Path(dump)
+        self.n_samples = int(samples)
+        self.samples: list[dict] = []
         self.t_start = None
         self.t_measure = None
         self.done = False
@@ -570,6 +664,12 @@ class Benchmark:
             self.n0 = len(s.stats.shown)
             self.ui0 = s.stats.ui_frames
             self.v0 = s.version
+        if self.t_measure is not None and self.n_samples and len(self.samples) < self.n_samples:
+            # the displayed frame at evenly spaced moments of the measurement (a frame shown while moving)
+            due = self.t_measure + (len(self.samples) + 0.5) * self.seconds / self.n_samples
+            f = s.frame
+            if now >= due and f is not None and not f.full and f.source is not None:
+                self.samples.append({"frame": f, "clock_s": s.clock})
         if self.t_measure is not None and now - self.t_measure >= self.seconds:
             self.done = True
             self.t_end = now
@@ -586,6 +686,14 @@ class Benchmark:
         fps = len(shown) / elapsed if elapsed > 0 else 0.0
         target = TARGET_FPS.get(s.scene.name)
         st = s.settings
+        window_px = max(1, (getattr(st, "width", 1) or 1) * (getattr(st, "height", 1) or 1))
+        fresh = [x[5] * x[6] / window_px for x in shown if not x[2]]
+        internal = {}
+        for x in shown:
+            if not x[2]:
+                internal[f"{x[5]}x{x[6]}"] = internal.get(f"{x[5]}x{x[6]}", 0) + 1
+        s.worker.close()  # no frame renders while the samples are compared with the full render
+        quality = compare_samples(s.scene, self.samples, self.dump)
         return {
             "benchmark": "view", "scene": s.scene.name, "window": window,
             "width": getattr(st, "width", None), "height": getattr(st, "height", None),
@@ -597,7 +705,84 @@ class Benchmark:
             "keys": sorted(s.controls.benchmark_keys), "time_playing": s.time_playing,
             "moved": s.version != self.v0, "cores": os.cpu_count(),
             "target_fps": target, "meets_target": None if target is None else fps >= target,
+            "internal_sizes": internal, "fresh_fraction": round(float(np.mean(fresh)), 4) if fresh else None,
+            "temporal": s.worker.temporal, **quality,
         }
+
+
+def luminance(img: np.ndarray) -> np.ndarray:
+    """Rec. 709 luma of a uint8 sRGB picture (0..255, float64): what SSIM is measured on."""
+    return np.asarray(img, np.float64)[..., :3] @ np.array([0.2126, 0.7152, 0.0722])
+
+
+def displayed(img: np.ndarray, width: int, height: int) -> np.ndarray:
+    """The picture as the window shows it at width x height: enlarged bilinearly (the texture's filter) where it is
+    smaller."""
+    if img.shape[:2] == (height, width):
+        return img
+    from PIL import Image
+
+    return np.asarray(Image.fromarray(img).resize((width, height), Image.BILINEAR))
+
+
+def render_args(scene: str, settings) -> list[str]:
+    """``pywarp render`` arguments that give ``settings`` (the options of the fields that differ from the
+    defaults)."""
+    from ..core.params import specs
+
+    args = ["pywarp", "render", scene]
+    for p in specs(type(settings)):
+        v = getattr(settings, p.name)
+        if p.option is None or v == p.default or v is None:
+            continue
+        if p.kind == "bool":
+            args.append(p.option if v else "--no-" + p.option[2:])
+        else:
+            args += [p.option, repr(v) if isinstance(v, float) else str(v)]
+    return args
+
+
+def compare_samples(scene: Scene, samples: list[dict], dump=None) -> dict:
+    """The quality of the frames shown while moving: each sampled frame against the full render of the same
+    settings and pose (a new technique: what ``pywarp render`` gives), SSIM on luminance (scikit-image, 7 x 7
+    Gaussian-free window) and the mean CIEDE2000 (on sRGB -> CIELAB). ``ssim_p5`` is the 5th percentile of the
+    per-frame SSIMs. ``dump``: a folder for each sample's shown frame, the full render and a JSON of its settings,
+    pose and the ``pywarp render`` command."""
+    keys = {"quality_samples": len(samples), "ssim_mean": None, "ssim_p5": None, "ciede2000_mean": None}
+    if not samples:
+        return keys
+    from skimage.color import deltaE_ciede2000, rgb2lab
+    from skimage.metrics import structural_similarity
+
+    if dump is not None:
+        Path(dump).mkdir(parents=True, exist_ok=True)
+    ssims, des = [], []
+    for k, smp in enumerate(samples):
+        f = smp["frame"]
+        st = f.source
+        # a technique of its own, as pywarp render makes, with the shown frame's simulation state (rain's particles:
+        # the same drops, rendered with the full settings)
+        tech = scene.technique(st)
+        if f.state is not None:
+            tech.restore(f.state)
+        full = np.asarray(tech.render(f.pose), np.uint8)
+        shown = displayed(f.image, full.shape[1], full.shape[0])
+        ssims.append(float(structural_similarity(luminance(shown), luminance(full), data_range=255.0)))
+        des.append(float(np.mean(deltaE_ciede2000(rgb2lab(shown / 255.0), rgb2lab(full / 255.0)))))
+        if dump is not None:
+            from ..core.output import write_png
+
+            stem = Path(dump) / f"{scene.name}-{k:02d}"
+            write_png(stem.with_name(stem.name + "-shown.png"), shown)
+            write_png(stem.with_name(stem.name + "-full.png"), full)
+            pose = None if f.pose is None else {k2: v for k2, v in dataclasses.asdict(f.pose).items()}
+            info = {"scene": scene.name, "clock_s": round(smp["clock_s"], 6), "ssim": ssims[-1],
+                    "ciede2000_mean": des[-1], "fresh": list(f.fresh), "pose": pose,
+                    "settings": dataclasses.asdict(st), "render": render_args(scene.name, st)}
+            stem.with_suffix(".json").write_text(json.dumps(info, indent=1, default=repr) + "\n", encoding="utf-8")
+    keys.update(ssim_mean=round(float(np.mean(ssims)), 4), ssim_p5=round(float(np.percentile(ssims, 5)), 4),
+                ciede2000_mean=round(float(np.mean(des)), 3))
+    return keys
 
 
 def report(result: dict) -> str:
@@ -613,8 +798,9 @@ def report(result: dict) -> str:
             f"{'' if result['window'] else ', no window'}")
 
 
-def run_benchmark_headless(session: Session, seconds: float, warmup_s: float = 3.0, ui_hz: float = 60.0) -> dict:
-    b = Benchmark(session, seconds, warmup_s)
+def run_benchmark_headless(session: Session, seconds: float, warmup_s: float = 3.0, ui_hz: float = 60.0,
+                           dump=None) -> dict:
+    b = Benchmark(session, seconds, warmup_s, dump=dump)
     period = 1.0 / ui_hz
     last = time.perf_counter()
     while not b.done:

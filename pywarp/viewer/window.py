@@ -108,7 +108,12 @@ class Window:
         imgui.text(f"scene {s.scene.name}   {s.worker.status}")
         if f is not None:
             h, w = f.image.shape[:2]
-            kind = "refined" if f.full else f"preview 1/{s.worker.scale:g}"
+            if f.full:
+                kind = "refined"
+            elif f.fresh != (w, h):  # the temporal reconstruction: the window's size, a fraction of it rendered
+                kind = f"preview, 1/{round(w * h / max(1, f.fresh[0] * f.fresh[1]))} of the pixels rendered"
+            else:
+                kind = f"preview 1/{s.worker.scale:g}"
             imgui.text(f"frame {f.render_s * 1e3:7.1f} ms  {w}x{h} {kind}")
         imgui.text(f"scene {s.stats.fps(now):5.1f} frames/s   UI {imgui.get_io().framerate:5.1f} frames/s")
         if s.scene.time_field:

@@ -229,7 +229,7 @@ def test_controls_mouse_look_and_w_walk_forward_above_the_ground():
     s = TerrainSettings(**SMALL)
     c = make_controls(scene("terrain"), s)
     assert isinstance(c, TerrainControls) and c.benchmark_keys == {"W"}
-    assert c.preview(s) == {"quality": "preview"}
+    assert c.preview(s) == {"quality": "preview", "preview_scale": 1}
     step = c.step(s, Input(dt=0.5, held=frozenset({"W"})))
     assert step.moving
     # yaw 0 looks along -z, pitch -8 deg: half a second of W moves 4 units along the view (or stays above ground)

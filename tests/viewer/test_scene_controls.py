@@ -126,7 +126,44 @@ def test_rain_preview_frames_take_a_smaller_capture(rain):
     from pywarp.rain.controls import PREVIEW_CAPTURE
 
     s = rain_settings(rain)
-    assert V.make_controls(rain, s).preview(s) == {"capture_size": PREVIEW_CAPTURE}
+    assert V.make_controls(rain, s).preview(s) == {"capture_size": PREVIEW_CAPTURE, "background_scale": 2}
+
+
+def test_rain_background_cached_by_direction_and_reconstructed_while_turning():
+    """Rain's background is seen from its own place: time passing renders no background; a turn with
+    background_scale 2 reconstructs the view from a quarter of its pixels (pywarp.core.temporal), refined while the
+    direction stays; the particle state carries over to another technique (the benchmark's full render)."""
+    from pywarp.core.scenes import scene
+    from pywarp.rain.technique import SceneBackground
+
+    sc = scene("rain")
+    s = sc.settings(width=64, height=36, background="clouds", capture_size=16,
+                    background_options={"base_size": 32, "detail_size": 16, "curl_size": 32, "weather_size": 64})
+    tech = sc.technique(s)
+    calls = []
+    bg = tech.background
+    assert isinstance(bg, SceneBackground)
+    real = bg.render
+
+    def counting(*a, **k):
+        calls.append(a[1:3])
+        return real(*a, **k)
+
+    bg.render = counting
+    full = tech.render()
+    assert calls == [(64, 36), (16, 16)]  # the view and the capture
+    tech.update(time_s=s.time_s + 0.1)
+    tech.render()
+    assert len(calls) == 2  # the drops fell, the view did not turn: both cached
+    tech.update(background_scale=2, camera_yaw_deg=s.camera_yaw_deg + 2.0)
+    tech.render()
+    assert calls[2:] == [(16, 16)] and tech._up.count == 1  # the view reconstructed, the capture rendered
+    tech.render()
+    assert tech._up.count == 2  # the same direction: refined by another reconstructed frame
+    other = sc.technique(s)
+    other.restore(tech.state())
+    assert np.array_equal(other.state()["arrays"]["pos"], tech.state()["arrays"]["pos"])
+    assert full.shape == (36, 64, 3)
 
 
 def _wait(session, full=None, version=None, timeout=300.0):
@@ -174,7 +211,10 @@ def test_rain_keys_in_a_headless_session_change_the_image(rain):
                 images["start"] = img
         session.tick(V.Input(dt=1 / 30, held=frozenset({"D"}), pressed=frozenset({"D"})))
         f = _wait(session, version=session.version)
-        assert not f.full and f.settings.capture_size == 32  # the preview's capture
+        from pywarp.rain.controls import PREVIEW_CAPTURE
+
+        # the preview: the window's size (the drops drawn whole), a smaller capture
+        assert not f.full and f.settings.capture_size == PREVIEW_CAPTURE and f.image.shape == first.image.shape
     finally:
         session.close()
 

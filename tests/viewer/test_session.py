@@ -1,6 +1,6 @@
 """The viewer's session without a window (pywarp.viewer.session): every registered scene opens and renders with its
-controls; the render thread gives previews at reduced resolution while the camera moves and a refined frame equal to
-the offline render when it stops; panel changes recompute only what they invalidate; scripts are deterministic; the
+controls; the render thread gives previews (a fraction of the pixels rendered, the window's size reconstructed) while
+the camera moves and a refined frame equal to the offline render when it stops; panel changes recompute only what they invalidate; scripts are deterministic; the
 benchmark mode counts frames."""
 from __future__ import annotations
 
@@ -57,13 +57,15 @@ def clouds():
 
 def test_previews_while_moving_then_the_refined_frame_equals_the_offline_render(clouds, small_settings):
     s0 = small_settings(clouds)
-    session = Session(clouds, s0)
+    session = Session(clouds, s0, fixed_scale=True)  # the reduction stays at its start (a quarter of the pixels)
     try:
         wait_frame(session, full=True)
         for _ in range(4):
             session.tick(V.Input(dt=0.05, held=frozenset({"W"})))
             f = wait_frame(session, version=session.version)
-        assert not f.full and f.image.shape[1] < s0.width  # reduced resolution while moving
+        # while moving: the window's size, a quarter or a sixteenth of its pixels rendered (pywarp.core.temporal)
+        assert not f.full and f.image.shape[:2] == (s0.height, s0.width)
+        assert f.fresh == (s0.width // 2, s0.height // 2) and f.settings.width == f.fresh[0]
         assert f.settings.reprojection  # clouds: temporal reprojection on for the previews
         assert session.settings.camera_z_km < 0.0  # W flew forward (yaw 0: along -z)
         session.clock += 1.0  # still for a while: refined
@@ -156,3 +158,36 @@ def test_benchmark_mode_counts_the_frames_shown(clouds, small_settings):
     assert r["keys"] == sorted(V.FreeFlyControls.benchmark_keys) and r["window"] is False
     assert r["moved"] and r["time_playing"]  # clouds: the camera circles and the wind blows
     assert set(r["preview_sizes"]) and all("x" in k for k in r["preview_sizes"])
+    # previews at the window's size through the temporal reconstruction, their quality against the full render
+    # (1/f^2 of them rendered: f = 1 or 2 at 160 x 90, whose sides 4 does not divide; f follows the frame time)
+    assert r["temporal"] and set(r["preview_sizes"]) <= {"160x90"} and 0.25 <= r["fresh_fraction"] <= 1.0
+    assert set(r["internal_sizes"]) <= {"160x90", "80x45"}
+    assert r["quality_samples"] >= 1 and 0 < r["ssim_p5"] <= r["ssim_mean"] <= 1 and r["ciede2000_mean"] >= 0
+
+
+def test_benchmark_dump_holds_what_pywarp_render_reproduces(tmp_path, small_settings):
+    """--dump: each sampled frame as shown, its full render and a JSON whose `render` command gives that full
+    render again (run here through the CLI)."""
+    import json
+
+    from pywarp.cli.main import main
+
+    sc = S.scene("terrain")
+    session = Session(sc, small_settings(sc))
+    try:
+        r = run_benchmark_headless(session, seconds=1.0, warmup_s=0.5, dump=tmp_path)
+    finally:
+        session.close()
+    infos = sorted(tmp_path.glob("terrain-*.json"))
+    assert len(infos) == r["quality_samples"] >= 1
+    info = json.loads(infos[-1].read_text())
+    assert info["render"][:3] == ["pywarp", "render", "terrain"] and 0 < info["ssim"] <= 1
+    out = tmp_path / "again.png"
+    assert main(info["render"][1:] + ["--out", str(out), "--no-progress"]) == 0
+    from PIL import Image
+
+    full = np.asarray(Image.open(str(infos[-1]).replace(".json", "-full.png")))
+    again = np.asarray(Image.open(out))
+    assert np.array_equal(full, again)
+    shown = np.asarray(Image.open(str(infos[-1]).replace(".json", "-shown.png")))
+    assert shown.shape == full.shape

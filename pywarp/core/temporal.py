@@ -1,0 +1,206 @@
+"""Temporal reconstruction: a full-resolution picture while moving, from a fraction of its pixels per frame.
+
+Every scene's viewer uses it (:class:`pywarp.viewer.session.RenderWorker`): while the view moves, a frame renders
+1/f^2 of the window's pixels -- the scene at (width/f) x (height/f) with a sub-pixel camera offset, so that its pixel
+(i, j) is exactly the window's pixel (f j + ox, f i + oy) -- and the phase (ox, oy) steps through the f x f pixels
+of each block (Guerrilla's Nubis: 1/16 of the pixels per frame, Schneider 2015; checkerboard and TAA upsampling:
+Karis 2014, Yang et al. 2020). :meth:`TemporalUpsampler.resolve` writes the window's picture:
+
+* a pixel rendered this frame is that pixel of the full render (the same ray);
+* any other pixel is the previous picture reprojected with the camera's motion (each window pixel's ray through the
+  previous camera, as a point at infinity: exact for turning and for the distant cloudscape; where the camera
+  translates near a surface the clamp below bounds the error), sampled bilinearly and clamped into the colour box of
+  this frame's nearest fresh pixel and its four neighbours (Karis 2014's neighbourhood clamping on the fresh grid; the
+  cross costs less than a 3 x 3 box and measured as good): history that disagrees with what the neighbourhood shows
+  now -- a disocclusion, a moving object, changed lighting -- is pulled to it, so it cannot ghost;
+* where the history falls outside the previous picture, or there is none, the fresh pixels interpolated bilinearly.
+
+With the camera and the scene still, the clamp is off (the history is then exact) and after f^2 frames every pixel
+has been rendered once: the picture is the full render. What a scene feeds the pass: its uint8 frame at the reduced
+size rendered with the phase's ``jitter_px`` (:meth:`pywarp.core.technique.Technique.jitter`) and its camera
+(:func:`pywarp.viewer.session.technique_camera`: the same matrices at any size of the same aspect). Per-pixel depth
+(the terrain's ray distance, the clouds' reprojection depth) would make the reprojection exact under translation too;
+it is not fed yet.
+"""
+from __future__ import annotations
+
+import numpy as np
+import warp as wp
+
+#: the reduction factors the viewer picks from: 1/f^2 of the pixels are rendered per frame (f must divide both sides)
+FACTORS = (1, 2, 4)
+
+
+def phases(f: int) -> list[tuple[int, int]]:
+    """The order in which the f x f pixels of a block are rendered: the ordered-dither (Bayer) order, so that any
+    f^2/4 consecutive frames cover the block evenly (f = 2: (0,0), (1,1), (1,0), (0,1))."""
+    if f == 1:
+        return [(0, 0)]
+    bayer = np.array([[0]])
+    while bayer.shape[0] < f:
+        n = bayer.shape[0]
+        bayer = np.block([[4 * bayer, 4 * bayer + 2], [4 * bayer + 3, 4 * bayer + 1]])
+        assert bayer.shape[0] == 2 * n
+    order = sorted(((int(bayer[y, x]), x, y) for y in range(f) for x in range(f)))
+    return [(x, y) for _, x, y in order]
+
+
+def reprojection(camera, previous, width: int, height: int) -> np.ndarray:
+    """The 3 x 3 homography (float64) that takes a window pixel (x, y, 1) of ``camera`` to the previous picture's
+    pixel coordinates (homogeneous, the last component > 0 in front of the previous camera) of the same direction:
+    the far-field reprojection. Pixel -> NDC (x + 0.5, y + 0.5 at the centre) -> direction through the camera's
+    ``inv_view_proj_rot`` (vc-A25's ray, unnormalised) -> the previous ``view_proj`` (w = 0: a point at infinity)
+    -> the previous pixel."""
+    w, h = float(width), float(height)
+    to_ndc = np.array([[2.0 / w, 0.0, 1.0 / w - 1.0], [0.0, -2.0 / h, 1.0 - 1.0 / h], [0.0, 0.0, 1.0]])
+    m = np.asarray(camera.inv_view_proj_rot, np.float64)
+    to_dir = np.column_stack([m[:3, 0], m[:3, 1], m[:3, 2] + m[:3, 3]])
+    to_clip = np.asarray(previous.view_proj, np.float64)[[0, 1, 3]][:, :3]
+    to_px = np.array([[w / 2.0, 0.0, w / 2.0 - 0.5], [0.0, -h / 2.0, h / 2.0 - 0.5], [0.0, 0.0, 1.0]])
+    return to_px @ to_clip @ to_dir @ to_ndc
+
+
+def factor_for(width: int, height: int, wanted: int) -> int:
+    """The largest factor of :data:`FACTORS` up to ``wanted`` that divides both sides (1 always does)."""
+    return max(f for f in FACTORS if f <= wanted and width % f == 0 and height % f == 0)
+
+
+@wp.func
+def resolve_pixel(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=wp.vec3, ndim=2), f: int, ox: int,
+                  oy: int, has_hist: int, clamp: int, g: wp.mat33, width: int, height: int, x: int,
+                  y: int) -> wp.vec3:
+    """One pixel of the window's picture (see the module docstring)."""
+    lh = fresh.shape[0]
+    lw = fresh.shape[1]
+    dx = x - ox
+    dy = y - oy
+    if dx >= 0 and dy >= 0 and dx % f == 0 and dy % f == 0:
+        return fresh[dy // f, dx // f]
+    # this pixel in the fresh grid: bilinear weights, and the nearest fresh pixel (the centre of the clamp's cross)
+    u = wp.clamp(float(dx) / float(f), 0.0, float(lw - 1))
+    v = wp.clamp(float(dy) / float(f), 0.0, float(lh - 1))
+    i0 = wp.min(int(u), lw - 1)
+    j0 = wp.min(int(v), lh - 1)
+    i1 = wp.min(i0 + 1, lw - 1)
+    j1 = wp.min(j0 + 1, lh - 1)
+    a = u - float(i0)
+    b = v - float(j0)
+    spatial = (fresh[j0, i0] * (1.0 - a) + fresh[j0, i1] * a) * (1.0 - b) + (fresh[j1, i0] * (1.0 - a)
+                                                                               + fresh[j1, i1] * a) * b
+    if has_hist == 0:
+        return spatial
+    q = g * wp.vec3(float(x), float(y), 1.0)
+    if q[2] <= 0.0:  # the point was behind the previous camera
+        return spatial
+    px = q[0] / q[2]
+    py = q[1] / q[2]
+    if px < -0.5 or py < -0.5 or px > float(width) - 0.5 or py > float(height) - 0.5:  # off the previous picture
+        return spatial
+    px = wp.clamp(px, 0.0, float(width - 1))
+    py = wp.clamp(py, 0.0, float(height - 1))
+    x0 = wp.min(int(px), width - 2)
+    y0 = wp.min(int(py), height - 2)
+    x0 = wp.max(x0, 0)
+    y0 = wp.max(y0, 0)
+    ta = wp.clamp(px - float(x0), 0.0, 1.0)
+    tb = wp.clamp(py - float(y0), 0.0, 1.0)
+    h = (hist[y0, x0] * (1.0 - ta) + hist[y0, x0 + 1] * ta) * (1.0 - tb) + (hist[y0 + 1, x0] * (1.0 - ta)
+                                                                          + hist[y0 + 1, x0 + 1] * ta) * tb
+    if clamp != 0:
+        ci = wp.min(int(u + 0.5), lw - 1)
+        cj = wp.min(int(v + 0.5), lh - 1)
+        xa = wp.max(ci - 1, 0)
+        xb = wp.min(ci + 1, lw - 1)
+        ya = wp.max(cj - 1, 0)
+        yb = wp.min(cj + 1, lh - 1)
+        s1 = fresh[ya, ci]
+        s3 = fresh[cj, xa]
+        s4 = fresh[cj, ci]
+        s5 = fresh[cj, xb]
+        s7 = fresh[yb, ci]
+        lo = wp.min(wp.min(wp.min(s1, s3), wp.min(s4, s5)), s7)
+        hi = wp.max(wp.max(wp.max(s1, s3), wp.max(s4, s5)), s7)
+        h = wp.min(wp.max(h, lo), hi)
+    return h
+
+
+@wp.kernel
+def resolve_kernel(row0: int, fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=wp.vec3, ndim=2),
+                   f: int, ox: int, oy: int, has_hist: int, clamp: int, g: wp.mat33, width: int, height: int,
+                   out: wp.array(dtype=wp.vec3, ndim=2),
+                   shown: wp.array(dtype=wp.uint8, ndim=3)):
+    i, x = wp.tid()
+    y = row0 + i
+    c = resolve_pixel(fresh, hist, f, ox, oy, has_hist, clamp, g, width, height, x, y)
+    out[y, x] = c
+    for k in range(3):
+        shown[y, x, k] = wp.uint8(int(wp.clamp(c[k], 0.0, 255.0) + 0.5))
+
+
+class TemporalUpsampler:
+    """The reconstruction of one viewer (see the module docstring): ``plan`` says what the next frame renders,
+    ``resolve`` turns that render into the window's picture and keeps it as the next frame's history.
+
+    ``width`` x ``height`` the window's picture; ``factor`` the wanted reduction (:func:`factor_for` picks the
+    largest that divides both sides)."""
+
+    def __init__(self, launcher, width: int, height: int, factor: int = 2):
+        self.launcher = launcher
+        self.device = launcher.device
+        self.width, self.height = int(width), int(height)
+        self.set_factor(factor)
+        self.count = 0
+        self._hist = wp.zeros((self.height, self.width), dtype=wp.vec3, device=self.device)
+        self._out = wp.zeros((self.height, self.width), dtype=wp.vec3, device=self.device)
+        self._shown = wp.zeros((self.height, self.width, 3), dtype=wp.uint8, device=self.device)
+        self._prev_cam = None
+        self._prev_key = None
+
+    def set_factor(self, factor: int) -> None:
+        self.factor = factor_for(self.width, self.height, int(factor))
+        self._phases = phases(self.factor)
+
+    def reset(self) -> None:
+        """Forget the history (the next frame is interpolated from its own pixels)."""
+        self._prev_cam = None
+        self._prev_key = None
+
+    def remember(self, image: np.ndarray, camera, key=None) -> None:
+        """Take a full-resolution picture (uint8, e.g. the viewer's refined frame) as the history."""
+        if image.shape[:2] != (self.height, self.width):
+            raise ValueError(f"image must be {self.width}x{self.height}, got {image.shape[1]}x{image.shape[0]}")
+        self._hist = wp.array(np.ascontiguousarray(image[..., :3], dtype=np.float32), dtype=wp.vec3,
+                              device=self.device)
+        self._prev_cam = camera
+        self._prev_key = key
+
+    def plan(self) -> tuple[int, int, tuple[float, float]]:
+        """(width, height, jitter_px) of the next frame's render: the reduced size and the sub-pixel offset (in the
+        reduced image's pixels) that puts its pixel (i, j) on the window's pixel (f i + ox, f j + oy)."""
+        f = self.factor
+        ox, oy = self._phases[self.count % len(self._phases)]
+        return self.width // f, self.height // f, ((ox + 0.5) / f - 0.5, (oy + 0.5) / f - 0.5)
+
+    def resolve(self, fresh: np.ndarray, camera, key=None) -> np.ndarray:
+        """The window's picture (uint8, height x width x 3) from ``fresh`` (the planned render, uint8) and the
+        frame's ``camera`` (:class:`pywarp.kernels.camera.Camera` without the jitter, any size of this aspect).
+        ``key``: what the picture depends on besides the camera (the scene's settings other than its size); the
+        clamp is off while the key and the camera stay the same."""
+        f = self.factor
+        ox, oy = self._phases[self.count % len(self._phases)]
+        lw, lh = self.width // f, self.height // f
+        if fresh.shape[:2] != (lh, lw):
+            raise ValueError(f"fresh must be {lw}x{lh} (the planned size), got {fresh.shape[1]}x{fresh.shape[0]}")
+        src = wp.array(np.ascontiguousarray(fresh[..., :3], dtype=np.float32), dtype=wp.vec3, device=self.device)
+        has_hist = self._prev_cam is not None
+        still = has_hist and key == self._prev_key and all(
+            np.array_equal(getattr(camera, n), getattr(self._prev_cam, n)) for n in ("view_proj", "inv_view_proj"))
+        g = reprojection(camera, self._prev_cam if has_hist else camera, self.width, self.height)
+        self.launcher.launch(resolve_kernel, self.height, self.width,
+                             [src, self._hist, f, ox, oy, int(has_hist), int(not still),
+                              wp.mat33(*g.astype(np.float32).ravel().tolist()), self.width, self.height],
+                             [self._out, self._shown])
+        self._hist, self._out = self._out, self._hist
+        self._prev_cam, self._prev_key = camera, key
+        self.count += 1
+        return self._shown.numpy().copy()

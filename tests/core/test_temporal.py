@@ -1,0 +1,125 @@
+"""The viewer's temporal reconstruction (pywarp.core.temporal): the phases, the far-field reprojection against a
+direct projection of the rays, convergence of a still view to the full render, reprojection under a turn, history
+clamped where the scene changed, input checks and determinism. The "scene" is an analytic function of the view
+direction rendered in NumPy (so its full render at any pose is known exactly)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from pywarp.core import temporal as T
+from pywarp.core.pose import Pose
+from pywarp.core.runtime import launcher
+from pywarp.kernels.camera import pose_camera
+
+W, H = 64, 36
+
+
+def rays(pose: Pose, width: int, height: int) -> np.ndarray:
+    """Unit directions through the pixel centres (float64; vc-A25's uv -> NDC -> inverse view-projection)."""
+    m = pose_camera(pose, width, height).inv_view_proj_rot.astype(np.float64)
+    xs, ys = np.meshgrid(np.arange(width) + 0.5, np.arange(height) + 0.5)
+    ndc = np.stack([2 * xs / width - 1, 1 - 2 * ys / height, np.ones_like(xs), np.ones_like(xs)], -1)
+    d = (ndc @ m.T)[..., :3]
+    return d / np.linalg.norm(d, axis=-1, keepdims=True)
+
+
+def scene(pose: Pose, width: int, height: int, dark: bool = False) -> np.ndarray:
+    """A smooth pattern over the directions (uint8): stripes in azimuth, a gradient in elevation."""
+    d = rays(pose, width, height)
+    az = np.arctan2(d[..., 0], -d[..., 2])
+    el = np.arcsin(np.clip(d[..., 1], -1, 1))
+    r = 0.5 + 0.5 * np.sin(9.0 * az)
+    g = 0.5 + 0.5 * np.cos(7.0 * el + 3.0 * az)
+    b = 0.5 + 0.4 * np.sin(5.0 * el)
+    img = np.stack([r, g, b], -1) * (0.2 if dark else 1.0)
+    return (img * 255.0 + 0.5).astype(np.uint8)
+
+
+def step(up: T.TemporalUpsampler, pose: Pose, key=None, dark=False) -> np.ndarray:
+    lw, lh, jitter = up.plan()
+    fresh = scene(Pose(**{**pose.__dict__, "jitter_px": jitter}), lw, lh, dark)
+    return up.resolve(fresh, pose_camera(pose, W, H), key=key)
+
+
+def test_phases_cover_each_block_once():
+    for f in T.FACTORS:
+        ph = T.phases(f)
+        assert sorted(ph) == [(x, y) for x in range(f) for y in range(f)]
+    assert T.phases(2) == [(0, 0), (1, 1), (1, 0), (0, 1)]
+    # any f^2/4 consecutive phases of f = 4 take one pixel of each 2 x 2 quadrant
+    q = {(x // 2, y // 2) for x, y in T.phases(4)[:4]}
+    assert q == {(0, 0), (0, 1), (1, 0), (1, 1)}
+    assert T.factor_for(640, 360, 4) == 4 and T.factor_for(642, 360, 4) == 2 and T.factor_for(641, 360, 4) == 1
+
+
+def test_reprojection_matches_projecting_the_rays():
+    cur, prev = Pose(yaw_deg=10.0, pitch_deg=5.0, fov_y_deg=60.0), Pose(yaw_deg=4.0, pitch_deg=-3.0, fov_y_deg=60.0)
+    g = T.reprojection(pose_camera(cur, W, H), pose_camera(prev, W, H), W, H)
+    d = rays(cur, W, H)
+    vp = pose_camera(prev, W, H).view_proj.astype(np.float64)
+    clip = np.concatenate([d, np.zeros(d.shape[:2] + (1,))], -1) @ vp.T
+    px = (clip[..., 0] / clip[..., 3] + 1) / 2 * W - 0.5
+    py = (1 - clip[..., 1] / clip[..., 3]) / 2 * H - 0.5
+    xs, ys = np.meshgrid(np.arange(W), np.arange(H))
+    q = np.stack([xs, ys, np.ones_like(xs)], -1) @ g.T
+    assert np.all(q[..., 2] > 0)
+    np.testing.assert_allclose(q[..., 0] / q[..., 2], px, atol=1e-6)
+    np.testing.assert_allclose(q[..., 1] / q[..., 2], py, atol=1e-6)
+    same = T.reprojection(pose_camera(cur, W, H), pose_camera(cur, W, H), W, H)
+    q = np.stack([xs, ys, np.ones_like(xs)], -1) @ same.T
+    np.testing.assert_allclose(q[..., 0] / q[..., 2], xs, atol=1e-6)
+
+
+@pytest.mark.parametrize("f", [2, 4])
+def test_still_view_converges_to_the_full_render(f):
+    up = T.TemporalUpsampler(launcher("cpu", None), W, H, f)
+    pose = Pose(yaw_deg=20.0, pitch_deg=10.0, fov_y_deg=60.0)
+    full = scene(pose, W, H).astype(int)
+    first = step(up, pose).astype(int)
+    for _ in range(f * f - 1):
+        img = step(up, pose).astype(int)
+    # every pixel rendered once, the history exact: the full render (the jittered cameras' rays round in float32)
+    assert np.abs(img - full).max() <= 1
+    assert np.abs(first - full).mean() > 5 * max(np.abs(img - full).mean(), 0.01)  # the first frame only interpolates
+
+
+def test_turning_reuses_the_history():
+    up = T.TemporalUpsampler(launcher("cpu", None), W, H, 2)
+    a = Pose(yaw_deg=0.0, fov_y_deg=60.0)
+    for _ in range(4):
+        step(up, a)
+    b = Pose(yaw_deg=1.5, fov_y_deg=60.0)  # a turn of ~1.6 pixels
+    img = step(up, b).astype(int)
+    up.reset()
+    spatial = step(up, b).astype(int)
+    full = scene(b, W, H).astype(int)
+    err, err_spatial = np.abs(img - full).mean(), np.abs(spatial - full).mean()
+    assert err < 0.5 * err_spatial, (err, err_spatial)
+
+
+def test_history_that_disagrees_is_clamped():
+    up = T.TemporalUpsampler(launcher("cpu", None), W, H, 2)
+    pose = Pose(yaw_deg=5.0, fov_y_deg=60.0)
+    for _ in range(4):
+        step(up, pose, key="bright")
+    img = step(up, pose, key="dark", dark=True)  # the scene changed: no bright ghost survives the clamp
+    dark = scene(pose, W, H, dark=True)
+    assert img.max() <= dark.max()
+    assert np.abs(img.astype(int) - dark.astype(int)).max() <= int(dark.max())
+
+
+def test_checks_and_determinism():
+    up = T.TemporalUpsampler(launcher("cpu", None), W, H, 2)
+    with pytest.raises(ValueError, match="fresh must be 32x18"):
+        up.resolve(np.zeros((10, 10, 3), np.uint8), pose_camera(Pose(), W, H))
+    with pytest.raises(ValueError, match="image must be 64x36"):
+        up.remember(np.zeros((10, 10, 3), np.uint8), pose_camera(Pose(), W, H))
+    runs = []
+    for _ in range(2):
+        up = T.TemporalUpsampler(launcher("cpu", None), W, H, 2)
+        runs.append([step(up, Pose(yaw_deg=k * 0.7, fov_y_deg=60.0)) for k in range(5)])
+    assert all(np.array_equal(a, b) for a, b in zip(*runs))
+    assert math.isclose(up.plan()[2][0], 0.25) or math.isclose(up.plan()[2][0], -0.25)
