@@ -1,0 +1,83 @@
+"""The viewer benchmarks of every scene in one run, as a Markdown table (the README's performance section).
+
+    python tools/viewer_table.py [--seconds 10] [--baseline OTHER/bin/python] [--window] [--json OUT.json]
+
+For each scene it runs ``pywarp view SCENE --benchmark SECONDS --json --no-window`` (``--window``: also under
+``xvfb-run -a`` with the window), this installation with its temporal previews and with ``--previews scaled`` (the
+whole picture at a reduced size, enlarged: the previews before the temporal reconstruction), and, with
+``--baseline``, the same command with another installation's interpreter (e.g. a venv of the commit before; it
+takes no ``--previews`` and reports no quality keys). The runs of a scene follow one another, so the machine's load
+is alike; each row says the load average at its start. Nothing is asserted: the numbers are printed.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+SCENES = ("clouds", "terrain", "flight", "rain")
+
+
+def run(python: str, scene: str, seconds: float, extra=(), window=False) -> dict:
+    cmd = [python, "-m", "pywarp", "view", scene, "--benchmark", str(seconds), "--json", *extra]
+    if window:
+        cmd = ["xvfb-run", "-a", *cmd]
+    else:
+        cmd.append("--no-window")
+    load = os.getloadavg()[0]
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=1800)
+    lines = [x for x in p.stdout.splitlines() if x.startswith("{")]
+    if p.returncode != 0 or not lines:
+        return {"error": (p.stderr.strip().splitlines() or ["no output"])[-1], "load": load}
+    r = json.loads(lines[-1])
+    r["load"] = load
+    return r
+
+
+def cell(r: dict) -> str:
+    if "error" in r:
+        return "error: " + r["error"][:40]
+    q = "" if r.get("ssim_mean") is None else f", SSIM {r['ssim_mean']:.2f} / p5 {r['ssim_p5']:.2f}"
+    sizes = r.get("internal_sizes") or r.get("preview_sizes") or {}
+    main = max(sizes, key=sizes.get) if sizes else "?"
+    return f"{r['fps']:.1f} fps ({main}{q})"
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seconds", type=float, default=10.0)
+    ap.add_argument("--baseline", default=None, metavar="PYTHON")
+    ap.add_argument("--window", action="store_true", help="also with the window under xvfb-run")
+    ap.add_argument("--json", default=None, metavar="OUT")
+    ap.add_argument("--scenes", nargs="+", default=list(SCENES), choices=SCENES)
+    a = ap.parse_args()
+    if a.window and not shutil.which("xvfb-run"):
+        ap.error("--window needs xvfb-run")
+    rows = []
+    for sc in a.scenes:
+        row = {"scene": sc}
+        if a.baseline:
+            row["baseline"] = run(a.baseline, sc, a.seconds)
+        row["scaled"] = run(sys.executable, sc, a.seconds, ["--previews", "scaled"])
+        row["temporal"] = run(sys.executable, sc, a.seconds)
+        if a.window:
+            row["temporal_window"] = run(sys.executable, sc, a.seconds, window=True)
+        rows.append(row)
+        print(json.dumps(row), file=sys.stderr, flush=True)
+    cols = [c for c in ("baseline", "scaled", "temporal", "temporal_window") if c in rows[0]]
+    print("| scene | " + " | ".join(cols) + " | load at start |")
+    print("|---|" + "---|" * (len(cols) + 1))
+    for row in rows:
+        loads = "/".join(f"{row[c]['load']:.1f}" for c in cols)
+        print(f"| {row['scene']} | " + " | ".join(cell(row[c]) for c in cols) + f" | {loads} |")
+    if a.json:
+        with open(a.json, "w", encoding="utf-8") as fh:
+            json.dump(rows, fh, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
