@@ -127,6 +127,10 @@
  *   silver_g 0.8, silver_weight 0   no second lobe: by the same measurement every weight raises the error in every
  *                             scene (4 octaves: w 0 9.04, 0.15 9.25, 0.3 with silver_g 0.8 9.71) -- the medium's
  *                             phase function is the one HG lobe g; the lobe stays an option (fig 2.17 shows it).
+ *   ambient_ground_weight 0   the ambient is the sky's mean over the upper hemisphere (the thesis's constants are
+ *                             sky-like); 0.5 is the mean over the whole sphere of directions, the lower half the
+ *                             lit ground: the in-scattered light of an isotropic phase for a cloud with nothing
+ *                             around it.
  *   phase CCL_CLOUDSCAPE_PHASE_THESIS, droplet_um 15   the thesis's HG lobe by default (its images); with
  *                             CCL_CLOUDSCAPE_PHASE_MIE the approximate Mie phase of 15 um droplets (effective radius
  *                             7.5 um, in the 5-10 um of fair-weather cumulus; g = 0.87). Octave i then takes c^i of
@@ -189,6 +193,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->silver_weight = 0.0f;
     out->phase = CCL_CLOUDSCAPE_PHASE_THESIS;
     out->droplet_um = 15.0f;
+    out->ambient_ground_weight = 0.0f;
     out->lod = 1;
     out->lod_bias = 0.0f;
     out->refine_step_km = 0.1f;
@@ -287,6 +292,8 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         return bad(out_field, "phase");
     if (!(p->droplet_um >= (float)CCL_PHASE_MIE_D_MIN && p->droplet_um <= (float)CCL_PHASE_MIE_D_MAX))
         return bad(out_field, "droplet_um");
+    if (!(p->ambient_ground_weight >= 0.0f && p->ambient_ground_weight <= 1.0f))
+        return bad(out_field, "ambient_ground_weight");
     if (!(p->lod == 0 || p->lod == 1)) return bad(out_field, "lod");
     if (!(p->weather_detile == 0 || p->weather_detile == 1)) return bad(out_field, "weather_detile");
     if (!(p->lod_bias >= -4.0f && p->lod_bias <= 4.0f)) return bad(out_field, "lod_bias");
@@ -705,9 +712,13 @@ void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_s
             }
         }
         for (c = 0; c < 3; ++c) {
-            q.ambient_top[c] = mean[c] / wsum;
-            q.ambient_bottom[c] = p->ambient_bottom_ratio * q.ambient_top[c];
+            /* the lower hemisphere's share: the unshadowed Lambertian ground under the sun and the sky */
+            const float w = p->ambient_ground_weight;
+            float ground;
             q.ambient_ground[c] = cmean[c] / csum;
+            ground = p->ground_albedo[c] * (q.sun_colour[c] * (cos_s * 0.318309886f) + q.ambient_ground[c]);
+            q.ambient_top[c] = (1.0f - w) * (mean[c] / wsum) + w * ground;
+            q.ambient_bottom[c] = p->ambient_bottom_ratio * q.ambient_top[c];
         }
     }
     *out = q;

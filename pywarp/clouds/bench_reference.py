@@ -75,6 +75,16 @@ MODELS = {
     # shows how much of the last model's error is the haze
     "+ms, haze off": dict(lighting="sky", ms_octaves=None, silver_weight=None, powder=None, aerial_km=0.0),
 }
+#: The models of the physical medium only (rows after MODELS): ``physical`` -- the lighting model for physical units
+#: and the Mie phase (issue 32; docs/lighting.rst): sky lighting without the powder term, a quarter of the clouds'
+#: ambient from the lit ground below (ambient_ground_weight 0.25), four octaves that keep more of the light
+#: (optical depth x 0.3^i, contribution x 0.6^i), no aerial perspective (the reference's air does not scatter).
+#: Tuned (tools/tune_lighting.py's measure, absolute errors) on noon, from above and view below; low sun and view
+#: above were not seen by the tuning.
+PHYSICAL_MODELS = {
+    "physical": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
+                     advanced={"ms_a": 0.3, "ms_b": 0.6}),
+}
 #: The row of the renderer's defaults (no lighting change; the medium's units and phase), after MODELS.
 DEFAULT_ROW = "default"
 #: The media of the comparison: what the reference and every model share (the scene's sky units and the clouds'
@@ -114,13 +124,14 @@ def model_settings(base, name: str):
         return base, None
     fields = _fields()
     changes = {}
-    if MODELS[name].get("lighting") == "thesis" and getattr(base, "units", "display") != "display":
+    model = {**MODELS, **PHYSICAL_MODELS}[name]
+    if model.get("lighting") == "thesis" and getattr(base, "units", "display") != "display":
         changes["units"] = "display"
-    for key, value in MODELS[name].items():
+    for key, value in model.items():
         if key not in fields:
             return None, f"needs the setting {key!r}, which this installation does not have"
         changes[key] = fields[key].default if value is None else value
-    if "ms_octaves" in changes and MODELS[name]["ms_octaves"] is None and not changes["ms_octaves"] > 1:
+    if "ms_octaves" in changes and model["ms_octaves"] is None and not changes["ms_octaves"] > 1:
         changes["ms_octaves"] = 3  # (an installation whose default is single scattering)
     return replace(base, **changes), None
 
@@ -251,7 +262,8 @@ def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | 
                "noise_floor": {k: v for k, v in errors(a * ex, b * ex).items() if k != "scale"}, "models": []}
         target = ref * ex
         imgs = {"reference": (_srgb(target) * 255.0 + 0.5).astype(np.uint8)}
-        for model in (*MODELS, DEFAULT_ROW):
+        rows = (*MODELS, *(PHYSICAL_MODELS if medium == "physical" else ()), DEFAULT_ROW)
+        for model in rows:
             ms, why = model_settings(s, model)
             if ms is None:
                 say(f"  {model}: skipped ({why})")
@@ -263,7 +275,7 @@ def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | 
             else:
                 lin = tech.render(reprojection=False, encode=False)
             e = errors(lin, target)
-            changes = {k: getattr(ms, k) for k in MODELS.get(model, {})}
+            changes = {k: getattr(ms, k) for k in {**MODELS, **PHYSICAL_MODELS}.get(model, {})}
             row["models"].append({"model": model, "settings": changes, **e,
                                   "absolute": absolute_errors(lin, ref, ex, tau)})
             imgs[model] = (_srgb(e["scale"] * np.asarray(lin, dtype=np.float64)) * 255.0 + 0.5).astype(np.uint8)

@@ -126,6 +126,7 @@ class CloudscapeParams:
     silver_weight: float
     phase: int
     droplet_um: float
+    ambient_ground_weight: float
     lod: int
     lod_bias: float
     refine_step_km: float
@@ -923,11 +924,18 @@ def cloudscape_light(p: CloudscapeParams, sky_kind: int, sun: wp.vec3, preetham:
                 cmean = wp.vec3(cmean[0] + v[0] * wc, cmean[1] + v[1] * wc, cmean[2] + v[2] * wc)
                 wsum = wsum + st
                 csum = csum + wc
-        top = wp.vec3(mean[0] / wsum, mean[1] / wsum, mean[2] / wsum)
+        # the lower hemisphere's share: the unshadowed Lambertian ground under the sun and the sky
+        w = p.ambient_ground_weight
+        amb_g = wp.vec3(cmean[0] / csum, cmean[1] / csum, cmean[2] / csum)
+        k = cos_s * 0.318309886
+        sc = q.sun_colour
+        top = wp.vec3((1.0 - w) * (mean[0] / wsum) + w * (p.ground_albedo[0] * (sc[0] * k + amb_g[0])),
+                      (1.0 - w) * (mean[1] / wsum) + w * (p.ground_albedo[1] * (sc[1] * k + amb_g[1])),
+                      (1.0 - w) * (mean[2] / wsum) + w * (p.ground_albedo[2] * (sc[2] * k + amb_g[2])))
         q.ambient_top = top
         q.ambient_bottom = wp.vec3(p.ambient_bottom_ratio * top[0], p.ambient_bottom_ratio * top[1],
                                    p.ambient_bottom_ratio * top[2])
-        q.ambient_ground = wp.vec3(cmean[0] / csum, cmean[1] / csum, cmean[2] / csum)
+        q.ambient_ground = amb_g
     return q
 
 

@@ -237,6 +237,26 @@ def test_physical_units_light_closed_form(tech):
     assert np.all(mean > 1 - np.exp(-mean))
 
 
+@pytest.mark.parametrize("units", ["display", "physical"])
+def test_ambient_ground_weight_blends_in_the_lit_ground(tech, units):
+    """ambient_ground_weight w: ambient_top = (1 - w) x the sky's mean + w x the unshadowed ground's radiance
+    albedo (E_sun cos theta_s / pi + ambient_ground), from the lights of w = 0; bottom keeps its ratio; C and Warp
+    agree."""
+    s0 = small(units=units, sun_elevation_deg=50.0, ground_albedo=(0.2, 0.3, 0.1))
+    t0 = CloudscapeTechnique(s0, textures=tech.textures)
+    s = dataclasses.replace(s0, ambient_ground_weight=0.5)
+    t = CloudscapeTechnique(s, textures=tech.textures)
+    sun, top0, amb_g = (np.array(getattr(t0.params, n), dtype=np.float64)
+                        for n in ("sun_colour", "ambient_top", "ambient_ground"))
+    ground = np.array([0.2, 0.3, 0.1]) * (sun * math.sin(math.radians(50.0)) / math.pi + amb_g)
+    np.testing.assert_allclose(np.array(t.params.ambient_top), 0.5 * top0 + 0.5 * ground, rtol=1e-5)
+    np.testing.assert_allclose(np.array(t.params.ambient_bottom), 0.4 * np.array(t.params.ambient_top), rtol=1e-6)
+    c = _c_lit(s)
+    for name in LIGHT:
+        np.testing.assert_allclose(np.array(getattr(t.params, name), dtype=np.float32),
+                                   np.array(list(getattr(c, name)), dtype=np.float32), rtol=3e-7, err_msg=name)
+
+
 @wp.kernel
 def _ground_kernel(p: K.CloudscapeParams, tex: K.CloudTextures, pts: wp.array(dtype=wp.vec3), sun: wp.vec3,
                    out: wp.array(dtype=wp.vec3), shadow: wp.array(dtype=float)):
@@ -580,6 +600,7 @@ def test_lighting_defaults_equal_ccl_cloudscape_params_default():
     ("droplet_um", 4.0, ValueError, "droplet_um"),
     ("droplet_um", 60.0, ValueError, "droplet_um"),
     ("units", "si", ValueError, "units must be one of"),
+    ("ambient_ground_weight", 1.5, ValueError, "ambient_ground_weight"),
 ])
 def test_lighting_settings_refuse_bad_values(field, value, err, match):
     with pytest.raises(err, match=match):

@@ -484,12 +484,13 @@ def test_error_metrics_after_the_best_exposure_scale(rng):
 
 @pytest.mark.parametrize("medium", ["display", "physical"])
 def test_compare_gives_a_row_per_scene_and_model(medium):
-    from pywarp.clouds.bench_reference import CLASS_EDGES, MODELS, compare, report
+    from pywarp.clouds.bench_reference import CLASS_EDGES, MODELS, PHYSICAL_MODELS, compare, report
 
     res, images = compare(16, 9, spp=4, scenes=["noon"], progress=lambda m: None, settings=SMALL, medium=medium)
     (sc,) = res["scenes"]
     assert res["medium"] == medium
-    assert sc["scene"] == "noon" and [m["model"] for m in sc["models"]] == [*MODELS, "default"]
+    extra = list(PHYSICAL_MODELS) if medium == "physical" else []
+    assert sc["scene"] == "noon" and [m["model"] for m in sc["models"]] == [*MODELS, *extra, "default"]
     assert sum(sc["pixels"].values()) == 16 * 9
     for m in sc["models"]:
         assert -1.0 <= m["ssim"] <= 1.0 and m["delta_e"] >= 0.0 and m["scale"] > 0.0

@@ -40,7 +40,8 @@
  *       sun_colour     = sun_intensity * ccl_sky_sun_attenuation(theta_s, turbidity)  (Preetham et al. 1999 A.1:
  *                        Rayleigh and aerosol extinction along the air mass towards the sun: white at noon, orange
  *                        at sunset);
- *       ambient_top    = the mean sky radiance over the upper hemisphere (solid-angle weighted), ambient_bottom =
+ *       ambient_top    = the mean sky radiance over the upper hemisphere (solid-angle weighted; with
+ *                        ambient_ground_weight w > 0 blended with the lit ground's radiance), ambient_bottom =
  *                        ambient_bottom_ratio x ambient_top, ambient_ground = the cosine-weighted mean (E_sky / pi),
  *                        by the midpoint rule on CCL_CLOUDSCAPE_SKY_THETA_CELLS x _PHI_CELLS cells of equal
  *                        (zenith angle, azimuth) size, each weighted by sin(theta) (x cos(theta)), normalised by the
@@ -209,6 +210,9 @@ typedef struct ccl_cloudscape_params {
     int phase;                  /* ccl_cloudscape_phase of the sun energy: CCL_CLOUDSCAPE_PHASE_THESIS (default: HG(g)
                                    and the silver lobe) or CCL_CLOUDSCAPE_PHASE_MIE (ccl_phase_mie of droplet_um) */
     float droplet_um;           /* droplet diameter of the Mie phase, um, in [CCL_PHASE_MIE_D_MIN, _MAX] (default 15) */
+    float ambient_ground_weight; /* sky mode: ambient_top = (1 - w) x the sky's mean over the upper hemisphere + w x
+                                    the unshadowed ground's radiance ground_albedo (sun_colour cos theta_s / pi +
+                                    ambient_ground), w in [0, 1] (default 0; 0.5: the mean over the whole sphere) */
     int march;                  /* ccl_cloudscape_march_kind: CCL_CLOUDSCAPE_MARCH_FAST (default) or
                                    CCL_CLOUDSCAPE_MARCH_TEXTBOOK (the thesis's loop, see ccl_cloudscape_march) */
 } ccl_cloudscape_params;
