@@ -6,7 +6,7 @@ machine finishes in about half an hour.
     python tools/lighting_docs.py [--width 96 --height 54 --spp 128] [--json OUT.json]
 
 Writes docs/images/lighting/<scene>-<row>.png (the reference exposed for display and the rows ``default`` and
-``physical`` under the reference's exposure alone -- no rescaling) and docs/lighting_table.rst (included by the
+``physical`` under the reference's exposure alone -- no rescaling) and docs/lighting_table.inc (included by the
 page). The images stay linear up to the renderer's display step (clamp, sRGB); a shared display transform would
 replace :func:`pywarp.clouds.bench_reference._srgb` here and in the benchmark.
 """
@@ -70,7 +70,7 @@ def main(argv=None) -> int:
         for row in IMAGE_ROWS:
             if "abs " + row in imgs:
                 iio.imwrite(out / f"{_slug(scene)}-{_slug(row)}.png", imgs["abs " + row])
-    (ROOT / "docs" / "lighting_table.rst").write_text(table(res), encoding="utf-8")
+    (ROOT / "docs" / "lighting_table.inc").write_text(table(res), encoding="utf-8")
     if args.json:
         Path(args.json).write_text(json.dumps(res), encoding="utf-8")
     return 0
