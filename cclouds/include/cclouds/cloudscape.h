@@ -39,14 +39,16 @@
  *     replaces the constants by values of the sky model (gradient or Preetham, whichever the scene uses):
  *       sun_colour     = sun_intensity * ccl_sky_sun_attenuation(theta_s, turbidity)  (Preetham et al. 1999 A.1:
  *                        Rayleigh and aerosol extinction along the air mass towards the sun: white at noon, orange
- *                        at sunset);
+ *                        at sunset); with the sky CCL_SKY_PREETHAM_RADIANCE (physical units) k x
+ *                        CCL_CLOUDSCAPE_SUN_KLX_X10 / 10 instead of sun_intensity, k = the sky's exposure;
  *       ambient_top    = the mean sky radiance over the upper hemisphere (solid-angle weighted; with
  *                        ambient_ground_weight w > 0 blended with the lit ground's radiance), ambient_bottom =
  *                        ambient_bottom_ratio x ambient_top, ambient_ground = the cosine-weighted mean (E_sky / pi),
  *                        by the midpoint rule on CCL_CLOUDSCAPE_SKY_THETA_CELLS x _PHI_CELLS cells of equal
  *                        (zenith angle, azimuth) size, each weighted by sin(theta) (x cos(theta)), normalised by the
  *                        quadrature's own weight sum (a constant sky gives exactly its value); sky values are the
- *                        display-linear colours the background shows (Preetham: tone mapped), negative ones as 0.
+ *                        display-linear colours the background shows (Preetham: tone mapped, or k C_HDR in physical
+ *                        units), negative ones as 0.
  *     and the pixel changes in three places:
  *       ground   G = ground_albedo (sun_colour max(n . s, 0) T_shadow / pi + ambient_ground) at the point P where the
  *                  ray meets the Earth (n its normal, s towards the sun): Lambertian, lit by the sun through the
