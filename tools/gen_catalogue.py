@@ -30,6 +30,8 @@ ID_ANYWHERE = re.compile(rf"\b({ID_RE})\b")
 
 def kind_of(cid: str) -> str:
     rest = cid.split("-", 1)[1]
+    if rest.startswith("x-"):  # beyond the text (vc-x-mie): catalogued with its source, not counted as the text's
+        return "extra"
     if rest.startswith("fig-"):
         return "figure"
     if rest.startswith("tab-"):

@@ -126,7 +126,15 @@
  *                             best (mean SSIM 0.774 against 0.776 for eight).
  *   silver_g 0.8, silver_weight 0   no second lobe: by the same measurement every weight raises the error in every
  *                             scene (4 octaves: w 0 9.04, 0.15 9.25, 0.3 with silver_g 0.8 9.71) -- the medium's
- *                             phase function is the one HG lobe g; the lobe stays an option (fig 2.17 shows it). */
+ *                             phase function is the one HG lobe g; the lobe stays an option (fig 2.17 shows it).
+ *   ambient_ground_weight 0   the ambient is the sky's mean over the upper hemisphere (the thesis's constants are
+ *                             sky-like); 0.5 is the mean over the whole sphere of directions, the lower half the
+ *                             lit ground: the in-scattered light of an isotropic phase for a cloud with nothing
+ *                             around it.
+ *   phase CCL_CLOUDSCAPE_PHASE_THESIS, droplet_um 15   the thesis's HG lobe by default (its images); with
+ *                             CCL_CLOUDSCAPE_PHASE_MIE the approximate Mie phase of 15 um droplets (effective radius
+ *                             7.5 um, in the 5-10 um of fair-weather cumulus; g = 0.87). Octave i then takes c^i of
+ *                             it and 1 - c^i of the isotropic phase: the mean cosine c^i g, as HG(c^i g) has. */
 void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
 {
     static const float sun[3] = {12.0f, 11.52f, 10.56f};
@@ -183,6 +191,9 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->ms_c = 0.5f;
     out->silver_g = 0.8f;
     out->silver_weight = 0.0f;
+    out->phase = CCL_CLOUDSCAPE_PHASE_THESIS;
+    out->droplet_um = 15.0f;
+    out->ambient_ground_weight = 0.0f;
     out->lod = 1;
     out->lod_bias = 0.0f;
     out->refine_step_km = 0.1f;
@@ -277,6 +288,12 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!(p->ms_c >= 0.0f && p->ms_c <= 1.0f)) return bad(out_field, "ms_c");
     if (!(p->silver_g > -1.0f && p->silver_g < 1.0f)) return bad(out_field, "silver_g");
     if (!(p->silver_weight >= 0.0f && p->silver_weight <= 1.0f)) return bad(out_field, "silver_weight");
+    if (!(p->phase == CCL_CLOUDSCAPE_PHASE_THESIS || p->phase == CCL_CLOUDSCAPE_PHASE_MIE))
+        return bad(out_field, "phase");
+    if (!(p->droplet_um >= (float)CCL_PHASE_MIE_D_MIN && p->droplet_um <= (float)CCL_PHASE_MIE_D_MAX))
+        return bad(out_field, "droplet_um");
+    if (!(p->ambient_ground_weight >= 0.0f && p->ambient_ground_weight <= 1.0f))
+        return bad(out_field, "ambient_ground_weight");
     if (!(p->lod == 0 || p->lod == 1)) return bad(out_field, "lod");
     if (!(p->weather_detile == 0 || p->weather_detile == 1)) return bad(out_field, "weather_detile");
     if (!(p->lod_bias >= -4.0f && p->lod_bias <= 4.0f)) return bad(out_field, "lod_bias");
@@ -327,7 +344,8 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
             return bad(out_field, "detail_offset");
     }
     if (sky == NULL) return bad(out_field, "sky");
-    if (!(sky->kind == CCL_SKY_GRADIENT || sky->kind == CCL_SKY_PREETHAM)) return bad(out_field, "sky.kind");
+    if (!(sky->kind == CCL_SKY_GRADIENT || sky->kind == CCL_SKY_PREETHAM || sky->kind == CCL_SKY_PREETHAM_RADIANCE))
+        return bad(out_field, "sky.kind");
     {
         /* | |sun| - 1 | <= 1e-3, the tolerance of the other unit-vector checks (registry UNIT_TOL); the march clamps
          * dot(d, sun) to [-1, 1], the domain of the phase function it feeds */
@@ -575,14 +593,22 @@ float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, fl
     /* octave i: contribution b^i, optical depth a^i d, eccentricities c^i g (Wrenninge et al. 2013, Hillaire 2016);
      * the i = 0 term is vc-2.31 in the operation order of ccl_clouds_energy: (beer * phase) * powder */
     float e = 0.0f, ai = 1.0f, bi = 1.0f, ci = 1.0f;
+    const float mie = p->phase == CCL_CLOUDSCAPE_PHASE_MIE ? ccl_phase_mie(cos_theta, p->droplet_um) : 0.0f;
     int i;
     for (i = 0; i < p->ms_octaves; ++i) {
         const float di = d * ai;
         const float beer = p->beer ? expf(-di * a) : 1.0f;
         const float powder = p->powder ? 1.0f - expf(-2.0f * di) : 1.0f;
-        float phase = ccl_phase_hg(cos_theta, p->g * ci);
-        if (p->silver_weight > 0.0f) /* dual lobe: (1 - w) HG(g) + w HG(silver_g) */
-            phase = (1.0f - p->silver_weight) * phase + p->silver_weight * ccl_phase_hg(cos_theta, p->silver_g * ci);
+        float phase;
+        if (p->phase == CCL_CLOUDSCAPE_PHASE_MIE) {
+            /* c^i of the Mie phase and 1 - c^i isotropic: the octave's mean cosine is c^i g, as with HG(c^i g) */
+            phase = ci * mie + (1.0f - ci) * CCL_INV_4PI_F;
+        } else {
+            phase = ccl_phase_hg(cos_theta, p->g * ci);
+            if (p->silver_weight > 0.0f) /* dual lobe: (1 - w) HG(g) + w HG(silver_g) */
+                phase = (1.0f - p->silver_weight) * phase +
+                        p->silver_weight * ccl_phase_hg(cos_theta, p->silver_g * ci);
+        }
         e += bi * beer * phase * powder;
         ai *= p->ms_a;
         bi *= p->ms_b;
@@ -627,6 +653,16 @@ void ccl_cloudscape_ground(const ccl_cloudscape_params *p, const ccl_cloud_textu
 /* The sky model's display-linear colour of a unit direction. */
 static ccl_vec3 sky_rgb(const ccl_cloudscape_sky *sky, ccl_vec3 d, ccl_vec3 sun)
 {
+    if (sky->kind == CCL_SKY_PREETHAM_RADIANCE) {
+        /* k C_HDR with the out-of-gamut (negative) channels at 0, as the tone-mapped sky clips them */
+        const ccl_vec3 c = ccl_sky_preetham_hdr(d, sun, &sky->preetham);
+        const float k = sky->preetham.exposure;
+        ccl_vec3 r;
+        r.x = c.x < 0.0f ? 0.0f : k * c.x;
+        r.y = c.y < 0.0f ? 0.0f : k * c.y;
+        r.z = c.z < 0.0f ? 0.0f : k * c.z;
+        return r;
+    }
     return (sky->kind == CCL_SKY_PREETHAM) ? ccl_sky_preetham_rgb(d, sun, &sky->preetham)
                                            : ccl_sky_gradient_rgb(d, sun, &sky->gradient);
 }
@@ -638,7 +674,7 @@ void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_s
         const float dtheta = 1.5707963f / (float)CCL_CLOUDSCAPE_SKY_THETA_CELLS;
         const float dphi = 6.2831853f / (float)CCL_CLOUDSCAPE_SKY_PHI_CELLS;
         float cos_s = sky->sun[1], mean[3] = {0.0f, 0.0f, 0.0f}, cmean[3] = {0.0f, 0.0f, 0.0f}, wsum = 0.0f,
-              csum = 0.0f;
+              csum = 0.0f, e_sun;
         ccl_vec3 sun, att;
         int i, j, c;
         sun.x = sky->sun[0];
@@ -647,9 +683,12 @@ void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_s
         /* the sun through the atmosphere (Preetham et al. 1999 A.1) */
         cos_s = cos_s < 0.0f ? 0.0f : (cos_s > 1.0f ? 1.0f : cos_s);
         att = ccl_sky_sun_attenuation(acosf(cos_s), p->turbidity);
-        q.sun_colour[0] = p->sun_intensity * att.x;
-        q.sun_colour[1] = p->sun_intensity * att.y;
-        q.sun_colour[2] = p->sun_intensity * att.z;
+        /* physical units: the sun's illuminance above the atmosphere x the one exposure of the sky */
+        e_sun = sky->kind == CCL_SKY_PREETHAM_RADIANCE
+                    ? sky->preetham.exposure * ((float)CCL_CLOUDSCAPE_SUN_KLX_X10 * 0.1f) : p->sun_intensity;
+        q.sun_colour[0] = e_sun * att.x;
+        q.sun_colour[1] = e_sun * att.y;
+        q.sun_colour[2] = e_sun * att.z;
         /* the sky's mean and cosine-weighted mean over the upper hemisphere, midpoint rule */
         for (i = 0; i < CCL_CLOUDSCAPE_SKY_THETA_CELLS; ++i) {
             const float theta = ((float)i + 0.5f) * dtheta, st = sinf(theta), ct = cosf(theta), wc = st * ct;
@@ -673,9 +712,13 @@ void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_s
             }
         }
         for (c = 0; c < 3; ++c) {
-            q.ambient_top[c] = mean[c] / wsum;
-            q.ambient_bottom[c] = p->ambient_bottom_ratio * q.ambient_top[c];
+            /* the lower hemisphere's share: the unshadowed Lambertian ground under the sun and the sky */
+            const float w = p->ambient_ground_weight;
+            float ground;
             q.ambient_ground[c] = cmean[c] / csum;
+            ground = p->ground_albedo[c] * (q.sun_colour[c] * (cos_s * 0.318309886f) + q.ambient_ground[c]);
+            q.ambient_top[c] = (1.0f - w) * (mean[c] / wsum) + w * ground;
+            q.ambient_bottom[c] = p->ambient_bottom_ratio * q.ambient_top[c];
         }
     }
     *out = q;
@@ -1109,8 +1152,7 @@ void ccl_cloudscape_pixel(const ccl_cloudscape_params *p, const ccl_cloud_textur
         bg[1] = p->ground_colour[1];
         bg[2] = p->ground_colour[2];
     } else {
-        const ccl_vec3 s = (sky->kind == CCL_SKY_PREETHAM) ? ccl_sky_preetham_rgb(d, sun, &sky->preetham)
-                                                           : ccl_sky_gradient_rgb(d, sun, &sky->gradient);
+        const ccl_vec3 s = sky_rgb(sky, d, sun);
         bg[0] = s.x;
         bg[1] = s.y;
         bg[2] = s.z;

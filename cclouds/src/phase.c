@@ -43,3 +43,25 @@ float ccl_phase_schlick_k(float g)
     /* vc-2.16: k = 1.55 g - 0.55 g^3 */
     return 1.55f * g - 0.55f * g * g * g;
 }
+
+/* Draine's phase function (Draine 2003, eq. 4): HG(g) x (1 + alpha cos^2 theta) / (1 + alpha (1 + 2 g^2) / 3); the
+ * denominator is the mean of the numerator under HG(g) (<cos^2> = (1 + 2 g^2) / 3), so it stays normalised. */
+static float phase_draine(float cos_theta, float g, float alpha)
+{
+    return ccl_phase_hg(cos_theta, g) * (1.0f + alpha * cos_theta * cos_theta) /
+           (1.0f + alpha * (1.0f + 2.0f * g * g) / 3.0f);
+}
+
+float ccl_phase_mie(float cos_theta, float diameter_um)
+{
+    const float d = diameter_um;
+    float g_hg, g_d, alpha, w_d;
+    CCL_REQUIRE(!(cos_theta < -1.0f || cos_theta > 1.0f));
+    CCL_REQUIRE(!(d < (float)CCL_PHASE_MIE_D_MIN || d > (float)CCL_PHASE_MIE_D_MAX));
+    /* Jendersie & d'Eon 2023, the fit for 5 um <= d <= 50 um */
+    g_hg = expf(-0.0990567f / (d - 1.67154f));
+    g_d = expf(-2.20679f / (d + 3.91029f) - 0.428934f);
+    alpha = expf(3.62489f - 8.29288f / (d + 5.52825f));
+    w_d = expf(-0.599085f / (d - 0.641583f) - 0.665888f);
+    return (1.0f - w_d) * ccl_phase_hg(cos_theta, g_hg) + w_d * phase_draine(cos_theta, g_d, alpha);
+}

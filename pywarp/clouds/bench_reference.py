@@ -29,6 +29,15 @@ The error of a model, after the best single exposure scale:
 The real-time images are stills of :data:`ACCUMULATE` jittered frames (``render_accumulated``) where the renderer has
 them, so that their ray-jitter noise and aliasing do not count as lighting error.
 
+Absolute errors (beside the best-scale numbers, the JSON key ``absolute`` of each model): the model and the
+reference under the same exposure (the reference's, step 1), no scale: the mean CIEDE2000 over the frame
+(``delta_e``) and per pixel class (``delta_e_class``), and per class the energy ratio per channel, sum(model) /
+sum(reference) in linear RGB (``ratio``: ``thick``, ``thin``, ``clear`` -> [R, G, B]); the classes are the clouds'
+optical depth along the pixel's view ray (:data:`CLASS_EDGES`, ``pixels``: their sizes). The row ``default`` is the
+renderer's defaults in the medium. The medium (:data:`MEDIA`, JSON ``medium``): the command measures the physical
+one (sky and sun in physical units, the approximate Mie phase); :func:`compare` defaults to 'display', the
+comparison before physical units, whose numbers it reproduces.
+
 Noise of the reference: its samples are two independent halves (seeds s and s + 1); the report gives the mean
 per-pixel standard error of the (exposed, linear) reference, and the *noise floor*: SSIM and Delta E of one half
 against the other (each with half the paths, so the floor is pessimistic by ~sqrt 2). A model error near the floor
@@ -50,6 +59,12 @@ SCENES = {
     "low sun": dict(sun_elevation_deg=5.0, sun_azimuth_deg=45.0),
     "from above": dict(camera_altitude_km=8.0, camera_pitch_deg=-30.0, sun_elevation_deg=35.0),
 }
+#: Two more views (the defaults' sun, 35 deg up): from 0.3 km looking up 25 deg and from 6 km looking down 35 deg --
+#: the views of the independent cross-check of the reference (issue 32). The command measures them after SCENES.
+VIEWS = {
+    "view below": dict(camera_altitude_km=0.3, camera_pitch_deg=25.0),
+    "view above": dict(camera_altitude_km=6.0, camera_pitch_deg=-35.0),
+}
 #: The real-time lighting models: settings changes (None: the setting's default, which must satisfy the model).
 MODELS = {
     "thesis": dict(lighting="thesis", ms_octaves=1, silver_weight=0.0, powder=True),
@@ -60,6 +75,31 @@ MODELS = {
     # shows how much of the last model's error is the haze
     "+ms, haze off": dict(lighting="sky", ms_octaves=None, silver_weight=None, powder=None, aerial_km=0.0),
 }
+#: The models of the physical medium only (rows after MODELS): ``physical`` -- the lighting model for physical units
+#: and the Mie phase (issue 32; docs/lighting.rst): sky lighting without the powder term, a quarter of the clouds'
+#: ambient from the lit ground below (ambient_ground_weight 0.25), four octaves that keep more of the light
+#: (optical depth x 0.3^i, contribution x 0.6^i), no aerial perspective (the reference's air does not scatter).
+#: Tuned (tools/tune_lighting.py's measure, absolute errors) on noon, from above and view below; low sun and view
+#: above were not seen by the tuning.
+PHYSICAL_MODELS = {
+    "physical": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
+                     advanced={"ms_a": 0.3, "ms_b": 0.6}),
+}
+#: The row of the renderer's defaults (no lighting change; the medium's units and phase), after MODELS.
+DEFAULT_ROW = "default"
+#: The media of the comparison: what the reference and every model share (the scene's sky units and the clouds'
+#: phase function, :mod:`pywarp.clouds.reference`). 'display': the comparison before physical units (display-linear
+#: lights, one HG lobe of g = 0.2), so that its old numbers reproduce; 'physical': the Preetham sky and the sun in
+#: kcd/m^2 and klx times one exposure, the approximate Mie phase of cloud droplets (vc-x-mie).
+MEDIA = {"display": dict(units="display", phase="thesis"), "physical": dict(units="physical", phase="mie")}
+#: Pixel classes of the absolute errors by the clouds' optical depth tau along the pixel's view ray
+#: (:meth:`pywarp.clouds.reference.ReferenceRenderer.view_optical_depth`): clear tau < 0.1 (sky or ground seen
+#: through next to no cloud), thin 0.1 <= tau < 3, thick tau >= 3 (the issue's "thick cloud"; seen from above these
+#: are the sunlit tops).
+CLASS_EDGES = {"clear": (0.0, 0.1), "thin": (0.1, 3.0), "thick": (3.0, float("inf"))}
+#: Ratio-tracking estimates per pixel of the view's optical depth (relative standard error of T ~0.1 at tau = 3).
+TAU_SAMPLES = 64
+
 #: The models of the comparison (the rest of MODELS are diagnostics).
 MAIN_MODELS = ("thesis", "+sky light", "+multiple scattering", "+powder off")
 #: Percentile of the reference's largest channel mapped to display white (step 1 above): 99.5, so that the
@@ -77,14 +117,21 @@ def _fields():
 
 
 def model_settings(base, name: str):
-    """The settings of model ``name`` on top of ``base``, or (None, reason) when this installation lacks them."""
+    """The settings of model ``name`` on top of ``base``, or (None, reason) when this installation lacks them.
+    :data:`DEFAULT_ROW` is ``base`` itself. The thesis's lighting has constant display-linear lights, so its model
+    keeps display units whatever the medium's (its absolute errors then measure exactly that)."""
+    if name == DEFAULT_ROW:
+        return base, None
     fields = _fields()
     changes = {}
-    for key, value in MODELS[name].items():
+    model = {**MODELS, **PHYSICAL_MODELS}[name]
+    if model.get("lighting") == "thesis" and getattr(base, "units", "display") != "display":
+        changes["units"] = "display"
+    for key, value in model.items():
         if key not in fields:
             return None, f"needs the setting {key!r}, which this installation does not have"
         changes[key] = fields[key].default if value is None else value
-    if "ms_octaves" in changes and MODELS[name]["ms_octaves"] is None and not changes["ms_octaves"] > 1:
+    if "ms_octaves" in changes and model["ms_octaves"] is None and not changes["ms_octaves"] > 1:
         changes["ms_octaves"] = 3  # (an installation whose default is single scattering)
     return replace(base, **changes), None
 
@@ -124,11 +171,49 @@ def errors(model: np.ndarray, target: np.ndarray) -> dict:
     return {"scale": k, "ssim": ssim, "delta_e": de}
 
 
+def class_mask(tau: np.ndarray, name: str) -> np.ndarray:
+    """The pixels of class ``name`` (:data:`CLASS_EDGES`): lo <= tau < hi, and tau = inf (every estimate of T was 0)
+    in the open-ended thick class."""
+    lo, hi = CLASS_EDGES[name]
+    return (tau >= lo) & ((tau < hi) | (hi == float("inf")))
+
+
+def absolute_errors(model: np.ndarray, reference: np.ndarray, ex: float, tau: np.ndarray) -> dict:
+    """The errors without any rescaling: mean CIEDE2000 of the model and the reference under the same exposure ``ex``
+    (the reference's, step 1 of the module docstring), over the frame and per pixel class (:data:`CLASS_EDGES` of
+    the view's optical depth ``tau``), and per class the energy ratio per channel, sum(model) / sum(reference) in
+    linear RGB (None for an empty class). Keys: delta_e, delta_e_class {class: dE}, ratio {class: [R, G, B]},
+    pixels {class: count}."""
+    import colour
+
+    m = np.asarray(model, dtype=np.float64)
+    r = np.asarray(reference, dtype=np.float64)
+    lab_m = colour.XYZ_to_Lab(colour.sRGB_to_XYZ(_srgb(ex * m)))
+    lab_r = colour.XYZ_to_Lab(colour.sRGB_to_XYZ(_srgb(ex * r)))
+    de = np.asarray(colour.delta_E(lab_m, lab_r, method="CIE 2000"), dtype=np.float64)
+    out = {"delta_e": float(de.mean()), "delta_e_class": {}, "ratio": {}, "pixels": {}}
+    for name in CLASS_EDGES:
+        mask = class_mask(tau, name)
+        n = int(mask.sum())
+        out["pixels"][name] = n
+        if n == 0:
+            out["delta_e_class"][name] = None
+            out["ratio"][name] = None
+            continue
+        out["delta_e_class"][name] = float(de[mask].mean())
+        rs = r[mask].sum(axis=0)
+        out["ratio"][name] = [float(a / b) if b > 0 else None for a, b in zip(m[mask].sum(axis=0), rs)]
+    return out
+
+
 def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | None = None, device: str = "cpu",
-            seed: int = 0, scenes=None, progress=None, settings: dict | None = None) -> tuple[dict, dict]:
+            seed: int = 0, scenes=None, progress=None, settings: dict | None = None,
+            medium: str = "display") -> tuple[dict, dict]:
     """Run the comparison: (result, images). ``images[scene]`` maps 'reference' and each rendered model to its
-    display image (uint8 sRGB, after the exposure of the table) -- for the tutorial. ``spp`` >= 4 (two halves).
-    ``settings``: further settings for every render (e.g. smaller textures for a quick run)."""
+    display image (uint8 sRGB, after the exposure of the table and the model's best scale) -- for the tutorial --
+    and ``images[scene]['abs ' + model]`` to the model under the reference's exposure alone (no rescaling).
+    ``spp`` >= 4 (two halves). ``settings``: further settings for every render (e.g. smaller textures for a quick
+    run). ``medium``: a key of :data:`MEDIA` (default 'display': the comparison's numbers before physical units)."""
     from ..core.timing import machine
     from .cloudscape import RenderTextures
     from .technique import CloudscapeTechnique
@@ -138,22 +223,26 @@ def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | 
     if isinstance(spp, bool) or not isinstance(spp, (int, np.integer)) or not 4 <= spp <= 65536:
         raise ValueError(f"spp must be in [4, 65536] (two halves of independent seeds, each of at least 2 paths for "
                          f"its standard error), got {spp!r}")
-    base = CloudscapeSettings(**{**(settings or {}), "width": width, "height": height, "device": device,
-                                 "threads": workers})
+    if medium not in MEDIA:
+        raise ValueError(f"medium must be one of {', '.join(map(repr, MEDIA))}, got {medium!r}")
+    base = CloudscapeSettings(**{**(settings or {}), **MEDIA[medium], "width": width, "height": height,
+                                 "device": device, "threads": workers})
     names = list(SCENES) if scenes is None else list(scenes)
+    views = {**SCENES, **VIEWS}
     for n in names:
-        if n not in SCENES:
-            raise ValueError(f"scenes must be among {', '.join(map(repr, SCENES))}, got {n!r}")
+        if n not in views:
+            raise ValueError(f"scenes must be among {', '.join(map(repr, views))}, got {n!r}")
     say = progress or (lambda msg: print(msg, file=sys.stderr, flush=True))
     textures = RenderTextures.generate(base)
     # the models' settings and the reference's (the sky model's light where the installation has it)
     ref_changes = {"lighting": "sky"} if "lighting" in _fields() else {}
-    result = {"benchmark": "reference", "size": [width, height], "spp": int(spp), "seed": seed,
+    result = {"benchmark": "reference", "size": [width, height], "spp": int(spp), "seed": seed, "medium": medium,
+              "medium_settings": MEDIA[medium], "class_edges": {k: list(v) for k, v in CLASS_EDGES.items()},
               "white_percentile": WHITE_PERCENTILE, "accumulate": ACCUMULATE, "scenes": [], "machine": machine()}
     images = {}
     half = spp // 2
     for name in names:
-        s = replace(base, **SCENES[name])
+        s = replace(base, **views[name])
         say(f"reference {name}: {width}x{height}, {spp} paths per pixel ...")
         t0 = time.perf_counter()
         ra = ReferenceRenderer(replace(s, **ref_changes), textures, spp=half, seed=seed)
@@ -163,16 +252,18 @@ def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | 
         seconds = time.perf_counter() - t0
         ref = (half * a + (spp - half) * b) / spp
         ex = exposure(ref)
+        tau = ra.view_optical_depth(samples=TAU_SAMPLES)
         se_a = ra.stats["std_error_image"].astype(np.float64)
         se_b = rb.stats["std_error_image"].astype(np.float64)
         se = np.sqrt((half * se_a) ** 2 + ((spp - half) * se_b) ** 2) / spp * ex
-        row = {"scene": name, "settings": SCENES[name], "seconds": round(seconds, 2),
+        row = {"scene": name, "settings": views[name], "seconds": round(seconds, 2),
                "seconds_per_spp": round(seconds / spp, 4), "exposure": ex,
                "std_error": float(se.mean()), "std_error_max": float(se.max()),
                "noise_floor": {k: v for k, v in errors(a * ex, b * ex).items() if k != "scale"}, "models": []}
         target = ref * ex
         imgs = {"reference": (_srgb(target) * 255.0 + 0.5).astype(np.uint8)}
-        for model in MODELS:
+        rows = (*MODELS, *(PHYSICAL_MODELS if medium == "physical" else ()), DEFAULT_ROW)
+        for model in rows:
             ms, why = model_settings(s, model)
             if ms is None:
                 say(f"  {model}: skipped ({why})")
@@ -184,35 +275,49 @@ def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | 
             else:
                 lin = tech.render(reprojection=False, encode=False)
             e = errors(lin, target)
-            changes = {k: getattr(ms, k) for k in MODELS[model]}
-            row["models"].append({"model": model, "settings": changes, **e})
+            changes = {k: getattr(ms, k) for k in {**MODELS, **PHYSICAL_MODELS}.get(model, {})}
+            row["models"].append({"model": model, "settings": changes, **e,
+                                  "absolute": absolute_errors(lin, ref, ex, tau)})
             imgs[model] = (_srgb(e["scale"] * np.asarray(lin, dtype=np.float64)) * 255.0 + 0.5).astype(np.uint8)
+            imgs["abs " + model] = (_srgb(ex * np.asarray(lin, dtype=np.float64)) * 255.0 + 0.5).astype(np.uint8)
+        row["pixels"] = {k: int(class_mask(tau, k).sum()) for k in CLASS_EDGES}
         result["scenes"].append(row)
         images[name] = imgs
     return result, images
 
 
 def bench_reference(width: int = 160, height: int = 90, spp: int = 1024, workers: int | None = None,
-                    device: str = "cpu") -> dict:
-    """``pywarp bench clouds reference`` (module docstring): the JSON-serialisable result of :func:`compare`."""
-    return compare(width, height, spp, workers, device)[0]
+                    device: str = "cpu", medium: str = "physical") -> dict:
+    """``pywarp bench clouds reference`` (module docstring): the JSON-serialisable result of :func:`compare`, in the
+    physical medium (``medium='display'``: the numbers before physical units)."""
+    return compare(width, height, spp, workers, device, scenes=[*SCENES, *VIEWS], medium=medium)[0]
+
+
+def _ratio_text(r) -> str:
+    return "     -      " if r is None else "/".join("  - " if v is None else f"{v:4.2f}" for v in r)
 
 
 def report(res: dict) -> str:
-    """The table of :func:`bench_reference`."""
+    """The table of :func:`bench_reference`: the best-scale SSIM, dE and scale, then without rescaling the mean dE
+    and the R/G/B energy ratios model / reference in the thick, thin and clear pixels."""
     w, h = res["size"]
-    lines = [f"Real-time lighting models vs the path-traced reference: {w}x{h}, {res['spp']} paths per pixel "
+    lines = [f"Real-time lighting models vs the path-traced reference ({res.get('medium', 'display')} medium): "
+             f"{w}x{h}, {res['spp']} paths per pixel "
              f"(two halves of seeds {res['seed']}, {res['seed'] + 1}); model stills of {res['accumulate']} frames; "
-             f"best exposure scale, then sRGB",
-             f"  {'scene':<11} {'model':<22} {'SSIM':>7} {'dE2000':>7} {'scale':>7}"]
+             f"best exposure scale, then sRGB | without rescaling: dE2000 and energy ratios R/G/B by tau class",
+             f"  {'scene':<11} {'model':<22} {'SSIM':>7} {'dE2000':>7} {'scale':>7} | {'abs dE':>6} "
+             f"{'thick':>14} {'thin':>14} {'clear':>14}"]
     for sc in res["scenes"]:
         nf = sc["noise_floor"]
         for m in sc["models"]:
             if "skipped" in m:
                 lines.append(f"  {sc['scene']:<11} {m['model']:<22} skipped: {m['skipped']}")
             else:
+                a = m.get("absolute")
+                tail = "" if a is None else (f" | {a['delta_e']:6.2f} " + " ".join(
+                    f"{_ratio_text(a['ratio'][k]):>14}" for k in ("thick", "thin", "clear")))
                 lines.append(f"  {sc['scene']:<11} {m['model']:<22} {m['ssim']:7.3f} {m['delta_e']:7.2f} "
-                             f"{m['scale']:7.3f}")
+                             f"{m['scale']:7.3f}{tail}")
         lines.append(f"  {sc['scene']:<11} {'(noise floor)':<22} {nf['ssim']:7.3f} {nf['delta_e']:7.2f}    "
                      f"-- reference: std. error {sc['std_error']:.4f} of white (max {sc['std_error_max']:.3f}), "
                      f"{sc['seconds']:.0f} s, {sc['seconds_per_spp']:.3f} s per spp")
@@ -227,7 +332,8 @@ if __name__ == "__main__":
     ap.add_argument("--width", type=int, default=160)
     ap.add_argument("--height", type=int, default=90)
     ap.add_argument("--spp", type=int, default=1024)
+    ap.add_argument("--medium", choices=list(MEDIA), default="physical")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args()
-    r = bench_reference(args.width, args.height, args.spp)
+    r = bench_reference(args.width, args.height, args.spp, medium=args.medium)
     print(json.dumps(r) if args.json else report(r))

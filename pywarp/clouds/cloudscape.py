@@ -71,11 +71,13 @@ class GradientSky(SkyModel):
 
 
 class PreethamSky(SkyModel):
-    """vc-A29: the Preetham 1999 analytic daylight model, tone mapped (vc-4.5)."""
+    """vc-A29: the Preetham 1999 analytic daylight model, tone mapped (vc-4.5) or as radiance (units=physical)."""
 
     kind = K.SKY_PREETHAM
 
     def update(self, settings: CloudscapeSettings) -> None:
+        # units='physical': the radiance k C_HDR instead of the tone map (K.SKY_PREETHAM_RADIANCE, cloudscape.h)
+        self.kind = K.SKY_PREETHAM_RADIANCE if settings.units == "physical" else K.SKY_PREETHAM
         self.sun = settings.sun()
         theta_s = math.radians(90.0 - settings.sun_elevation_deg)
         self.preetham = SKY.preetham_params(settings.turbidity, min(theta_s, float(np.float32(math.pi / 2))),
@@ -305,7 +307,7 @@ def light_params(params: K.CloudscapeParams, sky: "SkyModel", device: str = "cpu
     if params.lighting != K.LIGHTING_SKY:
         return params
     kind = int(sky.kind)
-    if kind not in (K.SKY_GRADIENT, K.SKY_PREETHAM):
+    if kind not in (K.SKY_GRADIENT, K.SKY_PREETHAM, K.SKY_PREETHAM_RADIANCE):
         kind, preetham, gradient = K.SKY_GRADIENT, S.Preetham(), SKY.gradient_params()
     else:
         preetham, gradient = sky.preetham, sky.gradient
@@ -329,7 +331,7 @@ def c_sky(settings: CloudscapeSettings):
     sun = settings.sun()
     sky.sun[0], sky.sun[1], sky.sun[2] = (float(x) for x in sun)
     if settings.sky == "preetham":
-        sky.kind = lb.CCL_SKY_PREETHAM
+        sky.kind = lb.CCL_SKY_PREETHAM_RADIANCE if settings.units == "physical" else lb.CCL_SKY_PREETHAM
         theta_s = min(math.radians(90.0 - settings.sun_elevation_deg), float(np.float32(math.pi / 2)))
         status_error(lb.ccl_sky_preetham_init(settings.turbidity, theta_s, settings.sky_exposure,
                                           0 if settings.sky_variant == "corrected" else 1, f.addressof(sky.preetham)),

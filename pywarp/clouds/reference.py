@@ -12,13 +12,15 @@ Extinction ``sigma_t(x) = sigma rho(x)`` [1/km] with ``rho`` = :func:`pywarp.ker
 **with detail** (the density of the view ray), ``sigma`` the scene's ``sigma_per_km``. Scattering ``omega sigma_t``,
 absorption ``(1 - omega) sigma_t``, with ``omega`` the single-scattering albedo (:data:`DEFAULT_ALBEDO`).
 
-*Phase function.* One physical phase function for every comparison: Henyey-Greenstein with the scene's ``g`` (the
-settings' ``--phase-g``, 0.2 by default), whatever the real-time model under test does (the octave multiple
-scattering and the dual-lobe "silver lining" are approximations *of* transport in this medium, so they are measured
-against it, not built into it). A cloud-like forward lobe is a different medium: raise ``g`` for it (the reference
-follows), or pass ``phase_g`` to :class:`ReferenceRenderer`. Reason: the error table must not mix the error of the
-transport approximations with a change of the medium; with the scene's HG, "thesis" and "+sky light" (single lobe)
-are compared against exactly the medium they claim to light.
+*Phase function.* One physical phase function for every comparison, the settings' ``phase``: ``thesis`` --
+Henyey-Greenstein with the scene's ``g`` (the settings' ``--phase-g``, 0.2 by default, or ``phase_g`` of
+:class:`ReferenceRenderer`); ``mie`` -- the approximate Mie phase of cloud droplets of ``droplet_um``
+(:func:`pywarp.kernels.phase.phase_mie`, vc-x-mie: HG + Draine, g ~ 0.87), sampled exactly (the lobe by its weight,
+Draine's lobe by rejection from HG, :func:`sample_draine_cos`). Whatever the real-time model under test does (the
+octave multiple scattering and the dual-lobe "silver lining" are approximations *of* transport in this medium, so
+they are measured against it, not built into it). Reason: the error table must not mix the error of the transport
+approximations with a change of the medium; with the scene's phase, "thesis" and "+sky light" (single lobe) are
+compared against exactly the medium they claim to light.
 
 *The density bound* (the constant majorant is ``sigma * DENSITY_BOUND``): with textures in [0, 1] (checked on the
 host) and clamped height gradients (``gradient_clamp = 1``, the default; required here), ``rho <= 1``: the base
@@ -30,8 +32,16 @@ for any threshold ``C < 1``; the detail erosion ``(B_D - a) / (1 - a)`` with ``a
 
 Light
 -----
-* **Sun**: a directional (delta) light of irradiance ``p.sun_colour`` (display-linear units: the factor the real-time
-  model multiplies by Beer x phase x powder) from the sky model's sun direction. Next-event estimation at every
+* **Units** (the settings' ``units``): ``display`` (today's, kept so that old numbers reproduce) -- the real-time
+  renderer's display-linear lights: the sun ``sun_intensity`` x the atmosphere's transmittance, the sky tone mapped
+  (1 - exp(-k C_HDR)) and used as a radiance; ``physical`` -- radiances in kcd/m^2 times one exposure k (the settings'
+  ``sky_exposure``): the Preetham sky k C_HDR (C_HDR is linear sRGB whose Y is the luminance in kcd/m^2, the unit of
+  Preetham's zenith luminance, vc-2.39), the sun k x 127.5 klx x its transmittance through the sky's turbidity
+  (cclouds/cloudscape.h, CCL_SKY_PREETHAM_RADIANCE). Light transport is linear, so k is the exposure of the
+  finished image; the display transform (clamp and sRGB in :func:`encode_srgb`; a tone curve would replace it
+  there) comes after.
+* **Sun**: a directional (delta) light of irradiance ``p.sun_colour`` (the factor the real-time model multiplies by
+  Beer x phase x powder) from the sky model's sun direction. Next-event estimation at every
   scattering vertex: ``beta * E_sun * p_HG(d . s) * T(x -> sun)``, ``T`` by ratio tracking through the layer (0 where
   the Earth blocks the sun).
 * **Sky**: a path that leaves the layer without hitting the ground picks up the sky model's radiance
@@ -84,7 +94,7 @@ init()
 from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import cloudscape as K  # noqa: E402
 from ..kernels.hash import hash_pcg  # noqa: E402
-from ..kernels.phase import phase_hg  # noqa: E402
+from ..kernels.phase import phase_hg, phase_mie, phase_mie_params  # noqa: E402
 from ..kernels.raymarch import raymarch_ray_sphere  # noqa: E402
 from ..kernels.sky import Preetham, SkyGradient  # noqa: E402
 from ..core.pose import Pose  # noqa: E402
@@ -158,7 +168,9 @@ class ReferenceParams:
     sample0: int          # first sample index of this pass
     samples: int          # samples of this pass
     albedo: float         # single-scattering albedo omega
-    g: float              # HG asymmetry of the medium
+    g: float              # HG asymmetry of the medium (phase = thesis)
+    phase: int            # K.PHASE_THESIS (HG g) or K.PHASE_MIE (the approximate Mie phase of droplet_um)
+    droplet_um: float
     bounces: int          # max scattering vertices per path
     max_steps: int        # tracking steps per ray segment
     rho_max: float        # density bound (majorant = sigma * rho_max)
@@ -366,7 +378,8 @@ def track(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, mj: M
     ``ratio`` 0 -- delta tracking (free-flight sampling): status _MEDIUM (a real collision at t), _GROUND (the Earth
     at t), _ESCAPED (left the layer for the sky) or _TRUNCATED (``max_steps`` reached: counted in flags[1]);
     ``ratio`` 1 -- ratio tracking: the transmittance T to infinity (0 where the Earth blocks the ray), with Russian
-    roulette below ``rr_threshold``.
+    roulette below ``rr_threshold``; ``ratio`` 2 -- the same, the transmittance of the clouds up to the Earth (the
+    ground does not block: the view's cloud optical depth, :meth:`ReferenceRenderer.view_optical_depth`).
 
     ``max_steps`` bounds the iterations: every chunk bound and every tentative collision is one.
     Returns (status, t, T, state)."""
@@ -374,7 +387,7 @@ def track(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, mj: M
     status = int(_ESCAPED)
     t_out = float(0.0)
     T = float(1.0)
-    if ratio != 0 and tg < _INF:
+    if ratio == 1 and tg < _INF:
         T = 0.0
     seg = int(0)
     lo = a0
@@ -493,6 +506,51 @@ def sample_hg(d: wp.vec3, g: float, state: wp.uint32):
     return around(d, sample_hg_cos(g, u1), 2.0 * _PI * u2), state
 
 
+#: Most proposals of the rejection sampler of Draine's lobe (:func:`sample_draine_cos`): the acceptance probability
+#: is at least 1/3 (the mean of (1 + alpha mu^2) / (1 + alpha) under HG(g) is (1 + alpha (1 + 2 g^2) / 3) / (1 + alpha)
+#: >= 1/3), so all 256 fail with probability <= (2/3)^256 ~ 1e-45 -- never in any image -- and the bound keeps the
+#: loop finite.
+DRAINE_TRIES = wp.constant(256)
+
+
+@wp.func
+def sample_draine_cos(g: float, alpha: float, state: wp.uint32):
+    """cos(theta) of Draine's phase function HG(g) (1 + alpha mu^2) / (1 + alpha (1 + 2 g^2) / 3) (Draine 2003), by
+    rejection: propose mu from HG(g), accept with probability (1 + alpha mu^2) / (1 + alpha) (the ratio of the target
+    to the proposal, up to the constant, is at most 1 + alpha at mu = +-1). Exact (module docstring of the bound).
+    Returns (mu, state)."""
+    mu = float(1.0)
+    for k in range(DRAINE_TRIES):
+        mu = sample_hg_cos(g, wp.randf(state))
+        if wp.randf(state) * (1.0 + alpha) <= 1.0 + alpha * mu * mu:
+            break
+    return mu, state
+
+
+@wp.func
+def sample_phase(d: wp.vec3, r: ReferenceParams, state: wp.uint32):
+    """A new propagation direction from the medium's phase function: HG(r.g), or the approximate Mie phase
+    (1 - w_D) HG(g_HG) + w_D Draine(g_D, alpha) by picking the lobe with probability w_D (vc-x-mie). (dir, state)."""
+    cos_t = float(0.0)
+    if r.phase == K.PHASE_MIE:
+        g_hg, g_d, alpha, w_d = phase_mie_params(r.droplet_um)
+        if wp.randf(state) < w_d:
+            cos_t, state = sample_draine_cos(g_d, alpha, state)
+        else:
+            cos_t = sample_hg_cos(g_hg, wp.randf(state))
+    else:
+        cos_t = sample_hg_cos(r.g, wp.randf(state))
+    return around(d, cos_t, 2.0 * _PI * wp.randf(state)), state
+
+
+@wp.func
+def phase_value(cos_theta: float, r: ReferenceParams) -> float:
+    """The medium's phase function at cos_theta [1/sr] (next-event estimation)."""
+    if r.phase == K.PHASE_MIE:
+        return phase_mie(cos_theta, r.droplet_um)
+    return phase_hg(cos_theta, r.g)
+
+
 @wp.func
 def sample_cosine(n: wp.vec3, state: wp.uint32):
     """A cosine-weighted direction about unit n (pdf cos / pi): (direction, state)."""
@@ -545,8 +603,8 @@ def trace_path(p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures, 
             beta = beta * r.albedo
             cos_s = wp.clamp(wp.dot(d, sun), -1.0, 1.0)
             st, t_s, T, state = track(p, r, tex, mj, x, sun, 1, 1, state, flags)
-            L = L + wp.cw_mul(beta, p.sun_colour) * (phase_hg(cos_s, r.g) * T)
-            d, state = sample_hg(d, r.g, state)
+            L = L + wp.cw_mul(beta, p.sun_colour) * (phase_value(cos_s, r) * T)
+            d, state = sample_phase(d, r, state)
             check_ground = 1
         else:  # the ground: Lambertian
             n = wp.normalize(x - p.centre)
@@ -593,11 +651,40 @@ def reference_kernel(row0: int, p: K.CloudscapeParams, r: ReferenceParams, tex: 
 
 
 @wp.kernel
+def view_transmittance_kernel(row0: int, p: K.CloudscapeParams, r: ReferenceParams, tex: K.CloudTextures,
+                              mj: MajorantGrids, inv_view_proj_rot: wp.mat44, eye: wp.vec3,
+                              # outputs
+                              out: wp.array2d(dtype=float), flags: wp.array(dtype=wp.int32)):
+    """The clouds' transmittance along each pixel-centre view ray up to the ground: the mean of ``r.samples`` ratio
+    tracking estimates (unbiased; TileLauncher convention)."""
+    i, j = wp.tid()
+    height = out.shape[0]
+    width = out.shape[1]
+    y = row0 + i
+    d = pixel_direction(inv_view_proj_rot, float(j) + 0.5, float(y) + 0.5, width, height)
+    acc = float(0.0)
+    for s in range(r.samples):
+        state = sample_seed(r.seed, j, y, r.sample0 + s)
+        st, t, T, state = track(p, r, tex, mj, eye, d, 1, 2, state, flags)
+        acc = acc + T
+    out[y, j] = acc / float(r.samples)
+
+
+@wp.kernel
 def hg_samples_kernel(g: float, seed: wp.uint32, out: wp.array(dtype=float)):
     """cos(theta) of HG samples about +z (for the sampler's tests)."""
     i = wp.tid()
     state = sample_seed(seed, i, 0, 0)
     d, state = sample_hg(wp.vec3(0.0, 0.0, 1.0), g, state)
+    out[i] = d[2]
+
+
+@wp.kernel
+def phase_samples_kernel(r: ReferenceParams, seed: wp.uint32, out: wp.array(dtype=float)):
+    """cos(theta) of samples of the medium's phase function about +z (for the sampler's tests)."""
+    i = wp.tid()
+    state = sample_seed(seed, i, 0, 0)
+    d, state = sample_phase(wp.vec3(0.0, 0.0, 1.0), r, state)
     out[i] = d[2]
 
 
@@ -715,6 +802,8 @@ class ReferenceRenderer:
                                else getattr(s, "reference_bounces", DEFAULT_BOUNCES), *BOUNCES_RANGE)
         self.albedo = _float_in("albedo", albedo, 0.0, 1.0)
         self.g = _float_in("phase_g", s.g if phase_g is None else phase_g, -0.999, 0.999)
+        self.phase = s.phase
+        self.droplet_um = float(s.droplet_um)
         if pixel_filter not in PIXEL_FILTERS:
             raise ValueError(f"pixel_filter must be one of {', '.join(map(repr, PIXEL_FILTERS))}, got "
                              f"{pixel_filter!r}")
@@ -779,6 +868,8 @@ class ReferenceRenderer:
         r.samples = int(samples)
         r.albedo = self.albedo
         r.g = self.g
+        r.phase = K.PHASE_MIE if self.phase == "mie" else K.PHASE_THESIS
+        r.droplet_um = self.droplet_um
         r.bounces = self.bounces
         r.max_steps = self.max_steps
         r.rho_max = DENSITY_BOUND
@@ -872,6 +963,27 @@ class ReferenceRenderer:
         if not encode:
             return linear
         return encode_srgb(linear, self.launcher)
+
+    def view_optical_depth(self, pose: Pose | None = None, samples: int = 64) -> np.ndarray:
+        """The clouds' optical depth tau = -ln T along each pixel-centre view ray up to the ground (float32 (height,
+        width); inf where every estimate was 0): T the mean of ``samples`` ratio-tracking estimates (unbiased for T;
+        at T = e^-3 and 64 samples its relative standard error is ~0.1). The pixel classes of
+        ``pywarp bench clouds reference`` (clear, thin, thick) come from it."""
+        s = self.settings
+        samples = _int_in("samples", samples, 1, SPP_RANGE[1])
+        pose = pose or Pose.from_settings(s)
+        cam = CAM.pose_camera(pose, s.width, s.height)
+        out = wp.zeros((s.height, s.width), dtype=float, device=self.device)
+        flags = wp.zeros(2, dtype=wp.int32, device=self.device)
+        self.launcher.launch(view_transmittance_kernel, s.height, s.width,
+                             [self.params, self._reference_params(0, samples), self.textures.warp(s.half_base()),
+                              self.grids, cam.mat44("inv_view_proj_rot"), cam.eye_vec3()], [out, flags])
+        f = flags.numpy()
+        if f[0] > 0 or f[1] > 0:
+            raise RuntimeError(f"view_optical_depth: {int(f[0])} densities above the bound, {int(f[1])} segments at "
+                               "max_steps; nothing is returned")
+        with np.errstate(divide="ignore"):
+            return (-np.log(out.numpy().astype(np.float64))).astype(np.float32)
 
     def render_linear(self, pose: Pose | None = None, progress=None) -> np.ndarray:
         """The linear-image hook (:mod:`pywarp.core.linear`)."""

@@ -61,12 +61,14 @@ SCENE = register(Scene(
                            {"repeat": 3, "workers": None, "baseline": None}, expected="1-2 min",
                            check="pywarp.clouds.bench:check_speed"),
         "reference": Benchmark("reference", "the real-time lighting models (thesis, +sky light, +multiple "
-                                            "scattering) against the path-traced ground truth of three scenes: "
-                                            "SSIM and mean CIEDE2000 after the best exposure scale (needs "
+                                            "scattering, default) against the path-traced ground truth of three "
+                                            "scenes and two views, in physical units with the Mie phase: SSIM and "
+                                            "mean CIEDE2000 after the best exposure scale, and without rescaling "
+                                            "CIEDE2000 and energy ratios in thick / thin / clear pixels (needs "
                                             "scikit-image and colour-science)",
                                "pywarp.clouds.bench_reference:bench_reference", "pywarp.clouds.bench_reference:report",
                                {"width": 160, "height": 90, "spp": 1024, "workers": None},
-                               expected="25-50 min (about 1.5-3 s per --spp)"),
+                               expected="40-80 min (about 2.5-5 s per --spp)"),
     },
     outputs={"render": "cloudscape.png", "animate": "flythrough.mp4"},
     command_defaults={"animate": {"width": 640, "height": 360, "reprojection": True}},

@@ -58,8 +58,19 @@ REPROJECTION_DEPTHS = ("clouds", "inner_sphere")  # pywarp.kernels.reproj: DEPTH
 BASE_PRECISIONS = ("half", "single")  # RenderTextures: how the renderer stores the base-shape texture
 REPROJECTION_FILTERS = ("catmull_rom", "bilinear")  # pywarp.kernels.reproj.FILTERS (ccl_reproj_filter)
 MAX_MS_OCTAVES = 8  # CCL_CLOUDSCAPE_MAX_MS_OCTAVES
+PHASE_NAMES = ("thesis", "mie")  # ccl_cloudscape_phase order
+PHASE_ENUM = {"thesis": "CCL_CLOUDSCAPE_PHASE_THESIS", "mie": "CCL_CLOUDSCAPE_PHASE_MIE"}
+UNITS = ("display", "physical")  # the Preetham sky kind: CCL_SKY_PREETHAM / CCL_SKY_PREETHAM_RADIANCE
 MARCH_NAMES = ("fast", "textbook")  # ccl_cloudscape_march_kind order
 MARCH_ENUM = {"fast": "CCL_CLOUDSCAPE_MARCH_FAST", "textbook": "CCL_CLOUDSCAPE_MARCH_TEXTBOOK"}
+
+
+def _units_check(obj, name, v):
+    """Physical units need the Preetham sky (the gradient sky has no units) and the sky lighting (the thesis's
+    lighting has constant, display-linear lights)."""
+    if v == "physical" and (obj.sky != "preetham" or obj.lighting != "sky"):
+        raise ValueError(f"units='physical' needs sky='preetham' and lighting='sky', got sky={obj.sky!r}, "
+                         f"lighting={obj.lighting!r}")
 
 
 # --- checks shared by the texture settings ---------------------------------------------------------------------------
@@ -292,7 +303,8 @@ CLOUDSCAPE_PARAMS = CStruct(
         "ambient_ground": ">= 0 and finite per channel", "ground_albedo": "in [0, 1] per channel",
         "aerial_km": ">= 0 and finite", "aerial_height_km": ">= 0 and finite",
         "ms_octaves": f"in [1, {MAX_MS_OCTAVES}]", "ms_a": "in [0, 1]", "ms_b": "in [0, 1]", "ms_c": "in [0, 1]",
-        "silver_g": "in (-1, 1)", "silver_weight": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
+        "silver_g": "in (-1, 1)", "silver_weight": "in [0, 1]", "phase": "0 (thesis) or 1 (mie)",
+        "droplet_um": "in [5, 50]", "ambient_ground_weight": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
         "lod_bias": "in [-4, 4]", "refine_step_km": ">= 0 and finite", "refine_max": "in [1, 64]",
     })
 #: the layer's fields: computed from the settings (earth_radius_km, layer_base_km, layer_top_km), never ``advanced``
@@ -335,6 +347,12 @@ class CloudscapeSettings(Settings):
     sky_variant: str = param("corrected", choices=("corrected", "thesis"), invalidates="sky", group="sky",
                              doc="errata of the sky chain (vc-2.39, 4.4, 4.5)",
                              reason="'corrected': Preetham's published constants")
+    units: str = param("display", choices=UNITS, invalidates="sky", group="sky", check=_units_check,
+                       doc="display: the Preetham sky tone mapped, 1 - exp(-k C_HDR) (vc-4.5), and a sun of "
+                           "sun_intensity; physical: radiances in kcd/m^2 times the one exposure k = sky_exposure -- "
+                           "the sky k C_HDR (C_HDR's Y is luminance in kcd/m^2, vc-2.39) and the sun k x 127.5 klx x "
+                           "the atmosphere's transmittance (cclouds/cloudscape.h); needs sky=preetham, lighting=sky",
+                       reason="'display': the thesis's sky and the tuned exposure of its lighting")
     sky_exposure: float = param(0.05, lo=0.0, hi=10.0, lo_open=True, invalidates="sky", group="sky",
                                 doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5)",
                                 reason="0.05: with the thesis' 0.03 and luminance in kcd/m^2 the corrected sky is a "
@@ -508,6 +526,15 @@ class CloudscapeSettings(Settings):
     g: float = param(0.2, lo=-1.0, hi=1.0, lo_open=True, hi_open=True, c="g", group="clouds", cli="--phase-g",
                      doc="Henyey-Greenstein asymmetry g of vc-2.31",
                      reason="0.2: ccl_cloudscape_params_default (see cclouds/cloudscape.c)")
+    phase: str = param("thesis", choices=PHASE_NAMES, c="phase", c_enum=PHASE_ENUM, group="clouds",
+                       doc="phase function of the clouds, in the real-time lighting and in the reference: thesis = "
+                           "Henyey-Greenstein with --phase-g (vc-2.13; and the silver lobe); mie = the approximate "
+                           "Mie phase of droplets of --droplet-um (Jendersie & d'Eon 2023, vc-x-mie)",
+                       reason="'thesis': the thesis's single HG lobe, its images")
+    droplet_um: float = param(15.0, unit="um", lo=5.0, hi=50.0, c="droplet_um", group="clouds",
+                              doc="droplet diameter of the Mie phase (phase=mie), in the fit's range [5, 50] um",
+                              reason="15: an effective radius of 7.5 um, in the 5-10 um of fair-weather cumulus "
+                                     "(Miles, Verlinde & Clothiaux 2000, J. Atmos. Sci. 57:295); g = 0.87")
     sigma_per_km: float = param(30.0, unit="1/km", lo=0.0, hi=1000.0, lo_open=True, c="sigma", group="clouds",
                                 cli="--sigma",
                                 doc="extinction per unit density",
@@ -543,6 +570,13 @@ class CloudscapeSettings(Settings):
                                     reason="2: the haze is mostly aerosol in the lowest kilometres (scale heights "
                                            "1-2 km); a view from above sees the ground veiled, not fogged "
                                            "(ccl_cloudscape_params_default)")
+    ambient_ground_weight: float = param(0.0, lo=0.0, hi=1.0, c="ambient_ground_weight", group="lighting",
+                                         cli="--ambient-ground",
+                                         doc="sky lighting: share w of the lit ground in the clouds' ambient, (1 - w) "
+                                             "sky mean over the upper hemisphere + w ground radiance; 0.5 = the mean "
+                                             "over all directions",
+                                         reason="0: the sky's mean, as the thesis's sky-like constants "
+                                                "(ccl_cloudscape_params_default)")
     ms_octaves: int = param(4, kind="int", lo=1, hi=MAX_MS_OCTAVES, c="ms_octaves", group="lighting",
                             doc="sky lighting: multiple-scattering octaves (Wrenninge et al. 2013; 1 = single "
                                 "scattering); octave i scales the optical depth, contribution and phase eccentricity "

@@ -30,7 +30,7 @@ from .clouds import (
 from ..core.cbridge import c_constant
 from .colour import colour_srgb_encode
 from .interp import interp_fade_cubic
-from .phase import phase_hg
+from .phase import INV_4PI, phase_hg, phase_mie
 from .camera import camera_ray
 from .raymarch import (
     raymarch_accumulate,
@@ -44,11 +44,16 @@ from .raymarch import (
     raymarch_view_sample_count,
 )
 from .reproj import reproj_pixel, reproj_surface_depth
-from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_rgb, sky_sun_attenuation
+from .sky import Preetham, SkyGradient, sky_gradient_rgb, sky_preetham_hdr, sky_preetham_rgb, sky_sun_attenuation
 from .texgen import trilinear_axis, trilinear_lerp, trilinear_scale
 
 SKY_GRADIENT = c_constant("CCL_SKY_GRADIENT", 0)
 SKY_PREETHAM = c_constant("CCL_SKY_PREETHAM", 1)
+SKY_PREETHAM_RADIANCE = c_constant("CCL_SKY_PREETHAM_RADIANCE", 2)  # physical units: k C_HDR (cloudscape.h)
+PHASE_THESIS = c_constant("CCL_CLOUDSCAPE_PHASE_THESIS", 0)
+PHASE_MIE = c_constant("CCL_CLOUDSCAPE_PHASE_MIE", 1)
+#: The sun's illuminance above the atmosphere in klx (CCL_CLOUDSCAPE_SUN_KLX_X10 / 10; the reason is in cloudscape.h).
+SUN_KLX_X10 = c_constant("CCL_CLOUDSCAPE_SUN_KLX_X10", 1275)
 LIGHTING_THESIS = c_constant("CCL_LIGHTING_THESIS", 0)
 LIGHTING_SKY = c_constant("CCL_LIGHTING_SKY", 1)
 COVERAGE_SAME = c_constant("CCL_COVERAGE_SAME", 0)
@@ -119,6 +124,9 @@ class CloudscapeParams:
     ms_c: float
     silver_g: float
     silver_weight: float
+    phase: int
+    droplet_um: float
+    ambient_ground_weight: float
     lod: int
     lod_bias: float
     refine_step_km: float
@@ -799,6 +807,13 @@ def pixel_angle(inv_view_proj_rot: wp.mat44, x: int, y: int, width: int, height:
 
 @wp.func
 def sky_colour(sky_kind: int, d: wp.vec3, sun: wp.vec3, preetham: Preetham, gradient: SkyGradient) -> wp.vec3:
+    """Twin of ``sky_rgb`` in cloudscape.c: the sky model's display-linear colour of unit direction d (physical units,
+    SKY_PREETHAM_RADIANCE: k C_HDR with negative channels at 0)."""
+    if sky_kind == SKY_PREETHAM_RADIANCE:
+        c = sky_preetham_hdr(d, sun, preetham)
+        k = preetham.exposure
+        return wp.vec3(wp.where(c[0] < 0.0, 0.0, k * c[0]), wp.where(c[1] < 0.0, 0.0, k * c[1]),
+                       wp.where(c[2] < 0.0, 0.0, k * c[2]))
     if sky_kind == SKY_PREETHAM:
         return sky_preetham_rgb(d, sun, preetham)
     return sky_gradient_rgb(d, sun, gradient)
@@ -815,6 +830,9 @@ def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float)
     ai = float(1.0)
     bi = float(1.0)
     ci = float(1.0)
+    mie = float(0.0)
+    if p.phase == PHASE_MIE:
+        mie = phase_mie(cos_theta, p.droplet_um)
     for i in range(p.ms_octaves):
         di = d * ai
         beer = float(1.0)
@@ -823,9 +841,14 @@ def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float)
         powder = float(1.0)
         if p.powder != 0:
             powder = 1.0 - wp.exp(-2.0 * di)
-        phase = phase_hg(cos_theta, p.g * ci)
-        if p.silver_weight > 0.0:  # dual lobe: (1 - w) HG(g) + w HG(silver_g)
-            phase = (1.0 - p.silver_weight) * phase + p.silver_weight * phase_hg(cos_theta, p.silver_g * ci)
+        phase = float(0.0)
+        if p.phase == PHASE_MIE:
+            # c^i of the Mie phase and 1 - c^i isotropic: the octave's mean cosine is c^i g, as with HG(c^i g)
+            phase = ci * mie + (1.0 - ci) * INV_4PI
+        else:
+            phase = phase_hg(cos_theta, p.g * ci)
+            if p.silver_weight > 0.0:  # dual lobe: (1 - w) HG(g) + w HG(silver_g)
+                phase = (1.0 - p.silver_weight) * phase + p.silver_weight * phase_hg(cos_theta, p.silver_g * ci)
         e = e + bi * beer * phase * powder
         ai = ai * p.ms_a
         bi = bi * p.ms_b
@@ -879,7 +902,11 @@ def cloudscape_light(p: CloudscapeParams, sky_kind: int, sun: wp.vec3, preetham:
         dphi = 6.2831853 / float(SKY_PHI_CELLS)
         cos_s = wp.clamp(sun[1], 0.0, 1.0)
         att = sky_sun_attenuation(wp.acos(cos_s), p.turbidity)
-        q.sun_colour = wp.vec3(p.sun_intensity * att[0], p.sun_intensity * att[1], p.sun_intensity * att[2])
+        # physical units: the sun's illuminance above the atmosphere x the one exposure of the sky
+        e_sun = p.sun_intensity
+        if sky_kind == SKY_PREETHAM_RADIANCE:
+            e_sun = preetham.exposure * (float(SUN_KLX_X10) * 0.1)
+        q.sun_colour = wp.vec3(e_sun * att[0], e_sun * att[1], e_sun * att[2])
         mean = wp.vec3(0.0, 0.0, 0.0)
         cmean = wp.vec3(0.0, 0.0, 0.0)
         wsum = float(0.0)
@@ -897,11 +924,18 @@ def cloudscape_light(p: CloudscapeParams, sky_kind: int, sun: wp.vec3, preetham:
                 cmean = wp.vec3(cmean[0] + v[0] * wc, cmean[1] + v[1] * wc, cmean[2] + v[2] * wc)
                 wsum = wsum + st
                 csum = csum + wc
-        top = wp.vec3(mean[0] / wsum, mean[1] / wsum, mean[2] / wsum)
+        # the lower hemisphere's share: the unshadowed Lambertian ground under the sun and the sky
+        w = p.ambient_ground_weight
+        amb_g = wp.vec3(cmean[0] / csum, cmean[1] / csum, cmean[2] / csum)
+        k = cos_s * 0.318309886
+        sc = q.sun_colour
+        top = wp.vec3((1.0 - w) * (mean[0] / wsum) + w * (p.ground_albedo[0] * (sc[0] * k + amb_g[0])),
+                      (1.0 - w) * (mean[1] / wsum) + w * (p.ground_albedo[1] * (sc[1] * k + amb_g[1])),
+                      (1.0 - w) * (mean[2] / wsum) + w * (p.ground_albedo[2] * (sc[2] * k + amb_g[2])))
         q.ambient_top = top
         q.ambient_bottom = wp.vec3(p.ambient_bottom_ratio * top[0], p.ambient_bottom_ratio * top[1],
                                    p.ambient_bottom_ratio * top[2])
-        q.ambient_ground = wp.vec3(cmean[0] / csum, cmean[1] / csum, cmean[2] / csum)
+        q.ambient_ground = amb_g
     return q
 
 

@@ -171,9 +171,10 @@ def _energy_kernel(p: K.CloudscapeParams, d: wp.array(dtype=float), a: wp.array(
     out[i] = K.cloudscape_energy(p, d[i], a[i], c[i])
 
 
-@pytest.mark.parametrize("octaves,weight", [(1, 0.0), (3, 0.3), (8, 1.0)])
-def test_energy_c_equals_warp(octaves, weight):
-    s = small(ms_octaves=octaves, silver_weight=weight, silver_g=0.85, g=0.35)
+@pytest.mark.parametrize("octaves,weight,phase", [(1, 0.0, "thesis"), (3, 0.3, "thesis"), (8, 1.0, "thesis"),
+                                                  (1, 0.0, "mie"), (4, 0.3, "mie")])
+def test_energy_c_equals_warp(octaves, weight, phase):
+    s = small(ms_octaves=octaves, silver_weight=weight, silver_g=0.85, g=0.35, phase=phase, droplet_um=12.0)
     v = s.c_values()
     rng = np.random.default_rng(3)
     d = np.float32(rng.uniform(0, 8, 500))
@@ -186,6 +187,74 @@ def test_energy_c_equals_warp(octaves, weight):
     ce = np.array([lib().ccl_cloudscape_energy(cp, float(x), float(y), float(z)) for x, y, z in zip(d, a, c)],
                   dtype=np.float32)
     np.testing.assert_array_equal(out.numpy(), ce)
+
+
+@pytest.mark.spec("vc-x-mie")
+def test_energy_with_the_mie_phase_closed_form():
+    """phase=mie: octave i weighs c^i of the Mie phase and 1 - c^i isotropic, so without Beer and powder the energy is
+    sum_i b^i (c^i p_Mie + (1 - c^i) / (4 pi)) -- p_Mie written out in float64 from the published fit; the HG g and
+    the silver lobe are not read."""
+    d_um = 20.0
+    cos_t = np.linspace(-1.0, 1.0, 21)
+    g_hg = math.exp(-0.0990567 / (d_um - 1.67154))
+    g_d = math.exp(-2.20679 / (d_um + 3.91029) - 0.428934)
+    al = math.exp(3.62489 - 8.29288 / (d_um + 5.52825))
+    w_d = math.exp(-0.599085 / (d_um - 0.641583) - 0.665888)
+    hg = lambda g: (1 - g * g) / (4 * math.pi * (1 + g * g - 2 * g * cos_t) ** 1.5)  # noqa: E731
+    mie = (1 - w_d) * hg(g_hg) + w_d * hg(g_d) * (1 + al * cos_t ** 2) / (1 + al * (1 + 2 * g_d ** 2) / 3)
+    for octaves in (1, 3):
+        cp = CLOUDSCAPE_PARAMS.to_c(small(phase="mie", droplet_um=d_um, ms_octaves=octaves, beer=False, powder=False,
+                                          silver_weight=0.7, g=-0.5).c_values())
+        e = np.array([lib().ccl_cloudscape_energy(cp, 1.0, 1.0, float(c)) for c in cos_t])
+        expected = sum(0.5 ** i * (0.5 ** i * mie + (1 - 0.5 ** i) / (4 * math.pi)) for i in range(octaves))
+        np.testing.assert_allclose(e, expected, rtol=3e-4)
+
+
+def test_physical_units_light_closed_form(tech):
+    """units=physical: the sun is k x 127.5 klx x the atmosphere's transmittance (k = sky_exposure), and the ambient
+    is the mean of the sky k C_HDR -- the Preetham sky before the tone map (pywarp.sky_preetham_colour,
+    output='hdr'), averaged here by an independent quadrature (64 x 128 cells); C and Warp agree."""
+    s = small(units="physical", sun_elevation_deg=35.0, sky_exposure=0.05)
+    t = CloudscapeTechnique(s, textures=tech.textures)
+    c = _c_lit(s)
+    np.testing.assert_array_equal(np.array(t.params.sun_colour, dtype=np.float32),
+                                  np.array(list(c.sun_colour), dtype=np.float32))
+    _, att = sun_attenuation(np.float32(math.radians(55.0)), s.turbidity)
+    np.testing.assert_allclose(np.array(t.params.sun_colour), 0.05 * 127.5 * att, rtol=1e-5)
+    import pywarp
+
+    th = (np.arange(64) + 0.5) * (math.pi / 2) / 64
+    ph = (np.arange(128) + 0.5) * 2 * math.pi / 128
+    T, P = np.meshgrid(th, ph, indexing="ij")
+    d = np.stack([np.sin(T) * np.sin(P), np.cos(T), -np.sin(T) * np.cos(P)], axis=-1).reshape(-1, 3)
+    hdr = np.asarray(pywarp.sky_preetham_colour(d.astype(np.float32), s.turbidity, s.sun_elevation_deg,
+                                                s.sun_azimuth_deg, exposure=s.sky_exposure, output="hdr"),
+                     dtype=np.float64)
+    w = np.sin(T).reshape(-1, 1)
+    mean = 0.05 * (np.maximum(hdr, 0.0) * w).sum(axis=0) / w.sum()
+    np.testing.assert_allclose(np.array(t.params.ambient_top), mean, rtol=0.01)
+    # a physical sky is not tone mapped: its zenith is k C_HDR, beyond 1 - exp(-k C_HDR)
+    assert np.all(mean > 1 - np.exp(-mean))
+
+
+@pytest.mark.parametrize("units", ["display", "physical"])
+def test_ambient_ground_weight_blends_in_the_lit_ground(tech, units):
+    """ambient_ground_weight w: ambient_top = (1 - w) x the sky's mean + w x the unshadowed ground's radiance
+    albedo (E_sun cos theta_s / pi + ambient_ground), from the lights of w = 0; bottom keeps its ratio; C and Warp
+    agree."""
+    s0 = small(units=units, sun_elevation_deg=50.0, ground_albedo=(0.2, 0.3, 0.1))
+    t0 = CloudscapeTechnique(s0, textures=tech.textures)
+    s = dataclasses.replace(s0, ambient_ground_weight=0.5)
+    t = CloudscapeTechnique(s, textures=tech.textures)
+    sun, top0, amb_g = (np.array(getattr(t0.params, n), dtype=np.float64)
+                        for n in ("sun_colour", "ambient_top", "ambient_ground"))
+    ground = np.array([0.2, 0.3, 0.1]) * (sun * math.sin(math.radians(50.0)) / math.pi + amb_g)
+    np.testing.assert_allclose(np.array(t.params.ambient_top), 0.5 * top0 + 0.5 * ground, rtol=1e-5)
+    np.testing.assert_allclose(np.array(t.params.ambient_bottom), 0.4 * np.array(t.params.ambient_top), rtol=1e-6)
+    c = _c_lit(s)
+    for name in LIGHT:
+        np.testing.assert_allclose(np.array(getattr(t.params, name), dtype=np.float32),
+                                   np.array(list(getattr(c, name)), dtype=np.float32), rtol=3e-7, err_msg=name)
 
 
 @wp.kernel
@@ -270,6 +339,8 @@ def test_ground_c_equals_warp_and_clouds_shadow_the_ground(tech):
     ("preetham", ABOVE, dict(ms_octaves=2, silver_weight=0.0, aerial_height_km=0.0)),
     ("gradient", ABOVE, dict(ms_octaves=1, silver_weight=0.5, beer=False)),
     ("preetham", Pose(0.0, 2.5, 0.0, 60.0, 3.0, 60.0), dict(powder=False, aerial_km=8.0)),
+    ("preetham", BELOW, dict(units="physical", phase="mie")),
+    ("preetham", ABOVE, dict(units="physical", phase="mie", ms_octaves=3, droplet_um=30.0)),
 ])
 def test_sky_lighting_pixels_match_c_reference(tech, sky, pose, extra):
     """Sky lighting, multiple-scattering octaves, the dual lobe, the lit ground and aerial perspective: Warp vs the C
@@ -525,10 +596,21 @@ def test_lighting_defaults_equal_ccl_cloudscape_params_default():
     ("ms_octaves", 2.5, TypeError, "ms_octaves"),
     ("silver_g", 1.0, ValueError, "silver_g"),
     ("silver_weight", 1.5, ValueError, "silver_weight"),
+    ("phase", "hg", ValueError, "phase must be one of"),
+    ("droplet_um", 4.0, ValueError, "droplet_um"),
+    ("droplet_um", 60.0, ValueError, "droplet_um"),
+    ("units", "si", ValueError, "units must be one of"),
+    ("ambient_ground_weight", 1.5, ValueError, "ambient_ground_weight"),
 ])
 def test_lighting_settings_refuse_bad_values(field, value, err, match):
     with pytest.raises(err, match=match):
         CloudscapeSettings(**{field: value})
+
+
+@pytest.mark.parametrize("changes", [dict(sky="gradient"), dict(lighting="thesis")])
+def test_physical_units_need_the_preetham_sky_and_sky_lighting(changes):
+    with pytest.raises(ValueError, match="units='physical' needs sky='preetham' and lighting='sky'"):
+        CloudscapeSettings(units="physical", **changes)
 
 
 @pytest.mark.parametrize("name,value", [("ms_a", 1.5), ("ms_b", -0.1), ("ms_c", 2.0), ("ambient_bottom_ratio", 3.0),

@@ -13,8 +13,10 @@ import warp as wp
 
 from pywarp.clouds.cloudscape import RenderTextures
 from pywarp.clouds.reference import (
+    ReferenceParams,
     ReferenceRenderer,
     hg_samples_kernel,
+    phase_samples_kernel,
 )
 from pywarp.clouds.settings import CloudscapeSettings
 from pywarp.core.pose import Pose
@@ -47,6 +49,45 @@ def test_hg_sampler_moments(g):
     se2 = (c * c).std() / math.sqrt(n)
     assert abs(c.mean() - g) < 5 * se1
     assert abs((c * c).mean() - (1.0 + 2.0 * g * g) / 3.0) < 5 * se2
+
+
+def _mie_fit(mu, d):
+    """The approximate Mie phase (vc-x-mie) written out in float64 from the published fit."""
+    hg = lambda g: (1 - g * g) / (4 * np.pi * (1 + g * g - 2 * g * mu) ** 1.5)  # noqa: E731
+    g_hg = np.exp(-0.0990567 / (d - 1.67154))
+    g_d = np.exp(-2.20679 / (d + 3.91029) - 0.428934)
+    a = np.exp(3.62489 - 8.29288 / (d + 5.52825))
+    w = np.exp(-0.599085 / (d - 0.641583) - 0.665888)
+    return (1 - w) * hg(g_hg) + w * hg(g_d) * (1 + a * mu * mu) / (1 + a * (1 + 2 * g_d * g_d) / 3)
+
+
+@pytest.mark.spec("vc-x-mie")
+@pytest.mark.parametrize("d", [5.0, 15.0, 40.0])
+def test_mie_sampler_follows_the_phase_function(d):
+    """The sampled cos(theta) of phase=mie (the lobe picked with probability w_D, Draine's lobe by rejection) has the
+    distribution of the fit: its CDF at 9 cosines against the quadrature of the float64 formula (Gauss-Legendre in
+    theta, dense at the forward peak), and its first two moments. Tolerance: 5 binomial / sample standard errors
+    (n = 2^18)."""
+    n = 1 << 18
+    r = ReferenceParams()
+    r.phase = 1  # K.PHASE_MIE
+    r.droplet_um = d
+    r.g = 0.0
+    out = wp.zeros(n, dtype=float)
+    wp.launch(phase_samples_kernel, dim=n, inputs=[r, wp.uint32(17)], outputs=[out])
+    c = out.numpy().astype(np.float64)
+    assert np.all(np.abs(c) <= 1.0)
+    x, w = np.polynomial.legendre.leggauss(200)
+    edges = np.radians([0.0, 0.25, 1.0, 4.0, 15.0, 45.0, 180.0])
+    th = np.concatenate([0.5 * (b - a) * x + 0.5 * (a + b) for a, b in zip(edges[:-1], edges[1:])])
+    wt = np.concatenate([0.5 * (b - a) * w for a, b in zip(edges[:-1], edges[1:])])
+    mass = 2 * np.pi * wt * np.sin(th) * _mie_fit(np.cos(th), d)
+    for m, k in ((c, 1), (c * c, 2)):
+        expected = float(np.sum(mass * np.cos(th) ** k))
+        assert abs(m.mean() - expected) < 5 * m.std() / math.sqrt(n), (k, m.mean(), expected)
+    for mu0 in (-0.9, -0.5, 0.0, 0.5, 0.8, 0.95, 0.99, 0.998, 0.9995):
+        p = float(np.sum(mass[np.cos(th) <= mu0]))  # P(cos <= mu0)
+        assert abs(np.mean(c <= mu0) - p) < 5 * math.sqrt(p * (1 - p) / n) + 1e-4, (mu0, np.mean(c <= mu0), p)
 
 
 # --- the homogeneous slab: closed forms -------------------------------------------------------------------------------
@@ -109,6 +150,61 @@ def test_slab_single_scattering_closed_form(textures):
     expected = e_sun * np.mean(phase * math.exp(-tau) * shape)
     assert np.all(np.abs(mean - expected) < 4 * se), (mean, expected, se)
     assert np.all(se < 0.02 * expected)
+
+
+@pytest.mark.spec("vc-x-mie")
+def test_slab_single_scattering_with_the_mie_phase(textures):
+    """test_slab_single_scattering_closed_form with phase=mie: the same closed form with the float64 Mie fit in place
+    of HG (the reference's next-event estimation evaluates the medium's phase). Tolerance: 4 standard errors."""
+    s = small(**{**SLAB, "fov_y_deg": 40.0}, camera_altitude_km=0.5, camera_pitch_deg=70.0, phase="mie",
+              droplet_um=10.0)
+    r = ReferenceRenderer(s, textures, spp=256, seed=6, bounces=1, albedo=1.0, density="slab", slab_density=RHO,
+                          sky=False, ground_albedo=(0.0, 0.0, 0.0), pixel_filter="centre")
+    img = r.render(encode=False)
+    mean, se = _mean_and_se(r, img)
+    from pywarp import camera_ray
+
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
+    ys, xs = np.mgrid[0:s.height, 0:s.width]
+    d = np.asarray(camera_ray(xs.ravel(), ys.ravel(), s.width, s.height, cam), dtype=np.float64)
+    mu = d @ np.asarray(s.sun(), dtype=np.float64)
+    tau = 30.0 * RHO * 0.1
+    x = tau * (1 - mu) / mu
+    shape = np.where(x > 1e-6, -np.expm1(-x) / np.maximum(1 - mu, 1e-300), tau / mu)
+    e_sun = np.array([r.params.sun_colour[i] for i in range(3)], dtype=np.float64)
+    expected = e_sun * np.mean(_mie_fit(mu, 10.0) * math.exp(-tau) * shape)
+    assert np.all(np.abs(mean - expected) < 4 * se), (mean, expected, se)
+    assert np.all(se < 0.02 * expected)
+
+
+def test_clear_sky_ground_in_physical_units(textures):
+    """units=physical, no clouds, the sun overhead, a Lambertian ground seen from 0.5 km looking down: L = A / pi
+    (E_sun + E_sky) with E_sun = k 127.5 klx x the transmittance towards the sun (Preetham A.1,
+    pywarp.clouds.sky.sun_attenuation) and E_sky = int k C_HDR cos dw, the Preetham sky before its tone map
+    (pywarp.sky_preetham_colour, output='hdr', negative channels at 0) integrated by an independent quadrature. One
+    bounce. Tolerance: 4 standard errors and the quadrature's 0.3 %."""
+    import pywarp
+    from pywarp.clouds.sky import sun_attenuation
+
+    s = small(**SLAB, coverage=0.0, camera_altitude_km=0.5, camera_pitch_deg=-89.0, units="physical")
+    a = (0.2, 0.5, 0.35)
+    r = ReferenceRenderer(s, spp=256, seed=13, bounces=1, ground_albedo=a, pixel_filter="centre")
+    img = r.render(encode=False)
+    mean, se = _mean_and_se(r, img)
+    k = s.sky_exposure
+    _, att = sun_attenuation(np.float32(0.0), s.turbidity)
+    e_sun = k * 127.5 * att.astype(np.float64)
+    th = (np.arange(90) + 0.5) * (math.pi / 2) / 90
+    ph = (np.arange(180) + 0.5) * 2 * math.pi / 180
+    T, P = np.meshgrid(th, ph, indexing="ij")
+    d = np.stack([np.sin(T) * np.sin(P), np.cos(T), -np.sin(T) * np.cos(P)], axis=-1).reshape(-1, 3)
+    hdr = np.asarray(pywarp.sky_preetham_colour(d.astype(np.float32), s.turbidity, s.sun_elevation_deg,
+                                                s.sun_azimuth_deg, exposure=k, output="hdr"), dtype=np.float64)
+    dw = (np.sin(T) * np.cos(T)).reshape(-1, 1) * (math.pi / 2 / 90) * (2 * math.pi / 180)
+    e_sky = k * (np.maximum(hdr, 0.0) * dw).sum(axis=0)
+    expected = np.array(a) / math.pi * (e_sun + e_sky)
+    assert np.all(np.abs(mean - expected) < 4 * se + 0.003 * expected), (mean, expected, se)
+    assert np.all(se < 0.01 * expected)
 
 
 def test_clear_sky_ground_is_lit_by_sun_and_sky_closed_form(textures):
@@ -332,6 +428,44 @@ def test_cli_reference_bad_values_one_line_no_file(tmp_path, args, message):
 
 # --- the benchmark's metrics ----------------------------------------------------------------------------------------
 
+def test_absolute_errors_keep_the_exposure_and_split_by_class(rng):
+    """No rescaling: a model twice as bright as the reference has energy ratio 2 in every class and a positive dE;
+    the reference itself has ratio 1 and dE 0; the classes follow the optical depth."""
+    from pywarp.clouds.bench_reference import absolute_errors, exposure
+
+    ref = rng.uniform(0.05, 1.0, (10, 12, 3))
+    tau = np.zeros((10, 12))
+    tau[:3] = 5.0
+    tau[3:6] = 1.0
+    same = absolute_errors(ref, ref, exposure(ref), tau)
+    assert same["delta_e"] == pytest.approx(0.0, abs=1e-9)
+    assert same["pixels"] == {"clear": 48, "thin": 36, "thick": 36}
+    double = ref.copy()
+    double[:3] *= 2.0  # only the thick pixels
+    e = absolute_errors(double, ref, exposure(ref), tau)
+    np.testing.assert_allclose(e["ratio"]["thick"], 2.0)
+    np.testing.assert_allclose(e["ratio"]["thin"], 1.0)
+    assert e["delta_e_class"]["thick"] > 1.0 and e["delta_e_class"]["clear"] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_view_optical_depth_of_the_slab(textures):
+    """The slab of optical depth 1.5 seen through from below at the vertical: tau = 1.5 / cos(angle to the vertical)
+    per pixel, within 5 standard errors of the 256 ratio-tracking estimates (T's relative error, bounded by
+    sqrt((1 - T) / (T n)) for estimates in [0, 1])."""
+    s = small(**SLAB, camera_altitude_km=0.5, camera_pitch_deg=89.0)
+    r = ReferenceRenderer(s, textures, density="slab", slab_density=RHO)
+    tau = r.view_optical_depth(samples=256).astype(np.float64)
+    from pywarp import camera_ray
+
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
+    ys, xs = np.mgrid[0:s.height, 0:s.width]
+    d = np.asarray(camera_ray(xs.ravel(), ys.ravel(), s.width, s.height, cam), dtype=np.float64)
+    expected = 1.5 / d[:, 1]
+    t = np.exp(-expected)
+    rel = np.sqrt((1 - t) / (t * 256))
+    assert np.all(np.abs(np.exp(-tau.ravel()) / t - 1.0) < 5 * rel + 1e-6)
+
+
 def test_error_metrics_after_the_best_exposure_scale(rng):
     from pywarp.clouds.bench_reference import best_scale, errors, exposure
 
@@ -348,15 +482,23 @@ def test_error_metrics_after_the_best_exposure_scale(rng):
     assert tinted["delta_e"] > 3.0
 
 
-def test_compare_gives_a_row_per_scene_and_model():
-    from pywarp.clouds.bench_reference import MODELS, compare, report
+@pytest.mark.parametrize("medium", ["display", "physical"])
+def test_compare_gives_a_row_per_scene_and_model(medium):
+    from pywarp.clouds.bench_reference import CLASS_EDGES, MODELS, PHYSICAL_MODELS, compare, report
 
-    res, images = compare(16, 9, spp=4, scenes=["noon"], progress=lambda m: None, settings=SMALL)
+    res, images = compare(16, 9, spp=4, scenes=["noon"], progress=lambda m: None, settings=SMALL, medium=medium)
     (sc,) = res["scenes"]
-    assert sc["scene"] == "noon" and [m["model"] for m in sc["models"]] == list(MODELS)
+    assert res["medium"] == medium
+    extra = list(PHYSICAL_MODELS) if medium == "physical" else []
+    assert sc["scene"] == "noon" and [m["model"] for m in sc["models"]] == [*MODELS, *extra, "default"]
+    assert sum(sc["pixels"].values()) == 16 * 9
     for m in sc["models"]:
         assert -1.0 <= m["ssim"] <= 1.0 and m["delta_e"] >= 0.0 and m["scale"] > 0.0
         assert images["noon"][m["model"]].shape == (9, 16, 3)
+        a = m["absolute"]
+        assert a["delta_e"] >= 0.0 and set(a["ratio"]) == set(CLASS_EDGES) == set(a["pixels"])
+        for k, r in a["ratio"].items():
+            assert (r is None) == (a["pixels"][k] == 0) and (r is None or len(r) == 3)
     assert sc["std_error"] > 0 and 0 < sc["noise_floor"]["ssim"] <= 1
     assert "noise floor" in report(res)
     import json

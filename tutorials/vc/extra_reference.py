@@ -94,7 +94,9 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     for sc in result["scenes"]:
         nf = sc["noise_floor"]
         row = [sc["scene"]]
-        for m in sc["models"]:
+        models = {m["model"]: m for m in sc["models"]}
+        for name in MODELS:  # (the rows after them, e.g. the renderer's defaults, are the benchmark's)
+            m = models[name]
             row.append("skipped" if "skipped" in m else f"{m['ssim']:.3f} / {m['delta_e']:.2f}")
         row.append(f"{nf['ssim']:.3f} / {nf['delta_e']:.2f}")
         cells.append(row)

@@ -39,13 +39,16 @@
  *     replaces the constants by values of the sky model (gradient or Preetham, whichever the scene uses):
  *       sun_colour     = sun_intensity * ccl_sky_sun_attenuation(theta_s, turbidity)  (Preetham et al. 1999 A.1:
  *                        Rayleigh and aerosol extinction along the air mass towards the sun: white at noon, orange
- *                        at sunset);
- *       ambient_top    = the mean sky radiance over the upper hemisphere (solid-angle weighted), ambient_bottom =
+ *                        at sunset); with the sky CCL_SKY_PREETHAM_RADIANCE (physical units) k x
+ *                        CCL_CLOUDSCAPE_SUN_KLX_X10 / 10 instead of sun_intensity, k = the sky's exposure;
+ *       ambient_top    = the mean sky radiance over the upper hemisphere (solid-angle weighted; with
+ *                        ambient_ground_weight w > 0 blended with the lit ground's radiance), ambient_bottom =
  *                        ambient_bottom_ratio x ambient_top, ambient_ground = the cosine-weighted mean (E_sky / pi),
  *                        by the midpoint rule on CCL_CLOUDSCAPE_SKY_THETA_CELLS x _PHI_CELLS cells of equal
  *                        (zenith angle, azimuth) size, each weighted by sin(theta) (x cos(theta)), normalised by the
  *                        quadrature's own weight sum (a constant sky gives exactly its value); sky values are the
- *                        display-linear colours the background shows (Preetham: tone mapped), negative ones as 0.
+ *                        display-linear colours the background shows (Preetham: tone mapped, or k C_HDR in physical
+ *                        units), negative ones as 0.
  *     and the pixel changes in three places:
  *       ground   G = ground_albedo (sun_colour max(n . s, 0) T_shadow / pi + ambient_ground) at the point P where the
  *                  ray meets the Earth (n its normal, s towards the sun): Lambertian, lit by the sun through the
@@ -206,6 +209,12 @@ typedef struct ccl_cloudscape_params {
     float silver_g;             /* second HG lobe: phase = (1 - w) HG(g) + w HG(silver_g), in (-1, 1) (default 0.8) */
     float silver_weight;        /* w of the second lobe, in [0, 1]; 0 = the thesis's single HG (default 0: chosen
                                    by measurement, see the .c) */
+    int phase;                  /* ccl_cloudscape_phase of the sun energy: CCL_CLOUDSCAPE_PHASE_THESIS (default: HG(g)
+                                   and the silver lobe) or CCL_CLOUDSCAPE_PHASE_MIE (ccl_phase_mie of droplet_um) */
+    float droplet_um;           /* droplet diameter of the Mie phase, um, in [CCL_PHASE_MIE_D_MIN, _MAX] (default 15) */
+    float ambient_ground_weight; /* sky mode: ambient_top = (1 - w) x the sky's mean over the upper hemisphere + w x
+                                    the unshadowed ground's radiance ground_albedo (sun_colour cos theta_s / pi +
+                                    ambient_ground), w in [0, 1] (default 0; 0.5: the mean over the whole sphere) */
     int march;                  /* ccl_cloudscape_march_kind: CCL_CLOUDSCAPE_MARCH_FAST (default) or
                                    CCL_CLOUDSCAPE_MARCH_TEXTBOOK (the thesis's loop, see ccl_cloudscape_march) */
 } ccl_cloudscape_params;
@@ -222,6 +231,19 @@ typedef enum ccl_lighting {
     CCL_LIGHTING_SKY = 1      /* sun, ambient, lit ground and aerial perspective from the sky model (default) */
 } ccl_lighting;
 
+/* The phase function of the sun energy (ccl_cloudscape_energy). */
+typedef enum ccl_cloudscape_phase {
+    CCL_CLOUDSCAPE_PHASE_THESIS = 0,  /* HG(g) of vc-2.31, with the silver lobe where silver_weight > 0 (default) */
+    CCL_CLOUDSCAPE_PHASE_MIE = 1      /* the approximate Mie phase of cloud droplets, ccl_phase_mie(droplet_um) */
+} ccl_cloudscape_phase;
+
+/* The sun's illuminance above the atmosphere at normal incidence, klx x 10 (an integer for the cffi-parsable
+ * header): 127.5 klx, the extraterrestrial solar illuminance of the IES Lighting Handbook (Darula et al. 2005 give
+ * 133.8 klx; the 5 % between them is the uncertainty of this constant). Its colour is taken as the white of linear
+ * sRGB (a 5800 K sun outside the atmosphere is within a few per cent of D65 per channel); the atmosphere's
+ * transmittance per channel (ccl_sky_sun_attenuation) colours it. In the units of CCL_SKY_PREETHAM_RADIANCE:
+ * kcd/m^2 x sr = klx. */
+#define CCL_CLOUDSCAPE_SUN_KLX_X10 1275
 /* Most multiple-scattering octaves ccl_cloudscape_check accepts (the octave loop runs per light evaluation). */
 #define CCL_CLOUDSCAPE_MAX_MS_OCTAVES 8
 /* Base-shape density samples along the ray from a ground point towards the sun (the clouds' shadow on the ground):
@@ -264,8 +286,12 @@ typedef enum ccl_coverage_threshold {
 
 /* Sky background of the cloudscape. */
 typedef enum ccl_sky_kind {
-    CCL_SKY_GRADIENT = 0,  /* vc-A28 */
-    CCL_SKY_PREETHAM = 1   /* vc-A29 (default) */
+    CCL_SKY_GRADIENT = 0,          /* vc-A28 */
+    CCL_SKY_PREETHAM = 1,          /* vc-A29 (default): tone mapped, 1 - exp(-k C_HDR) (vc-4.5) */
+    CCL_SKY_PREETHAM_RADIANCE = 2  /* vc-A29 in physical units: k C_HDR, the radiance (C_HDR: linear sRGB whose Y is
+                                      the luminance in kcd/m^2, vc-2.39) times the one exposure k = preetham.exposure
+                                      (the tone map's slope at 0); with sky lighting the sun is then
+                                      k CCL_CLOUDSCAPE_SUN_KLX x ccl_sky_sun_attenuation (ccl_cloudscape_light) */
 } ccl_sky_kind;
 
 typedef struct ccl_cloudscape_sky {

@@ -41,6 +41,20 @@ CCL_API float ccl_phase_schlick(float cos_theta, float k, ccl_variant variant);
  * callers that feed k into ccl_phase_schlick should keep |g| <= 0.938. */
 CCL_API float ccl_phase_schlick_k(float g);
 
+/* The approximate Mie phase function of cloud and fog droplets (beyond the text: the thesis's clouds use one HG lobe):
+ *   p = (1 - w_D) HG(cos_theta, g_HG) + w_D Draine(cos_theta, g_D, alpha),
+ *   Draine(cos_theta, g, alpha) = HG(cos_theta, g) (1 + alpha cos^2 theta) / (1 + alpha (1 + 2 g^2) / 3),
+ * with the parameters fitted to Lorenz-Mie theory over droplet diameters d in [5, 50] um:
+ *   g_HG = exp(-0.0990567 / (d - 1.67154)),  g_D = exp(-2.20679 / (d + 3.91029) - 0.428934),
+ *   alpha = exp(3.62489 - 8.29288 / (d + 5.52825)),  w_D = exp(-0.599085 / (d - 0.641583) - 0.665888).
+ * Ref: vc-x-mie; Jendersie & d'Eon 2023, "An Approximate Mie Scattering Function for Fog and Cloud Rendering", ACM
+ * SIGGRAPH 2023 Talks, article 47; Draine 2003, ApJ 598:1017 (eq. 4). cos_theta in [-1, 1]; diameter_um -> d, the
+ * droplet diameter in micrometres, in [CCL_PHASE_MIE_D_MIN, CCL_PHASE_MIE_D_MAX]. Output > 0 sr^-1, integrates to 1
+ * over the sphere. NaN propagates. */
+#define CCL_PHASE_MIE_D_MIN 5
+#define CCL_PHASE_MIE_D_MAX 50
+CCL_API float ccl_phase_mie(float cos_theta, float diameter_um);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""Write the images and the table of docs/lighting.rst: ``pywarp bench clouds reference`` in the physical medium
+(:func:`pywarp.clouds.bench_reference.compare`), every scene and view, at a size and path count that a 2-core
+machine finishes in about half an hour.
+
+    python tools/lighting_docs.py [--width 96 --height 54 --spp 128] [--json OUT.json]
+
+Writes docs/images/lighting/<scene>-<row>.png (the reference exposed for display and the rows ``default`` and
+``physical`` under the reference's exposure alone -- no rescaling) and docs/lighting_table.inc (included by the
+page). The images stay linear up to the renderer's display step (clamp, sRGB); a shared display transform would
+replace :func:`pywarp.clouds.bench_reference._srgb` here and in the benchmark.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+#: The rows shown as images (the reference besides): the renderer's defaults and the physical model.
+IMAGE_ROWS = ("default", "physical")
+
+
+def _slug(name: str) -> str:
+    return name.replace(" ", "-").replace("+", "")
+
+
+def table(res: dict) -> str:
+    """The rst list-table of the result: per scene and row, best-scale SSIM / dE, then without rescaling dE and the
+    energy ratios R/G/B in thick and thin pixels."""
+    def ratio(r):
+        return "--" if r is None else " / ".join("--" if v is None else f"{v:.2f}" for v in r)
+
+    rows = [".. list-table::", "   :header-rows: 1", "",
+            "   * - scene", "     - model", "     - SSIM (best scale)", "     - ΔE00 (best scale)",
+            "     - ΔE00 (absolute)", "     - energy thick R/G/B", "     - energy thin R/G/B"]
+    for sc in res["scenes"]:
+        for m in sc["models"]:
+            if "skipped" in m:
+                continue
+            a = m["absolute"]
+            rows += [f"   * - {sc['scene']}", f"     - {m['model']}", f"     - {m['ssim']:.3f}",
+                     f"     - {m['delta_e']:.2f}", f"     - {a['delta_e']:.2f}", f"     - {ratio(a['ratio']['thick'])}",
+                     f"     - {ratio(a['ratio']['thin'])}"]
+        nf = sc["noise_floor"]
+        rows += [f"   * - {sc['scene']}", "     - (noise floor: one half of the paths against the other)",
+                 f"     - {nf['ssim']:.3f}", f"     - {nf['delta_e']:.2f}", "     - ", "     - ", "     - "]
+    return "\n".join(rows) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--width", type=int, default=96)
+    ap.add_argument("--height", type=int, default=54)
+    ap.add_argument("--spp", type=int, default=128)
+    ap.add_argument("--json", default=None)
+    args = ap.parse_args(argv)
+    import imageio.v3 as iio
+
+    from pywarp.clouds.bench_reference import SCENES, VIEWS, compare
+
+    res, images = compare(args.width, args.height, args.spp, scenes=[*SCENES, *VIEWS], medium="physical")
+    out = ROOT / "docs" / "images" / "lighting"
+    out.mkdir(parents=True, exist_ok=True)
+    for scene, imgs in images.items():
+        iio.imwrite(out / f"{_slug(scene)}-reference.png", imgs["reference"])
+        for row in IMAGE_ROWS:
+            if "abs " + row in imgs:
+                iio.imwrite(out / f"{_slug(scene)}-{_slug(row)}.png", imgs["abs " + row])
+    (ROOT / "docs" / "lighting_table.inc").write_text(table(res), encoding="utf-8")
+    if args.json:
+        Path(args.json).write_text(json.dumps(res), encoding="utf-8")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
