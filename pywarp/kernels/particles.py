@@ -711,14 +711,21 @@ declare("rr-code-5.2.3", "rr-code-5.2.4", c="ccl_particles_composite", name="par
         make_warp="pywarp.rain.particles:composite_warp",
         make_c="pywarp.rain.particles:composite_c",
         summary="particles_composite(background, capture, mask, sprites, fov_view, fov_capture=150 deg, "
-                "streaks=False, filter='nearest', opacity=1) -> frame: the refraction fragment shader (rr-code-5.2.3) "
-                "on every drop billboard, or with streaks=True the retinal-persistence shader (rr-code-5.2.4: 7 mask "
-                "taps i = -3 .. 3 shifted by i tap_offset, averaged, alpha reduced to the share of taps that hit), "
-                "composited far to near over the background. Per tap: the mask texel (inside flag a, refraction "
+                "streaks='off', filter='nearest', opacity=1) -> frame: the refraction fragment shader (rr-code-5.2.3) "
+                "on every drop billboard; streaks='thesis' the retinal-persistence shader as listed (rr-code-5.2.4: 7 "
+                "mask taps i = -3 .. 3 shifted by i tap_offset, averaged, alpha reduced to the share of taps that "
+                "hit); streaks='physical' the drop's disc (the sprite's radius) integrated over the persistence time "
+                "T in closed form: alpha = opacity (1/T) int w(t) cov(t) dt, cov the share of the pixel the disc "
+                "covers, w = 1 - cos(2 pi t / T) (mean 1: the image builds up and fades, so the ends taper), so a "
+                "streak's alphas sum to pi r^2 and its middle is ~ 2 r / L opaque -- the time a drop covers a pixel "
+                "over the exposure (Garg & Nayar 2004: < 1.2 ms of a 1/30 s frame, faint streaks); colour the mean "
+                "of 8 refraction taps down the mask column across the chord the pixel sees (fixed in the drop: no "
+                "pattern along the streak). Composited far to near over the background. Per tap: the mask texel (inside flag a, refraction "
                 "vector xyz), P_o = the pixel's capture coordinate (rr-alg-3.1.2), P_c = P_o + (x, -y) / z * 0.5 / "
                 "tan(fov_capture/2), the capture at P_c. The listings' defects (undeclared count, extra brace, no "
                 "output, int*float, no averaging or alpha) are fixed.",
-        references=("Rousseau, Jolivet & Ghazanfarpour 2006, §4 (refraction), §3.5.3 (retinal persistence)",))(
+        references=("Rousseau, Jolivet & Ghazanfarpour 2006, §4 (refraction), §3.5.3 (retinal persistence)",
+                    "Garg & Nayar, Detection and removal of rain from videos, CVPR 2004 (exposure of a streak)"))(
     particles_shade_sprite)
 
 
