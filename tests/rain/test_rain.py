@@ -89,7 +89,9 @@ def test_drops_show_the_scene_upside_down():
 
 @pytest.mark.spec("rr-code-5.2.2", "rr-alg-3.2.3")
 def test_animation_makes_the_rain_fall():
-    tech = RainTechnique(RainSettings(**SMALL, mode="streaks"))
+    # the text's streaks (half opaque): the frame changes by > 20 grey levels where they move; the physical ones are
+    # a few % opaque (tests/rain/test_streak_quality.py)
+    tech = RainTechnique(RainSettings(**SMALL, mode="streaks", streaks="thesis"))
     y0 = tech.system.state()["pos"][:, 1].copy()
     a = tech.render()
     tech.update(time_s=1.0)  # 0.05 s of rain at the default clock rate
@@ -178,9 +180,13 @@ def test_background_options_name_the_keys_the_background_has_not():
 
 
 @pytest.mark.spec("rr-CF", "rr-A1", "rr-A2", "rr-A3")
-@pytest.mark.parametrize("mode", ["drops", "streaks"])
-def test_lights_in_the_scene_match_c_at_sampled_pixels(mode):
-    base = RainSettings(**SMALL, mode=mode, seed=2, time_s=2.0, camera_yaw_deg=20.0, camera_pitch_deg=-5.0)
+@pytest.mark.parametrize("mode, streaks, brighter", [("drops", "physical", 0.1), ("streaks", "thesis", 0.1),
+                                                     ("streaks", "physical", 0.03)])
+def test_lights_in_the_scene_match_c_at_sampled_pixels(mode, streaks, brighter):
+    """``brighter``: the least the lights change the frame somewhere -- opaque drops and half-opaque thesis streaks
+    by 0.1, physical streaks (at most ~15 % opaque in this small frame) by 0.03."""
+    base = RainSettings(**SMALL, mode=mode, streaks=streaks, seed=2, time_s=2.0, camera_yaw_deg=20.0,
+                        camera_pitch_deg=-5.0)
     assert base.light1_colour == (0.0, 0.0, 0.0) and base.light2_colour == (0.0, 0.0, 0.0)  # off: the text has none
     assert "lights" not in RainTechnique(base).frame_inputs()
     s = dataclasses.replace(base, light1_colour=(1.0, 0.8, 0.5), light2_colour=(0.3, 0.5, 1.0))
@@ -189,7 +195,7 @@ def test_lights_in_the_scene_match_c_at_sampled_pixels(mode):
     ins = tech.frame_inputs()
     assert ins["lights"]["c_l1"] == (1.0, 0.8, 0.5) and ins["positions"].shape == (len(ins["sprites"]), 3)
     unlit = RainTechnique(base).render(encode=False)
-    assert np.abs(img - unlit).max() > 0.1  # the lights brighten the drops
+    assert np.abs(img - unlit).max() > brighter  # the lights brighten the drops
     changed = np.nonzero(np.any(np.abs(img - ins["background"]) > 1e-6, axis=2))
     rng = np.random.default_rng(1)
     k = rng.choice(len(changed[0]), 150, replace=False)
