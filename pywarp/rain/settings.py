@@ -23,8 +23,16 @@ FILTERS = ("nearest", "linear")
 #: figures. Any registered scene other than rain is a background too.
 PANORAMA = "panorama"
 #: The rain scene's own settings for a background scene, under ``background_options`` (which overrides them key by
-#: key): the clouds an overcast, dark rain sky seen from 50 m; a scene not named here its own defaults.
-BACKGROUND_OPTIONS = {"clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05}}
+#: key); a scene not named here has its own defaults.
+#: terrain (the default background): the pt landscape under an overcast rain sky -- a grey sky and cloud deck (its
+#: clouds grey, smaller: a broken, low ceiling), no sun glow, light mostly ambient (diffuse 0.45, ambient 0.55: no hard
+#: shadows under cloud), and haze: fog 0.006 (half the light gone at ln 2 / 0.006 = 115 units, the far hills grey).
+#: clouds: an overcast, dark rain sky seen from 50 m.
+BACKGROUND_OPTIONS = {
+    "terrain": {"sky_colour": (0.52, 0.55, 0.58), "sun_colour": (0.0, 0.0, 0.0), "cloud_colour": (0.66, 0.68, 0.70),
+                "cloud_scale": 60.0, "light_diffuse": 0.45, "light_ambient": 0.55, "fog_density": 0.006},
+    "clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05},
+}
 
 
 def _check_background(obj, name, v):
@@ -49,17 +57,61 @@ def background_fields(background: str) -> set[str]:
 
 
 def check_background_options(background: str, options: dict, name: str = "background_options") -> None:
-    """A key of ``options`` that is no field of the background's settings is an error that names it (checked
-    against the scene the options are given for: a key is never dropped silently)."""
-    unknown = set(options) - background_fields(background)
+    """A key of ``options`` that is no field of the background's settings is an error that names it and the
+    background (checked against the scene the options are given for: a key is never dropped silently), with the
+    closest field when one is close."""
+    from ..core.params import did_you_mean
+
+    fields = background_fields(background)
+    unknown = sorted(set(options) - fields)
     if unknown:
-        raise ValueError(f"{name} has no field(s) {sorted(unknown)} in "
+        raise ValueError(f"{name} has no field(s) {unknown} in "
                          + ("the built-in panorama (it has no settings)" if background == PANORAMA
-                            else f"scene {background!r}"))
+                            else f"scene {background!r}") + did_you_mean(unknown[0], sorted(fields)))
+
+
+def parse_background_options(background: str, options: dict) -> dict:
+    """``options`` with every string value of a non-string field parsed by that field's spec (the command line's
+    ``--background-set KEY=VALUE`` gives strings; tuples as comma-separated numbers), errors naming
+    ``--background-set KEY``."""
+    if background == PANORAMA or not options:
+        return dict(options)
+    from ..core.params import specs
+    from ..core.scenes import scene
+
+    by_name = {p.name: p for p in specs(scene(background).settings)}
+    out = {}
+    for k, v in options.items():
+        p = by_name.get(k)
+        if isinstance(v, str) and p is not None and p.kind != "str":
+            where = f"--background-set {k}"
+            if p.kind == "floats":
+                parts = v.split(",")
+                if not all(_is_number(x) for x in parts):
+                    raise ValueError(f"{where} must be comma-separated numbers, got {v!r}")
+                v = p.validate([float(x) for x in parts], where)
+            elif p.kind == "bool":
+                low = v.strip().lower()
+                if low not in ("true", "false", "1", "0", "yes", "no", "on", "off"):
+                    raise ValueError(f"{where} must be true or false, got {v!r}")
+                v = low in ("true", "1", "yes", "on")
+            else:
+                v = p.parse(v, where)
+        out[k] = v
+    return out
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _check_background_options(obj, name, v):
     check_background_options(obj.background, v, name)
+    parse_background_options(obj.background, v)
 
 
 def _check_size(obj, name, v):
@@ -233,15 +285,17 @@ class RainSettings(Settings):
                                     reason="2: the horizon across the frame, so drops show sky and ground upside down")
     fov_y_deg: float = param(60.0, unit="deg", lo=1.0, hi=170.0, group=_G_CAM, cli="--fov",
                              doc="vertical field of view of the view", reason="60: a natural view")
-    background: str = param("clouds", check=_check_background, invalidates="background", group=_G_BG,
+    background: str = param("terrain", check=_check_background, invalidates="background", group=_G_BG,
                             doc="background: 'panorama' (built-in analytic sky and ground) or any registered scene "
                                 "(its settings' width, height, fov_y_deg, camera_yaw_deg and camera_pitch_deg are set "
                                 "from ours)",
-                            reason="clouds: the vc cloudscape, a real rendered background")
-    background_options: dict = param({}, cli=None, check=_check_background_options, invalidates="background",
-                                     group=_G_BG,
+                            reason="terrain: the pt landscape under an overcast sky (BACKGROUND_OPTIONS) -- the "
+                                   "ground the text's scenes 2 and 3 have, for the drops to refract")
+    background_options: dict = param({}, cli="--background-set", check=_check_background_options,
+                                     invalidates="background", group=_G_BG,
                                      doc="settings of the background scene by name, over the rain scene's own for "
-                                         "that scene (BACKGROUND_OPTIONS: the clouds overcast from 50 m); a name "
+                                         "that scene (BACKGROUND_OPTIONS: the terrain overcast, the clouds overcast "
+                                         "from 50 m); on the command line KEY=VALUE (tuples as 0.5,0.5,0.6); a name "
                                          "that is no field of the background's settings is an error",
                                      reason="empty: every background with the rain scene's settings for it, or its "
                                             "own defaults")
@@ -254,7 +308,8 @@ class RainSettings(Settings):
     def background_values(self) -> dict:
         """The settings of the background scene: ``BACKGROUND_OPTIONS`` of this background, then
         ``background_options``."""
-        return {**BACKGROUND_OPTIONS.get(self.background, {}), **self.background_options}
+        return {**BACKGROUND_OPTIONS.get(self.background, {}),
+                **parse_background_options(self.background, self.background_options)}
 
     def light_values(self) -> dict:
         """The lights of these settings as ``pywarp.kernels.particles.LIGHT_DEFAULTS`` fields (without the view

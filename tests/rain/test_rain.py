@@ -166,8 +166,10 @@ def test_cli_render_rain_over_every_registered_background(tmp_path, clouds_backg
 
 
 def test_background_options_name_the_keys_the_background_has_not():
-    assert RainSettings(background="terrain").background_values() == {}
-    clouds = RainSettings(background_options={"coverage": 0.3})
+    assert RainSettings().background == "terrain"  # the default: ground under an overcast sky
+    assert RainSettings().background_values()["sun_colour"] == (0.0, 0.0, 0.0)
+    assert RainSettings(background="flight").background_values() == {}  # a scene not named: its own defaults
+    clouds = RainSettings(background="clouds", background_options={"coverage": 0.3})
     assert clouds.background_values() == {"coverage": 0.3, "precipitation": 0.7, "camera_altitude_km": 0.05}
     with pytest.raises(ValueError, match=r"background_options has no field\(s\) \['coverage'\] in scene 'terrain'"):
         RainSettings(background="terrain", background_options={"coverage": 0.3})
@@ -177,6 +179,31 @@ def test_background_options_name_the_keys_the_background_has_not():
         RainSettings(background="flight", background_options={"bogus": 1})
     with pytest.raises(ValueError, match=r"\['seed'\] in the built-in panorama"):
         RainSettings(background="panorama", background_options={"seed": 1})
+    with pytest.raises(ValueError, match=r"\['fog_densty'\] in scene 'terrain' \(did you mean fog_density\?\)"):
+        RainSettings(background_options={"fog_densty": 0.01})
+
+
+def test_background_options_given_as_text_are_parsed_by_the_background_field():
+    s = RainSettings(background_options={"fog_density": "0.01", "sky_colour": "0.4, 0.4,0.5", "seed": "3"})
+    v = s.background_values()
+    assert v["fog_density"] == 0.01 and v["sky_colour"] == (0.4, 0.4, 0.5) and v["seed"] == 3
+    for bad, msg in (({"fog_density": "thick"}, "--background-set fog_density must be a number"),
+                     ({"sky_colour": "0.4,0.4"}, "--background-set sky_colour must hold 3 numbers"),
+                     ({"fog_density": "-1"}, "--background-set fog_density must be in")):
+        with pytest.raises(ValueError, match=msg):
+            RainSettings(background_options=bad)
+
+
+@pytest.mark.parametrize("less, more", [("G", "H"), ("-", "+")])
+def test_viewer_keys_halve_and_double_the_drops(less, more):
+    from pywarp.rain.controls import RainControls
+    from pywarp.viewer.controls import Input
+
+    s = RainSettings(**SMALL)  # 1500 drops
+    ctl = RainControls(s)
+    assert ctl.step(s, Input(pressed=frozenset({more}), held=frozenset({more}))).changes["drops"] == 3000
+    ctl.step(s, Input())  # released
+    assert ctl.step(s, Input(pressed=frozenset({less}), held=frozenset({less}))).changes["drops"] == 750
 
 
 @pytest.mark.spec("rr-CF", "rr-A1", "rr-A2", "rr-A3")
