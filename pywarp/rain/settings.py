@@ -27,11 +27,12 @@ PANORAMA = "panorama"
 #: terrain (the default background): the pt landscape under an overcast rain sky -- a grey sky and cloud deck (its
 #: clouds grey, smaller: a broken, low ceiling), no sun glow, light mostly ambient (diffuse 0.45, ambient 0.55: no hard
 #: shadows under cloud), and haze: fog 0.006 (half the light gone at ln 2 / 0.006 = 115 units, the far hills grey).
-#: clouds: an overcast, dark rain sky seen from 50 m.
+#: clouds: an overcast, dark rain sky seen from 50 m, the ground in patches (ground_variation 0.6: albedo 0.4 - 1.6
+#: times its mean, fields and woods; a uniform ground seen from 50 m is a featureless plane).
 BACKGROUND_OPTIONS = {
     "terrain": {"sky_colour": (0.52, 0.55, 0.58), "sun_colour": (0.0, 0.0, 0.0), "cloud_colour": (0.66, 0.68, 0.70),
                 "cloud_scale": 60.0, "light_diffuse": 0.45, "light_ambient": 0.55, "fog_density": 0.006},
-    "clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05},
+    "clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05, "ground_variation": 0.6},
 }
 
 
