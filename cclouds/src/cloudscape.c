@@ -103,7 +103,7 @@
  *   ambient_bottom_ratio 0.4  the ratio of the thesis's constants above: ambient_bottom / ambient_top =
  *                             (0.40, 0.41, 0.43).
  *   ambient_ground            = ambient_top (unused in thesis mode; ccl_cloudscape_light overwrites it in sky mode).
- *   ground_variation 0        a uniform ground, the thesis's (the rain scene sets 0.6 for its view from 50 m).
+ *   ground_variation 0        a uniform ground, the thesis's (the rain scene sets 0.8 for its view from 50 m).
  *   ground_albedo (0.04, 0.05, 0.03)  a third of the albedo of vegetation and soil (0.1-0.2), for the exposure of
  *                             this renderer: the energy of vc-2.31 makes the clouds dim reflectors (a lit cloud top
  *                             reaches ~0.15 of a white Lambertian surface under the same sun), so the sun constant

@@ -533,10 +533,10 @@ class CloudscapeSettings(Settings):
                                         "darker than the sky (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
     ground_variation: float = param(0.0, lo=0.0, hi=1.0, c="ground_variation", group="lighting",
                                     doc="sky lighting: relative albedo variation of the ground: patches of "
-                                        "CCL_CLOUDSCAPE_GROUND_PATCH_KM = 250 m (and 4x smaller) from 1 - v to 1 + v "
+                                        "CCL_CLOUDSCAPE_GROUND_PATCH_KM = 125 m (and 4x smaller) from 1 - v to 1 + v "
                                         "times ground_albedo",
                                     reason="0: a uniform ground, the thesis's (seen from kilometres up it is a "
-                                           "backdrop; the rain scene's view from 50 m sets 0.6)")
+                                           "backdrop; the rain scene's view from 50 m sets 0.8)")
     aerial_km: float = param(30.0, unit="km", lo=0.0, hi=1e6, c="aerial_km", group="lighting", cli="--aerial",
                              doc="sky lighting: aerial-perspective e-folding distance L at the ground (0 = off): "
                                  "colour = C e^(-t/L) + horizon sky (1 - e^(-t/L)), t the path's length of "

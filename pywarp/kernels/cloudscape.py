@@ -835,7 +835,7 @@ def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float)
     return e
 
 
-GROUND_PATCH_KM = 0.25  # CCL_CLOUDSCAPE_GROUND_PATCH_KM
+GROUND_PATCH_KM = 0.125  # CCL_CLOUDSCAPE_GROUND_PATCH_KM
 
 
 @wp.func

@@ -171,7 +171,7 @@ def test_background_options_name_the_keys_the_background_has_not():
     assert RainSettings(background="flight").background_values() == {}  # a scene not named: its own defaults
     clouds = RainSettings(background="clouds", background_options={"coverage": 0.3})
     assert clouds.background_values() == {"coverage": 0.3, "precipitation": 0.7, "camera_altitude_km": 0.05,
-                                          "ground_variation": 0.6}
+                                          "ground_albedo": (0.12, 0.14, 0.08), "ground_variation": 0.8}
     with pytest.raises(ValueError, match=r"background_options has no field\(s\) \['coverage'\] in scene 'terrain'"):
         RainSettings(background="terrain", background_options={"coverage": 0.3})
     with pytest.raises(ValueError, match=r"\['coverage'\] in scene 'terrain'"):  # given for the clouds: not dropped

@@ -64,7 +64,7 @@ def _ground(variation: float, pts: np.ndarray):
 
 @pytest.mark.parametrize("variation", [0.0, 0.6, 1.0])
 def test_ground_patches_c_equals_warp_and_span_the_variation(variation):
-    pts = _points(40, 2.0)  # 4 km x 4 km: 16 patches across
+    pts = _points(40, 8 * K.GROUND_PATCH_KM)  # 16 patches across
     w, c, uniform = _ground(variation, pts)
     np.testing.assert_allclose(w, c, rtol=5e-7)  # the ulp or two of ambient_ground (tests/clouds/test_lighting.py)
     rel = w / uniform
@@ -77,13 +77,13 @@ def test_ground_patches_c_equals_warp_and_span_the_variation(variation):
 
 
 def test_ground_patches_have_the_patch_size():
-    """Neighbours 1/10 of a patch apart are alike; points 10 patches apart are not (correlation)."""
-    pts = _points(120, 15.0)  # 250 m spacing = one patch
+    """Neighbours 1/10 of the fine octave's cell apart (P / 40) are alike; points 10 patches apart are not."""
+    patch = K.GROUND_PATCH_KM
+    pts = _points(120, 119 * patch / 2)  # one patch apart
     w, _, uniform = _ground(0.6, pts)
     rel = (w / uniform)[:, 1].reshape(120, 120)
     far = np.corrcoef(rel[:, :-10].ravel(), rel[:, 10:].ravel())[0, 1]
-    fine = _points(120, 1.5)  # 25 m spacing
-    wf, _, _ = _ground(0.6, fine)
+    wf, _, _ = _ground(0.6, _points(120, 119 * patch / 80))  # P / 40 apart
     relf = (wf / uniform)[:, 1].reshape(120, 120)
     near = np.corrcoef(relf[:, :-1].ravel(), relf[:, 1:].ravel())[0, 1]
     assert near > 0.9 and abs(far) < 0.2

@@ -155,7 +155,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     p12 = out_dir / "fig-6.12.png"
     row(imgs, [f"{n} drops" for n in COUNTS], p12,
         "Fig 6.12 (in kind) — changing the number of drops (G/H): retinal-persistence streaks", quick,
-        (0.3 * imgs[0].shape[1], 0.6 * imgs[0].shape[0]))
+        (0.3 * imgs[0].shape[1], 0.3 * imgs[0].shape[0]))
     return [p10, p11, p12]
 
 

@@ -353,9 +353,9 @@ CCL_API size_t ccl_cloudscape_mip3_len(int size);
  * [1/sr]. p must have passed ccl_cloudscape_check. */
 CCL_API float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, float cos_theta);
 
-/* Size of the ground's albedo patches (ground_variation) [km]: 0.25, fields and woods of a few hundred metres seen
+/* Size of the ground's albedo patches (ground_variation) [km]: 0.125, fields and woods of a hundred metres or so seen
  * from a low camera (the rain scene's 50 m), with a second octave 4 times smaller inside them. */
-#define CCL_CLOUDSCAPE_GROUND_PATCH_KM 0.25f
+#define CCL_CLOUDSCAPE_GROUND_PATCH_KM 0.125f
 /* Radiance of the ground at a point on (or near) the Earth sphere, sky lighting (see "Lighting" above): ground_albedo
  * (sun_colour max(n . to_sun, 0) T_shadow / pi + ambient_ground), n = the sphere's normal at point, T_shadow from
  * CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES base-shape density samples towards the sun. With ground_variation v > 0 the
