@@ -2,9 +2,10 @@
 semi-transparent streaks of one colour -- beside the text's method, streaks that refract the scene (rr-code-5.2.4).
 
 The game screenshot cannot be reproduced; the stand-in is our own render of the same idea. Both images use the same
-particles (rr-code-5.2.2) and the same compositing pass (``pywarp.equation("rr-code-5.2.3")``); the classic streaks
-are the billboard rectangles of the text's listing (streaks='thesis') over a capture of one uniform light grey, the
-text's are the drops integrated over the persistence time (streaks='physical': thin, tapered, the refracted scene).
+particles (rr-code-5.2.2), the same streak length (rr-alg-3.2.3) and the same compositing pass
+(``pywarp.equation("rr-code-5.2.3")``); the classic streaks are the billboard rectangles of the text's listing
+(streaks='thesis') over a capture of one uniform light grey, the text's are the drops integrated over the persistence
+time (streaks='physical': thin, tapered, the refracted scene).
 Scene 2 of fig 6.3 (pt terrain, seed 7). Output: figures/rr/fig-1.8.png.
 """
 # %% [markdown]
