@@ -24,14 +24,14 @@ FILTERS = ("nearest", "linear")
 PANORAMA = "panorama"
 #: The rain scene's own settings for a background scene, under ``background_options`` (which overrides them key by
 #: key); a scene not named here has its own defaults.
-#: terrain (the default background): the pt landscape under an overcast rain sky -- a grey sky and cloud deck (its
-#: clouds grey, smaller: a broken, low ceiling), no sun glow, light mostly ambient (diffuse 0.45, ambient 0.55: no hard
+#: terrain (the default background): the pt landscape under an overcast rain sky -- a dark grey sky under a lighter
+#: grey cloud deck (its clouds smaller: a broken, low ceiling whose texture shows), no sun glow, light mostly ambient (diffuse 0.45, ambient 0.55: no hard
 #: shadows under cloud), and haze: fog 0.006 (half the light gone at ln 2 / 0.006 = 115 units, the far hills grey).
 #: clouds: an overcast, dark rain sky seen from 50 m; the ground three times the cloudscape's albedo (its default is
 #: exposed for the sun above the clouds; under them the ground was near black) and in patches (ground_variation 0.8:
 #: albedo 0.2 - 1.8 times its mean, fields and woods; a uniform ground seen from 50 m is a featureless plane).
 BACKGROUND_OPTIONS = {
-    "terrain": {"sky_colour": (0.52, 0.55, 0.58), "sun_colour": (0.0, 0.0, 0.0), "cloud_colour": (0.66, 0.68, 0.70),
+    "terrain": {"sky_colour": (0.42, 0.45, 0.49), "sun_colour": (0.0, 0.0, 0.0), "cloud_colour": (0.72, 0.74, 0.76),
                 "cloud_scale": 60.0, "light_diffuse": 0.45, "light_ambient": 0.55, "fog_density": 0.006},
     "clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05,
                "ground_albedo": (0.12, 0.14, 0.08), "ground_variation": 0.8},
@@ -229,15 +229,15 @@ class RainSettings(Settings):
                              "over a rectangle, streak_opacity)",
                          reason="physical: the text's intent (the refracted scene smeared over the retinal "
                                 "persistence) without its sampling showing; thesis keeps the listing")
-    streak_scale: float = param(6.0, lo=0.1, hi=1000.0, group=_G_LOOK,
+    streak_scale: float = param(8.0, lo=0.1, hi=1000.0, group=_G_LOOK,
                                 doc="physical streaks: the drop's diameter drawn this many times its true size (the "
                                     "streak's width, and with it its opacity 2 r / L, scale with it)",
-                                reason="6: at true size a 1.3 mm drop 1 m away is 0.8 px wide and its streak 1.8 % "
-                                       "opaque on average (Garg & Nayar's faint streaks: barely any shows in a "
-                                       "640 x 360 frame); 6x gives 4.9 px and 11 % (22 % at the middle) there, "
-                                       "1.6 - 2.4 px for the drops 2 - 3 m away: streaks that read as rain over an "
-                                       "overcast sky without hiding the scene (4x was hard to see at 480 x 270, the "
-                                       "drops mode's 8x smeared)")
+                                reason="8, billboard_scale's: the streak is the drop the drops mode draws (F), moved "
+                                       "over the persistence time. At true size a 1.3 mm drop 1 m away is 0.8 px "
+                                       "wide and its streak 1.8 % opaque on average (Garg & Nayar's faint streaks: "
+                                       "none shows against an overcast sky); 8x gives 6.5 px and 15 % (30 % at the "
+                                       "middle) there, 2 - 3 px for the drops 2 - 3 m away: streaks that read as rain "
+                                       "over the sky without hiding the scene (4x and 6x were invisible at 480 x 270)")
     streak_opacity: float = param(0.5, lo=0.0, hi=1.0, group=_G_LOOK,
                                   doc="thesis streaks: opacity of a streak pixel whose 7 taps all hit (fewer hits: "
                                       "proportionally less) -- the text's reduced alpha, amount not given",
