@@ -5,6 +5,7 @@
 
 #include "cclouds/clouds.h"
 #include "cclouds/colour.h"
+#include "cclouds/hash.h"
 #include "cclouds/interp.h"
 #include "cclouds/phase.h"
 #include "cclouds/texgen.h"
@@ -102,6 +103,7 @@
  *   ambient_bottom_ratio 0.4  the ratio of the thesis's constants above: ambient_bottom / ambient_top =
  *                             (0.40, 0.41, 0.43).
  *   ambient_ground            = ambient_top (unused in thesis mode; ccl_cloudscape_light overwrites it in sky mode).
+ *   ground_variation 0        a uniform ground, the thesis's (the rain scene sets 0.8 for its view from 50 m).
  *   ground_albedo (0.04, 0.05, 0.03)  a third of the albedo of vegetation and soil (0.1-0.2), for the exposure of
  *                             this renderer: the energy of vc-2.31 makes the clouds dim reflectors (a lit cloud top
  *                             reaches ~0.15 of a white Lambertian surface under the same sun), so the sun constant
@@ -183,6 +185,7 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->ambient_bottom_ratio = 0.4f;
     memcpy(out->ambient_ground, amb_top, sizeof amb_top);
     memcpy(out->ground_albedo, albedo, sizeof albedo);
+    out->ground_variation = 0.0f;
     out->aerial_km = 30.0f;
     out->aerial_height_km = 2.0f;
     out->ms_octaves = 4;
@@ -280,6 +283,7 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         if (!finite_nonneg(p->ambient_ground[c])) return bad(out_field, "ambient_ground");
         if (!(p->ground_albedo[c] >= 0.0f && p->ground_albedo[c] <= 1.0f)) return bad(out_field, "ground_albedo");
     }
+    if (!(p->ground_variation >= 0.0f && p->ground_variation <= 1.0f)) return bad(out_field, "ground_variation");
     if (!finite_nonneg(p->aerial_km)) return bad(out_field, "aerial_km");
     if (!finite_nonneg(p->aerial_height_km)) return bad(out_field, "aerial_height_km");
     if (!(p->ms_octaves >= 1 && p->ms_octaves <= CCL_CLOUDSCAPE_MAX_MS_OCTAVES)) return bad(out_field, "ms_octaves");
@@ -617,9 +621,27 @@ float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, fl
     return e;
 }
 
+/* value noise of the ground patches: lattice values in [0, 1) from the hash, smoothstep-interpolated; coordinates
+ * bounded to +-2^23 cells before the cast (far beyond any ground point) */
+static float ground_noise(float x, float z)
+{
+    const float lim = 8388608.0f;
+    float fx = floorf(fminf(fmaxf(x, -lim), lim)), fz = floorf(fminf(fmaxf(z, -lim), lim));
+    float u = fminf(fmaxf(x - fx, 0.0f), 1.0f), v = fminf(fmaxf(z - fz, 0.0f), 1.0f);
+    uint32_t ix = (uint32_t)(int32_t)fx, iz = (uint32_t)(int32_t)fz;
+    float a = ccl_hash_unit(ccl_hash_pcg(ccl_hash_pcg(ix) ^ iz));
+    float b = ccl_hash_unit(ccl_hash_pcg(ccl_hash_pcg(ix + 1u) ^ iz));
+    float c = ccl_hash_unit(ccl_hash_pcg(ccl_hash_pcg(ix) ^ (iz + 1u)));
+    float d = ccl_hash_unit(ccl_hash_pcg(ccl_hash_pcg(ix + 1u) ^ (iz + 1u)));
+    u = u * u * (3.0f - 2.0f * u);
+    v = v * v * (3.0f - 2.0f * v);
+    return (a + (b - a) * u) + ((c + (d - c) * u) - (a + (b - a) * u)) * v;
+}
+
 void ccl_cloudscape_ground(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 point,
                            ccl_vec3 to_sun, float *out_rgb, float *out_shadow)
 {
+    float patch = 1.0f;
     const ccl_cloud_layer *L = &p->layer;
     ccl_vec3 n = ccl_vec3_sub(point, L->centre);
     float a0, a1, b0, b1, cos_sun, shadow = 1.0f, k;
@@ -646,7 +668,13 @@ void ccl_cloudscape_ground(const ccl_cloudscape_params *p, const ccl_cloud_textu
     }
     /* Lambertian: albedo / pi x sun irradiance x cos, plus albedo x the cosine-weighted sky radiance */
     k = cos_sun * shadow * 0.318309886f; /* 1 / pi */
-    for (c = 0; c < 3; ++c) out_rgb[c] = p->ground_albedo[c] * (p->sun_colour[c] * k + p->ambient_ground[c]);
+    if (p->ground_variation > 0.0f) {
+        const float x = point.x / CCL_CLOUDSCAPE_GROUND_PATCH_KM, z = point.z / CCL_CLOUDSCAPE_GROUND_PATCH_KM;
+        const float noise = (2.0f * ground_noise(x, z) + ground_noise(4.0f * x, 4.0f * z)) / 3.0f;
+        patch = 1.0f + p->ground_variation * (2.0f * noise - 1.0f);
+    }
+    for (c = 0; c < 3; ++c)
+        out_rgb[c] = p->ground_albedo[c] * patch * (p->sun_colour[c] * k + p->ambient_ground[c]);
     if (out_shadow) *out_shadow = shadow;
 }
 

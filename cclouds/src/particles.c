@@ -235,6 +235,70 @@ static ccl_vec3 light_tap(const ccl_particles_lights *L, ccl_vec3 p, const float
     return ccl_rain_light_colour(c_o, L->ambient, p, n, eye, L->l1, L->c_l1, L->l2, L->c_l2, L->r_half, L->variant);
 }
 
+/* The second integral of the exposure weight w(s) = 1 - cos(2 pi s) on [0, 1] (0 before, 1 after): s^2/2 +
+ * (cos 2 pi s - 1) / (2 pi)^2 inside, s - 1/2 after. */
+static float exposure_w2(float s)
+{
+    const float k = 2.0f * CCL_PI_F;
+    if (s <= 0.0f) return 0.0f;
+    if (s >= 1.0f) return s - 0.5f;
+    return 0.5f * s * s + (cosf(k * s) - 1.0f) / (k * k);
+}
+
+/* exposure_w2(s) - (s - 1/2): 0 after the exposure, so that differences near its end do not cancel. */
+static float exposure_w2_end(float s)
+{
+    const float k = 2.0f * CCL_PI_F;
+    float t = 1.0f - s;
+    if (s >= 1.0f) return 0.0f;
+    return 0.5f * t * t + (cosf(k * t) - 1.0f) / (k * k);
+}
+
+static float sinc(float x) { return fabsf(x) < 1e-4f ? 1.0f : sinf(x) / x; }
+
+/* int_0^u 2 sqrt(r^2 - t^2) dt for u in [-r, r]: the area of the disc left of u, less half the disc */
+static float chord_integral(float u, float r)
+{
+    float q = u / r;
+    if (q > 1.0f) q = 1.0f;
+    if (q < -1.0f) q = -1.0f;
+    return r * r * (q * sqrtf(fmaxf(1.0f - q * q, 0.0f)) + asinf(q));
+}
+
+float ccl_particles_streak_cover(const ccl_particles_sprite *sprite, float px, float py, float *out_mask_u,
+                                 float *out_half_chord)
+{
+    const float k = 2.0f * CCL_PI_F;
+    float r = sprite->radius, travel = 2.0f * (sprite->half_height - sprite->radius);
+    float len = fmaxf(travel, CCL_PARTICLES_MIN_STREAK_PX);
+    float head = sprite->cy + 0.5f * travel;
+    float dx = px - sprite->cx, lo = fmaxf(dx - 0.5f, -r), hi = fminf(dx + 0.5f, r);
+    float cover, h, a, e, d, alpha;
+    *out_mask_u = 0.5f;
+    *out_half_chord = 0.0f;
+    if (!(hi > lo)) return 0.0f;
+    cover = hi - lo;
+    h = 0.5f * (chord_integral(hi, r) - chord_integral(lo, r)) / cover;
+    *out_mask_u = 0.5f * (lo + hi) / (2.0f * r) + 0.5f;
+    *out_half_chord = h;
+    /* the pixel row [py - 1/2, py + 1/2] sees the chord [y - h, y + h] around the centre y = head - len (1 - s) at
+     * exposure time s in [0, 1] when s is within d = h / len of a = 1 + (py - head) / len, over the row's e = 1/(2 len):
+     * alpha = cover len (W2(a+e+d) - W2(a-e+d) - W2(a+e-d) + W2(a-e-d)), W2 = exposure_w2 */
+    a = 1.0f + (py - head) / len;
+    e = 0.5f / len;
+    d = h / len;
+    if (a + e + d <= 0.0f || a - e - d >= 1.0f) return 0.0f;
+    if (a - e - d >= 0.0f && a + e + d <= 1.0f) /* inside the exposure: the same sum in closed form */
+        alpha = cover * (2.0f * h / len) * (1.0f - sinc(k * e) * sinc(k * d) * cosf(k * a));
+    else if (a - e - d >= 0.0f)
+        alpha = cover * len * (exposure_w2_end(a + e + d) - exposure_w2_end(a - e + d) - exposure_w2_end(a + e - d)
+                               + exposure_w2_end(a - e - d));
+    else
+        alpha = cover * len * (exposure_w2(a + e + d) - exposure_w2(a - e + d) - exposure_w2(a + e - d)
+                               + exposure_w2(a - e - d));
+    return fminf(fmaxf(alpha, 0.0f), 1.0f);
+}
+
 static ccl_vec3 shade(const ccl_particles_sprite *sprites, const ccl_vec3 *positions, int n, const float *mask,
                       const float *normals, int mask_size, const float *capture, int capture_size, int x, int y,
                       ccl_vec2 p_o, float scale, int filter, int streaks, float opacity,
@@ -250,6 +314,34 @@ static ccl_vec3 shade(const ccl_particles_sprite *sprites, const ccl_vec3 *posit
         ccl_vec3 sum = {0.0f, 0.0f, 0.0f}, rgb;
         int hits = 0, i, lo = 0, hi = 0;
         float alpha;
+        if (streaks == CCL_PARTICLES_STREAKS_PHYSICAL) {
+            float h, cover;
+            if (!(fabsf(dx) < s->radius + 0.5f && fabsf(dy) < s->half_height + 0.5f)) continue;
+            cover = ccl_particles_streak_cover(s, px, py, &mu, &h);
+            if (!(cover > 0.0f)) continue;
+            for (i = 0; i < CCL_PARTICLES_STREAK_SAMPLES; ++i) {
+                float tv = 0.5f + h * ((2.0f * (float)i + 1.0f) / (float)CCL_PARTICLES_STREAK_SAMPLES - 1.0f)
+                                      / (2.0f * s->radius);
+                if (ccl_particles_tap(mask, mask_size, capture, capture_size, mu, tv, p_o, scale, filter, &rgb)) {
+                    if (lights) {
+                        int mx = clampi((int)(mu * (float)mask_size), 0, mask_size - 1);
+                        int my = clampi((int)(tv * (float)mask_size), 0, mask_size - 1);
+                        rgb = light_tap(lights, positions[j],
+                                        normals + 3 * ((size_t)my * (size_t)mask_size + (size_t)mx), rgb);
+                    }
+                    sum.x += rgb.x;
+                    sum.y += rgb.y;
+                    sum.z += rgb.z;
+                    ++hits;
+                }
+            }
+            if (hits == 0) continue;
+            alpha = opacity * cover;
+            c.x = c.x + (sum.x / (float)hits - c.x) * alpha;
+            c.y = c.y + (sum.y / (float)hits - c.y) * alpha;
+            c.z = c.z + (sum.z / (float)hits - c.z) * alpha;
+            continue;
+        }
         if (!(fabsf(dx) < s->radius && fabsf(dy) < s->half_height)) continue;
         mu = dx / (2.0f * s->radius) + 0.5f;
         mv = dy / (2.0f * s->half_height) + 0.5f;
@@ -313,6 +405,9 @@ ccl_status ccl_particles_composite(const float *background, int width, int heigh
     if (!(fov_view > 0.0f && fov_view < CCL_PI_F)) return CCL_EINVAL;
     if (!(fov_capture >= CCL_PARTICLES_MIN_FOV_CAPTURE && fov_capture < CCL_PI_F)) return CCL_EINVAL;
     if (filter != CCL_PARTICLES_NEAREST && filter != CCL_PARTICLES_LINEAR) return CCL_EINVAL;
+    if (streaks != CCL_PARTICLES_DROPS && streaks != CCL_PARTICLES_STREAKS_THESIS
+        && streaks != CCL_PARTICLES_STREAKS_PHYSICAL)
+        return CCL_EINVAL;
     if (!(opacity >= 0.0f && opacity <= 1.0f)) return CCL_EINVAL;
     for (j = 0; j < n; ++j)
         if (!(sprites[j].radius > 0.0f) || !(sprites[j].half_height >= sprites[j].radius)) return CCL_EINVAL;

@@ -103,6 +103,9 @@ def _add_scene_options(parser: argparse.ArgumentParser, command: str, only: str 
             if p.kind == "bool":
                 groups[title].add_argument(opt, dest=_dest(opt), action=argparse.BooleanOptionalAction,
                                            default=argparse.SUPPRESS, help=text)
+            elif p.kind == "mapping":  # repeatable KEY=VALUE
+                groups[title].add_argument(opt, dest=_dest(opt), action="append", default=argparse.SUPPRESS,
+                                           metavar=p.metavar(), help=text + " (repeatable)")
             else:
                 groups[title].add_argument(opt, dest=_dest(opt), default=argparse.SUPPRESS, metavar=p.metavar(),
                                            help=text)

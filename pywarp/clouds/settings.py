@@ -301,6 +301,7 @@ CLOUDSCAPE_PARAMS = CStruct(
         "detail_direction": "0 or 1", "coverage_threshold": "0 or 1", "beer": "0 or 1", "powder": "0 or 1",
         "lighting": "0 (thesis) or 1 (sky)", "sun_intensity": ">= 0 and finite", "ambient_bottom_ratio": "in [0, 1]",
         "ambient_ground": ">= 0 and finite per channel", "ground_albedo": "in [0, 1] per channel",
+        "ground_variation": "in [0, 1]",
         "aerial_km": ">= 0 and finite", "aerial_height_km": ">= 0 and finite",
         "ms_octaves": f"in [1, {MAX_MS_OCTAVES}]", "ms_a": "in [0, 1]", "ms_b": "in [0, 1]", "ms_c": "in [0, 1]",
         "silver_g": "in (-1, 1)", "silver_weight": "in [0, 1]", "phase": "0 (thesis) or 1 (mie)",
@@ -557,6 +558,12 @@ class CloudscapeSettings(Settings):
                                  reason="(0.04, 0.05, 0.03): vegetation (0.1-0.2) scaled by the ~3.5 times too "
                                         "bright sun that exposes the dim clouds of vc-2.31, so the sunlit ground stays "
                                         "darker than the sky (ccl_cloudscape_params_default, see cclouds/cloudscape.c)")
+    ground_variation: float = param(0.0, lo=0.0, hi=1.0, c="ground_variation", group="lighting",
+                                    doc="sky lighting: relative albedo variation of the ground: patches of "
+                                        "CCL_CLOUDSCAPE_GROUND_PATCH_KM = 125 m (and 4x smaller) from 1 - v to 1 + v "
+                                        "times ground_albedo",
+                                    reason="0: a uniform ground, the thesis's (seen from kilometres up it is a "
+                                           "backdrop; the rain scene's view from 50 m sets 0.8)")
     aerial_km: float = param(30.0, unit="km", lo=0.0, hi=1e6, c="aerial_km", group="lighting", cli="--aerial",
                              doc="sky lighting: aerial-perspective e-folding distance L at the ground (0 = off): "
                                  "colour = C e^(-t/L) + horizon sky (1 - e^(-t/L)), t the path's length of "

@@ -35,7 +35,8 @@ from typing import Any, Callable
 import numpy as np
 
 #: Kinds of values: ``int`` (int32), ``uint32``, ``float`` (float32), ``bool``, ``str``, ``floats`` (a fixed-length
-#: tuple of float32), ``mapping`` (a dict; never a command-line option).
+#: tuple of float32), ``mapping`` (a dict; a command-line option only where ``cli`` names one: ``--opt KEY=VALUE``,
+#: repeatable, the values kept as strings for the settings' own check to parse).
 KINDS = ("int", "uint32", "float", "bool", "str", "floats", "mapping")
 
 _INT_RANGE = {"int": (-(2 ** 31), 2 ** 31 - 1), "uint32": (0, 2 ** 32 - 1)}
@@ -186,13 +187,22 @@ class Param:
     # --- the command line ----------------------------------------------------------------------------------------
     @property
     def option(self) -> str | None:
-        if self.cli is None or self.kind in ("mapping", "floats"):
+        if self.cli is None or self.kind == "floats" or (self.kind == "mapping" and not self.cli):
             return None
         return self.cli or "--" + self.name.replace("_", "-")
 
     def parse(self, text: str, option: str | None = None):
         """The value of a command-line string, validated; errors name ``option``."""
         option = option or self.option or self.name
+        if self.kind == "mapping":  # the KEY=VALUE items of a repeated option
+            items = [text] if isinstance(text, str) else list(text)
+            out = {}
+            for item in items:
+                key, eq, value = item.partition("=")
+                if not eq or not key.strip():
+                    raise ValueError(f"{option} must be KEY=VALUE, got {item!r}")
+                out[key.strip()] = value.strip()
+            return self.validate(out, option)
         if self.optional and text.strip().lower() in ("none", "auto"):
             return None
         if self.kind in _INT_RANGE:
@@ -212,7 +222,8 @@ class Param:
     def metavar(self) -> str:
         if self.choices is not None:
             return "{" + ",".join(self.choices) + "}"
-        return {"int": "INT", "uint32": "INT", "float": "FLOAT", "str": "NAME"}.get(self.kind, "VALUE")
+        return {"int": "INT", "uint32": "INT", "float": "FLOAT", "str": "NAME", "mapping": "KEY=VALUE"}.get(
+            self.kind, "VALUE")
 
     def help(self, default: Any = dataclasses.MISSING) -> str:
         """``--help`` text: doc [unit]; range or choices; default."""

@@ -29,6 +29,7 @@ from .clouds import (
 )
 from ..core.cbridge import c_constant
 from .colour import colour_srgb_encode
+from .hash import hash_pcg, hash_unit
 from .interp import interp_fade_cubic
 from .phase import INV_4PI, phase_hg, phase_mie
 from .camera import camera_ray
@@ -116,6 +117,7 @@ class CloudscapeParams:
     ambient_bottom_ratio: float
     ambient_ground: wp.vec3
     ground_albedo: wp.vec3
+    ground_variation: float
     aerial_km: float
     aerial_height_km: float
     ms_octaves: int
@@ -856,6 +858,29 @@ def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float)
     return e
 
 
+GROUND_PATCH_KM = 0.125  # CCL_CLOUDSCAPE_GROUND_PATCH_KM
+
+
+@wp.func
+def _ground_noise(x: float, z: float) -> float:
+    """Value noise of the ground patches (``ground_noise`` of cloudscape.c)."""
+    lim = 8388608.0
+    fx = wp.floor(wp.min(wp.max(x, -lim), lim))
+    fz = wp.floor(wp.min(wp.max(z, -lim), lim))
+    u = wp.min(wp.max(x - fx, 0.0), 1.0)
+    v = wp.min(wp.max(z - fz, 0.0), 1.0)
+    ix = wp.uint32(int(fx))
+    iz = wp.uint32(int(fz))
+    one = wp.uint32(1)
+    a = hash_unit(hash_pcg(hash_pcg(ix) ^ iz))
+    b = hash_unit(hash_pcg(hash_pcg(ix + one) ^ iz))
+    c = hash_unit(hash_pcg(hash_pcg(ix) ^ (iz + one)))
+    d = hash_unit(hash_pcg(hash_pcg(ix + one) ^ (iz + one)))
+    u = u * u * (3.0 - 2.0 * u)
+    v = v * v * (3.0 - 2.0 * v)
+    return (a + (b - a) * u) + ((c + (d - c) * u) - (a + (b - a) * u)) * v
+
+
 @wp.func
 def cloudscape_ground(p: CloudscapeParams, tex: CloudTextures, point: wp.vec3, to_sun: wp.vec3):
     """Twin of ``ccl_cloudscape_ground``: (radiance, T_shadow) of the ground at ``point``: ground_albedo (sun_colour
@@ -886,9 +911,15 @@ def cloudscape_ground(p: CloudscapeParams, tex: CloudTextures, point: wp.vec3, t
                     od = od + rho
                 shadow = wp.exp(-p.sigma_light * (od * dt))
     k = cos_sun * shadow * 0.318309886  # 1 / pi
-    return wp.vec3(p.ground_albedo[0] * (p.sun_colour[0] * k + p.ambient_ground[0]),
-                   p.ground_albedo[1] * (p.sun_colour[1] * k + p.ambient_ground[1]),
-                   p.ground_albedo[2] * (p.sun_colour[2] * k + p.ambient_ground[2])), shadow
+    patch = float(1.0)
+    if p.ground_variation > 0.0:
+        x = point[0] / GROUND_PATCH_KM
+        z = point[2] / GROUND_PATCH_KM
+        noise = (2.0 * _ground_noise(x, z) + _ground_noise(4.0 * x, 4.0 * z)) / 3.0
+        patch = 1.0 + p.ground_variation * (2.0 * noise - 1.0)
+    return wp.vec3(p.ground_albedo[0] * patch * (p.sun_colour[0] * k + p.ambient_ground[0]),
+                   p.ground_albedo[1] * patch * (p.sun_colour[1] * k + p.ambient_ground[1]),
+                   p.ground_albedo[2] * patch * (p.sun_colour[2] * k + p.ambient_ground[2])), shadow
 
 
 @wp.func

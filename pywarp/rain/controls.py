@@ -3,7 +3,7 @@
 
 Keys (the table's): W / S step forward / back, Q / E move up / down, A / D turn left / right (5 deg), Y / C look up /
 down (5 deg), P pauses / starts the simulation, F toggles drops / streaks, T selects the next drop shape of Table
-2.1, G / H halve / double the number of drops, B / N make the drops 0.1 mm smaller / larger.
+2.1, G / H (and - / +) halve / double the number of drops, B / N make the drops 0.1 mm smaller / larger.
 
 Choices the text leaves open (spec erratum 16: no step sizes; the application used the keyboard's auto-repeat):
 
@@ -55,11 +55,11 @@ class RainControls(Controls):
 
     bindings = tuple(Binding(k, f"{_TABLE[a]['action']} / {_TABLE[b]['action']}") for k, a, b in (
         ("W / S", "W", "S"), ("Q / E", "Q", "E"), ("A / D", "A", "D"), ("Y / C", "Y", "C"),
-        ("G / H", "G", "H"), ("B / N", "B", "N"))) + tuple(
+        ("G / H", "G", "H"), ("B / N", "B", "N"))) + (Binding("- / +", "fewer / more drops (as G / H)"),) + tuple(
         Binding(k, _TABLE[k]["action"]) for k in ("P", "F", "T"))
     #: the benchmark turns right (A / D's 5 deg steps at the key repeat): a new background pose every step
     benchmark_keys = frozenset({"D"})
-    STEP_KEYS = ("W", "S", "Q", "E", "A", "D", "Y", "C", "G", "H", "B", "N")
+    STEP_KEYS = ("W", "S", "Q", "E", "A", "D", "Y", "C", "G", "H", "B", "N", "-", "+")
 
     def __init__(self, settings):
         super().__init__(settings)
@@ -152,11 +152,11 @@ class RainControls(Controls):
             changes["mode"] = MODES[(MODES.index(settings.mode) + 1) % len(MODES)]
         if "T" in inp.pressed:
             changes["shape"] = SHAPES[(SHAPES.index(settings.shape) + 1) % len(SHAPES)]
-        # G / H: count x 0.5 / x 2
+        # G / H (- / +, the viewer's usual keys for more and less): count x 0.5 / x 2
         drops = settings.drops
-        for _ in range(n["G"]):
+        for _ in range(n["G"] + n["-"]):
             drops = drops // 2
-        for _ in range(n["H"]):
+        for _ in range(n["H"] + n["+"]):
             drops = min(max(1, drops * 2), MAX_DROPS)
         if drops != settings.drops:
             changes["drops"] = drops

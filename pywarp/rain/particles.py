@@ -14,7 +14,7 @@ import warp as wp
 from ..core.cbridge import PARTICLES_PARAMS, read
 from ..core.registry import VARIANT, Arg
 from ..kernels import VARIANT_CORRECTED
-from ..kernels.particles import (_FOV, _FOV_CAPTURE, FILTERS, MAX_COUNT, ParticlesLights, c_lights, check_lights,
+from ..kernels.particles import (_FOV, _FOV_CAPTURE, FILTERS, MAX_COUNT, STREAKS, ParticlesLights, c_lights, check_lights,
                                  composite_kernel, composite_tile_kernel, light_params, lights_on,
                                  pixels_kernel, spawn_kernel, step_kernel, uv_ratio_kernel)
 
@@ -253,12 +253,12 @@ def _composite_args(background, capture, mask, sprites, fov_view, fov_capture, s
         raise ValueError("sprites half_height (column 3) must be >= radius (column 2)")
     fv = Arg("fov_view", **_FOV).check(fov_view).item()
     fc = Arg("fov_capture", **_FOV_CAPTURE).check(fov_capture).item()
-    if not isinstance(streaks, (bool, np.bool_)):
-        raise TypeError(f"streaks must be True or False, got {streaks!r}")
+    if not isinstance(streaks, str) or streaks not in STREAKS:
+        raise ValueError(f"streaks must be one of {', '.join(map(repr, STREAKS))}, got {streaks!r}")
     if filter not in FILTERS:
         raise ValueError(f"filter must be one of {', '.join(map(repr, FILTERS))}, got {filter!r}")
     op = Arg("opacity", lo=0.0, hi=1.0).check(opacity).item()
-    return bg, cap, m, sp, float(fv), float(fc), int(bool(streaks)), FILTERS[filter], float(op)
+    return bg, cap, m, sp, float(fv), float(fc), STREAKS[streaks], FILTERS[filter], float(op)
 
 
 #: The frame pass on the CPU: one thread per screen tile of TILE x TILE pixels that composites the tile's drops one
@@ -291,7 +291,7 @@ def _light_args(lights, positions, normals, sp, m):
     return v, pos, nrm
 
 
-def composite(background, capture, mask, sprites, fov_view, fov_capture=math.radians(150.0), streaks=False,
+def composite(background, capture, mask, sprites, fov_view, fov_capture=math.radians(150.0), streaks="off",
               filter="nearest", opacity=1.0, *, lights: dict | None = None, positions=None, normals=None,
               device=None, launcher=None, tile: int | None = None, cache: dict | None = None,
               per_tile: bool | None = None) -> np.ndarray:
@@ -360,7 +360,7 @@ def composite(background, capture, mask, sprites, fov_view, fov_capture=math.rad
 
 
 def composite_pixels(background, capture, mask, sprites, xs, ys, fov_view, fov_capture=math.radians(150.0),
-                     streaks=False, filter="nearest", opacity=1.0, *, lights: dict | None = None, positions=None,
+                     streaks="off", filter="nearest", opacity=1.0, *, lights: dict | None = None, positions=None,
                      normals=None, impl="warp", device=None) -> np.ndarray:
     """The composited colour at pixels (xs[k], ys[k]), every sprite tested (no tiles): (k, 3) float32.
     ``impl='c'``: ``ccl_particles_shade_pixel`` (the C reference), with ``lights`` (as :func:`composite`)
@@ -423,7 +423,7 @@ def composite_pixels(background, capture, mask, sprites, xs, ys, fov_view, fov_c
 def composite_warp(eq, device):
     # not element-wise: a whole frame (every pixel composites the drops whose billboard covers it)
     def particles_composite(background, capture, mask, sprites, fov_view, fov_capture=math.radians(150.0),
-                            streaks=False, filter="nearest", opacity=1.0):
+                            streaks="off", filter="nearest", opacity=1.0):
         return composite(background, capture, mask, sprites, fov_view, fov_capture, streaks, filter, opacity,
                          device=device)
 
@@ -433,7 +433,7 @@ def composite_warp(eq, device):
 def composite_c(eq):
     # not element-wise: the C reference shades every pixel of the frame (ccl_particles_composite)
     def particles_composite(background, capture, mask, sprites, fov_view, fov_capture=math.radians(150.0),
-                            streaks=False, filter="nearest", opacity=1.0):
+                            streaks="off", filter="nearest", opacity=1.0):
         from ..core.binding import ffi, lib, status_error
 
         bg, cap, m, sp, fv, fc, st, filt, op = _composite_args(background, capture, mask, sprites, fov_view,

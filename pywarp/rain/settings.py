@@ -15,13 +15,27 @@ SHAPES = ("0.5", "1.0", "3.0", "4.5")
 #: Mask methods (rr-alg-3.1.1; ccl_rain_mask_method order): sphere, the application's outline, the exact trace.
 MASKS = ("sphere", "outline", "exact")
 MODES = ("streaks", "drops")
+#: Streak models of the compositing pass (``pywarp.kernels.particles.STREAKS``): the drop integrated over the
+#: exposure (Garg & Nayar 2004), or the text's 7 taps over a rectangle (rr-code-5.2.4).
+STREAK_MODELS = ("physical", "thesis")
 FILTERS = ("nearest", "linear")
 #: A built-in analytic background (sky gradient, horizon, checkered ground, coloured posts): fast, for tests and
 #: figures. Any registered scene other than rain is a background too.
 PANORAMA = "panorama"
 #: The rain scene's own settings for a background scene, under ``background_options`` (which overrides them key by
-#: key): the clouds an overcast, dark rain sky seen from 50 m; a scene not named here its own defaults.
-BACKGROUND_OPTIONS = {"clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05}}
+#: key); a scene not named here has its own defaults.
+#: terrain (the default background): the pt landscape under an overcast rain sky -- a dark grey sky under a lighter
+#: grey cloud deck (its clouds smaller: a broken, low ceiling whose texture shows), no sun glow, light mostly ambient (diffuse 0.45, ambient 0.55: no hard
+#: shadows under cloud), and haze: fog 0.006 (half the light gone at ln 2 / 0.006 = 115 units, the far hills grey).
+#: clouds: an overcast, dark rain sky seen from 50 m; the ground three times the cloudscape's albedo (its default is
+#: exposed for the sun above the clouds; under them the ground was near black) and in patches (ground_variation 0.8:
+#: albedo 0.2 - 1.8 times its mean, fields and woods; a uniform ground seen from 50 m is a featureless plane).
+BACKGROUND_OPTIONS = {
+    "terrain": {"sky_colour": (0.42, 0.45, 0.49), "sun_colour": (0.0, 0.0, 0.0), "cloud_colour": (0.72, 0.74, 0.76),
+                "cloud_scale": 60.0, "light_diffuse": 0.45, "light_ambient": 0.55, "fog_density": 0.006},
+    "clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05,
+               "ground_albedo": (0.12, 0.14, 0.08), "ground_variation": 0.8},
+}
 
 
 def _check_background(obj, name, v):
@@ -46,13 +60,56 @@ def background_fields(background: str) -> set[str]:
 
 
 def check_background_options(background: str, options: dict, name: str = "background_options") -> None:
-    """A key of ``options`` that is no field of the background's settings is an error that names it (checked
-    against the scene the options are given for: a key is never dropped silently)."""
-    unknown = set(options) - background_fields(background)
+    """A key of ``options`` that is no field of the background's settings is an error that names it and the
+    background (checked against the scene the options are given for: a key is never dropped silently), with the
+    closest field when one is close."""
+    from ..core.params import did_you_mean
+
+    fields = background_fields(background)
+    unknown = sorted(set(options) - fields)
     if unknown:
-        raise ValueError(f"{name} has no field(s) {sorted(unknown)} in "
+        raise ValueError(f"{name} has no field(s) {unknown} in "
                          + ("the built-in panorama (it has no settings)" if background == PANORAMA
-                            else f"scene {background!r}"))
+                            else f"scene {background!r}") + did_you_mean(unknown[0], sorted(fields)))
+
+
+def parse_background_options(background: str, options: dict) -> dict:
+    """``options`` with every string value of a non-string field parsed by that field's spec (the command line's
+    ``--background-set KEY=VALUE`` gives strings; tuples as comma-separated numbers), errors naming
+    ``--background-set KEY``."""
+    if background == PANORAMA or not options:
+        return dict(options)
+    from ..core.params import specs
+    from ..core.scenes import scene
+
+    by_name = {p.name: p for p in specs(scene(background).settings)}
+    out = {}
+    for k, v in options.items():
+        p = by_name.get(k)
+        if isinstance(v, str) and p is not None and p.kind != "str":
+            where = f"--background-set {k}"
+            if p.kind == "floats":
+                parts = v.split(",")
+                if not all(_is_number(x) for x in parts):
+                    raise ValueError(f"{where} must be comma-separated numbers, got {v!r}")
+                v = p.validate([float(x) for x in parts], where)
+            elif p.kind == "bool":
+                low = v.strip().lower()
+                if low not in ("true", "false", "1", "0", "yes", "no", "on", "off"):
+                    raise ValueError(f"{where} must be true or false, got {v!r}")
+                v = low in ("true", "1", "yes", "on")
+            else:
+                v = p.parse(v, where)
+        out[k] = v
+    return out
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _check_background_scale(obj, name, v):
@@ -62,6 +119,7 @@ def _check_background_scale(obj, name, v):
 
 def _check_background_options(obj, name, v):
     check_background_options(obj.background, v, name)
+    parse_background_options(obj.background, v)
 
 
 def _check_size(obj, name, v):
@@ -169,9 +227,25 @@ class RainSettings(Settings):
     opacity: float = param(1.0, lo=0.0, hi=1.0, group=_G_LOOK,
                            doc="opacity of a drop pixel (mode drops)",
                            reason="1: the shader writes the refracted colour (alpha 1 from the mask)")
+    streaks: str = param("physical", choices=STREAK_MODELS, group=_G_LOOK,
+                         doc="streak model (mode streaks): physical (the drop's disc integrated over the persistence "
+                             "time with a raised-cosine weight: thin, tapered, opacity = the share of the time a drop "
+                             "covers a pixel, Garg & Nayar 2004) or thesis (rr-code-5.2.4: 7 mask taps stretched "
+                             "over a rectangle, streak_opacity)",
+                         reason="physical: the text's intent (the refracted scene smeared over the retinal "
+                                "persistence) without its sampling showing; thesis keeps the listing")
+    streak_scale: float = param(8.0, lo=0.1, hi=1000.0, group=_G_LOOK,
+                                doc="physical streaks: the drop's diameter drawn this many times its true size (the "
+                                    "streak's width, and with it its opacity 2 r / L, scale with it)",
+                                reason="8, billboard_scale's: the streak is the drop the drops mode draws (F), moved "
+                                       "over the persistence time. At true size a 1.3 mm drop 1 m away is 0.8 px "
+                                       "wide and its streak 1.8 % opaque on average (Garg & Nayar's faint streaks: "
+                                       "none shows against an overcast sky); 8x gives 6.5 px and 15 % (30 % at the "
+                                       "middle) there, 2 - 3 px for the drops 2 - 3 m away: streaks that read as rain "
+                                       "over the sky without hiding the scene (4x and 6x were invisible at 480 x 270)")
     streak_opacity: float = param(0.5, lo=0.0, hi=1.0, group=_G_LOOK,
-                                  doc="opacity of a streak pixel whose 7 taps all hit (fewer hits: proportionally "
-                                      "less) -- the text's reduced alpha, amount not given",
+                                  doc="thesis streaks: opacity of a streak pixel whose 7 taps all hit (fewer hits: "
+                                      "proportionally less) -- the text's reduced alpha, amount not given",
                                   reason="0.5: streaks stay see-through where they cross (fig 3.8 uses opaque "
                                          "streaks: 1)")
     near_clip: float = param(0.5, unit="units", lo=0.01, hi=10.0, group=_G_LOOK,
@@ -220,15 +294,17 @@ class RainSettings(Settings):
                                     reason="2: the horizon across the frame, so drops show sky and ground upside down")
     fov_y_deg: float = param(60.0, unit="deg", lo=1.0, hi=170.0, group=_G_CAM, cli="--fov",
                              doc="vertical field of view of the view", reason="60: a natural view")
-    background: str = param("clouds", check=_check_background, invalidates="background", group=_G_BG,
+    background: str = param("terrain", check=_check_background, invalidates="background", group=_G_BG,
                             doc="background: 'panorama' (built-in analytic sky and ground) or any registered scene "
                                 "(its settings' width, height, fov_y_deg, camera_yaw_deg and camera_pitch_deg are set "
                                 "from ours)",
-                            reason="clouds: the vc cloudscape, a real rendered background")
-    background_options: dict = param({}, cli=None, check=_check_background_options, invalidates="background",
-                                     group=_G_BG,
+                            reason="terrain: the pt landscape under an overcast sky (BACKGROUND_OPTIONS) -- the "
+                                   "ground the text's scenes 2 and 3 have, for the drops to refract")
+    background_options: dict = param({}, cli="--background-set", check=_check_background_options,
+                                     invalidates="background", group=_G_BG,
                                      doc="settings of the background scene by name, over the rain scene's own for "
-                                         "that scene (BACKGROUND_OPTIONS: the clouds overcast from 50 m); a name "
+                                         "that scene (BACKGROUND_OPTIONS: the terrain overcast, the clouds overcast "
+                                         "from 50 m); on the command line KEY=VALUE (tuples as 0.5,0.5,0.6); a name "
                                          "that is no field of the background's settings is an error",
                                      reason="empty: every background with the rain scene's settings for it, or its "
                                             "own defaults")
@@ -248,7 +324,8 @@ class RainSettings(Settings):
     def background_values(self) -> dict:
         """The settings of the background scene: ``BACKGROUND_OPTIONS`` of this background, then
         ``background_options``."""
-        return {**BACKGROUND_OPTIONS.get(self.background, {}), **self.background_options}
+        return {**BACKGROUND_OPTIONS.get(self.background, {}),
+                **parse_background_options(self.background, self.background_options)}
 
     def light_values(self) -> dict:
         """The lights of these settings as ``pywarp.kernels.particles.LIGHT_DEFAULTS`` fields (without the view

@@ -189,11 +189,13 @@ def sphere_mask(size: int, n_water: float = 1.33) -> np.ndarray:
 # --- sprites (the vertex stage) ------------------------------------------------------------------------------------------
 
 def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, extent: float,
-            streaks: bool, positions: bool = False):
+            streaks: str, positions: bool = False):
     """Billboards (k, 6) (``pywarp.kernels.particles.SPRITE_FIELDS``) of the particles in view, far first: each
-    drop's centre projected with the view camera, its billboard radius r L/a * billboard_scale on screen; streaks
-    (rr-alg-3.2.3) reach up by the fall during the persistence time (``particles_streak``), their taps spaced by its
-    tap offset. With ``positions=True`` also the drops' centres (k, 3) in the same order (the light-drop model)."""
+    drop's centre projected with the view camera, its billboard radius r L/a * billboard_scale on screen
+    (``streaks='off'``); streaks (rr-alg-3.2.3) reach up by the fall during the persistence time
+    (``particles_streak``), their taps spaced by its tap offset ('thesis'), their width the drop's projected diameter
+    times streak_scale ('physical': sub-pixel widths are the compositor's fractional coverage). With
+    ``positions=True`` also the drops' centres (k, 3) in the same order (the light-drop model)."""
     pos = np.asarray(state["pos"], np.float32).reshape(-1, 3)
     if not len(pos):
         empty = np.zeros((0, 6), np.float32)
@@ -203,8 +205,8 @@ def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, e
     yc = pos @ u_s.astype(np.float32)
     depth = pos @ f_s.astype(np.float32)
     focal = np.float32(0.5 * height / math.tan(math.radians(pose.fov_y_deg) / 2.0))
-    radius_w = (state["radius_mm"] * np.float32(extent * 1e-3 / s.metres_per_unit * s.billboard_scale)).astype(
-        np.float32)
+    scale = s.streak_scale if streaks == "physical" else s.billboard_scale
+    radius_w = (state["radius_mm"] * np.float32(extent * 1e-3 / s.metres_per_unit * scale)).astype(np.float32)
     keep = depth > s.near_clip
     xc, yc, depth, radius_w, speed = xc[keep], yc[keep], depth[keep], radius_w[keep], state["speed"][keep]
     centres = pos[keep]
@@ -213,7 +215,7 @@ def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, e
     rad = focal * radius_w / depth
     half = rad.copy()
     tap = np.zeros_like(rad)
-    if streaks:
+    if streaks != "off":
         length, tap = P.particles_streak_np(speed, s.persistence_ms * 1e-3, radius_w)
         lpx = focal * length / depth
         cy = cy - 0.5 * lpx  # the trace lies above the drop: its earlier positions
@@ -364,13 +366,13 @@ class RainTechnique(Technique):
         view, capture = self.images(pose)
         lights = dict(s.light_values())
         lit = P.lights_on(P.check_lights(lights))
-        out = sprites(self.system.state(), pose, s.width, s.height, s, self.extent, s.mode == "streaks",
-                      positions=lit)
+        streaks = s.streaks if s.mode == "streaks" else "off"
+        out = sprites(self.system.state(), pose, s.width, s.height, s, self.extent, streaks, positions=lit)
         sp = out[0] if lit else out
         ins = dict(background=view, capture=capture, mask=self.mask, sprites=sp,
                    fov_view=math.radians(pose.fov_y_deg), fov_capture=math.radians(s.capture_fov_deg),
-                   streaks=s.mode == "streaks", filter=s.filter,
-                   opacity=s.streak_opacity if s.mode == "streaks" else s.opacity)
+                   streaks=streaks, filter=s.filter,
+                   opacity={"off": s.opacity, "thesis": s.streak_opacity, "physical": 1.0}[streaks])
         if lit:  # the light-drop model (rr-A1..rr-CF): off unless a light has a colour or the ambient is not 1
             r, u, f = pose.basis()
             lights.update(right=tuple(r), up=tuple(u), forward=tuple(f))

@@ -119,7 +119,7 @@ def test_capture_uv_against_the_capture_camera():
     assert_twins_agree("rr-alg-3.1.2", ndc, 16 / 9, fv, fc)
 
 
-def _scene(rng, h=24, w=40, n=12, streaks=False):
+def _scene(rng, h=24, w=40, n=12, streaks="off"):
     bg = rng.uniform(0, 1, (h, w, 3)).astype(np.float32)
     cap = rng.uniform(0, 1, (32, 32, 3)).astype(np.float32)
     from pywarp.rain.technique import sphere_mask
@@ -128,14 +128,14 @@ def _scene(rng, h=24, w=40, n=12, streaks=False):
     cx = rng.uniform(-3, w + 3, n)
     cy = rng.uniform(-3, h + 3, n)
     r = rng.uniform(1.5, 6, n)
-    half = r + (rng.uniform(0, 10, n) if streaks else 0)
-    tap = (half - r) * 2 / 6 / (2 * half) if streaks else np.zeros(n)
+    half = r + (rng.uniform(0, 10, n) if streaks != "off" else 0)
+    tap = (half - r) * 2 / 6 / (2 * half) if streaks != "off" else np.zeros(n)
     sp = np.stack([cx, cy, r, half, tap, rng.uniform(0.5, 2, n)], 1).astype(np.float32)
     return bg, cap, mask, sp[np.argsort(-sp[:, 5], kind="stable")]
 
 
 @pytest.mark.spec("rr-code-5.2.3", "rr-code-5.2.4")
-@pytest.mark.parametrize("streaks", [False, True])
+@pytest.mark.parametrize("streaks", ["off", "thesis", "physical"])
 @pytest.mark.parametrize("filt", ["nearest", "linear"])
 def test_composite_warp_tiles_match_the_c_reference(rng, streaks, filt):
     bg, cap, mask, sp = _scene(rng, streaks=streaks)
@@ -153,14 +153,14 @@ def test_composite_warp_tiles_match_the_c_reference(rng, streaks, filt):
 
 @pytest.mark.spec("rr-code-5.2.4")
 def test_streak_average_of_a_uniform_capture_is_that_colour(rng):
-    bg, cap, mask, sp = _scene(rng, streaks=True)
+    bg, cap, mask, sp = _scene(rng, streaks="thesis")
     colour = np.array([0.2, 0.5, 0.7], np.float32)
     cap[:] = colour
     bg[:] = colour
-    out = P.composite(bg, cap, mask, sp, math.radians(60), streaks=True, opacity=0.5)
+    out = P.composite(bg, cap, mask, sp, math.radians(60), streaks="thesis", opacity=0.5)
     np.testing.assert_allclose(out, bg, atol=1e-6)
     bg[:] = 0.0  # over black: colour * alpha, alpha = 0.5 hits / 7 <= 0.5
-    out = P.composite(bg, cap, mask, sp[:1], math.radians(60), streaks=True, opacity=0.5)
+    out = P.composite(bg, cap, mask, sp[:1], math.radians(60), streaks="thesis", opacity=0.5)
     a = out[..., 1] / colour[1]
     assert a.max() <= 0.5 + 1e-6 and a.max() > 0.2
     assert set(np.round(a[a > 0] * 14).astype(int)) <= set(range(1, 8))  # multiples of 0.5/7
@@ -185,7 +185,7 @@ def test_composite_refuses_bad_input(rng):
 # --- the frame pass: binning, tiles, packed mask (the images must not depend on them) -------------------------------
 
 def test_binning_lists_every_sprite_of_a_tile_in_order(rng):
-    _, _, _, sp = _scene(rng, h=50, w=70, n=40, streaks=True)
+    _, _, _, sp = _scene(rng, h=50, w=70, n=40, streaks="thesis")
     for tile in (1, 5, 8, 16):
         start, items, tiles_x = P.bin_sprites(sp, 70, 50, tile)
         tiles_y = -(-50 // tile)
@@ -206,7 +206,7 @@ def test_binning_lists_every_sprite_of_a_tile_in_order(rng):
 
 
 @pytest.mark.spec("rr-code-5.2.3", "rr-code-5.2.4")
-@pytest.mark.parametrize("streaks", [False, True])
+@pytest.mark.parametrize("streaks", ["off", "thesis", "physical"])
 def test_frame_does_not_depend_on_the_tile_size_or_kernel(rng, streaks):
     bg, cap, mask, sp = _scene(rng, h=37, w=53, n=30, streaks=streaks)
     kw = dict(fov_view=math.radians(60), streaks=streaks, filter="linear", opacity=0.7)
@@ -254,7 +254,7 @@ def _lit_inputs(rng, streaks):
 
 
 @pytest.mark.spec("rr-CF", "rr-A1", "rr-A2", "rr-A3")
-@pytest.mark.parametrize("streaks", [False, True])
+@pytest.mark.parametrize("streaks", ["off", "thesis", "physical"])
 @pytest.mark.parametrize("variant", ["corrected", "thesis"])
 def test_lit_frame_matches_the_c_reference(rng, streaks, variant):
     bg, cap, mask, sp, pos, normals, lights = _lit_inputs(rng, streaks)
@@ -274,7 +274,7 @@ def test_lit_frame_matches_the_c_reference(rng, streaks, variant):
 
 @pytest.mark.spec("rr-CF")
 def test_lights_off_give_the_unlit_frame_and_ambient_scales_it(rng):
-    bg, cap, mask, sp, pos, normals, lights = _lit_inputs(rng, False)
+    bg, cap, mask, sp, pos, normals, lights = _lit_inputs(rng, "off")
     kw = dict(fov_view=math.radians(60), opacity=1.0)
     unlit = P.composite(bg, cap, mask, sp, **kw)
     off = dict(lights, c_l1=(0, 0, 0), c_l2=(0, 0, 0), ambient=(1, 1, 1))
@@ -289,7 +289,7 @@ def test_lights_off_give_the_unlit_frame_and_ambient_scales_it(rng):
 
 
 def test_lights_refuse_bad_input(rng):
-    bg, cap, mask, sp, pos, normals, lights = _lit_inputs(rng, False)
+    bg, cap, mask, sp, pos, normals, lights = _lit_inputs(rng, "off")
     kw = dict(fov_view=math.radians(60))
     with pytest.raises(ValueError, match="c_l1"):
         P.composite(bg, cap, mask, sp, lights=dict(lights, c_l1=(-1, 0, 0)), positions=pos, normals=normals, **kw)

@@ -2,8 +2,10 @@
 semi-transparent streaks of one colour -- beside the text's method, streaks that refract the scene (rr-code-5.2.4).
 
 The game screenshot cannot be reproduced; the stand-in is our own render of the same idea. Both images use the same
-particles (rr-code-5.2.2), the same streak geometry (rr-alg-3.2.3) and the same compositing pass
-(``pywarp.equation("rr-code-5.2.3")``); the classic streaks sample a capture of one uniform light grey.
+particles (rr-code-5.2.2), the same streak length (rr-alg-3.2.3) and the same compositing pass
+(``pywarp.equation("rr-code-5.2.3")``); the classic streaks are the billboard rectangles of the text's listing
+(streaks='thesis') over a capture of one uniform light grey, the text's are the drops integrated over the persistence
+time (streaks='physical': thin, tapered, the refracted scene).
 Scene 2 of fig 6.3 (pt terrain, seed 7). Output: figures/rr/fig-1.8.png.
 """
 # %% [markdown]
@@ -40,17 +42,18 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     size = dict(width=192, height=108, capture_size=128, mask_size=128) if quick else dict(width=640, height=360)
     tech = RainTechnique(RainSettings(**size, **SCENE, drops=6000, time_s=2.0 / 0.05, seed=2, mode="streaks"))
-    ins = tech.frame_inputs()
     composite = pywarp.equation("rr-code-5.2.3")
-    refracting = composite(**ins)
+    refracting = composite(**tech.frame_inputs())
+    tech.update(streaks="thesis", billboard_scale=3.0)  # the thin billboard rectangles a game draws
+    ins = tech.frame_inputs()
     grey = np.broadcast_to(np.asarray(CLASSIC_COLOUR, np.float32), ins["capture"].shape).copy()
     classic = composite(**{**ins, "capture": grey, "opacity": CLASSIC_OPACITY})
 
     fig, axes = plt.subplots(1, 2, figsize=(13, 4.0), dpi=70 if quick else 120)
     for ax, img, title in ((axes[0], classic, f"classic particle rain: one streak colour {CLASSIC_COLOUR}, "
                                               f"{CLASSIC_OPACITY:.0%} opaque"),
-                           (axes[1], refracting, "the text's streaks: the refracted scene, 7 taps averaged "
-                                                 "(rr-code-5.2.4)")):
+                           (axes[1], refracting, "the text's streaks: the refracted scene over the persistence "
+                                                 "time (rr-code-5.2.4, exposure-integrated)")):
         ax.imshow(np.clip(img, 0, 1), interpolation="nearest")
         ax.set_title(title, fontsize=9)
         ax.axis("off")

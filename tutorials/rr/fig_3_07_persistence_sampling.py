@@ -54,7 +54,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     half = RADIUS + 0.5 * length
     cx, cy = W / 2, H / 2
     sprite = np.array([[cx, cy, RADIUS, half, tap, 1.0]], np.float32)
-    frame = pywarp.particles_composite(bg, cap, mask, sprite, FOV_VIEW, FOV_CAP, streaks=True, opacity=1.0)
+    frame = pywarp.particles_composite(bg, cap, mask, sprite, FOV_VIEW, FOV_CAP, streaks="thesis", opacity=1.0)
 
     px, py = int(cx) + 3, int(cy) + 6  # the pixel P
     mu = (px + 0.5 - cx) / (2 * RADIUS) + 0.5

@@ -1,6 +1,6 @@
 """Figure rr-fig-3.10: influence of point lights on very large drops (rr-A1, rr-A2, rr-A3, rr-CF) -- external
-reflection A1*A2, internal reflection A1*A3, their sum, and the final colour C_F over the refracted background
-(rr-alg-3.1), for a spherical and a 4.5 mm Beard-Chuang drop with the normals of its exact mask. The text describes
+reflection A1*A2, internal reflection A1*A3, their sum (each term on its own scale), and the final colour C_F over
+the refracted background (rr-alg-3.1), for a spherical and a 4.5 mm Beard-Chuang drop with the normals of its exact mask. The text describes
 this model but never implemented it. Output: figures/rr/fig-3.10.png.
 """
 # %% [markdown]
@@ -86,13 +86,25 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         final = pywarp.rain_light_colour(c_o, AMBIENT, p, n, eye, l1, c1, l2, c2, R_HALF)
         panels = (("C_O (refraction only)", c_o), ("external: A1 A2", ext), ("internal: A1 A3", intl),
                   ("sum A1 (A2 + A3)", ext + intl), ("final C_F (rr-CF)", final))
-        for ax, (title, img) in zip(axes[row], panels):
-            shown = np.where(inside[..., None], np.clip(img, 0, 1), 0.12)
+        # %% [markdown]
+        # The light terms are small beside C_O (the internal one ~1/10 of the external): each term panel is shown
+        # with its own scale -- its brightest drop pixel (99.5th percentile) to white -- written under its title, so
+        # that each term's shape is visible; C_O and C_F are shown as they are.
+
+        # %%
+        for k, (ax, (title, img)) in enumerate(zip(axes[row], panels)):
+            scale = 1.0
+            if 0 < k < len(panels) - 1:
+                peak = np.percentile(img[inside].max(axis=-1), 99.5)
+                scale = 1.0 / peak if peak > 0 else 1.0
+                title = f"{title}   (shown x{scale:.3g})"
+            shown = np.where(inside[..., None], np.clip(img * scale, 0, 1), 0.12)
             ax.imshow(shown, interpolation="nearest")
             ax.set_title(f"{title}\n{label}", fontsize=9)
             ax.axis("off")
     fig.suptitle("Light-drop interaction (rr-A1..A3, rr-CF; described by the text, implemented here): two point "
-                 "lights, DistFact = 1/(1 + (d/r_half)^2), normals from the drop's shape", fontsize=11)
+                 "lights, DistFact = 1/(1 + (d/r_half)^2), normals from the drop's shape; each light term on its own scale",
+                 fontsize=11)
     fig.subplots_adjust(left=0.01, right=0.99, top=0.87, bottom=0.01, wspace=0.05, hspace=0.2)
     out = out_dir / "fig-3.10.png"
     fig.savefig(out)

@@ -27,6 +27,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import pywarp  # noqa: E402
 
 from pywarp.rain.settings import SHAPES, RainSettings  # noqa: E402
 from pywarp.rain.technique import RainTechnique  # noqa: E402
@@ -68,7 +71,40 @@ def row(images, titles, path, suptitle, quick, centre, cols=None):
     for ax, img, t in zip(axes.ravel(), images, titles):
         panel(ax, img, t, zoom)
     fig.suptitle(suptitle, fontsize=10)
-    fig.tight_layout()
+    height = 3.2 * rows  # inches; room for the title and the panels' titles (tight_layout misplaces the insets')
+    fig.subplots_adjust(left=0.01, right=0.99, bottom=0.01, top=1.0 - 0.55 / height, wspace=0.03, hspace=0.16)
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def enlarged_drop(tech, radius: int) -> np.ndarray:
+    """One drop of the technique's current mask, ``radius`` px, composited in the middle of its frame: the square
+    crop around it (uint8)."""
+    ins = tech.frame_inputs()
+    h, w = ins["background"].shape[:2]
+    cx, cy = w / 2, h / 2
+    sp = np.array([[cx, cy, radius, radius, 0.0, 1.0]], np.float32)
+    frame = pywarp.particles_composite(ins["background"], ins["capture"], ins["mask"], sp, ins["fov_view"],
+                                       ins["fov_capture"], filter=ins["filter"], opacity=1.0)
+    r = int(radius * 1.25)
+    crop = frame[int(cy) - r:int(cy) + r, int(cx) - r:int(cx) + r]
+    return (np.clip(crop, 0, 1) * 255 + 0.5).astype(np.uint8)
+
+
+def shapes_figure(frames, drops, path, quick):
+    """Fig 6.11: the frames of the four shapes in a row, each with its drop enlarged below it."""
+    fig, axes = plt.subplots(2, len(frames), figsize=(4.6 * len(frames), 6.4), dpi=70 if quick else 130,
+                             gridspec_kw=dict(height_ratios=(1.0, 1.35)))
+    for k, (a, img, drop) in enumerate(zip(SHAPES, frames, drops)):
+        axes[0, k].imshow(img, interpolation="nearest")
+        axes[0, k].set_title(f"shape a = {a} mm (Table 2.1): 3000 drops", fontsize=9)
+        axes[1, k].imshow(drop, interpolation="nearest")
+        axes[1, k].set_title(f"one drop of shape {a} mm, enlarged", fontsize=9)
+        for ax in axes[:, k]:
+            ax.axis("off")
+    fig.suptitle("Fig 6.11 (in kind) — the drop shapes (T key): Beard-Chuang outlines, sphere refraction as the "
+                 "application; the 0.5 and 1 mm drops nearly round, the 3 and 4.5 mm drops flat-bottomed", fontsize=10)
+    fig.subplots_adjust(left=0.01, right=0.99, top=0.88, bottom=0.01, wspace=0.04, hspace=0.12)
     fig.savefig(path)
     plt.close(fig)
 
@@ -95,30 +131,38 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     # %% [markdown]
     # Fig 6.11: the four shapes of Table 2.1 (drop radius unchanged: Gauss(1, 1.3, 8); only the mask changes). The
-    # 0.5 and 1 mm drops are nearly round, the 3 and 4.5 mm drops flat-bottomed (rr-eq1: r(0) < r(pi)).
+    # 0.5 and 1 mm drops are nearly round, the 3 and 4.5 mm drops flat-bottomed (rr-eq1: r(0) < r(pi)). At ~8 px a
+    # drop's outline is hard to tell apart, so each frame has an enlarged drop under it: the same compositing pass
+    # (``pywarp.particles_composite``) with one billboard of 72 px radius in the middle of the frame, over the frame's
+    # own background and capture -- the mask of that shape, as the frame's drops have it.
     # %%
     tech.update(size_mm=1.3, size_spread_mm=1.0)
-    imgs = []
+    imgs, big = [], []
     for shape in SHAPES:
         tech.update(shape=shape)
         imgs.append(tech.render())
+        big.append(enlarged_drop(tech, 24 if quick else 72))
     p11 = out_dir / "fig-6.11.png"
-    row(imgs, [f"shape a = {a} mm (Table 2.1)" for a in SHAPES], p11,
-        "Fig 6.11 (in kind) — the drop shapes (T key): Beard-Chuang outlines, sphere refraction as the application",
-        quick, near_drop(tech), cols=2)
+    shapes_figure(imgs, big, p11, quick)
 
     # %% [markdown]
-    # Fig 6.12: 500, 3000 and 12 000 drops in the final (streak) mode.
+    # Fig 6.12: 500, 3000 and 12 000 drops in the final (streak) mode. The physical streaks are faint (their alpha is
+    # the exposure, a tenth or so), so a second row shows what the rain adds to the background, |frame - background|
+    # x 8: the streaks in view, to count.
     # %%
     tech.update(shape="1.0", mode="streaks")
     imgs = []
     for n in COUNTS:
         tech.update(drops=n)
         imgs.append(tech.render())
+    tech.update(drops=0)
+    bg = tech.render().astype(np.int16)
+    diffs = [np.repeat(np.clip(np.abs(i.astype(np.int16) - bg).max(axis=2, keepdims=True) * 8, 0, 255), 3, axis=2)
+             .astype(np.uint8) for i in imgs]
     p12 = out_dir / "fig-6.12.png"
-    row(imgs, [f"{n} drops" for n in COUNTS], p12,
-        "Fig 6.12 (in kind) — changing the number of drops (G/H): retinal-persistence streaks", quick,
-        (0.3 * imgs[0].shape[1], 0.6 * imgs[0].shape[0]))
+    row(imgs + diffs, [f"{n} drops" for n in COUNTS] + [f"{n} drops: |frame - background| x 8" for n in COUNTS],
+        p12, "Fig 6.12 (in kind) — changing the number of drops (G/H): retinal-persistence streaks", quick,
+        (0.3 * imgs[0].shape[1], 0.3 * imgs[0].shape[0]), cols=3)
     return [p10, p11, p12]
 
 

@@ -199,6 +199,9 @@ typedef struct ccl_cloudscape_params {
     float ambient_ground[3];    /* sky mode: the sky light on the ground, the cosine-weighted mean sky radiance over
                                    the upper hemisphere (E_sky / pi); written by ccl_cloudscape_light */
     float ground_albedo[3];     /* sky mode: Lambertian albedo of the ground, in [0, 1] (default (0.04, 0.05, 0.03)) */
+    float ground_variation;     /* sky mode: relative albedo variation of the ground, in [0, 1]: the albedo times
+                                   1 + v (2 n - 1), n in [0, 1) the patches of ccl_cloudscape_ground (default 0: a
+                                   uniform ground, as the thesis's) */
     float aerial_km;            /* sky mode: aerial-perspective e-folding distance at the ground, km; 0 = off
                                    (default 30) */
     float aerial_height_km;     /* sky mode: scale height of the haze, km; 0 = homogeneous (default 2) */
@@ -376,10 +379,16 @@ CCL_API size_t ccl_cloudscape_mip3_len(int size);
  * [1/sr]. p must have passed ccl_cloudscape_check. */
 CCL_API float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, float cos_theta);
 
+/* Size of the ground's albedo patches (ground_variation) [km]: 0.125, fields and woods of a hundred metres or so seen
+ * from a low camera (the rain scene's 50 m), with a second octave 4 times smaller inside them. */
+#define CCL_CLOUDSCAPE_GROUND_PATCH_KM 0.125f
 /* Radiance of the ground at a point on (or near) the Earth sphere, sky lighting (see "Lighting" above): ground_albedo
  * (sun_colour max(n . to_sun, 0) T_shadow / pi + ambient_ground), n = the sphere's normal at point, T_shadow from
- * CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES base-shape density samples towards the sun. *out_shadow (may be NULL) gets
- * T_shadow in [0, 1]. out_rgb[3] >= 0. Inputs must have passed ccl_cloudscape_check; point below the inner sphere. */
+ * CCL_CLOUDSCAPE_GROUND_SHADOW_SAMPLES base-shape density samples towards the sun. With ground_variation v > 0 the
+ * albedo is times 1 + v (2 n - 1), n = 2/3 N(x / P, z / P) + 1/3 N(4 x / P, 4 z / P) at the point's (x, z) in km,
+ * P = CCL_CLOUDSCAPE_GROUND_PATCH_KM, N the smoothstep-interpolated value noise of ccl_hash_pcg lattice values.
+ * *out_shadow (may be NULL) gets T_shadow in [0, 1]. out_rgb[3] >= 0. Inputs must have passed ccl_cloudscape_check;
+ * point below the inner sphere. */
 CCL_API void ccl_cloudscape_ground(const ccl_cloudscape_params *p, const ccl_cloud_textures *t, ccl_vec3 point,
                                    ccl_vec3 to_sun, float *out_rgb, float *out_shadow);
 

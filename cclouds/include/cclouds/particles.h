@@ -27,6 +27,14 @@ extern "C" {
 #define CCL_PARTICLES_MAX_SIZE_SAMPLES 64
 /* Taps of the retinal-persistence shader rr-code-5.2.4 (i = -3 .. 3). */
 #define CCL_PARTICLES_STREAK_TAPS 7
+/* Colour samples of a physical streak pixel: the drop's mask column across the chord the pixel sees (8: the chord of a
+ * streak is at most the drop's diameter, ~13 px at the nearest drops, so the samples are <= 2 px apart there and the
+ * mean colour of the column changes by a few percent from 8 to 64 samples; the positions are fixed in the drop, so
+ * they leave no pattern along the streak). */
+#define CCL_PARTICLES_STREAK_SAMPLES 8
+/* Shortest physical streak [pixels] (1/64): a drop that moves less during the exposure is drawn as a streak this long
+ * (its coverage integral divides by the length; a still drop is then the drop itself, antialiased). */
+#define CCL_PARTICLES_MIN_STREAK_PX 0.015625f
 /* Largest particle count of one system (the loop bound of ccl_particles_simulate and the shaders). */
 #define CCL_PARTICLES_MAX_COUNT 1000000
 /* Narrowest capture FOV [rad] (1/64: about 0.9 deg): below it tan(fov_capture/2) underflows towards 0 and the capture
@@ -39,6 +47,15 @@ extern "C" {
 /* Smallest scene unit [m] (1/1024, about a millimetre): the fall speed v_t / metres_per_unit stays below ~6e5 units/s
  * (v_t <= ~600 m/s at slowdown 1/64), so a step of dt <= 1 s stays finite (1e-45 made the speed Inf, y NaN). */
 #define CCL_PARTICLES_MIN_METRES_PER_UNIT 0.0009765625f
+
+/* What the compositing pass draws for a sprite (its `streaks` argument). DROPS: rr-code-5.2.3, the drop's refraction.
+ * STREAKS_THESIS: rr-code-5.2.4 as the text has it, 7 mask taps stretched over a rectangle. STREAKS_PHYSICAL: the
+ * drop's disc integrated over the exposure (ccl_particles_streak_cover): thin, tapered, faint. */
+typedef enum ccl_particles_streaks {
+    CCL_PARTICLES_DROPS = 0,
+    CCL_PARTICLES_STREAKS_THESIS = 1,
+    CCL_PARTICLES_STREAKS_PHYSICAL = 2
+} ccl_particles_streaks;
 
 /* Capture filtering (rr-alg-3.1.2 says nearest suffices; rr-code-5.2.1-c sets GL_LINEAR). */
 typedef enum ccl_particles_filter {
@@ -148,13 +165,31 @@ typedef struct {
 CCL_API int ccl_particles_tap(const float *mask, int mask_size, const float *capture, int capture_size,
                               float mask_u, float mask_v, ccl_vec2 p_o, float scale, int filter, ccl_vec3 *out_rgb);
 
+/* The exposure of pixel (px, py) (its centre; the pixel is the unit square around it) to the physical streak of a
+ * sprite: the drop's disc of radius `radius` px falls during the exposure T from its centre at cy + L/2 - L
+ * (L = 2 (half_height - radius), at least CCL_PARTICLES_MIN_STREAK_PX) to cy + L/2, the head. Model (Garg & Nayar,
+ * "Detection and removal of rain from videos", CVPR 2004: a pixel records the time average of what it sees during
+ * the exposure; a drop covers a pixel for tau < 1.2 ms of a 1/30 s frame, so a streak's opacity is about tau / T =
+ * D / L): alpha = (1/T) int w(t) cov(t) dt, cov = the share of the pixel the disc covers, w(t) = 1 - cos(2 pi t/T)
+ * (mean 1, so the total exposure of the model is kept: the alphas of a streak sum to pi radius^2) -- the retinal
+ * image building up and fading within the persistence time, so both ends taper smoothly instead of the hard cut of a
+ * box exposure. Integrated in closed form: the pixel's width against the disc's chord (exact), its height against
+ * the motion (exact for the chord's mean half-length *out_half_chord over the pixel's columns). Returns alpha in
+ * [0, 1] (0 outside the streak) and *out_mask_u, the mask column of the pixel's share of the disc. */
+CCL_API float ccl_particles_streak_cover(const ccl_particles_sprite *sprite, float px, float py, float *out_mask_u,
+                                         float *out_half_chord);
+
 /* One pixel of the rain frame: the background colour bg, then every sprite (in the array's order: far first) that
  * covers the pixel centre (x + 0.5, y + 0.5) composited over it. Billboard -> mask coordinates: mask u = dx /
  * (2 radius) + 1/2, v = dy / (2 half_height) + 1/2 (the mask stretched over a streak's quad). Ref: rr-code-5.2.3 (drops: one tap, alpha =
- * opacity), rr-code-5.2.4 (streaks, streaks != 0: 7 taps i = -3 .. 3 at mask v shifted by i tap_offset, colour = the
- * mean of the taps that hit, alpha = opacity * hits / 7 -- the share of the persistence time the drop covers the
- * pixel: the text's "reduced alpha", amount not given). p_o: the pixel's capture coordinate
- * (ccl_particles_capture_uv); scale as in ccl_particles_tap. n in [0, CCL_PARTICLES_MAX_COUNT]. */
+ * opacity), rr-code-5.2.4 (streaks = CCL_PARTICLES_STREAKS_THESIS: 7 taps i = -3 .. 3 at mask v shifted by i
+ * tap_offset, colour = the mean of the taps that hit, alpha = opacity * hits / 7 -- the share of the persistence time
+ * the drop covers the pixel: the text's "reduced alpha", amount not given). streaks = CCL_PARTICLES_STREAKS_PHYSICAL:
+ * alpha = opacity * ccl_particles_streak_cover (every pixel the disc's streak touches, not only those whose centre
+ * lies in the box), colour = the mean of CCL_PARTICLES_STREAK_SAMPLES taps down the mask column it returns, evenly
+ * across the chord (mask v = 1/2 + dy / (2 radius), dy in (-half chord, half chord)); a pixel whose samples all miss
+ * keeps its colour. p_o: the pixel's capture coordinate (ccl_particles_capture_uv); scale as in ccl_particles_tap.
+ * n in [0, CCL_PARTICLES_MAX_COUNT]. */
 CCL_API ccl_vec3 ccl_particles_shade_pixel(const ccl_particles_sprite *sprites, int n, const float *mask,
                                            int mask_size, const float *capture, int capture_size, int x, int y,
                                            ccl_vec2 p_o, float scale, int filter, int streaks, float opacity,
@@ -192,7 +227,8 @@ CCL_API ccl_vec3 ccl_particles_shade_pixel_lit(const ccl_particles_sprite *sprit
  * tests only the sprites of each pixel's screen tile). sprites: n sprites, far first; mask: mask_size^2 x 4 floats;
  * capture: capture_size^2 x 3 floats; opacity in [0, 1]; out: width x height x 3 floats (may not alias the inputs).
  * Returns CCL_EINVAL (nothing written) for a bad size, fov (fov_view in (0, pi), fov_capture in
- * [CCL_PARTICLES_MIN_FOV_CAPTURE, pi)), filter, opacity or a sprite with radius <= 0 or half_height < radius. */
+ * [CCL_PARTICLES_MIN_FOV_CAPTURE, pi)), filter, streaks (a ccl_particles_streaks), opacity or a sprite with
+ * radius <= 0 or half_height < radius. */
 CCL_API ccl_status ccl_particles_composite(const float *background, int width, int height,
                                            const ccl_particles_sprite *sprites, int n, const float *mask,
                                            int mask_size, const float *capture, int capture_size, float fov_view,
