@@ -184,6 +184,6 @@ class RainControls(Controls):
         return Step(changes=changes, moving=bool(look), message=msg)
 
     def preview(self, settings) -> dict:
-        """A small capture, and the background reconstructed from a quarter of its pixels per frame (the drops are
+        """A small capture, and the background reconstructed from a sixteenth of its pixels per frame (the drops are
         drawn whole every frame: the viewer renders rain previews at the window's size)."""
-        return {"capture_size": min(settings.capture_size, PREVIEW_CAPTURE), "background_scale": 2}
+        return {"capture_size": min(settings.capture_size, PREVIEW_CAPTURE), "background_scale": 4}

@@ -230,9 +230,9 @@ def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, e
 # --- the technique -------------------------------------------------------------------------------------------------------
 
 #: frames a reconstructed background view is refined while the view keeps its direction (background_scale > 1):
-#: 64 = the 2 x 2 phases of the reconstruction times the clouds' 4 x 4 reprojection grid, after which every pixel
-#: has been rendered at least once
-BACKGROUND_REFINE_FRAMES = 64
+#: 16 = the 4 x 4 phases of the viewer's reduction, after which every pixel of the view has been rendered once (each
+#: costs a background frame at 1/16 of the pixels; the rain's turns come 10 times a second while a key is held)
+BACKGROUND_REFINE_FRAMES = 16
 
 
 class RainTechnique(Technique):
@@ -242,7 +242,7 @@ class RainTechnique(Technique):
 
     settings_class = RainSettings
     #: the viewer renders rain's previews at the window's size (the drops drawn whole every frame; the background
-    #: reconstructed from a fraction of its pixels, ``background_scale``)
+    #: reconstructed from a sixteenth of its pixels per frame, ``background_scale``)
     previews_at_full_size = True
 
     def __init__(self, settings: RainSettings | None = None):
