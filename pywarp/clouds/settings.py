@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.cbridge import CStruct
+from ..core.display import exposure_param, tonemap_param
 from ..core.params import Settings, inherit, param
 
 # cclouds/texgen.h limits (pinned to the C macros and pywarp.kernels.texgen by the tests)
@@ -501,6 +502,12 @@ class CloudscapeSettings(Settings):
                                    "noise and the stair steps of a still (the noise falls as 1/sqrt(N)); at most 1024: "
                                    "the noise is then 1/32 of one frame's, below a grey level, and a 960x540 still "
                                    "already takes about 20 min on a 2-core CPU")
+    exposure_ev: float = exposure_param(
+        -0.5, reason="-0.5 EV: the ACES curve lifts mid-tones (T(0.34) = 0.48), and -0.5 EV brings the default "
+                     "view's mean back to within 5 % of the clamped image's while its brightest cloud tops (1.54) map "
+                     "to 0.82, not to white (480x270, 5.3 % of the clamped image's pixels have a channel at 255, none "
+                     "with the transform)")
+    tonemap: str = tonemap_param()
     base_size: int = inherit(BaseShapeSettings, "size", group="textures")
     detail_size: int = inherit(DetailShapeSettings, "size", group="textures")
     curl_size: int = inherit(CurlNoiseSettings, "size", group="textures")
