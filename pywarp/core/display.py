@@ -61,15 +61,26 @@ def tonemap_param(default: str = "aces", reason: str = "", **extra):
 
 
 def aces(x):
-    """Narkowicz's ACES fit of ``x`` (any shape, float32 kept), saturated to [0, 1]; negative inputs give 0."""
-    x = np.maximum(np.asarray(x), 0.0)
-    y = x * (ACES_A * x + ACES_B) / (x * (ACES_C * x + ACES_D) + ACES_E)
-    return np.minimum(y, 1.0)
+    """Narkowicz's ACES fit of ``x`` (any shape; float32 out), saturated to [0, 1]; negative inputs give 0. In place
+    on two arrays of the image's size: a few milliseconds per 640 x 360 frame."""
+    x = np.maximum(np.asarray(x, dtype=np.float32), np.float32(0.0))
+    den = x * np.float32(ACES_C)
+    den += np.float32(ACES_D)
+    den *= x
+    den += np.float32(ACES_E)
+    num = x * np.float32(ACES_A)
+    num += np.float32(ACES_B)
+    num *= x
+    num /= den
+    return np.minimum(num, np.float32(1.0), out=num)
 
 
 def exponential(x):
-    """1 - exp(-x) of ``x`` (any shape, float32 kept); negative inputs give 0."""
-    return -np.expm1(-np.maximum(np.asarray(x), 0.0))
+    """1 - exp(-x) of ``x`` (any shape; float32 out); negative inputs give 0."""
+    y = np.maximum(np.asarray(x, dtype=np.float32), np.float32(0.0))
+    np.negative(y, out=y)
+    np.expm1(y, out=y)
+    return np.negative(y, out=y)
 
 
 def check(exposure_ev: float, tonemap: str) -> None:
@@ -90,9 +101,9 @@ def apply(rgb, exposure_ev: float = 0.0, tonemap: str = "aces") -> np.ndarray:
     if exposure_ev != 0.0:
         x = x * np.float32(2.0 ** exposure_ev)
     if tonemap == "aces":
-        return aces(x).astype(np.float32, copy=False)
+        return aces(x)
     if tonemap == "exponential":
-        return exponential(x).astype(np.float32, copy=False)
+        return exponential(x)
     return x
 
 
@@ -122,13 +133,24 @@ def quantise(display, srgb: bool) -> np.ndarray:
     return (c * 255.0 + 0.5).astype(np.uint8)
 
 
+#: Samples of the composed curve of :func:`encode_encoded` over [0, 1], looked up at the nearest one: with 2^16 of
+#: them a byte differs from the per-pixel evaluation only at a rounding edge, by one level (about 0.1 % of the bytes
+#: of a uniformly random image); the per-pixel evaluation, with two powers, costs several times more.
+ENCODED_CURVE_SAMPLES = 65536
+
+
 def encode_encoded(rgb, exposure_ev: float, tonemap: str) -> np.ndarray:
-    """uint8 of a scene whose float image is already display-encoded (the terrain's and the rain's colours, which
-    the texts give as displayed values): decoded to linear light (sRGB EOTF), :func:`apply`, encoded again, quantised.
+    """uint8 of a scene whose float image is already display-encoded (the terrain's colours, which the text gives as
+    displayed values), clamped to [0, 1]: decoded to linear light (sRGB EOTF), :func:`apply`, encoded again and
+    quantised -- one curve of the value, tabulated as bytes (:data:`ENCODED_CURVE_SAMPLES`) and looked up.
     ``tonemap="none"`` at 0 EV is the plain clamp and quantisation of the values, as before the display transform.
     The caller checks that ``rgb`` is finite (a NaN has no byte)."""
     check(exposure_ev, tonemap)
     if tonemap == "none" and exposure_ev == 0.0:
         return quantise(rgb, srgb=False)
-    linear = srgb_eotf(np.clip(np.asarray(rgb, dtype=np.float32), 0.0, 1.0))
-    return quantise(apply(linear, exposure_ev, tonemap), srgb=True)
+    v = np.linspace(0.0, 1.0, ENCODED_CURVE_SAMPLES, dtype=np.float32)
+    table = quantise(apply(srgb_eotf(v), exposure_ev, tonemap), srgb=True)
+    c = np.clip(np.asarray(rgb, dtype=np.float32), 0.0, 1.0)
+    c *= np.float32(ENCODED_CURVE_SAMPLES - 1)
+    c += np.float32(0.5)
+    return table[c.astype(np.uint16)]

@@ -56,6 +56,16 @@ def test_encoded_scenes_round_trip_through_linear_light():
     assert np.max(np.abs(got.astype(int) - (np.clip(want, 0, 1) * 255 + 0.5).astype(int))) <= 1
 
 
+def test_the_tabulated_curve_of_encoded_scenes_is_the_per_pixel_evaluation_within_one_level():
+    x = np.random.default_rng(2).uniform(0.0, 1.0, (64, 64, 3)).astype(np.float32)
+    lin = np.where(x <= 0.04045, x / 12.92, ((x.astype(np.float64) + 0.055) / 1.055) ** 2.4)
+    y = lin * 2.0 ** -0.3
+    y = np.clip(y * (2.51 * y + 0.03) / (y * (2.43 * y + 0.59) + 0.14), 0.0, 1.0)
+    want = (np.where(y <= 0.0031308, 12.92 * y, 1.055 * y ** (1 / 2.4) - 0.055) * 255.0 + 0.5).astype(int)
+    got = D.encode_encoded(x, -0.3, "aces").astype(int)
+    assert np.abs(got - want).max() <= 1 and (got != want).mean() < 0.01
+
+
 # --- the scenes --------------------------------------------------------------------------------------------------
 
 def _clipped(img) -> float:
