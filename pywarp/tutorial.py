@@ -155,36 +155,46 @@ TEXT_SLACK_PX = 2.0
 
 
 def _texts(fig):
-    """(description, Text) of every drawn, non-empty title, axis label, tick label and figure text of ``fig`` (the
-    suptitle is a figure text); the ticks are those the axis draws (inside its view limits)."""
-    out = [(f"figure text {t.get_text()!r}", t) for t in fig.texts]
+    """(description, Text, its axes or None) of every drawn, non-empty title, axis label, tick label and figure text
+    of ``fig`` (the suptitle is a figure text); the ticks are those the axis draws (inside its view limits)."""
+    out = [(f"figure text {t.get_text()!r}", t, None) for t in fig.texts]
     for i, ax in enumerate(fig.axes):
         if not ax.get_visible():
             continue
-        out += [(f"axes {i} title {t.get_text()!r}", t) for t in (ax.title, ax._left_title, ax._right_title)]
+        out += [(f"axes {i} title {t.get_text()!r}", t, ax) for t in (ax.title, ax._left_title, ax._right_title)]
         if not ax.axison:
             continue
         for axis, which in ((ax.xaxis, "x"), (ax.yaxis, "y")):
             if not axis.get_visible():
                 continue
-            out.append((f"axes {i} {which} label {axis.label.get_text()!r}", axis.label))
+            out.append((f"axes {i} {which} label {axis.label.get_text()!r}", axis.label, ax))
             for tick in axis._update_ticks():
-                out += [(f"axes {i} {which} tick {lab.get_text()!r}", lab) for lab in (tick.label1, tick.label2)]
-    return [(d, t) for d, t in out if t.get_visible() and t.get_text().strip()]
+                out += [(f"axes {i} {which} tick {lab.get_text()!r}", lab, ax) for lab in (tick.label1, tick.label2)]
+    return [(d, t, ax) for d, t, ax in out if t.get_visible() and t.get_text().strip()]
+
+
+def _overlapping(a, b, e):
+    """Pairs (i, j) of boxes a[i], b[j] (x0, y0, x1, y1) that overlap by more than ``e`` both ways."""
+    ox = np.minimum(a[:, None, 2], b[None, :, 2]) - np.maximum(a[:, None, 0], b[None, :, 0])
+    oy = np.minimum(a[:, None, 3], b[None, :, 3]) - np.maximum(a[:, None, 1], b[None, :, 1])
+    return (ox > e) & (oy > e)
 
 
 def text_problems(fig, inside: bool = True) -> list[str]:
-    """What makes the text of ``fig`` hard to read: each text box (:func:`_texts`, the extents the renderer gives)
-    that sticks out of the figure (when ``inside``; off for a figure saved with ``bbox_inches="tight"``, whose saved
-    area grows to take it in), and each pair of boxes that overlap -- by more than :data:`TEXT_SLACK_PX` either way."""
+    """What makes the text of ``fig`` hard to read, from the extents the renderer gives: each text box
+    (:func:`_texts`) that sticks out of the figure (when ``inside``; off for a figure saved with
+    ``bbox_inches="tight"``, whose saved area grows to take it in), each pair of text boxes that overlap, and each text
+    box that overlaps the plot area of another axes (a title over the image above it) -- by more than
+    :data:`TEXT_SLACK_PX` either way."""
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
-    boxes, names = [], []
-    for name, t in _texts(fig):
+    boxes, names, owners = [], [], []
+    for name, t, ax in _texts(fig):
         b = t.get_window_extent(renderer)
         if b.width > 0 and b.height > 0:
             boxes.append((b.x0, b.y0, b.x1, b.y1))
             names.append(name)
+            owners.append(ax)
     problems = []
     if not boxes:
         return problems
@@ -196,10 +206,14 @@ def text_problems(fig, inside: bool = True) -> list[str]:
             if x0 < -e or y0 < -e or x1 > w + e or y1 > h + e:
                 problems.append(f"{n} sticks out of the figure ({x0:.0f}, {y0:.0f}, {x1:.0f}, {y1:.0f} in a "
                                 f"{w:.0f} x {h:.0f} figure)")
-    ox = np.minimum(a[:, None, 2], a[None, :, 2]) - np.maximum(a[:, None, 0], a[None, :, 0])
-    oy = np.minimum(a[:, None, 3], a[None, :, 3]) - np.maximum(a[:, None, 1], a[None, :, 1])
-    for i, j in zip(*np.nonzero(np.triu((ox > e) & (oy > e), 1))):
+    for i, j in zip(*np.nonzero(np.triu(_overlapping(a, a, e), 1))):
         problems.append(f"{names[i]} overlaps {names[j]}")
+    axes = [(k, ax) for k, ax in enumerate(fig.axes) if ax.get_visible()]
+    if axes:
+        areas = np.array([tuple(ax.bbox.extents) for _, ax in axes])
+        for i, j in zip(*np.nonzero(_overlapping(a, areas, e))):
+            if owners[i] is not axes[j][1]:
+                problems.append(f"{names[i]} overlaps the plot area of axes {axes[j][0]}")
     return problems
 
 

@@ -20,8 +20,12 @@ FILTERS = ("nearest", "linear")
 #: figures. Any registered scene other than rain is a background too.
 PANORAMA = "panorama"
 #: The rain scene's own settings for a background scene, under ``background_options`` (which overrides them key by
-#: key): the clouds an overcast, dark rain sky seen from 50 m; a scene not named here its own defaults.
-BACKGROUND_OPTIONS = {"clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05}}
+#: key): the clouds an overcast, dark rain sky seen from 50 m; a scene not named here its own defaults. A background's
+#: 8-bit image is the plain clamp of its colours (display transform ``none`` at 0 EV, pywarp.core.display): the drops
+#: refract and the streaks composite display-encoded colours, and a display transform belongs once at the end.
+_PLAIN = {"tonemap": "none", "exposure_ev": 0.0}
+BACKGROUND_OPTIONS = {"clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05, **_PLAIN},
+                      "terrain": dict(_PLAIN)}
 
 
 def _check_background(obj, name, v):

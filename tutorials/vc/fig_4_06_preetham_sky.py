@@ -294,10 +294,10 @@ def main(out_dir, quick: bool = False) -> list[Path]:
                 ax.set_title(f"sun elevation {el:g}°", fontsize=10)
             if j == 0:
                 ax.text(-1.12, 0.0, f"T = {T:g}", rotation=90, ha="right", va="center", fontsize=10)
-    fig.suptitle("Preetham sky (corrected) over sun elevation and turbidity T — all-sky fisheyes, sun at the top "
-                 f"(azimuth 0°); k = {DEFAULTS.sky_exposure:g}/(kcd/m²), {DEFAULTS.exposure_ev:+g} EV, "
+    fig.suptitle("Preetham sky (corrected) over sun elevation and turbidity T — all-sky fisheyes, sun at the top;\n"
+                 f"k = {DEFAULTS.sky_exposure:g}/(kcd/m²), {DEFAULTS.exposure_ev:+g} EV, "
                  f"{DEFAULTS.tonemap.upper()} in every panel", fontsize=11)
-    fig.subplots_adjust(left=0.04, right=0.995, top=0.93, bottom=0.01, wspace=0.04, hspace=0.08)
+    fig.subplots_adjust(left=0.04, right=0.995, top=0.91, bottom=0.01, wspace=0.04, hspace=0.08)
     out = out_dir / "fig-4.6-conditions.png"
     fig.savefig(out)
     plt.close(fig)

@@ -59,9 +59,10 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     # %%
     h, w = image.shape[:2]
-    fig = plt.figure(figsize=(w / 100 + 0.2, h / 100 + 0.9), dpi=100)
-    ax = fig.add_axes([0.1 / (w / 100 + 0.2), 0.1 / (h / 100 + 0.9), w / 100 / (w / 100 + 0.2),
-                       h / 100 / (h / 100 + 0.9)])
+    width = max(w / 100 + 0.2, 6.6)  # at least 6.6 in: the quick mode's small render keeps a readable title
+    height = (width - 0.2) * h / w + 0.9
+    fig = plt.figure(figsize=(width, height), dpi=100)
+    ax = fig.add_axes([0.1 / width, 0.1 / height, (width - 0.2) / width, (height - 0.9) / height])
     ax.imshow(image, interpolation="nearest")
     ax.set_axis_off()
     fig.suptitle("Fig 5.1 — result of the technique: clouds over the Preetham sky\n(sun 20° up, azimuth 35°; coverage "
