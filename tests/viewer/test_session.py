@@ -156,3 +156,21 @@ def test_benchmark_mode_counts_the_frames_shown(clouds, small_settings):
     assert r["keys"] == sorted(V.FreeFlyControls.benchmark_keys) and r["window"] is False
     assert r["moved"] and r["time_playing"]  # clouds: the camera circles and the wind blows
     assert set(r["preview_sizes"]) and all("x" in k for k in r["preview_sizes"])
+
+
+def test_the_viewer_shows_the_display_transform_of_the_panel(clouds, small_settings):
+    """The viewer's frames are the technique's 8-bit frames: a change of exposure or tone curve in the panel shows the
+    same display transform as the offline render, and rebuilds nothing (no new textures)."""
+    session = Session(clouds, small_settings(clouds))
+    try:
+        first = wait_frame(session, full=True)
+        textures = session.worker.tech.textures
+        assert session.apply({"exposure_ev": 1.0, "tonemap": "exponential"})
+        session.clock += 1.0
+        session.tick(V.Input())
+        f = wait_frame(session, full=True, version=session.version)
+        assert session.worker.tech.textures is textures
+        assert f.image.mean() > first.image.mean()  # 1.5 EV more than the default -0.5: brighter
+        assert np.array_equal(f.image, clouds.technique(session.settings).render())
+    finally:
+        session.close()
