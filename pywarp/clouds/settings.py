@@ -337,10 +337,14 @@ class CloudscapeSettings(Settings):
                              doc="errata of the sky chain (vc-2.39, 4.4, 4.5)",
                              reason="'corrected': Preetham's published constants")
     sky_exposure: float = param(0.05, lo=0.0, hi=10.0, lo_open=True, invalidates="sky", group="sky",
-                                doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5)",
-                                reason="0.05: with the thesis' 0.03 and luminance in kcd/m^2 the corrected sky is a "
-                                       "dim grey-blue; 0.05 gives a mid-blue zenith at T = 2.5 without saturating "
-                                       "the sky around the sun (figures/vc/fig-4.6.png uses the thesis' 0.03)")
+                                unit="1/(kcd/m^2)",
+                                doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5); C_HDR has "
+                                    "the unit of Preetham's luminance fit, kcd/m^2 (the thesis gives none)",
+                                reason="0.05: with the thesis' 0.03 the corrected sky is a dim slate grey-blue; 0.05, "
+                                       "then the display transform (exposure_ev, tonemap), gives a T = 3 sky at a "
+                                       "30-60 deg sun a blue zenith and a pale horizon (sRGB (109, 141, 179) and "
+                                       "(160, 155, 161) at 35 deg) without saturating the sky around the sun "
+                                       "(figures/vc/fig-4.6.png shows both)")
     coverage: float = inherit(WeatherMapSettings, "coverage")
     precipitation: float = inherit(WeatherMapSettings, "precipitation")
     cloud_type: float = inherit(WeatherMapSettings, "cloud_type")
