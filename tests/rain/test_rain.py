@@ -164,9 +164,10 @@ def test_cli_render_rain_over_every_registered_background(tmp_path, clouds_backg
 
 
 def test_background_options_name_the_keys_the_background_has_not():
-    assert RainSettings(background="terrain").background_values() == {}
+    plain = {"tonemap": "none", "exposure_ev": 0.0}  # a background's 8-bit image: the plain clamp
+    assert RainSettings(background="terrain").background_values() == plain
     clouds = RainSettings(background_options={"coverage": 0.3})
-    assert clouds.background_values() == {"coverage": 0.3, "precipitation": 0.7, "camera_altitude_km": 0.05}
+    assert clouds.background_values() == {"coverage": 0.3, "precipitation": 0.7, "camera_altitude_km": 0.05, **plain}
     with pytest.raises(ValueError, match=r"background_options has no field\(s\) \['coverage'\] in scene 'terrain'"):
         RainSettings(background="terrain", background_options={"coverage": 0.3})
     with pytest.raises(ValueError, match=r"\['coverage'\] in scene 'terrain'"):  # given for the clouds: not dropped
