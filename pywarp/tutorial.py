@@ -13,7 +13,9 @@ texts (the scenes' cameras are ``pywarp.kernels.camera``), so they live here, on
   a road, haze), the backdrop the rain tutorials refract through their drops;
 * :func:`one_type_textures`: the cloudscape's textures with one cloud type over the whole weather map, the stand-in
   scene of the cloud-genus figures (this one renders with Warp);
-* :func:`run_as_script`: the command line every tutorial has (``--out``, ``--quick``) when it runs as a script.
+* :func:`run_as_script`: the command line every tutorial has (``--out``, ``--quick``) when it runs as a script;
+* :func:`text_problems` and :func:`checking_legibility`: the text of a figure (titles, axis labels, tick labels, the
+  suptitle, figure texts) inside the figure and not overlapping, checked where the tutorials save their figures.
 
 Example::
 
@@ -23,10 +25,13 @@ Example::
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
+from pathlib import Path
+
 import numpy as np
 
 __all__ = ["pinhole_directions", "fisheye_directions", "row_of_elevation", "billboard_frame", "environment",
-           "one_type_textures", "run_as_script"]
+           "one_type_textures", "run_as_script", "text_problems", "checking_legibility"]
 
 
 def pinhole_directions(width: int, height: int, fov_y_deg: float, azimuth_deg: float = 0.0,
@@ -141,3 +146,99 @@ def run_as_script(main, doc: str, out: str, argv=None) -> list:
     written = list(main(args.out, quick=args.quick))
     print(*written, sep="\n")
     return written
+
+
+#: Pixels two text boxes may share, or a box may stick out of the figure, before it counts: a glyph's box holds the
+#: font's full ascent and descent, a pixel or two more than the ink of digits, so touching boxes are not yet clipped
+#: or overlapping text.
+TEXT_SLACK_PX = 2.0
+
+
+def _texts(fig):
+    """(description, Text, its axes or None) of every drawn, non-empty title, axis label, tick label and figure text
+    of ``fig`` (the suptitle is a figure text); the ticks are those the axis draws (inside its view limits)."""
+    out = [(f"figure text {t.get_text()!r}", t, None) for t in fig.texts]
+    for i, ax in enumerate(fig.axes):
+        if not ax.get_visible():
+            continue
+        out += [(f"axes {i} title {t.get_text()!r}", t, ax) for t in (ax.title, ax._left_title, ax._right_title)]
+        if not ax.axison:
+            continue
+        for axis, which in ((ax.xaxis, "x"), (ax.yaxis, "y")):
+            if not axis.get_visible():
+                continue
+            out.append((f"axes {i} {which} label {axis.label.get_text()!r}", axis.label, ax))
+            for tick in axis._update_ticks():
+                out += [(f"axes {i} {which} tick {lab.get_text()!r}", lab, ax) for lab in (tick.label1, tick.label2)]
+    return [(d, t, ax) for d, t, ax in out if t.get_visible() and t.get_text().strip()]
+
+
+def _overlapping(a, b, e):
+    """Pairs (i, j) of boxes a[i], b[j] (x0, y0, x1, y1) that overlap by more than ``e`` both ways."""
+    ox = np.minimum(a[:, None, 2], b[None, :, 2]) - np.maximum(a[:, None, 0], b[None, :, 0])
+    oy = np.minimum(a[:, None, 3], b[None, :, 3]) - np.maximum(a[:, None, 1], b[None, :, 1])
+    return (ox > e) & (oy > e)
+
+
+def text_problems(fig, inside: bool = True) -> list[str]:
+    """What makes the text of ``fig`` hard to read, from the extents the renderer gives: each text box
+    (:func:`_texts`) that sticks out of the figure (when ``inside``; off for a figure saved with
+    ``bbox_inches="tight"``, whose saved area grows to take it in), each pair of text boxes that overlap, and each text
+    box that overlaps the plot area of another axes (a title over the image above it) -- by more than
+    :data:`TEXT_SLACK_PX` either way."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    boxes, names, owners = [], [], []
+    for name, t, ax in _texts(fig):
+        b = t.get_window_extent(renderer)
+        if b.width > 0 and b.height > 0:
+            boxes.append((b.x0, b.y0, b.x1, b.y1))
+            names.append(name)
+            owners.append(ax)
+    problems = []
+    if not boxes:
+        return problems
+    a = np.array(boxes)
+    w, h = fig.bbox.width, fig.bbox.height
+    e = TEXT_SLACK_PX
+    if inside:
+        for (x0, y0, x1, y1), n in zip(a, names):
+            if x0 < -e or y0 < -e or x1 > w + e or y1 > h + e:
+                problems.append(f"{n} sticks out of the figure ({x0:.0f}, {y0:.0f}, {x1:.0f}, {y1:.0f} in a "
+                                f"{w:.0f} x {h:.0f} figure)")
+    for i, j in zip(*np.nonzero(np.triu(_overlapping(a, a, e), 1))):
+        problems.append(f"{names[i]} overlaps {names[j]}")
+    axes = [(k, ax) for k, ax in enumerate(fig.axes) if ax.get_visible()]
+    if axes:
+        areas = np.array([tuple(ax.bbox.extents) for _, ax in axes])
+        for i, j in zip(*np.nonzero(_overlapping(a, areas, e))):
+            if owners[i] is not axes[j][1]:
+                problems.append(f"{names[i]} overlaps the plot area of axes {axes[j][0]}")
+    return problems
+
+
+@contextmanager
+def checking_legibility():
+    """Within the block, every ``Figure.savefig`` first records the :func:`text_problems` of the figure it saves:
+    yields a list of (file name, problem). Where the tutorials save their figures (they call ``fig.savefig``), so the
+    tutorial tests check every figure of every text::
+
+        with checking_legibility() as problems:
+            module.main(out_dir, quick=True)
+        assert not problems
+    """
+    from matplotlib.figure import Figure
+
+    found: list[tuple[str, str]] = []
+    save = Figure.savefig
+
+    def checked(self, fname, *args, **kwargs):
+        inside = kwargs.get("bbox_inches") != "tight"
+        found.extend((Path(str(fname)).name, p) for p in text_problems(self, inside=inside))
+        return save(self, fname, *args, **kwargs)
+
+    Figure.savefig = checked
+    try:
+        yield found
+    finally:
+        Figure.savefig = save

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.cbridge import CStruct
+from ..core.display import exposure_param, tonemap_param
 from ..core.params import Settings, inherit, param
 
 # cclouds/texgen.h limits (pinned to the C macros and pywarp.kernels.texgen by the tests)
@@ -355,10 +356,14 @@ class CloudscapeSettings(Settings):
                            "the atmosphere's transmittance (cclouds/cloudscape.h); needs sky=preetham, lighting=sky",
                        reason="'display': the thesis's sky and the tuned exposure of its lighting")
     sky_exposure: float = param(0.05, lo=0.0, hi=10.0, lo_open=True, invalidates="sky", group="sky",
-                                doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5)",
-                                reason="0.05: with the thesis' 0.03 and luminance in kcd/m^2 the corrected sky is a "
-                                       "dim grey-blue; 0.05 gives a mid-blue zenith at T = 2.5 without saturating "
-                                       "the sky around the sun (figures/vc/fig-4.6.png uses the thesis' 0.03)")
+                                unit="1/(kcd/m^2)",
+                                doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5); C_HDR has "
+                                    "the unit of Preetham's luminance fit, kcd/m^2 (the thesis gives none)",
+                                reason="0.05: with the thesis' 0.03 the corrected sky is a dim slate grey-blue; 0.05, "
+                                       "then the display transform (exposure_ev, tonemap), gives a T = 3 sky at a "
+                                       "30-60 deg sun a blue zenith and a pale horizon (sRGB (109, 141, 179) and "
+                                       "(160, 155, 161) at 35 deg) without saturating the sky around the sun "
+                                       "(figures/vc/fig-4.6.png shows both)")
     coverage: float = inherit(WeatherMapSettings, "coverage")
     precipitation: float = inherit(WeatherMapSettings, "precipitation")
     cloud_type: float = inherit(WeatherMapSettings, "cloud_type")
@@ -520,6 +525,12 @@ class CloudscapeSettings(Settings):
                                    "noise and the stair steps of a still (the noise falls as 1/sqrt(N)); at most 1024: "
                                    "the noise is then 1/32 of one frame's, below a grey level, and a 960x540 still "
                                    "already takes about 20 min on a 2-core CPU")
+    exposure_ev: float = exposure_param(
+        -0.5, reason="-0.5 EV: the ACES curve lifts mid-tones (T(0.34) = 0.48), and -0.5 EV brings the default "
+                     "view's mean back to within 5 % of the clamped image's while its brightest cloud tops (1.54) map "
+                     "to 0.82, not to white (480x270, 5.3 % of the clamped image's pixels have a channel at 255, none "
+                     "with the transform)")
+    tonemap: str = tonemap_param()
     base_size: int = inherit(BaseShapeSettings, "size", group="textures")
     detail_size: int = inherit(DetailShapeSettings, "size", group="textures")
     curl_size: int = inherit(CurlNoiseSettings, "size", group="textures")

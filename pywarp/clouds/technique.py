@@ -28,6 +28,7 @@ from dataclasses import replace
 import numpy as np
 import warp as wp
 
+from ..core import display
 from ..core.pose import Pose
 from ..core.runtime import init
 from ..core.technique import Technique
@@ -94,6 +95,7 @@ class CloudscapeTechnique(Technique):
             "prev_depth": wp.zeros((height, width), dtype=float, device=dev),
             "out_depth": wp.zeros((height, width), dtype=float, device=dev),
             "encoded": wp.zeros((height, width, 3), dtype=wp.uint8, device=dev),
+            "display": wp.zeros((height, width, 3), dtype=float, device=dev),
             "non_finite": wp.zeros(1, dtype=wp.int32, device=dev),
         }
         self._prev_camera = None
@@ -153,13 +155,18 @@ class CloudscapeTechnique(Technique):
         return self._encode(final)
 
     def _encode(self, linear: wp.array) -> np.ndarray:
-        """uint8 sRGB of a display-linear frame on the device (encode_kernel: clamp, encode, quantise); a frame with
+        """uint8 sRGB of a display-linear frame on the device: the display transform of the ``exposure_ev`` and
+        ``tonemap`` settings (:func:`pywarp.core.display.apply`; skipped for ``none`` at 0 EV, which it would leave
+        unchanged), then encode_kernel (clamp, encode, quantise); a frame with
         a non-finite pixel raises instead (the encoding's clamp would make a NaN a black pixel: never a NaN image,
         not even a black one)."""
         b = self._buffers
         b["non_finite"].zero_()
-        self.launcher.launch(K.encode_kernel, self.settings.height, self.settings.width, [linear],
-                             [b["encoded"], b["non_finite"]])
+        s = self.settings
+        if (s.tonemap, s.exposure_ev) != ("none", 0.0):  # the display transform (pywarp.core.display), on the host
+            b["display"].assign(display.apply(linear.numpy(), s.exposure_ev, s.tonemap))
+            linear = b["display"]
+        self.launcher.launch(K.encode_kernel, s.height, s.width, [linear], [b["encoded"], b["non_finite"]])
         if int(b["non_finite"].numpy()[0]) != 0:
             _finite(linear.numpy())  # raises, naming the first such pixel
         return b["encoded"].numpy().copy()

@@ -25,16 +25,21 @@ PANORAMA = "panorama"
 #: The rain scene's own settings for a background scene, under ``background_options`` (which overrides them key by
 #: key); a scene not named here has its own defaults.
 #: terrain (the default background): the pt landscape under an overcast rain sky -- a dark grey sky under a lighter
-#: grey cloud deck (its clouds smaller: a broken, low ceiling whose texture shows), no sun glow, light mostly ambient (diffuse 0.45, ambient 0.55: no hard
-#: shadows under cloud), and haze: fog 0.006 (half the light gone at ln 2 / 0.006 = 115 units, the far hills grey).
+#: grey cloud deck (its clouds smaller: a broken, low ceiling whose texture shows), no sun glow, light mostly ambient
+#: (diffuse 0.45, ambient 0.55: no hard shadows under cloud), and haze: fog 0.006 (half the light gone at ln 2 / 0.006
+#: = 115 units, the far hills grey).
 #: clouds: an overcast, dark rain sky seen from 50 m; the ground three times the cloudscape's albedo (its default is
 #: exposed for the sun above the clouds; under them the ground was near black) and in patches (ground_variation 0.8:
 #: albedo 0.2 - 1.8 times its mean, fields and woods; a uniform ground seen from 50 m is a featureless plane).
+#: A background's 8-bit image is the plain clamp of its colours (display transform ``none`` at 0 EV,
+#: pywarp.core.display): the drops refract and the streaks composite display-encoded colours, and a display transform
+#: belongs once at the end.
+_PLAIN = {"tonemap": "none", "exposure_ev": 0.0}
 BACKGROUND_OPTIONS = {
     "terrain": {"sky_colour": (0.42, 0.45, 0.49), "sun_colour": (0.0, 0.0, 0.0), "cloud_colour": (0.72, 0.74, 0.76),
-                "cloud_scale": 60.0, "light_diffuse": 0.45, "light_ambient": 0.55, "fog_density": 0.006},
+                "cloud_scale": 60.0, "light_diffuse": 0.45, "light_ambient": 0.55, "fog_density": 0.006, **_PLAIN},
     "clouds": {"coverage": 0.75, "precipitation": 0.7, "camera_altitude_km": 0.05,
-               "ground_albedo": (0.12, 0.14, 0.08), "ground_variation": 0.8},
+               "ground_albedo": (0.12, 0.14, 0.08), "ground_variation": 0.8, **_PLAIN},
 }
 
 

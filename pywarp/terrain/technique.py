@@ -17,6 +17,7 @@ from dataclasses import replace
 import numpy as np
 import warp as wp
 
+from ..core import display
 from ..core.pose import Pose
 from ..core.registry import equation
 from ..core.runtime import init
@@ -66,8 +67,9 @@ class TerrainTechnique(Technique):
                          "steps": wp.zeros((e.height, e.width), dtype=wp.int32, device=self.device)}
 
     def render(self, pose: Pose | None = None, progress=None, encode: bool = True) -> np.ndarray:
-        """One frame: uint8 (height, width, 3), or the float colours in [0, 1] when ``encode=False``. ``progress``
-        is called with fractions of the frame (summing to 1) as row bands finish."""
+        """One frame: uint8 (height, width, 3) through the display transform of the ``exposure_ev`` and ``tonemap``
+        settings (:func:`pywarp.core.display.encode_encoded`: the colours are display-encoded), or the float colours
+        in [0, 1] when ``encode=False``. ``progress`` is called with fractions of the frame (summing to 1) as row bands finish."""
         full = self.settings
         s = effective(full)
         pose = pose or Pose.from_settings(full)
@@ -86,7 +88,7 @@ class TerrainTechnique(Technique):
             img = np.repeat(np.repeat(img, k, axis=0), k, axis=1)[:full.height, :full.width]
         if not encode:
             return img.copy()
-        return (img * 255.0 + 0.5).astype(np.uint8)
+        return display.encode_encoded(img, full.exposure_ev, full.tonemap)
 
     def steps_taken(self) -> np.ndarray:
         """View-march height evaluations per pixel of the last frame (summed over the sub-samples)."""

@@ -37,9 +37,9 @@ def _srgb_encode(x):
 @pytest.fixture(scope="module")
 def clouds_outputs(tmp_path_factory):
     d = tmp_path_factory.mktemp("linear")
-    for name in ("a.png", "a.npy", "a.exr", "f.exr"):
-        extra = ["--exr-precision", "float"] if name == "f.exr" else []
-        assert _run("render", *SIZE, "--out", str(d / name), "--no-progress", *extra) == 0
+    for name in ("a.png", "a.npy", "a.exr", "f.exr", "d.png"):
+        extra = {"f.exr": ["--exr-precision", "float"], "a.png": ["--tonemap", "none", "--exposure", "0"]}
+        assert _run("render", *SIZE, "--out", str(d / name), "--no-progress", *extra.get(name, [])) == 0
     return d
 
 
@@ -55,6 +55,21 @@ def test_npy_is_float32_display_linear_rgb_and_the_png_is_its_srgb_encoding(clou
     # linear, not encoded: the encoding brightens every mid-tone
     mid = (lin > 0.05) & (lin < 0.8)
     assert mid.any() and np.all(png[mid] / 255.0 > lin[mid])
+
+
+def test_the_default_png_is_the_display_transform_of_the_npy(clouds_outputs):
+    """The default PNG: 2^-0.5 (the clouds' exposure_ev), Narkowicz's ACES fit, the sRGB encoding -- the .npy stays
+    unclipped (the default view holds values above 1)."""
+    from PIL import Image
+
+    lin = np.load(clouds_outputs / "a.npy").astype(np.float64)
+    assert lin.max() > 1.0
+    x = lin * 2.0 ** -0.5
+    aces = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
+    want = np.floor(_srgb_encode(aces) * 255.0 + 0.5).astype(int)
+    png = np.asarray(Image.open(clouds_outputs / "d.png").convert("RGB")).astype(int)
+    assert np.abs(png - want).max() <= 1
+    assert not (png == 255).any()
 
 
 def test_exr_float_holds_the_npy_exactly_and_half_within_half_precision(clouds_outputs):

@@ -166,12 +166,14 @@ def test_cli_render_rain_over_every_registered_background(tmp_path, clouds_backg
 
 
 def test_background_options_name_the_keys_the_background_has_not():
+    plain = {"tonemap": "none", "exposure_ev": 0.0}  # a background's 8-bit image: the plain clamp
     assert RainSettings().background == "terrain"  # the default: ground under an overcast sky
     assert RainSettings().background_values()["sun_colour"] == (0.0, 0.0, 0.0)
+    assert RainSettings().background_values()["tonemap"] == "none"
     assert RainSettings(background="flight").background_values() == {}  # a scene not named: its own defaults
     clouds = RainSettings(background="clouds", background_options={"coverage": 0.3})
     assert clouds.background_values() == {"coverage": 0.3, "precipitation": 0.7, "camera_altitude_km": 0.05,
-                                          "ground_albedo": (0.12, 0.14, 0.08), "ground_variation": 0.8}
+                                          "ground_albedo": (0.12, 0.14, 0.08), "ground_variation": 0.8, **plain}
     with pytest.raises(ValueError, match=r"background_options has no field\(s\) \['coverage'\] in scene 'terrain'"):
         RainSettings(background="terrain", background_options={"coverage": 0.3})
     with pytest.raises(ValueError, match=r"\['coverage'\] in scene 'terrain'"):  # given for the clouds: not dropped

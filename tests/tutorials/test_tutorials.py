@@ -1,5 +1,6 @@
-"""Tutorials: each runs headless in quick mode and writes the figures its docstring promises; at full size the
-deterministic ones reproduce the committed PNGs (SSIM >= 0.99, slow); `pywarp figures` selects and runs them."""
+"""Tutorials: each runs headless in quick mode and writes the figures its docstring promises, with legible text (no
+title, label or tick label outside the figure or over another text or another plot); at full size the deterministic
+ones reproduce the committed PNGs (SSIM >= 0.99, slow); `pywarp figures` selects and runs them."""
 from __future__ import annotations
 
 import ast
@@ -11,9 +12,24 @@ import numpy as np
 import pytest
 
 from pywarp.core import figures
+from pywarp.tutorial import checking_legibility, text_problems
 
 ROOT = Path(__file__).resolve().parents[2]
 TUTORIALS = sorted(p for p in (ROOT / "tutorials").glob("*/*.py") if not p.name.startswith("_"))
+#: Figures whose text the legibility check finds clipped or overlapping in quick mode today (issue 29), each to be
+#: taken off this list when its tutorial is fixed: a long suptitle or label on a figure sized from a small quick-mode
+#: render, or a title over the image above it.
+KNOWN_ILLEGIBLE = {
+    "oc/fig-2.6.png", "oc/fig-2.7.png", "oc/fig-2.8.png", "oc/fig-2.9.png",  # suptitle wider than the quick figure
+    "oc/fig-4.1.png", "oc/fig-4.2.png", "oc/fig-4.3.png",  # suptitle wider than the quick figure
+    "oc/fig-5.2.png", "oc/fig-5.6.png",  # second-row titles over the first row's images
+    "oc/fig-6.1.png",  # suptitle and the pitch/roll x labels wider than the figure, the labels overlap
+    "rr/fig-3.1.png",  # suptitle over panel (b)'s two-line title
+    "rr/fig-3.7.png",  # x labels below the figure's lower edge
+    "rr/fig-6.4.png", "rr/fig-6.5.png", "rr/fig-6.6.png", "rr/fig-6.7.png", "rr/fig-6.8.png",
+    "rr/fig-6.9.png",  # suptitle wider than the quick figure
+    "rr/fig-6.11.png",  # second-row titles over the first row's images
+}
 
 
 def _read_png(path):
@@ -33,14 +49,43 @@ def test_tutorial_runs_in_quick_mode(path, tmp_path):
     doc = ast.get_docstring(tree)
     assert doc and figures.figure_ids(path), f"{path.name}: the title docstring must name the figure it reproduces"
     assert "plt.show" not in path.read_text(encoding="utf-8")
-    written = figures.load(path).main(tmp_path, quick=True)
+    with checking_legibility() as problems:
+        written = figures.load(path).main(tmp_path, quick=True)
     assert written, f"{path.name} wrote nothing"
+    seed = path.parent.name
+    flagged = {f"{seed}/{name}" for name, _ in problems}
+    assert not flagged - KNOWN_ILLEGIBLE, [p for p in problems if f"{seed}/{p[0]}" not in KNOWN_ILLEGIBLE]
     for f in written:
         f = Path(f)
         assert f.is_file() and f.parent == tmp_path and f.suffix == ".png"
         img = _read_png(f)
         assert img.ndim == 3 and img.shape[0] > 50 and img.shape[1] > 50
         assert np.all(np.isfinite(img)) and img.std() > 0.01  # not blank
+
+
+def test_legibility_check_finds_clipped_and_overlapping_text():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, 1, figsize=(4, 3), dpi=100)
+    for ax in axes:
+        ax.imshow(np.zeros((4, 4)))
+        ax.set_axis_off()
+    axes[0].set_title("fits")
+    assert text_problems(fig) == []
+    axes[1].set_title("a title\nof three\nlines")  # climbs over the image above it
+    fig.suptitle("a suptitle far wider than a figure four inches wide can hold")
+    found = text_problems(fig)
+    assert any("sticks out of the figure" in p and "suptitle" in p for p in found), found
+    assert any("axes 1 title" in p and "plot area of axes 0" in p for p in found), found
+    plt.close(fig)
+
+
+def test_known_illegible_figures_are_committed_figures():
+    committed = {f"{p.parent.name}/{p.name}" for p in (ROOT / "figures").glob("*/*.png")}
+    assert KNOWN_ILLEGIBLE <= committed
 
 
 @pytest.mark.slow

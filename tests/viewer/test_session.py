@@ -191,3 +191,21 @@ def test_benchmark_dump_holds_what_pywarp_render_reproduces(tmp_path, small_sett
     assert np.array_equal(full, again)
     shown = np.asarray(Image.open(str(infos[-1]).replace(".json", "-shown.png")))
     assert shown.shape == full.shape
+
+
+def test_the_viewer_shows_the_display_transform_of_the_panel(clouds, small_settings):
+    """The viewer's frames are the technique's 8-bit frames: a change of exposure or tone curve in the panel shows the
+    same display transform as the offline render, and rebuilds nothing (no new textures)."""
+    session = Session(clouds, small_settings(clouds))
+    try:
+        first = wait_frame(session, full=True)
+        textures = session.worker.tech.textures
+        assert session.apply({"exposure_ev": 1.0, "tonemap": "exponential"})
+        session.clock += 1.0
+        session.tick(V.Input())
+        f = wait_frame(session, full=True, version=session.version)
+        assert session.worker.tech.textures is textures
+        assert f.image.mean() > first.image.mean()  # 1.5 EV more than the default -0.5: brighter
+        assert np.array_equal(f.image, clouds.technique(session.settings).render())
+    finally:
+        session.close()

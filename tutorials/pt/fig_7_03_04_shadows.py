@@ -6,7 +6,9 @@ terrain). The text's scene parameters are not given: the terrain scene's default
 (elevation 25 deg, azimuth 100 deg) so that the hills cast shadows across the view, stage 'atmosphere' (no water,
 so that the lakes do not hide shadows). With k = 4, open flat ground is fully lit only for k sin(elevation) > 1 (the
 shadow ray's clearance grows as t sin e), i.e. a sun above 14.5 deg: at 25 deg the penumbrae come from the hills
-alone. Outputs: figures/pt/fig-7.3.png, figures/pt/fig-7.4.png.
+alone. Soft and hard shadows differ by a few grey levels on average, invisible at page size: fig-7.4 adds the
+difference image |soft - hard| (x4) and, enlarged, the window where they differ most, hard beside soft.
+Outputs: figures/pt/fig-7.3.png, figures/pt/fig-7.4.png.
 """
 # %% [markdown]
 # A shadow ray starts at the shaded point and marches towards the sun with the same vertical-gap steps as the view
@@ -24,6 +26,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
 from pywarp.terrain.settings import TerrainSettings  # noqa: E402
 from pywarp.terrain.technique import TerrainTechnique  # noqa: E402
@@ -49,8 +52,48 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     soft = TerrainTechnique(replace(s, shadows="soft")).render()
     p3, p4 = out_dir / "fig-7.3.png", out_dir / "fig-7.4.png"
     _save(hard, p3, "hard shadows (Kod 7.6, t0 = 0.2)")
-    _save(soft, p4, "soft shadows (Kod 7.7, t0 = 0.02, k = 4)")
+    _save_compared(soft, hard, p4)
     return [p3, p4]
+
+
+def _penumbra_window(diff, wh):
+    """(row, column) of the top-left corner of the wh = (height, width) window with the largest summed ``diff``."""
+    c = np.pad(diff.cumsum(0).cumsum(1), ((1, 0), (1, 0)))
+    h, w = wh
+    sums = c[h:, w:] - c[:-h, w:] - c[h:, :-w] + c[:-h, :-w]
+    return np.unravel_index(np.argmax(sums), sums.shape)
+
+
+def _save_compared(soft, hard, path):
+    """fig-7.4: the soft render, the difference |soft - hard| x 4 and the window where it is largest, enlarged."""
+    diff = np.abs(soft.astype(int) - hard.astype(int)).max(axis=-1)
+    h, w = soft.shape[:2]
+    wh = (max(h // 5, 8), max(w // 5, 8))
+    r, c = _penumbra_window(diff.astype(float), wh)
+    fig = plt.figure(figsize=(12.0, 7.6))
+    gs = fig.add_gridspec(2, 3, height_ratios=[1.0, 0.62], hspace=0.18, wspace=0.06, left=0.01, right=0.99,
+                          top=0.93, bottom=0.01)
+    ax = fig.add_subplot(gs[0, :2])
+    ax.imshow(soft)
+    ax.add_patch(plt.Rectangle((c - 0.5, r - 0.5), wh[1], wh[0], fill=False, ec="w", lw=1.5))
+    ax.set_axis_off()
+    ax.set_title("soft shadows (Kod 7.7, t0 = 0.02, k = 4); box: the window enlarged below")
+    ax = fig.add_subplot(gs[0, 2])
+    ax.imshow(np.minimum(diff * 4, 255), cmap="magma", vmin=0, vmax=255)
+    ax.set_axis_off()
+    ax.set_title(f"|soft − hard| × 4 (mean {diff.mean():.1f}, max {diff.max()} levels)", fontsize=10)
+    for k, (img, name) in enumerate(((hard, "hard (7.3)"), (soft, "soft (7.4)"))):
+        ax = fig.add_subplot(gs[1, k])
+        ax.imshow(img[r:r + wh[0], c:c + wh[1]], interpolation="nearest")
+        ax.set_axis_off()
+        ax.set_title(f"{name}, enlarged: the penumbra", fontsize=10)
+    ax = fig.add_subplot(gs[1, 2])
+    ax.imshow(np.minimum(diff[r:r + wh[0], c:c + wh[1]] * 4, 255), cmap="magma", vmin=0, vmax=255,
+              interpolation="nearest")
+    ax.set_axis_off()
+    ax.set_title("|soft − hard| × 4, enlarged", fontsize=10)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
 
 
 if __name__ == "__main__":

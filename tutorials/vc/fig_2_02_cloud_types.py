@@ -12,7 +12,11 @@ Rows: (1) the renderer's defaults, whose height gradients clamp each remap of vc
 printed in the thesis (unclamped, advanced={'gradient_clamp': 0}); (3) the same as (2) seen from 5 km, 12° down.
 Other parameters (the thesis gives none): coverage 0.5, precipitation 0.2, seed 0, sun 25° up at azimuth 110°, camera
 0.3 km up looking 22° up with a 50° vertical field of view (rows 1-2); 400x225 per panel. The right-hand plot shows
-the three height gradients (pywarp.clouds_height_gradient) in both readings. Output: figures/vc/fig-2.2.png.
+the three height gradients (pywarp.clouds_height_gradient) in both readings. Every panel averages 8 jittered frames
+(render_accumulated: no ray-jitter speckle) and is shown through the scene's display transform (-0.5 EV, ACES). The
+vertical walls in the as-printed cumulus panels are that reading's: with D_v up to 2.18 the density is large
+everywhere inside the coverage, and the layer ends at the coverage step of 2.29 in a wall. Output:
+figures/vc/fig-2.2.png.
 """
 # %% [markdown]
 # Low clouds come in three families that the renderer distinguishes only by their vertical profile: **stratus**, a
@@ -57,6 +61,9 @@ ABOVE = Pose(x=0.0, y=5.0, z=0.0, yaw_deg=0.0, pitch_deg=-12.0, fov_y_deg=50.0)
 # the weather map's type spread set to 0. The base, detail and curl textures do not depend on the type (they come from
 # the cache after the first column).
 
+ACCUMULATE = 8  # jittered frames per panel (full size): the ray-jitter noise falls to a third of one frame's
+
+
 # %%
 def main(out_dir, quick: bool = False) -> list[Path]:
     out_dir = Path(out_dir)
@@ -71,7 +78,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         for cloud_type, _ in TYPES:
             s = CloudscapeSettings(**(QUICK if quick else FULL), **SCENE, cloud_type=cloud_type, advanced=advanced)
             tech = CloudscapeTechnique(s, textures=one_type_textures(s, gen))
-            row.append(tech.render(pose))
+            row.append(tech.render_accumulated(pose, 2 if quick else ACCUMULATE))
         images.append(row)
 
     # %% [markdown]

@@ -3,9 +3,12 @@
 Reproduces the kind of image of thesis figure 4.6 with the Preetham sky pipeline (vc-A29): Perez coefficients
 (vc-2.42, vc-2.43, vc-2.44) -> zenith values (vc-2.39, vc-2.40, vc-2.41) -> zenith normalisation (vc-4.2) -> Perez
 function per pixel (vc-2.36, = vc-2.38) -> xyY -> XYZ (vc-4.3) -> linear RGB (vc-4.4) -> tone map (vc-4.5). The thesis
-states no turbidity, sun position, camera or resolution: here T = 3, the sun 12° above the horizon straight ahead, a
-60° vertical-field-of-view camera and an all-sky fisheye; the tone map uses the thesis' constant 0.03 throughout and
-the result is sRGB-encoded for display (a step the thesis does not mention).
+states no turbidity, sun position, camera or resolution: here T = 3, the sun 35° above the horizon straight ahead (the
+cloud scene's default), a 60° vertical-field-of-view camera and an all-sky fisheye. The thesis's C_HDR carries no unit;
+its Y is Preetham's zenith luminance fit, in kcd/m² (a clear zenith: 5-15), so the tone map 1 − exp(−k·C_HDR) has k in
+1/(kcd/m²). The first output shows the sky as the cloud scene displays it -- k = 0.05 (the scene's sky_exposure), then
+the display transform (pywarp.core.display: −0.5 EV, Narkowicz's ACES fit), sRGB-encoded -- beside the thesis's
+printed mapping, k = 0.03 and a clamp; the errata figure keeps the thesis's k = 0.03.
 
 Three misprints of the thesis change the image; the second output shows each one alone (built from the lower-level
 public functions pywarp.colour_xyY_to_XYZ, pywarp.colour_XYZ_to_linear_srgb and pywarp.colour_tonemap_exp) and all three together
@@ -37,14 +40,18 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
+from pywarp.clouds.settings import CloudscapeSettings  # noqa: E402
+from pywarp.core import display  # noqa: E402
 from pywarp.tutorial import fisheye_directions, pinhole_directions, row_of_elevation  # noqa: E402
 
 TURBIDITY = 3.0
-SUN_ELEVATION_DEG = 12.0
+SUN_ELEVATION_DEG = 35.0  # the cloud scene's default sun (CloudscapeSettings.sun_elevation_deg)
 SUN_AZIMUTH_DEG = 0.0
-EXPOSURE = 0.03  # the constant of the thesis' tone map 4.5
+EXPOSURE = 0.03  # the constant of the thesis' tone map 4.5, per kcd/m²
+DEFAULTS = CloudscapeSettings()  # the cloud scene's sky exposure and display transform
 FOV_Y_DEG = 60.0
 PITCH_DEG = 25.0  # the camera looks 25° up: the horizon sits 5° above the lower edge of the 60° view
+CAMERA_AZIMUTH_DEG = 40.0  # the main view turned 40° right of the sun: its glow at the left edge, the blue sky in view
 
 
 # %% [markdown]
@@ -65,10 +72,18 @@ def srgb_encode(c: np.ndarray) -> np.ndarray:
 
 
 def preetham_image(d, turbidity, elevation_deg, variant="corrected") -> np.ndarray:
-    """The whole pipeline in one call, sRGB-encoded for display: (..., 3) in [0, 1]."""
+    """The whole pipeline in one call with the thesis's exposure, sRGB-encoded for display: (..., 3) in [0, 1]."""
     rgb = pywarp.sky_preetham_colour(d, turbidity, elevation_deg, SUN_AZIMUTH_DEG, EXPOSURE, variant=variant,
                                      output="srgb")
     return np.clip(rgb, 0.0, 1.0)
+
+
+def displayed_image(d, turbidity, elevation_deg) -> np.ndarray:
+    """The sky as the cloud scene shows it: the tone map 4.5 with the scene's exposure k, then the display transform
+    (exposure in EV, tone curve) and the sRGB encoding: (..., 3) in [0, 1]."""
+    rgb = pywarp.sky_preetham_colour(d, turbidity, elevation_deg, SUN_AZIMUTH_DEG, DEFAULTS.sky_exposure,
+                                     output="tonemapped")
+    return srgb_encode(display.apply(rgb, DEFAULTS.exposure_ev, DEFAULTS.tonemap))
 
 
 # %% [markdown]
@@ -120,21 +135,32 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # %% [markdown]
     # 1. The reproduction of fig 4.6: the corrected pipeline (Preetham's published constants, Lindbloom's matrix, the
     # tone map with the sign that makes sense). Note the bright, whitish band along the horizon and the glow around the
-    # sun (the Perez terms A, B and C, D), and the deeper blue overhead and away from the sun. The right panel plots the
-    # luminance Y along the vertical through the sun and the opposite one: the circumsolar peak spans more than a
-    # decade, which is why a tone map is needed at all.
+    # sun (the Perez terms A, B and C, D), and the deeper blue overhead and away from the sun. The right-hand plot
+    # gives the luminance Y along the vertical through the sun and the opposite one: the circumsolar peak spans more
+    # than a decade, which is why a tone map is needed at all.
     #
-    # The brightness of the displayed image depends entirely on the tone-map exposure k of C = 1 − exp(−k·C_HDR).
-    # We keep the thesis' k = 0.03 with Y in kcd/m² (Preetham's unit), which gives a rather dim, grey-blue sky at this
-    # low sun; pywarp.sky_preetham_colour(..., exposure=k) takes any k > 0. The thesis' own picture cannot have been made with
-    # the tone map as printed (see (d) below), so its exposure is unknown.
+    # The brightness of the displayed image depends entirely on the exposure. Top row: the sky as the cloud scene
+    # displays it (k = 0.05 per kcd/m², then −0.5 EV and the ACES curve of pywarp.core.display): a blue zenith and a
+    # pale horizon. Bottom row: the thesis's printed mapping, k = 0.03 and a clamp, which leaves the zenith at about a
+    # sixth of white in linear light -- a dim, slate-grey sky. The thesis' own picture cannot have been made with the
+    # tone map as printed (see (d) below), so its exposure is unknown. The swatches give the zenith and the horizon
+    # away from the sun as 8-bit sRGB. The camera looks 40° to the right of the sun, whose glow fills the left edge.
 
     # %%
-    view = pinhole_directions(w, h, FOV_Y_DEG, 0.0, PITCH_DEG)
-    img = preetham_image(view, TURBIDITY, SUN_ELEVATION_DEG)
+    view = pinhole_directions(w, h, FOV_Y_DEG, CAMERA_AZIMUTH_DEG, PITCH_DEG)
     fish_d, inside = fisheye_directions(n_fish)
-    fish = preetham_image(fish_d, TURBIDITY, SUN_ELEVATION_DEG)
-    fish[~inside] = 1.0
+    shown = {"scene": (displayed_image(view, TURBIDITY, SUN_ELEVATION_DEG),
+                       displayed_image(fish_d, TURBIDITY, SUN_ELEVATION_DEG)),
+             "thesis": (preetham_image(view, TURBIDITY, SUN_ELEVATION_DEG),
+                        preetham_image(fish_d, TURBIDITY, SUN_ELEVATION_DEG))}
+    for _, fish in shown.values():
+        fish[~inside] = 1.0
+    titles = {"scene": f"camera 40° right of the sun; as the cloud scene displays it: k = {DEFAULTS.sky_exposure:g}/(kcd/m²), "
+                       f"{DEFAULTS.exposure_ev:+g} EV, {DEFAULTS.tonemap.upper()} curve",
+              "thesis": f"the thesis's mapping 4.5: k = {EXPOSURE:g}/(kcd/m²), clamped"}
+    probe = np.array([[0.0, 1.0, 0.0], [0.0, np.sin(np.radians(3.0)), np.cos(np.radians(3.0))]], np.float32)
+    swatch = {"scene": displayed_image(probe, TURBIDITY, SUN_ELEVATION_DEG),
+              "thesis": preetham_image(probe, TURBIDITY, SUN_ELEVATION_DEG)}
 
     elev = np.linspace(0.0, 90.0, 181 if quick else 901)
     e = np.radians(elev)
@@ -143,23 +169,24 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     Y_sun = pywarp.sky_preetham_colour(towards, TURBIDITY, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="xyY")[..., 2]
     Y_away = pywarp.sky_preetham_colour(away, TURBIDITY, SUN_ELEVATION_DEG, SUN_AZIMUTH_DEG, output="xyY")[..., 2]
 
-    fig = plt.figure(figsize=(16.0, 5.0), dpi=dpi)
-    gs = fig.add_gridspec(1, 3, width_ratios=[16 / 9, 1.0, 1.05], wspace=0.22, left=0.045, right=0.985, top=0.80,
-                          bottom=0.13)
-    ax = fig.add_subplot(gs[0])
-    ax.imshow(img, interpolation=interp)
-    _camera_axes(ax, h, f"camera view: vertical FOV {FOV_Y_DEG:.0f}°, looking {PITCH_DEG:.0f}° up towards the sun "
-                        f"(elevation {SUN_ELEVATION_DEG:.0f}°)", fontsize=10)
-    ax.set_yticks(row_of_elevation(np.arange(0, 60, 10), h, FOV_Y_DEG, PITCH_DEG),
-                  [f"{t}°" for t in range(0, 60, 10)], fontsize=9)
-    ax.set_ylabel("elevation (centre column)")
-    ax = fig.add_subplot(gs[1])
-    ax.imshow(fish, extent=(-1, 1, -1, 1), interpolation=interp)
-    _fisheye_axes(ax)
-    ax.set_xlim(-1.35, 1.1)
-    ax.set_ylim(-1.1, 1.2)
-    ax.set_title("all-sky fisheye (equidistant, looking up),\nrings: elevation 30°, 60°", fontsize=10)
-    ax = fig.add_subplot(gs[2])
+    fig = plt.figure(figsize=(16.0, 9.0), dpi=dpi)
+    gs = fig.add_gridspec(2, 3, width_ratios=[16 / 9, 1.0, 1.05], wspace=0.25, hspace=0.28, left=0.05,
+                          right=0.985, top=0.90, bottom=0.07)
+    for row, key in enumerate(("scene", "thesis")):
+        img, fish = shown[key]
+        ax = fig.add_subplot(gs[row, 0])
+        ax.imshow(img, interpolation=interp)
+        _camera_axes(ax, h, titles[key], fontsize=10)
+        ax.set_yticks(row_of_elevation(np.arange(0, 60, 10), h, FOV_Y_DEG, PITCH_DEG),
+                      [f"{t}°" for t in range(0, 60, 10)], fontsize=9)
+        ax.set_ylabel("elevation (centre column)")
+        ax = fig.add_subplot(gs[row, 1])
+        ax.imshow(fish, extent=(-1, 1, -1, 1), interpolation=interp)
+        _fisheye_axes(ax)
+        ax.set_xlim(-1.35, 1.1)
+        ax.set_ylim(-1.1, 1.2)
+        ax.set_title("all-sky fisheye (looking up),\nrings: elevation 30°, 60°", fontsize=10)
+    ax = fig.add_subplot(gs[0, 2])
     ax.semilogy(elev, Y_sun, color="k", label="towards the sun (az 0°)")
     ax.semilogy(elev, Y_away, color="k", ls="--", lw=1.0, label="away from the sun (az 180°)")
     ax.axvline(SUN_ELEVATION_DEG, color="orange", lw=0.8, ls=":")
@@ -170,9 +197,21 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8, frameon=False)
     ax.set_title("luminance Y = Y_z · F_Y(θ, γ) / F_Y(0, θ_s)", fontsize=10)
+    ax = fig.add_subplot(gs[1, 2])
+    for row, key in enumerate(("scene", "thesis")):
+        for col, (name, c) in enumerate(zip(("zenith", "horizon, away"), swatch[key])):
+            ax.add_patch(plt.Rectangle((col, 1 - row), 0.92, 0.8, color=c))
+            rgb8 = np.round(np.clip(c, 0.0, 1.0) * 255).astype(int)
+            ax.text(col + 0.46, 1 - row + 0.4, f"{name}\n{tuple(rgb8.tolist())}", ha="center", va="center",
+                    fontsize=8, color="k" if c.mean() > 0.45 else "w")
+        ax.text(-0.05, 1 - row + 0.4, "scene" if key == "scene" else "thesis", ha="right", va="center", fontsize=9)
+    ax.set_xlim(-0.45, 2.0)
+    ax.set_ylim(-0.1, 1.9)
+    ax.set_axis_off()
+    ax.set_title("8-bit sRGB of the zenith and the horizon", fontsize=10)
     fig.suptitle(f"Fig 4.6 — Preetham sky (vc-A29), corrected constants: T = {TURBIDITY:g}, sun elevation "
-                 f"{SUN_ELEVATION_DEG:g}°, tone map 1 − exp(−{EXPOSURE} C), sRGB-encoded "
-                 "(T, sun and camera are pywarp's choices; the thesis states none)", fontsize=11)
+                 f"{SUN_ELEVATION_DEG:g}°; Y in kcd/m², sRGB-encoded (T, sun and camera are pywarp's choices; the "
+                 "thesis states none)", fontsize=11)
     out = out_dir / "fig-4.6.png"
     fig.savefig(out)
     plt.close(fig)
@@ -235,8 +274,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # %% [markdown]
     # 3. Sun elevation and turbidity, the model's only two inputs (the thesis shows one sky and states neither).
     # Low sun: the sky darkens (the zenith luminance 2.39 falls with the sun) and the glow moves to the horizon. Higher
-    # turbidity (more haze): a brighter, whiter sky with a wider circumsolar glow. The exposure is the same 0.03 in
-    # every panel, so brightness differences are real. Preetham's fits hold for about 2 <= T <= 10 (pywarp rejects
+    # turbidity (more haze): a brighter, whiter sky with a wider circumsolar glow. Every panel is displayed as the cloud
+    # scene displays its sky (the same exposures throughout), so brightness differences are real. Preetham's fits hold for about 2 <= T <= 10 (pywarp rejects
     # other values) and for the sun above the horizon.
 
     # %%
@@ -246,7 +285,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     fig, axes = plt.subplots(len(turbidities), len(elevations), figsize=(12.5, 10.6), dpi=dpi)
     for i, T in enumerate(turbidities):
         for j, el in enumerate(elevations):
-            im = preetham_image(fd, T, el)
+            im = displayed_image(fd, T, el)
             im[~fin] = 1.0
             ax = axes[i, j]
             ax.imshow(im, extent=(-1, 1, -1, 1), interpolation=interp)
@@ -255,9 +294,10 @@ def main(out_dir, quick: bool = False) -> list[Path]:
                 ax.set_title(f"sun elevation {el:g}°", fontsize=10)
             if j == 0:
                 ax.text(-1.12, 0.0, f"T = {T:g}", rotation=90, ha="right", va="center", fontsize=10)
-    fig.suptitle("Preetham sky (corrected) over sun elevation and turbidity T — all-sky fisheyes, sun at the top "
-                 f"(azimuth 0°), tone map exposure {EXPOSURE} in every panel", fontsize=11)
-    fig.subplots_adjust(left=0.04, right=0.995, top=0.93, bottom=0.01, wspace=0.04, hspace=0.08)
+    fig.suptitle("Preetham sky (corrected) over sun elevation and turbidity T — all-sky fisheyes, sun at the top;\n"
+                 f"k = {DEFAULTS.sky_exposure:g}/(kcd/m²), {DEFAULTS.exposure_ev:+g} EV, "
+                 f"{DEFAULTS.tonemap.upper()} in every panel", fontsize=11)
+    fig.subplots_adjust(left=0.04, right=0.995, top=0.91, bottom=0.01, wspace=0.04, hspace=0.08)
     out = out_dir / "fig-4.6-conditions.png"
     fig.savefig(out)
     plt.close(fig)

@@ -176,7 +176,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # %%
     fig = plt.figure(figsize=(14.0, 15.0), dpi=60 if quick else 100)
     gs = fig.add_gridspec(6, 2, height_ratios=[2.6, 1, 1, 1, 1, 1], width_ratios=[1.0, 1.78], left=0.06, right=0.93,
-                          top=0.93, bottom=0.035, hspace=0.42, wspace=0.12)
+                          top=0.915, bottom=0.035, hspace=0.42, wspace=0.12)
     # (a) top view of the coverage around the origin (the weather map tiles the plane)
     ax = fig.add_subplot(gs[0, 0])
     g = np.linspace(-MAP_HALF_KM, MAP_HALF_KM, 129 if quick else 481)

@@ -67,7 +67,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
 
     # %%
     h, w = clouds.shape[:2]
-    fig, axes = plt.subplots(1, 2, figsize=(2 * w / 100 + 0.4, h / 100 + 0.9), dpi=100)
+    width = max(2 * w / 100 + 0.4, 12.0)  # at least 12 in: the quick mode's small renders keep a readable title
+    fig, axes = plt.subplots(1, 2, figsize=(width, (width - 0.4) / 2 * h / w + 0.9), dpi=100)
     for ax, img, title in ((axes[0], sky_only, "(a) gradient sky model alone (coverage 0)"),
                            (axes[1], clouds, "(b) clouds composited over it, C_f = B(1 − O_D) + C_clouds")):
         ax.imshow(img, interpolation="nearest")
