@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..core.display import exposure_param, tonemap_param
 from ..core.params import Settings, param
 
 #: Drop shapes of Table 2.1 (a in mm), selected by the T key (rr-tab-A).
@@ -321,6 +322,12 @@ class RainSettings(Settings):
                                   reason="1: pywarp render's full background; the viewer sets 4 while the view "
                                          "moves (a sixteenth of the background's pixels per frame: measured 7 "
                                          "frames/s against 3.5 with 2 over the terrain, the same SSIM)")
+    exposure_ev: float = exposure_param(0.0, reason="0 EV: the frame's values are already displayed ones (below)")
+    tonemap: str = tonemap_param(
+        "none", reason="none: the frame is the background's display-encoded image (its own transform the plain "
+                       "clamp, BACKGROUND_OPTIONS) with the drops composited over it, so no value exceeds 1 (no pixel "
+                       "of the README image has a channel at 255) and the clamp keeps every colour; aces or "
+                       "exponential at an exposure apply the shared display transform (pywarp.core.display) to it")
     device: str = param("cpu", invalidates="device", group=_G_RUN, doc="Warp device: cpu, or cuda:N where present",
                         reason="cpu: nothing requires a GPU")
     threads: int | None = param(None, kind="int", lo=1, hi=4096, optional=True, invalidates="device", group=_G_RUN,

@@ -22,6 +22,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..core import display
 from ..core.pose import Pose
 from ..core.runtime import init
 from ..core.technique import Technique
@@ -380,14 +381,16 @@ class RainTechnique(Technique):
         return ins
 
     def render(self, pose: Pose | None = None, progress=None, encode: bool = True) -> np.ndarray:
-        """One frame: uint8 (height, width, 3), or the float frame with ``encode=False``."""
+        """One frame: uint8 (height, width, 3) through the display transform of the ``exposure_ev`` and ``tonemap``
+        settings (:func:`pywarp.core.display.encode_encoded`: the colours are display-encoded), or the float frame
+        with ``encode=False``."""
         ins = self.frame_inputs(pose)
         out = P.composite(**ins, launcher=self.launcher, cache=self._device_cache)
         if progress is not None:
             progress(1.0)
         if not encode:
             return out
-        return (np.clip(out, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+        return display.encode_encoded(out, self.settings.exposure_ev, self.settings.tonemap)
 
 
 def render_image(settings: RainSettings | None = None, pose: Pose | None = None) -> np.ndarray:

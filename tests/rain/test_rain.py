@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -243,3 +244,20 @@ def test_particle_settings_invalidate_the_particles():
         assert dataclasses.replace(base, **{name: value}).invalidated(base) == {"particles"}, name
     assert dataclasses.replace(base, drops=10).invalidated(base) == set()  # the technique follows the count itself
     assert dataclasses.replace(base, mask_size=256).invalidated(base) == {"mask"}
+
+
+def test_rain_frames_go_through_the_shared_display_transform():
+    """The default (tonemap none at 0 EV) is the plain clamp of the float frame; another curve or exposure is the
+    shared display transform of that frame (pywarp.core.display.encode_encoded), not a clamp."""
+    from pywarp.core import display
+    from pywarp.rain.technique import RainTechnique
+
+    s = RainSettings(width=48, height=27, background="panorama", drops=300)
+    tech = RainTechnique(s)
+    linear = tech.render(encode=False)
+    assert np.array_equal(RainTechnique(s).render(), (np.clip(linear, 0, 1) * 255 + 0.5).astype(np.uint8))
+    aces = RainTechnique(replace(s, tonemap="aces", exposure_ev=0.5)).render()
+    assert np.array_equal(aces, display.encode_encoded(linear, 0.5, "aces"))
+    assert not np.array_equal(aces, RainTechnique(s).render())
+    with pytest.raises(ValueError, match="tonemap"):
+        RainSettings(tonemap="filmic")
