@@ -15,6 +15,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import warp as wp
 
+from ..core import display
 from ..core.cbridge import VOLUME_PARAMS
 from ..core.runtime import init
 from ..core.technique import Technique
@@ -149,8 +150,9 @@ class FlightTechnique(Technique):
 
     # --- render ---------------------------------------------------------------------------------------------------
     def render(self, pose: FlightPose | None = None, progress=None) -> np.ndarray:
-        """One frame, uint8 sRGB (height, width, 3). ``pose`` (default: the settings' time and view);
-        ``progress(fraction)`` per finished band."""
+        """One frame, uint8 sRGB (height, width, 3) through the display transform of the ``exposure_ev`` and
+        ``tonemap`` settings (pywarp.core.display; ``none`` at 0 EV: the kernel's plain clamp and encoding). ``pose``
+        (default: the settings' time and view); ``progress(fraction)`` per finished band."""
         s = self.settings
         pose = pose or FlightPose(s.time_s, s.view)
         cam, values = self.view(pose)
@@ -158,10 +160,17 @@ class FlightTechnique(Technique):
         h, w = s.height, s.width
         band_done = None if progress is None else (lambda n: progress(n / h))
         p = VOLUME_PARAMS.warp_struct(V.checked_params(values))
-        self.launcher.launch(V.render_kernel, h, w,
-                             [p, grids, count, dens, light, occ, cam.mat44("inv_view_proj_rot"),
-                              cam.eye_vec3(), w, h], [self._out], progress=band_done)
-        return self._out.numpy().copy()
+        args = [p, grids, count, dens, light, occ, cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), w, h]
+        if s.tonemap == "none" and s.exposure_ev == 0.0:  # the plain clamp: encoded in the kernel
+            self.launcher.launch(V.render_kernel, h, w, args, [self._out], progress=band_done)
+            return self._out.numpy().copy()
+        if getattr(self, "_linear", None) is None or self._linear.shape != (h, w, 3):
+            self._linear = wp.zeros((h, w, 3), dtype=float, device=self.device)
+        self.launcher.launch(V.render_linear_kernel, h, w, args, [self._linear], progress=band_done)
+        lin = self._linear.numpy()
+        if not np.all(np.isfinite(lin)):
+            raise RuntimeError("the render produced non-finite pixels")
+        return display.quantise(display.apply(lin, s.exposure_ev, s.tonemap), srgb=True)
 
     def render_pixels_c(self, xs, ys, pose: FlightPose | None = None) -> np.ndarray:
         """``ccl_volume_pixel`` (the C reference) at pixels (xs[k], ys[k]) of ``pose``: display-linear RGB (k, 3)."""

@@ -572,6 +572,21 @@ def render_kernel(row0: int, p: VolumeParams, grids: wp.array(dtype=VolumeGrid),
 
 
 @wp.kernel
+def render_linear_kernel(row0: int, p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int,
+                         density: wp.array(dtype=wp.uint8), light: wp.array(dtype=float),
+                         skip: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44, eye: wp.vec3, width: int,
+                         height: int,
+                         # output: the display-linear pixel, unclamped (the display transform's input)
+                         out: wp.array3d(dtype=float)):
+    """One row band of :func:`volume_pixel` as float (pywarp.core.display encodes it)."""
+    i, j = wp.tid()
+    y = row0 + i
+    c = volume_pixel(p, grids, count, density, light, skip, inv_view_proj_rot, eye, j, y, width, height)
+    for ch in range(3):
+        out[y, j, ch] = c[ch]
+
+
+@wp.kernel
 def pixels_kernel(p: VolumeParams, grids: wp.array(dtype=VolumeGrid), count: int, density: wp.array(dtype=wp.uint8),
                   light: wp.array(dtype=float), skip: wp.array(dtype=wp.uint8), inv_view_proj_rot: wp.mat44,
                   eye: wp.vec3, xs: wp.array(dtype=wp.int32), ys: wp.array(dtype=wp.int32), width: int, height: int,

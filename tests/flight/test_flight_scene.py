@@ -158,3 +158,23 @@ def test_invalidation_names_are_the_flight_scenes():
              "width": (320, {"size"})}
     for name, (value, stale) in cases.items():
         assert replace(base, **{name: value}).invalidated(base) == stale, name
+
+
+def test_flight_frames_go_through_the_shared_display_transform():
+    """tonemap none at 0 EV is the kernel's plain clamp and sRGB encoding; the default (ACES at -0.5 EV) is
+    pywarp.core.display of the same display-linear pixels (the C reference's ccl_volume_pixel at sampled pixels)."""
+    import dataclasses
+
+    from pywarp.core import display
+    from pywarp.flight.technique import FlightTechnique
+
+    s = FlightSettings(width=64, height=36, cloud_count=2, cloud_size=32)
+    assert (s.tonemap, s.exposure_ev) == ("aces", -0.5)
+    tech = FlightTechnique(s)
+    img = tech.render()
+    xs, ys = np.array([3, 20, 40, 60]), np.array([2, 18, 30, 35])
+    lin = tech.render_pixels_c(xs, ys)
+    np.testing.assert_array_equal(img[ys, xs], display.quantise(display.apply(lin, -0.5, "aces"), srgb=True))
+    plain = FlightTechnique(dataclasses.replace(s, tonemap="none", exposure_ev=0.0)).render()
+    np.testing.assert_allclose(plain[ys, xs], display.quantise(lin, srgb=True), atol=1)
+    assert not np.array_equal(img, plain)
