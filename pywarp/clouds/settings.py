@@ -265,6 +265,17 @@ def _albedo_check(obj, name, v):
         raise ValueError(f"{name} must hold 3 numbers in [0, 1], got {v!r}")
 
 
+#: Largest sky_exposure of the thesis variant (CCL_CLOUDSCAPE_MAX_THESIS_EXPOSURE, reasons in cclouds/cloudscape.h):
+#: the printed tone map 1 - exp(+k C) reached -inf at k = 5 and the composite made NaN pixels of it.
+MAX_THESIS_EXPOSURE = 0.25
+
+
+def _sky_exposure_check(obj, name, v):
+    if obj.sky_variant == "thesis" and not v <= MAX_THESIS_EXPOSURE:
+        raise ValueError(f"{name} must be in (0, {MAX_THESIS_EXPOSURE}] with sky_variant 'thesis' (its tone map "
+                         f"1 - exp(+k C) overflows; ccl_cloudscape_check), got {v!r}")
+
+
 def _advanced_check(obj, name, v):
     if v:
         obj.c_params()  # the C check of ccl_cloudscape_params, at the texture sizes
@@ -335,8 +346,10 @@ class CloudscapeSettings(Settings):
     sky_variant: str = param("corrected", choices=("corrected", "thesis"), invalidates="sky", group="sky",
                              doc="errata of the sky chain (vc-2.39, 4.4, 4.5)",
                              reason="'corrected': Preetham's published constants")
-    sky_exposure: float = param(0.05, lo=0.0, hi=10.0, lo_open=True, invalidates="sky", group="sky",
-                                doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5)",
+    sky_exposure: float = param(0.05, lo=0.0, hi=10.0, lo_open=True, check=_sky_exposure_check, invalidates="sky",
+                                group="sky",
+                                doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5); at most 0.25 with "
+                                    "sky_variant 'thesis', whose printed 1 - exp(+k C_HDR) overflows",
                                 reason="0.05: with the thesis' 0.03 and luminance in kcd/m^2 the corrected sky is a "
                                        "dim grey-blue; 0.05 gives a mid-blue zenith at T = 2.5 without saturating "
                                        "the sky around the sun (figures/vc/fig-4.6.png uses the thesis' 0.03)")

@@ -464,9 +464,14 @@ def sky_preetham_colour(direction: wp.vec3, turbidity: float, sun_elevation_deg:
     return sky_preetham_rgb(d, sun, p)
 
 
+#: Largest colour component of the gradient sky (CCL_SKY_GRADIENT_MAX_COLOUR, reasons in cclouds/sky.h): the
+#: cloudscape's sky lighting sums the sky over a hemisphere, and a horizon of 1e37 overflowed those sums (NaN pixels).
+GRADIENT_MAX_COLOUR = 1.0e6
+
+
 def _colour_arg(name, doc):
-    return Arg(name, f"{doc} (linear RGB, components >= 0), default {GRADIENT_DEFAULTS[name]}", lo=0.0,
-               default=GRADIENT_DEFAULTS[name], sample_range=(0.0, 2.0))
+    return Arg(name, f"{doc} (linear RGB, components in [0, 1e6]), default {GRADIENT_DEFAULTS[name]}", lo=0.0,
+               hi=GRADIENT_MAX_COLOUR, default=GRADIENT_DEFAULTS[name], sample_range=(0.0, 2.0))
 
 
 @declare("vc-A28", c="ccl_sky_gradient_colour",

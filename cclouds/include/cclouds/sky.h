@@ -52,6 +52,13 @@ typedef struct ccl_preetham {
     int variant;       /* ccl_variant applied to all three errata of the chain: vc-2.39, vc-4.4 and vc-4.5 */
 } ccl_preetham;
 
+/* Largest colour component of the gradient sky that ccl_sky_gradient_init accepts (linear RGB). The cloudscape's sky
+ * lighting sums the sky over a hemisphere of cells (ccl_cloudscape_light): a horizon of 1e37 overflowed those sums
+ * and made NaN pixels; at 10^6 every sum and the colour itself (horizon + zenith + sun <= 3e6) stay finite. The
+ * defaults are below 1 (display-linear colours); the volume sky's colours have the same bound
+ * (CCL_VOLUME_MAX_COLOUR). */
+#define CCL_SKY_GRADIENT_MAX_COLOUR 1.0e6f
+
 /* Per-frame constants of the gradient sky (vc-A28). All colours are linear RGB; see ccl_sky_gradient_defaults. */
 typedef struct ccl_sky_gradient {
     float horizon[3];   /* light blue at the horizon (view y <= 0) */
@@ -190,7 +197,8 @@ CCL_API ccl_vec3 ccl_sky_preetham_colour(ccl_vec3 direction, float turbidity, fl
  * sun_exponent 64. */
 CCL_API void ccl_sky_gradient_defaults(ccl_sky_gradient *out);
 
-/* Fill a gradient sky from its colours (linear RGB, each component finite and >= 0) and the sun exponent (> 0,
+/* Fill a gradient sky from its colours (linear RGB, each component in [0, CCL_SKY_GRADIENT_MAX_COLOUR]) and the sun
+ * exponent (> 0,
  * finite). Ref: vc-A28. Returns CCL_EINVAL (leaving *out untouched) for any invalid value or out == NULL. */
 CCL_API ccl_status ccl_sky_gradient_init(ccl_vec3 horizon, ccl_vec3 zenith, ccl_vec3 sun, float sun_exponent,
                                          ccl_sky_gradient *out);
@@ -212,8 +220,8 @@ typedef enum ccl_sky_gradient_output {
  * s = ccl_sky_sun_direction(sun_elevation_deg, sun_azimuth_deg), d = direction / |direction|, then
  * ccl_sky_gradient_rgb with the given colours and exponent.
  * Ref: vc-A28. direction -> any non-zero view vector (Y up), normalised here; sun_elevation_deg in [-90, 90];
- * sun_azimuth_deg any finite value; horizon_colour, zenith_colour, sun_colour -> linear RGB, components >= 0;
- * sun_exponent > 0; output: see ccl_sky_gradient_output. Not validated here (ccl_sky_gradient_init validates). */
+ * sun_azimuth_deg any finite value; horizon_colour, zenith_colour, sun_colour -> linear RGB, components in
+ * [0, CCL_SKY_GRADIENT_MAX_COLOUR]; sun_exponent > 0; output: see ccl_sky_gradient_output. Not validated here (ccl_sky_gradient_init validates). */
 CCL_API ccl_vec3 ccl_sky_gradient_colour(ccl_vec3 direction, float sun_elevation_deg, float sun_azimuth_deg,
                                          ccl_vec3 horizon_colour, ccl_vec3 zenith_colour, ccl_vec3 sun_colour,
                                          float sun_exponent, ccl_sky_gradient_output output);

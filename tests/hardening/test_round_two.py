@@ -1,0 +1,160 @@
+"""Issue 31 (hardening, round two): the findings of the independent fuzzing pass that tests/hardening/
+test_fuzz_findings.py does not cover yet (N1, N2, N5, C9, Q, I1-I5), one test or more per finding, each failing on the
+code before its fix (cclouds/fuzz/README.md lists them with their fixes). C functions are called through the cffi
+binding, Python entries through the registry, both implementations."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import pywarp
+from pywarp.core.binding import ffi, lib
+
+IMPLS = ("warp", "c")
+F32_MAX = float(np.finfo(np.float32).max)
+
+
+def _below(v) -> float:
+    return float(np.nextafter(np.float32(v), np.float32(-np.inf)))
+
+
+def _above(v) -> float:
+    return float(np.nextafter(np.float32(v), np.float32(np.inf)))
+
+
+# --- N1 and N2: the cloudscape's sky, the thesis tone map and the gradient colours ---------------------------------
+
+def _small_cloudscape(**kw):
+    from pywarp.clouds.settings import CloudscapeSettings
+    from pywarp.clouds.technique import CloudscapeTechnique
+
+    s = CloudscapeSettings(width=16, height=12, base_size=16, detail_size=32, curl_size=16, weather_size=512,
+                           samples_min=8, samples_max=16, **kw)
+    return s, CloudscapeTechnique(s)
+
+
+@pytest.fixture(scope="module")
+def preetham_scene():
+    return _small_cloudscape(sky="preetham", sky_variant="thesis", sky_exposure=0.25)
+
+
+def _render_c(s, textures, sky):
+    """ccl_cloudscape_render of the settings ``s`` with the sky ``sky`` (cffi): (status, check field, sRGB frame)."""
+    from pywarp.clouds.cloudscape import c_textures
+    from pywarp.core.pose import Pose
+    from pywarp.clouds.settings import CLOUDSCAPE_PARAMS
+    from pywarp.kernels import camera as CAM
+
+    f = ffi()
+    params = CLOUDSCAPE_PARAMS.to_c(s.c_values())
+    tex = c_textures(textures, s.half_base())
+    fld = f.new("const char **")
+    lib().ccl_cloudscape_check(params, tex, sky, fld)
+    out = np.full((s.height, s.width, 3), -7.0, np.float32)
+    st = lib().ccl_cloudscape_render(params, tex, sky, CAM.pose_camera(Pose.from_settings(s), s.width, s.height).to_c(),
+                                     s.width, s.height, 0, f.from_buffer("float[]", out), out.size)
+    return st, (f.string(fld[0]).decode() if fld[0] != f.NULL else None), out
+
+
+def _thesis_sky(s, exposure):
+    from pywarp.clouds.cloudscape import c_sky
+
+    sky = c_sky(s)
+    theta_s = math.radians(90.0 - s.sun_elevation_deg)
+    assert lib().ccl_sky_preetham_init(s.turbidity, theta_s, exposure, 1, ffi().addressof(sky.preetham)) == 0
+    return sky
+
+
+def test_thesis_sky_exposure_bounded_in_the_cloudscape_check_and_settings(preetham_scene):
+    """N1. Before: the thesis variant's tone map 1 - exp(+k C) reached -inf at exposure 5 (default sky, T 2.5, sun
+    35 deg) and the composite made NaN pixels of it (-inf x 0, inf - inf) with status OK; the settings accepted it and
+    the render raised a RuntimeError ("non-finite pixels"). Now ccl_cloudscape_check refuses a thesis exposure above
+    0.25 (sky.preetham.exposure) and the settings name sky_exposure before any render."""
+    from pywarp.clouds.settings import CloudscapeSettings, MAX_THESIS_EXPOSURE
+
+    s, t = preetham_scene
+    for k in (5.0, 10.0, _above(MAX_THESIS_EXPOSURE)):
+        st, fld, out = _render_c(s, t.textures, _thesis_sky(s, k))
+        assert (st, fld) == (1, "sky.preetham.exposure"), (k, st, fld, np.isnan(out).sum())
+        assert np.all(out == -7.0)
+        with pytest.raises(ValueError, match=r"^sky_exposure must be in \(0, 0\.25\] with sky_variant 'thesis'"):
+            CloudscapeSettings(sky_variant="thesis", sky_exposure=k)
+    # the corrected variant keeps its range; the thesis variant at the limit renders finite (black) pixels
+    assert CloudscapeSettings(sky_variant="corrected", sky_exposure=10.0).sky_exposure == 10.0
+    st, fld, out = _render_c(s, t.textures, _thesis_sky(s, MAX_THESIS_EXPOSURE))
+    assert (st, fld) == (0, None) and np.all(np.isfinite(out))
+
+
+def test_thesis_sky_at_the_exposure_limit_finite_and_twins_equal(preetham_scene):
+    from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
+
+    s, t = preetham_scene
+    ys, xs = np.mgrid[0:s.height, 0:s.width]
+    w = render_pixels_warp(t, xs.ravel(), ys.ravel())
+    assert np.all(np.isfinite(w))
+    np.testing.assert_array_equal(w, render_pixels_c(s, t.textures, xs.ravel(), ys.ravel()))
+
+
+def test_preetham_hdr_below_the_bound_the_thesis_exposure_limit_assumes():
+    """CCL_CLOUDSCAPE_MAX_THESIS_EXPOSURE rests on the brightest HDR channel of the thesis variant being below 140
+    over the model's domain (then k C <= 35): every direction near the sun and on a coarse sphere, for turbidities
+    and sun elevations across their ranges (the maximum is ~134, at the zenith sun, T ~ 9)."""
+    f = pywarp.equation("vc-A29", impl="c")
+    rng = np.random.default_rng(1)
+    sphere = rng.normal(size=(2000, 3))
+    sphere /= np.linalg.norm(sphere, axis=1, keepdims=True)
+    worst = 0.0
+    for elev in (0.0, 5.0, 35.0, 70.0, 89.0, 90.0):
+        e = math.radians(elev)
+        sun = np.array([0.0, math.sin(e), -math.cos(e)])
+        near = sun + rng.normal(size=(2000, 3)) * rng.uniform(0.0, 0.05, (2000, 1)) ** 2
+        d = np.concatenate([sphere, near, sun[None]]).astype(np.float32)
+        for turbidity in (2.0, 4.0, 6.0, 8.0, 9.0, 10.0):
+            worst = max(worst, float(np.max(np.asarray(f(d, turbidity, elev, 0.0, 1.0, variant="thesis",
+                                                            output="hdr")))))
+    assert 100.0 < worst < 140.0, worst
+
+
+def _gradient_sky(s, horizon, zenith, sun):
+    from pywarp.clouds.cloudscape import c_sky
+
+    sky = c_sky(s)
+    g = sky.gradient
+    for i in range(3):
+        g.horizon[i], g.zenith[i], g.sun[i] = horizon[i], zenith[i], sun[i]
+    return sky
+
+
+def test_gradient_sky_colours_bounded_in_init_check_and_python():
+    """N2. Before: ccl_sky_gradient_init and ccl_cloudscape_check accepted any finite colour >= 0, and a horizon of
+    1e37 (or a sun of 3.4e38) overflowed the hemisphere sums of ccl_cloudscape_light: NaN pixels with status OK.
+    Colours are now in [0, 1e6] (CCL_SKY_GRADIENT_MAX_COLOUR) in the init, the cloudscape check (sky.gradient), the
+    registry's vc-A28 and pywarp.clouds.sky.gradient_params; at 1e6 everywhere the render is finite."""
+    from pywarp.clouds import sky as SKY
+    from pywarp.kernels import sky as S
+
+    assert S.GRADIENT_MAX_COLOUR == 1.0e6
+    s, t = _small_cloudscape(sky="gradient")
+    ok = (0.5, 0.5, 0.5)
+    for bad in ((1e37, 1.0, 1.0), (1.0, 1.0, 3.4e38), (1.0, _above(1e6), 1.0)):
+        for colours in ((bad, ok, ok), (ok, bad, ok), (ok, ok, bad)):
+            g = ffi().new("ccl_sky_gradient *")
+            assert lib().ccl_sky_gradient_init(*colours, 64.0, g) == 1, colours
+            st, fld, out = _render_c(s, t.textures, _gradient_sky(s, *colours))
+            assert (st, fld) == (1, "sky.gradient"), (colours, st, fld, np.isnan(out).sum())
+        with pytest.raises(ValueError, match=r"^horizon_colour must hold values in \[0, 1e6\]"):
+            SKY.gradient_params(horizon_colour=bad)
+        for impl in IMPLS:
+            with pytest.raises(ValueError, match="sun_colour"):
+                pywarp.equation("vc-A28", impl=impl)((0.0, 1.0, 0.0), 30.0, 0.0, sun_colour=bad)
+    top = (1e6, 1e6, 1e6)
+    g = ffi().new("ccl_sky_gradient *")
+    assert lib().ccl_sky_gradient_init(top, top, top, 64.0, g) == 0
+    st, fld, out = _render_c(s, t.textures, _gradient_sky(s, top, top, top))
+    assert (st, fld) == (0, None) and np.all(np.isfinite(out))
+    for impl in IMPLS:
+        rgb = np.asarray(pywarp.equation("vc-A28", impl=impl)((0.0, 1.0, 0.0), 90.0, 0.0, horizon_colour=top,
+                                                              zenith_colour=top, sun_colour=top))
+        np.testing.assert_array_equal(rgb, np.float32(2e6))
