@@ -158,3 +158,80 @@ def test_gradient_sky_colours_bounded_in_init_check_and_python():
         rgb = np.asarray(pywarp.equation("vc-A28", impl=impl)((0.0, 1.0, 0.0), 90.0, 0.0, horizon_colour=top,
                                                               zenith_colour=top, sun_colour=top))
         np.testing.assert_array_equal(rgb, np.float32(2e6))
+
+
+# --- N5: the repeat of pt-code-4.2 in [-c/2, c/2) -------------------------------------------------------------------
+
+def _repeat_points(n=20000, seed=5):
+    """Points and periods over the floats: |p| from 1e-38 to 3e38, c from 2^-125 to FLT_MAX, and the registry's
+    [-1e4, 1e4] x [0.01, 1e4], both signs, with the finding's two cases first."""
+    rng = np.random.default_rng(seed)
+    p = np.concatenate([[-1e-30, -5966.125], rng.choice([-1, 1], n) * 10.0 ** rng.uniform(-38, 38.5, n),
+                        rng.uniform(-1e4, 1e4, n)])
+    c = np.concatenate([[1.2, 0.01], 10.0 ** rng.uniform(-37.6, 38.5, n), 10.0 ** rng.uniform(-2, 4, n)])
+    return np.float32(p), np.float32(c)
+
+
+@pytest.mark.parametrize("variant", ["thesis", "corrected"])
+@pytest.mark.parametrize("impl", IMPLS)
+def test_repeat_stays_in_its_interval_for_every_finite_point(impl, variant):
+    """N5. Before: GLSL's x - c floor(x / c) rounded twice and left [-c/2, c/2): thesis p = -1e-30, c = 1.2 gave 0.6
+    (= c/2), corrected p = -5966.125, c = 0.01 gave -0.005488 (< -c/2; |p| / c ~ 1e5 and beyond). The remainder is
+    now fmodf's, exact: every finite p and every c in [2^-125, FLT_MAX] (the C domain; the registry's is up to 1e4)
+    gives a point in the interval, C and Warp bit for bit; the corrected form is the exact centred remainder."""
+    p, c = _repeat_points()
+    if impl == "warp":
+        from pywarp.kernels import sdf as SDF
+        import warp as wp
+
+        out = wp.empty(len(p), dtype=wp.vec3, device="cpu")
+        wp.launch(_repeat_kernel, dim=len(p), inputs=[wp.array(np.stack([p, -p, p], -1), dtype=wp.vec3, device="cpu"),
+                                                     wp.array(np.stack([c, c, c], -1), dtype=wp.vec3, device="cpu"),
+                                                     1 if variant == "thesis" else 0], outputs=[out], device="cpu")
+        got = out.numpy()
+    else:
+        v = 1 if variant == "thesis" else 0
+        got = np.float32([[(r := lib().ccl_sdf_repeat((p[i], -p[i], p[i]), (c[i], c[i], c[i]), v)).x, r.y, r.z]
+                          for i in range(len(p))])
+    h = (np.float32(0.5) * c)[:, None]
+    assert np.all((got >= -h) & (got < h)), (p[np.any((got < -h) | (got >= h), 1)][:5])
+    # exact: the remainder in float64 (exact for float32 inputs) equals the result, but where the thesis form rounds
+    r = np.fmod(np.float64(p), np.float64(c))
+    if variant == "corrected":
+        want = np.where(r >= h[:, 0], r - c, np.where(r < -h[:, 0], r + c, r))
+        np.testing.assert_array_equal(got[:, 0], np.float32(want))
+    else:
+        want = np.where(r >= 0, r - h[:, 0], r + h[:, 0])
+        exact = np.float32(want) < h[:, 0]
+        np.testing.assert_array_equal(got[exact, 0], np.float32(want)[exact])
+        np.testing.assert_array_equal(got[~exact, 0], np.nextafter(h[~exact, 0], np.float32(0)))
+
+
+def test_repeat_c_and_warp_equal_bit_for_bit():
+    from pywarp.kernels import sdf as SDF  # noqa: F401
+    import warp as wp
+
+    p, c = _repeat_points(4000, seed=9)
+    for v in (0, 1):
+        out = wp.empty(len(p), dtype=wp.vec3, device="cpu")
+        wp.launch(_repeat_kernel, dim=len(p), inputs=[wp.array(np.stack([p, -p, c], -1), dtype=wp.vec3, device="cpu"),
+                                                     wp.array(np.stack([c, c, c], -1), dtype=wp.vec3, device="cpu"), v],
+                  outputs=[out], device="cpu")
+        cres = np.float32([[(r := lib().ccl_sdf_repeat((p[i], -p[i], c[i]), (c[i], c[i], c[i]), v)).x, r.y, r.z]
+                           for i in range(len(p))])
+        np.testing.assert_array_equal(out.numpy(), cres)
+
+
+def _make_repeat_kernel():
+    import warp as wp
+    from pywarp.kernels import sdf as SDF
+
+    @wp.kernel
+    def k(p: wp.array(dtype=wp.vec3), c: wp.array(dtype=wp.vec3), variant: int, out: wp.array(dtype=wp.vec3)):
+        i = wp.tid()
+        out[i] = SDF.sdf_repeat(p[i], c[i], variant)
+
+    return k
+
+
+_repeat_kernel = _make_repeat_kernel()
