@@ -113,8 +113,13 @@ _TURBIDITY = Arg("turbidity", "atmospheric turbidity T of the Preetham fits", lo
                  hi=TURBIDITY_RANGE[1])
 # Perez coefficients: any finite value is valid; the contract tests draw them from the range of the Preetham fits
 # (|A..E| <= 6; exp(B / 0.01) overflows for B > 0.88, as the formula does)
-_PEREZ = tuple(Arg(n, f"Perez coefficient {n}", sample_range=r) for n, r in
-               zip("ABCDE", ((-2.0, 0.0), (-4.0, 0.0), (0.0, 6.0), (-3.0, 0.0), (-0.5, 0.5))))
+#: Bound of the Perez coefficients (CCL_SKY_PEREZ_MAX_COEFFICIENT, reasons in cclouds/sky.h): A, C, E in [-1e6, 1e6],
+#: B and D in [-1e6, 0], so both factors of F are finite (B = D = 0, C = E = -3.4e38 made 0 x -Inf = NaN).
+PEREZ_MAX_COEFFICIENT = 1.0e6
+_PEREZ = tuple(Arg(n, f"Perez coefficient {n}" + (" (<= 0: the luminance falls towards the horizon, the glow away from "
+                                                   "the sun)" if n in "BD" else ""),
+                   lo=-PEREZ_MAX_COEFFICIENT, hi=0.0 if n in "BD" else PEREZ_MAX_COEFFICIENT, sample_range=r)
+               for n, r in zip("ABCDE", ((-2.0, 0.0), (-4.0, 0.0), (0.0, 6.0), (-3.0, 0.0), (-0.5, 0.5))))
 _YZ = Arg("Y_z", "zenith value of the channel (Y_Z, or x_z / y_z for the chromaticities)")
 _PREETHAM_REFS = ("Preetham, Shirley & Smits, A practical analytic model for daylight, SIGGRAPH 1999, appendix A.2",
                   "Zotti, Wilkie & Purgathofer, A critical review of the Preetham skylight model, WSCG 2007")

@@ -235,3 +235,145 @@ def _make_repeat_kernel():
 
 
 _repeat_kernel = _make_repeat_kernel()
+
+
+# --- C9: camera, media, Perez and layer segment: status OK with Inf or NaN -------------------------------------------
+
+def _c_look_at(eye, aspect=16 / 9, z_near=0.01, z_far=1000.0, target=(0.0, 0.0, 0.0), fov_y=1.0):
+    cam = ffi().new("ccl_camera *")
+    st = lib().ccl_camera_look_at(eye, target, (0.0, 1.0, 0.0), fov_y, aspect, z_near, z_far, cam)
+    mats = np.concatenate([np.frombuffer(ffi().buffer(getattr(cam, n)), np.float32)
+                           for n in ("view", "proj", "view_proj", "inv_view_proj", "inv_view_proj_rot")])
+    return st, mats
+
+
+@pytest.mark.parametrize("eye, aspect, z_near", [((3.4e38, 0.0, 1.0), 16 / 9, 0.01), ((0.0, 1.0, 5.0), F32_MAX, 0.01),
+                                                 ((0.0, 1.0, 5.0), 1.0, 1e-45), ((1e37, -2e38, 3e37), 1.0, 0.01)])
+def test_camera_refuses_matrices_beyond_float32(eye, aspect, z_near):
+    """C9. Before: ccl_camera_look_at returned CCL_OK for an eye of 3.4e38 (its translation f . eye and the products
+    overflowed float32), aspect FLT_MAX (aspect tan(fov/2)) or z_near 1e-45 (1 / z_near): Inf entries. Now every
+    entry must fit float32 (CCL_EINVAL, out untouched; the Python twin raises ValueError naming the inputs)."""
+    from pywarp.kernels import camera as CAM
+
+    fov_y = 2.0  # tan(1) > 1: aspect FLT_MAX overflows aspect tan(fov_y / 2)
+    st, mats = _c_look_at(eye, aspect, z_near, fov_y=fov_y)
+    assert st == 1 and np.all(mats == 0.0), (st, mats[~np.isfinite(mats)][:4])
+    with pytest.raises(ValueError, match=r"^eye, aspect, z_near and z_far must keep every camera matrix entry"):
+        CAM.camera_look_at(eye, (0.0, 0.0, 0.0), fov_y=fov_y, aspect=aspect, z_near=z_near)
+
+
+def test_camera_accepted_matrices_are_finite_and_twins_agree():
+    """Accepted cameras over many magnitudes (eyes to 1e37, aspects to 1e37, z_near down to 1e-37): every entry is
+    finite, and C and Python accept the same set."""
+    from pywarp.kernels import camera as CAM
+
+    rng = np.random.default_rng(4)
+    for _ in range(300):
+        eye = tuple(float(np.float32(v)) for v in rng.choice([-1, 1], 3) * 10.0 ** rng.uniform(-3, 37.5, 3))
+        aspect = float(np.float32(10.0 ** rng.uniform(-3, 38.5)))
+        z_near = float(np.float32(10.0 ** rng.uniform(-44, 3)))
+        st, mats = _c_look_at(eye, aspect, z_near, z_far=z_near * 4.0 + 1.0)
+        try:
+            CAM.camera_look_at(eye, (0.0, 0.0, 0.0), fov_y=1.0, aspect=aspect, z_near=z_near, z_far=z_near * 4.0 + 1.0)
+            py = 0
+        except ValueError:
+            py = 1
+        assert st == py, (eye, aspect, z_near)
+        if st == 0:
+            assert np.all(np.isfinite(mats)), (eye, aspect, z_near)
+
+
+def _media_c(fn, *arrays, dt=1.0, L_bg=1.0):
+    out = ffi().new("float *")
+    bufs = [ffi().from_buffer("float[]", np.ascontiguousarray(a, np.float32)) for a in arrays]
+    n = len(arrays[0])
+    if fn == "volume_render":
+        st = lib().ccl_media_volume_render(*bufs, n, dt, L_bg, 0, out)
+    elif fn == "raymarch":
+        st = lib().ccl_media_raymarch(*bufs, n, dt, L_bg, 0, out)
+    elif fn == "optical_thickness":
+        st = lib().ccl_media_optical_thickness(*bufs, n, dt, out)
+    else:
+        st = getattr(lib(), f"ccl_media_{fn}")(*bufs, n, out)
+    return st, out[0]
+
+
+def test_media_refuse_samples_and_steps_beyond_the_bound_and_are_finite_at_it():
+    """C9. Before: samples or dt of ~1e25 passed (any finite value >= 0): the source times dt overflowed and
+    exp(-inf) x inf = NaN, the sums inf, with status OK. Every sample, dt and L_bg is now in [0, 1e9]
+    (CCL_MEDIA_MAX_VALUE) in C and the registry; at 1e9 everywhere, over 4097 samples, every result is finite."""
+    from pywarp.kernels import media as M
+
+    big = np.full(5, 1e25, np.float32)
+    one = np.ones(5, np.float32)
+    for fn, arrays, kw in (("volume_render", (big, big, big, big), {}), ("volume_render", (one,) * 4, {"dt": 1e25}),
+                           ("raymarch", (big, one, big), {}), ("optical_thickness", (big,), {"dt": 1e25}),
+                           ("phase_integral", (np.full(5, 3e38, np.float32),), {}),
+                           ("phase_asymmetry", (np.full(5, 3e38, np.float32),), {})):
+        assert _media_c(fn, *arrays, **kw)[0] == 1, fn
+    for impl in IMPLS:
+        with pytest.raises(ValueError, match="sigma_a"):
+            pywarp.equation("vc-2.17", impl=impl)(big, one, one, one, 1.0, 1.0)
+        with pytest.raises(ValueError, match="dt"):
+            pywarp.equation("vc-2.34", impl=impl)(one, 1e25)
+        with pytest.raises(ValueError, match="L"):
+            pywarp.equation("vc-2.10", impl=impl)(1.0, 1.0, 1.0, 1.0, 1e25)
+    top = np.full(4097, np.float32(1e9))
+    for fn, arrays, kw in (("volume_render", (top,) * 4, {"dt": 1e9, "L_bg": 1e9}),
+                           ("raymarch", (top,) * 3, {"dt": 1e9, "L_bg": 1e9}),
+                           ("optical_thickness", (top,), {"dt": 1e9}), ("phase_integral", (top,), {}),
+                           ("phase_asymmetry", (top,), {})):
+        st, v = _media_c(fn, *arrays, **kw)
+        assert st == 0 and math.isfinite(v), (fn, v)
+    for impl in IMPLS:
+        assert np.isfinite(pywarp.equation("vc-2.10", impl=impl)(1e9, 1e9, 1e9, 1e9, 1e9))
+    assert M.MAX_VALUE == 1e9
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_perez_coefficients_bounded_and_finite_at_the_bound(impl):
+    """C9. Before: any finite A..E passed; (A, B, C, D, E) = (-1, 0, -3.4e38, 0, -3.4e38) gave 0 x -inf = NaN (and
+    B > 0 overflows exp(B / cos theta) at the horizon). A, C, E are now in [-1e6, 1e6] and B, D in [-1e6, 0]
+    (CCL_SKY_PEREZ_MAX_COEFFICIENT; Preetham's coefficients and the CIE skies lie inside); at the corners F is finite."""
+    perez = pywarp.equation("vc-2.36", impl=impl)
+    with pytest.raises(ValueError, match=r"^C "):
+        perez(1.0, 0.5, -1.0, 0.0, -3.4e38, 0.0, -3.4e38)
+    with pytest.raises(ValueError, match=r"^B "):
+        perez(1.5, 0.5, 1.0, 1.0, 1.0, -1.0, 0.0)
+    with pytest.raises(ValueError, match=r"^D "):
+        perez(1.5, 0.5, 1.0, -1.0, 1.0, 30.0, 0.0)
+    theta, gamma = np.meshgrid(np.linspace(0.0, math.pi, 13), np.linspace(0.0, math.pi, 13))
+    m = 1e6
+    for a in (-m, m):
+        for c in (-m, m):
+            for e in (-m, m):
+                for b, d in ((0.0, 0.0), (-m, -m), (0.0, -m), (-1e-30, 0.0)):
+                    f = np.asarray(perez(theta.ravel(), gamma.ravel(), a, b, c, d, e))
+                    assert np.all(np.isfinite(f)), (a, b, c, d, e)
+                    for variant in ("corrected", "thesis"):
+                        g = np.asarray(pywarp.equation("vc-2.37", impl=impl)(theta.ravel(), gamma.ravel(), a, b, c, d,
+                                                                               e, variant=variant))
+                        assert np.all(np.isfinite(g)), (a, b, c, d, e, variant)
+
+
+@pytest.mark.parametrize("impl", IMPLS)
+def test_layer_segment_refuses_far_origins_and_is_finite_within_the_bound(impl):
+    """C9. Before: an origin ~1e19 km from the centre overflowed |o - c|^2 - r^2 and the layer segment ended at
+    t = inf. Origins, centres and radii are now within 1e15 (CCL_RAYMARCH_MAX_DISTANCE); at that distance every
+    segment is finite or the documented NaN pair (no segment)."""
+    seg = pywarp.equation("vc-A24", impl=impl)
+    sphere = pywarp.equation("vc-A14", impl=impl)
+    with pytest.raises(ValueError, match="origin"):
+        seg((0.0, 1e19, 0.0), (0.0, -1.0, 0.0))
+    with pytest.raises(ValueError, match="origin"):
+        sphere((0.0, 1e19, 0.0), (0.0, -1.0, 0.0), (0.0, 0.0, 0.0), 1.0)
+    rng = np.random.default_rng(2)
+    d = rng.normal(size=(400, 3))
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    d[:100] = (0.0, -1.0, 0.0)
+    o = rng.choice([-1.0, 1.0], (400, 3)) * 10.0 ** rng.uniform(10, 15, (400, 3))
+    o[:100] = (0.0, 1e15, 0.0)
+    t0, t1 = (np.asarray(v) for v in seg(o.astype(np.float32), d.astype(np.float32)))
+    both_nan = np.isnan(t0) & np.isnan(t1)
+    assert np.all(both_nan | (np.isfinite(t0) & np.isfinite(t1))), o[~both_nan & ~np.isfinite(t1)][:3]
+    assert np.all(np.isfinite(t1[:100])), t1[:100]  # straight down from 1e15 km: through the layer

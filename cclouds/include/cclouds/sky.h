@@ -81,10 +81,16 @@ CCL_API float ccl_sky_turbidity(float t_m, float t_h);
  * by the factor 0.91). */
 CCL_API float ccl_sky_cie_clear(float theta, float gamma, float theta_s, float Y_z);
 
+/* Bound of the Perez coefficients of ccl_sky_perez and the functions that take A..E: A, C, E in [-M, M], B and D in
+ * [-M, 0] with M = 10^6. B, D <= 0 (the luminance falls towards the horizon and away from the sun) keeps both
+ * exponentials <= 1, so |F| <= (1 + M)(1 + 2M): finite, where finite coefficients such as (-1, 0, -3.4e38, 0,
+ * -3.4e38) gave 0 x -inf = NaN. Preetham's coefficients for 2 <= T <= 10 and the CIE standard skies lie inside. */
+#define CCL_SKY_PEREZ_MAX_COEFFICIENT 1.0e6f
+
 /* Perez all-weather relative luminance F = (1 + A exp(B / cos theta)) (1 + C exp(D gamma) + E cos^2 gamma).
  * Ref: vc-2.36 (Perez, Seals & Michalsky 1993). theta in [0, pi] (cos theta clamped to >= 0.01, see the file
- * comment), gamma in [0, pi]; A..E any finite coefficients. Output: relative luminance (dimensionless); > 0 for the
- * Preetham coefficients of 2 <= T <= 10. NaN propagates. */
+ * comment), gamma in [0, pi]; A..E within CCL_SKY_PEREZ_MAX_COEFFICIENT (B, D <= 0). Output: relative luminance
+ * (dimensionless), finite; > 0 for the Preetham coefficients of 2 <= T <= 10. NaN propagates. */
 CCL_API float ccl_sky_perez(float theta, float gamma, float A, float B, float C, float D, float E);
 
 /* CIE-adopted modified Perez function (CIE standard general sky, CIE S 011/E:2003):
