@@ -377,3 +377,49 @@ def test_layer_segment_refuses_far_origins_and_is_finite_within_the_bound(impl):
     both_nan = np.isnan(t0) & np.isnan(t1)
     assert np.all(both_nan | (np.isfinite(t0) & np.isfinite(t1))), o[~both_nan & ~np.isfinite(t1)][:3]
     assert np.all(np.isfinite(t1[:100])), t1[:100]  # straight down from 1e15 km: through the layer
+
+
+# --- Q: the quintic fade within [0, 1] ------------------------------------------------------------------------------
+
+def _floats_between(a: float, b: float) -> np.ndarray:
+    i0, i1 = np.float32(a).view(np.int32), np.float32(b).view(np.int32)
+    return np.arange(i0, i1 + 1, dtype=np.int32).view(np.float32)
+
+
+def test_fade_quintic_within_unit_range_for_every_float_near_one():
+    """Q. Before: Perlin's Horner form rounded to 1.00000012 for 22,237 floats t in [0.99536, 1); those now give 1 in
+    C and Warp. Every float of [0.99, 1] (167,773 values) gives a value in [0, 1], the twins bit for bit, and every
+    other value equals the Horner form (computed here in float32 NumPy, the same operations in the same order)."""
+    import warp as wp
+
+    t = _floats_between(0.99, 1.0)
+    horner = t * t * t * (t * (t * np.float32(6) - np.float32(15)) + np.float32(10))
+    assert np.sum(horner > 1) == 22237  # the finding's count: all of [0.99, 1) that rounded above 1
+    c = np.float32([lib().ccl_interp_fade_quintic(float(x)) for x in t])
+    out = wp.empty(len(t), dtype=float, device="cpu")
+    wp.launch(_fade_kernel, dim=len(t), inputs=[wp.array(t, device="cpu")], outputs=[out], device="cpu")
+    w = out.numpy()
+    for got in (c, w):
+        assert np.all((got >= 0.0) & (got <= 1.0))
+        np.testing.assert_array_equal(got, np.minimum(horner, np.float32(1)))
+    assert math.isnan(lib().ccl_interp_fade_quintic(float("nan")))
+    # below 0.99 the Horner form stays in [0, 1]: every float of [0.5, 0.99] (in NumPy); below 0.5 every factor is
+    # positive and f <= f(0.5) = 0.5 up to rounding
+    t = _floats_between(0.5, 0.99)
+    f = t * t * t * (t * (t * np.float32(6) - np.float32(15)) + np.float32(10))
+    assert np.all((f >= 0.5) & (f <= 1.0))
+
+
+def _make_fade_kernel():
+    import warp as wp
+    from pywarp.kernels import interp as I
+
+    @wp.kernel
+    def k(t: wp.array(dtype=float), out: wp.array(dtype=float)):
+        i = wp.tid()
+        out[i] = I.interp_fade_quintic(t[i])
+
+    return k
+
+
+_fade_kernel = _make_fade_kernel()
