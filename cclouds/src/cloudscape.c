@@ -419,7 +419,7 @@ static void sample_mip(const float *tex, const float *mips, int size, float lod,
     const int levels = mips != NULL ? mip_levels(size) : 1;
     float a[4], b[4], f;
     int k, c;
-    if (lod <= 0.0f || levels <= 1) {
+    if (!(lod > 0.0f) || levels <= 1) { /* a NaN lod too: level 0, never an int conversion of NaN */
         ccl_texgen_sample_trilinear_wrap(tex, size - 1, p.x, p.y, p.z, &out[0], &out[1], &out[2], &out[3]);
         return;
     }

@@ -441,8 +441,8 @@ ccl_vec3 ccl_volume_background(const ccl_volume_params *p, ccl_vec3 eye, ccl_vec
         /* field cell, clamped so that the int conversion is defined for grazing rays (fogged out anyway) */
         float fx = floorf(gx / p->field_size), fz = floorf(gz / p->field_size);
         int cx, cz;
-        fx = fx < -1.0e9f ? -1.0e9f : (fx > 1.0e9f ? 1.0e9f : fx);
-        fz = fz < -1.0e9f ? -1.0e9f : (fz > 1.0e9f ? 1.0e9f : fz);
+        fx = !(fx >= -1.0e9f) ? -1.0e9f : (fx > 1.0e9f ? 1.0e9f : fx); /* NaN (inf x 0 at d.x = 0): -1e9 */
+        fz = !(fz >= -1.0e9f) ? -1.0e9f : (fz > 1.0e9f ? 1.0e9f : fz);
         cx = (int)fx;
         cz = (int)fz;
         uint32_t h = ccl_hash_pcg((uint32_t)cx * 73856093u ^ ccl_hash_pcg((uint32_t)cz));

@@ -350,8 +350,9 @@ def volume_background(p: VolumeParams, eye: wp.vec3, d: wp.vec3):
             gz = eye[2] + t * d[2]
             fx = wp.floor(gx / p.field_size)
             fz = wp.floor(gz / p.field_size)
-            fx = wp.clamp(fx, -1.0e9, 1.0e9)
-            fz = wp.clamp(fz, -1.0e9, 1.0e9)
+            # a NaN cell (inf x 0 for a grazing ray with d.x = 0) is -1e9, as in C: never an int() of NaN
+            fx = wp.where(wp.isnan(fx), -1.0e9, wp.clamp(fx, -1.0e9, 1.0e9))
+            fz = wp.where(wp.isnan(fz), -1.0e9, wp.clamp(fz, -1.0e9, 1.0e9))
             cx = wp.uint32(int(fx))
             cz = wp.uint32(int(fz))
             h = hash_pcg((cx * _U73856093) ^ hash_pcg(cz))
