@@ -181,7 +181,6 @@ def test_repeat_stays_in_its_interval_for_every_finite_point(impl, variant):
     gives a point in the interval, C and Warp bit for bit; the corrected form is the exact centred remainder."""
     p, c = _repeat_points()
     if impl == "warp":
-        from pywarp.kernels import sdf as SDF
         import warp as wp
 
         out = wp.empty(len(p), dtype=wp.vec3, device="cpu")
@@ -208,7 +207,6 @@ def test_repeat_stays_in_its_interval_for_every_finite_point(impl, variant):
 
 
 def test_repeat_c_and_warp_equal_bit_for_bit():
-    from pywarp.kernels import sdf as SDF  # noqa: F401
     import warp as wp
 
     p, c = _repeat_points(4000, seed=9)
@@ -526,3 +524,31 @@ def test_terrain_normal_gy_within_its_stated_bound(impl):
         gy = np.asarray(g, np.float64)[:, 1]
         bound = 2 * ulp(np.abs(np.float64(p[:, 1])) + h + np.abs(np.float64(H))) + ulp(2 * h)
         assert np.all(np.abs(gy - 2 * h) <= bound), (seed, scale, np.max(np.abs(gy - 2 * h) / bound))
+
+
+# --- found by fuzz_optics: the refracted ray's length for extreme index ratios ---------------------------------------
+
+def test_snell_refracted_length_within_its_stated_bound():
+    """fuzz_optics found |t| = 0.72 for n1 = 1.997, n2 = 0.001 (eta ~ 2000): k = 1 - eta^2 (1 - cos_i^2) loses eta^2
+    ulps of cos_i^2, so the refracted ray is unit only up to that conditioning. The header now states
+    | |t| - 1 | <= 1e-5 + 8 eta^2 2^-23 (float unit d, n); checked for index ratios from 1/10 to 1e4, and within 1e-5
+    for water."""
+    rng = np.random.default_rng(12)
+    r_c = ffi().new("ccl_vec3 *")
+    tir = ffi().new("int *")
+    worst_water = 0.0
+    for n1, n2 in ((1.0, 1.33), (1.33, 1.0), (1.0, 0.1), (10.0, 1.0), (1.997, 0.001), (10.0, 0.001)):
+        eta = np.float32(n1) / np.float32(n2)
+        for _ in range(400):
+            d, n = (np.float32(v / np.linalg.norm(v)) for v in rng.normal(size=(2, 3)))
+            if eta > 1:  # the few rays that refract at all: within asin(1 / eta) of the normal
+                n = np.float32(d * -1.0 + rng.normal(size=3) * 0.5 / eta)
+                n = np.float32(n / np.linalg.norm(n))
+            t = lib().ccl_optics_snell(tuple(map(float, d)), tuple(map(float, n)), n1, n2, r_c, tir)
+            if tir[0]:
+                continue
+            err = abs(math.sqrt(t.x * t.x + t.y * t.y + t.z * t.z) - 1.0)
+            assert err <= 1e-5 + 8 * float(eta) ** 2 * 2.0 ** -23, (n1, n2, err)
+            if (n1, n2) in ((1.0, 1.33), (1.33, 1.0)):
+                worst_water = max(worst_water, err)
+    assert worst_water <= 1e-5
