@@ -2,7 +2,8 @@
  * Default parameters with a few fields overwritten by decoded values (NaN, Inf, huge, any int), tiny textures
  * (edges 4 or 8 with values in [0, 1], or invalid edges -1, 0, 3 with a buffer of 8^3 RGBA so that an accepted
  * invalid edge could not read out of bounds unseen by the check), a gradient or Preetham sky with a fuzzed sun and
- * a look-at camera. Contract: check gives CCL_OK or CCL_EINVAL with a field name; after CCL_OK one pixel is finite
+ * a look-at camera; the sky's gradient colours and Preetham exposure fuzzed too (findings N1, N2: the check bounds
+ * a gradient colour by CCL_SKY_GRADIENT_MAX_COLOUR and the thesis variant's exposure). Contract: check gives CCL_OK or CCL_EINVAL with a field name; after CCL_OK one pixel is finite
  * and >= 0, and a 1..3 x 1..3 render gives CCL_OK with values in [0, 1]; render returns CCL_EINVAL exactly when the
  * check fails, a size is < 1, frame < 0 or out_len is wrong. Views with more than 2 x 256 samples per ray are skipped to keep
  * one input within milliseconds. */
@@ -83,9 +84,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     sky.sun[2] = s.z;
     if (fz_u8(r) < 16) sky.sun[fz_u8(r) % 3] = fz_float(r);
     ccl_sky_gradient_defaults(&sky.gradient);
-    if (ccl_sky_preetham_init(fz_unit(r, 2.0f, 10.0f), (90.0f - fz_unit(r, 0.0f, 90.0f)) * 0.017453292f, 0.1f,
-                              (ccl_variant)(fz_u8(r) % 2), &sky.preetham) != CCL_OK)
-        ccl_sky_preetham_init(2.5f, 0.5f, 0.1f, CCL_VARIANT_CORRECTED, &sky.preetham);
+    if (fz_u8(r) < 32) { /* a fuzzed gradient colour: the check bounds them (finding N2) */
+        float *cols = fz_bool(r) ? sky.gradient.horizon : (fz_bool(r) ? sky.gradient.zenith : sky.gradient.sun);
+        cols[fz_u8(r) % 3] = fz_u8(r) < 64 ? CCL_SKY_GRADIENT_MAX_COLOUR : fz_float(r);
+    }
+    {
+        /* the exposure: the documented 0.1, any value of the init's domain (> 0), or the thesis bound (N1) */
+        const uint8_t k = fz_u8(r);
+        const float exposure = k < 160 ? 0.1f : (k < 200 ? CCL_CLOUDSCAPE_MAX_THESIS_EXPOSURE : fz_unit(r, 0.0f, 10.0f));
+        if (ccl_sky_preetham_init(fz_unit(r, 2.0f, 10.0f), (90.0f - fz_unit(r, 0.0f, 90.0f)) * 0.017453292f, exposure,
+                                  (ccl_variant)(fz_u8(r) % 2), &sky.preetham) != CCL_OK)
+            ccl_sky_preetham_init(2.5f, 0.5f, 0.1f, CCL_VARIANT_CORRECTED, &sky.preetham);
+    }
 
     const char *field = "unset";
     ccl_status st = ccl_cloudscape_check(&p, &t, &sky, &field);

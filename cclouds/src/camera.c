@@ -2,6 +2,9 @@
  * conventions. pywarp/kernels/camera.py mirrors camera_look_at (float64, rounded once) and camera_ray (float32, the
  * same operations in the same order). */
 #include "cclouds/camera.h"
+
+#include <float.h>
+#include <math.h>
 #include "internal.h"
 
 /* column-major store of a row-major double matrix */
@@ -10,6 +13,16 @@ static void store_cm(float dst[16], double m[4][4])
     int r, c;
     for (c = 0; c < 4; ++c)
         for (r = 0; r < 4; ++r) dst[c * 4 + r] = (float)m[r][c];
+}
+
+/* 1 when every entry of m rounds to a finite float (|x| <= FLT_MAX; NaN fails) */
+static int fits_float(double m[4][4])
+{
+    int r, c;
+    for (r = 0; r < 4; ++r)
+        for (c = 0; c < 4; ++c)
+            if (!(fabs(m[r][c]) <= (double)FLT_MAX)) return 0;
+    return 1;
 }
 
 static void matmul4(double out[4][4], double a[4][4], double b[4][4])
@@ -96,6 +109,9 @@ ccl_status ccl_camera_look_at(ccl_vec3 eye, ccl_vec3 target, ccl_vec3 up, float 
     matmul4(ivp, inv_view, inv_proj);
     inv_view[0][3] = inv_view[1][3] = inv_view[2][3] = 0.0; /* the camera moved to the origin */
     matmul4(ivpr, inv_view, inv_proj);
+    /* an eye near FLT_MAX, aspect tan(fov_y / 2) or 1 / z_near beyond it: an entry overflows float32 (C9) */
+    if (!(fits_float(view) && fits_float(proj) && fits_float(vp) && fits_float(ivp) && fits_float(ivpr)))
+        return CCL_EINVAL;
     out->eye = eye;
     store_cm(out->view, view);
     store_cm(out->proj, proj);

@@ -357,6 +357,17 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         const double n = sqrt(s0 * s0 + s1 * s1 + s2 * s2);
         if (!(fabs(n - 1.0) <= 1e-3)) return bad(out_field, "sky.sun");
     }
+    if (sky->kind == CCL_SKY_GRADIENT) {
+        const ccl_sky_gradient *g = &sky->gradient;
+        for (c = 0; c < 3; ++c)
+            if (!(g->horizon[c] >= 0.0f && g->horizon[c] <= CCL_SKY_GRADIENT_MAX_COLOUR && g->zenith[c] >= 0.0f &&
+                  g->zenith[c] <= CCL_SKY_GRADIENT_MAX_COLOUR && g->sun[c] >= 0.0f &&
+                  g->sun[c] <= CCL_SKY_GRADIENT_MAX_COLOUR))
+                return bad(out_field, "sky.gradient");
+    } else if (sky->preetham.variant == CCL_VARIANT_THESIS &&
+               !(sky->preetham.exposure > 0.0f && sky->preetham.exposure <= CCL_CLOUDSCAPE_MAX_THESIS_EXPOSURE)) {
+        return bad(out_field, "sky.preetham.exposure");
+    }
     return CCL_OK;
 }
 
@@ -430,7 +441,7 @@ static void sample_mip(const float *tex, const float *mips, int size, float lod,
     const int levels = mips != NULL ? mip_levels(size) : 1;
     float a[4], b[4], f;
     int k, c;
-    if (lod <= 0.0f || levels <= 1) {
+    if (!(lod > 0.0f) || levels <= 1) { /* a NaN lod too: level 0, never an int conversion of NaN */
         ccl_texgen_sample_trilinear_wrap(tex, size - 1, p.x, p.y, p.z, &out[0], &out[1], &out[2], &out[3]);
         return;
     }

@@ -9,10 +9,10 @@
 /* A finite value >= 0 (false for NaN and +-Inf). */
 static int nonneg_finite(float v)
 {
-    return v >= 0.0f && v <= FLT_MAX;
+    return v >= 0.0f && v <= CCL_MEDIA_MAX_VALUE;
 }
 
-/* Every sample of a[0 .. n-1] is finite and >= 0. */
+/* Every sample of a[0 .. n-1] is in [0, CCL_MEDIA_MAX_VALUE]. */
 static int samples_ok(const float *a, int n)
 {
     int k;

@@ -183,7 +183,10 @@ float ccl_rain_terminal_speed(float radius_mm, float slowdown)
         k = 0;
         while (k < CCL_RAIN_SPEED_ROWS - 2 && r >= TS_R[k + 1]) ++k;
         w = (r - TS_R[k]) / (TS_R[k + 1] - TS_R[k]);
-        v = TS_V[k] * (1.0f - w) + TS_V[k + 1] * w;
+        /* V_k + w (V_k+1 - V_k): the difference is exact (Sterbenz: each row at most doubles the speed), so v is
+         * non-decreasing in w and reaches V_k+1 at most; V_k (1 - w) + V_k+1 w, rounded twice, fell by an ulp as r
+         * grew (fuzz finding I4) */
+        v = TS_V[k] + w * (TS_V[k + 1] - TS_V[k]);
     }
     return v / slowdown;
 }
@@ -529,7 +532,9 @@ ccl_vec3 ccl_rain_light_a1(ccl_vec3 c_l, float dist, ccl_vec3 v_pe, ccl_vec3 v_n
 
 float ccl_rain_light_a2(ccl_vec3 v_pl, ccl_vec3 v_n)
 {
-    return fmaxf(0.0f, ccl_vec3_dot(v_pl, v_n));
+    /* the dot of two unit vectors rounds up to 1 + 2^-22 (0.577350318 (1, 1, 1), fuzz finding I2): at most 1 */
+    const float a = fmaxf(0.0f, ccl_vec3_dot(v_pl, v_n));
+    return a > 1.0f ? 1.0f : a;
 }
 
 float ccl_rain_light_a3(ccl_vec3 v_pl, ccl_vec3 v_n)

@@ -60,19 +60,23 @@ float ccl_sdf_smooth_union(float d1, float d2, float k)
     return d1 * (1.0f - h) + d2 * h - k * h * (1.0f - h);
 }
 
-static float glsl_mod(float x, float y)
+/* One axis of the repeat, in [-c/2, c/2) for every finite x and c in [2^-125, FLT_MAX] (c/2 exact and normal).
+ * GLSL's x - c floor(x / c) rounded twice: the quotient's rounding put the result a period off for |x| / c of ~1e5
+ * and more, and x - c (-1) = c for a tiny negative x gave c/2 (fuzz finding N5). fmodf's remainder r is exact, |r| < c,
+ * with the sign of x; the shifts by c below are exact too (Sterbenz), so the corrected form is the exact centred
+ * remainder. The thesis form r + c/2 for r < 0 rounds up to c/2 when |r| is below half an ulp of c/2: the float below
+ * c/2 (c/2 (1 - 2^-24)) is then the nearest value inside the interval. */
+static float repeat_axis(float x, float c, ccl_variant variant)
 {
-    return x - y * floorf(x / y);
+    const float h = 0.5f * c, r = fmodf(x, c);
+    if (variant != CCL_VARIANT_THESIS) return r >= h ? r - c : (r < -h ? r + c : r); /* mod(x + c/2, c) - c/2 */
+    if (r >= 0.0f) return r - h;                                                      /* mod(x, c) - c/2 */
+    return r + h < h ? r + h : h * 0.99999994f;
 }
 
 ccl_vec3 ccl_sdf_repeat(ccl_vec3 p, ccl_vec3 c, ccl_variant variant)
 {
-    if (variant != CCL_VARIANT_THESIS) {
-        p.x = p.x + 0.5f * c.x;
-        p.y = p.y + 0.5f * c.y;
-        p.z = p.z + 0.5f * c.z;
-    }
-    return v3(glsl_mod(p.x, c.x) - 0.5f * c.x, glsl_mod(p.y, c.y) - 0.5f * c.y, glsl_mod(p.z, c.z) - 0.5f * c.z);
+    return v3(repeat_axis(p.x, c.x, variant), repeat_axis(p.y, c.y, variant), repeat_axis(p.z, c.z, variant));
 }
 
 void ccl_sdf_operators(float d1, float d2, float k, ccl_vec3 p, ccl_vec3 c, ccl_variant variant, float *out_union,

@@ -318,7 +318,7 @@ void ccl_sky_gradient_defaults(ccl_sky_gradient *out)
 
 static int valid_colour(float v)
 {
-    return v >= 0.0f && isfinite(v);
+    return v >= 0.0f && v <= CCL_SKY_GRADIENT_MAX_COLOUR;
 }
 
 static int valid_colour3(ccl_vec3 c)

@@ -61,16 +61,24 @@ float ccl_valuenoise_smooth(int32_t x, int32_t y, int32_t z, uint32_t seed, int3
     return sum / (float)count;
 }
 
+/* a (1 - f) + b f rounds up to an ulp outside [min(a, b), max(a, b)] (1000.00006 for a = b = 1000 in the cosine
+ * form, fuzz finding I1): such a result is the nearest end value (a NaN stays NaN) */
+static float between(float r, float a, float b)
+{
+    const float lo = a < b ? a : b, hi = a < b ? b : a;
+    return r < lo ? lo : (r > hi ? hi : r);
+}
+
 float ccl_valuenoise_linear(float a, float b, float x)
 {
-    return a * (1.0f - x) + b * x;
+    return between(a * (1.0f - x) + b * x, a, b);
 }
 
 float ccl_valuenoise_cosine(float a, float b, float x)
 {
     float ft = x * PI_PRINTED;
     float f = (1.0f - cosf(ft)) * 0.5f;
-    return a * (1.0f - f) + b * f;
+    return between(a * (1.0f - f) + b * f, a, b);
 }
 
 float ccl_valuenoise_cubic(float v0, float v1, float v2, float v3, float x)

@@ -227,7 +227,7 @@ ccl_status ccl_voxel_noise(const ccl_voxel_settings *s, float *out, size_t out_l
 static uint8_t to_u8(float d)
 {
     float r = floorf(d + 0.5f);
-    return (uint8_t)(r < 0.0f ? 0.0f : (r > 255.0f ? 255.0f : r));
+    return (uint8_t)(!(r >= 0.0f) ? 0.0f : (r > 255.0f ? 255.0f : r)); /* NaN: 0, never a cast of NaN */
 }
 
 ccl_status ccl_voxel_cloud(const ccl_voxel_settings *s, uint8_t *out, size_t out_len)

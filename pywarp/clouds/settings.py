@@ -277,6 +277,17 @@ def _albedo_check(obj, name, v):
         raise ValueError(f"{name} must hold 3 numbers in [0, 1], got {v!r}")
 
 
+#: Largest sky_exposure of the thesis variant (CCL_CLOUDSCAPE_MAX_THESIS_EXPOSURE, reasons in cclouds/cloudscape.h):
+#: the printed tone map 1 - exp(+k C) reached -inf at k = 5 and the composite made NaN pixels of it.
+MAX_THESIS_EXPOSURE = 0.25
+
+
+def _sky_exposure_check(obj, name, v):
+    if obj.sky_variant == "thesis" and not v <= MAX_THESIS_EXPOSURE:
+        raise ValueError(f"{name} must be in (0, {MAX_THESIS_EXPOSURE}] with sky_variant 'thesis' (its tone map "
+                         f"1 - exp(+k C) overflows; ccl_cloudscape_check), got {v!r}")
+
+
 def _advanced_check(obj, name, v):
     if v:
         obj.c_params()  # the C check of ccl_cloudscape_params, at the texture sizes
@@ -355,10 +366,11 @@ class CloudscapeSettings(Settings):
                            "the sky k C_HDR (C_HDR's Y is luminance in kcd/m^2, vc-2.39) and the sun k x 127.5 klx x "
                            "the atmosphere's transmittance (cclouds/cloudscape.h); needs sky=preetham, lighting=sky",
                        reason="'display': the thesis's sky and the tuned exposure of its lighting")
-    sky_exposure: float = param(0.05, lo=0.0, hi=10.0, lo_open=True, invalidates="sky", group="sky",
-                                unit="1/(kcd/m^2)",
+    sky_exposure: float = param(0.05, lo=0.0, hi=10.0, lo_open=True, check=_sky_exposure_check, invalidates="sky",
+                                group="sky", unit="1/(kcd/m^2)",
                                 doc="exposure k of the Preetham tone map C = 1 - exp(-k C_HDR) (vc-4.5); C_HDR has "
-                                    "the unit of Preetham's luminance fit, kcd/m^2 (the thesis gives none)",
+                                    "the unit of Preetham's luminance fit, kcd/m^2 (the thesis gives none); at most "
+                                    "0.25 with sky_variant 'thesis', whose printed 1 - exp(+k C_HDR) overflows",
                                 reason="0.05: with the thesis' 0.03 the corrected sky is a dim slate grey-blue; 0.05, "
                                        "then the display transform (exposure_ev, tonemap), gives a T = 3 sky at a "
                                        "30-60 deg sun a blue zenith and a pale horizon (sRGB (109, 141, 179) and "

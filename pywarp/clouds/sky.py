@@ -23,8 +23,9 @@ def _colour(name: str, value) -> tuple[float, float, float]:
     a = np.asarray(value, dtype=np.float64) if not isinstance(value, (str, bytes)) else None
     if a is None or a.shape != (3,):
         raise ValueError(f"{name} must be an RGB triple, got {value!r}")
-    if not np.all(np.isfinite(a)) or np.any(a < 0):
-        raise ValueError(f"{name} must hold finite values >= 0 (linear RGB), got {tuple(a.tolist())}")
+    if not np.all((a >= 0) & (a <= S.GRADIENT_MAX_COLOUR)):
+        raise ValueError(f"{name} must hold values in [0, 1e6] (linear RGB, CCL_SKY_GRADIENT_MAX_COLOUR), "
+                         f"got {tuple(a.tolist())}")
     return tuple(float(np.float32(v)) for v in a)
 
 

@@ -204,9 +204,15 @@ def camera_look_at(eye, target, up=(0.0, 1.0, 0.0), fov_y: float = math.radians(
     inv_proj[3, 3] = (zf + zn) / (2.0 * zf * zn)
     inv_view_rot = inv_view.copy()
     inv_view_rot[:3, 3] = 0.0
+    mats = dict(view=view, proj=proj, view_proj=proj @ view, inv_view_proj=inv_view @ inv_proj,
+                inv_view_proj_rot=inv_view_rot @ inv_proj)
+    for name, m in mats.items():  # as ccl_camera_look_at: every entry within the float32 range (C9)
+        if not np.all(np.abs(m) <= float(np.finfo(np.float32).max)):
+            raise ValueError(f"eye, aspect, z_near and z_far must keep every camera matrix entry within the float32 "
+                             f"range, got a {name} entry beyond it (|eye| {float(np.max(np.abs(e))):g}, aspect {asp:g}, "
+                             f"z_near {zn:g}, z_far {zf:g})")
     f32 = lambda m: np.ascontiguousarray(m, dtype=np.float32)  # noqa: E731
-    return Camera(eye=f32(e), view=f32(view), proj=f32(proj), view_proj=f32(proj @ view),
-                  inv_view_proj=f32(inv_view @ inv_proj), inv_view_proj_rot=f32(inv_view_rot @ inv_proj))
+    return Camera(eye=f32(e), **{name: f32(m) for name, m in mats.items()})
 
 
 def c_camera_look_at(eye, target, up=(0.0, 1.0, 0.0), fov_y: float = math.radians(60.0), aspect: float = 16.0 / 9.0,

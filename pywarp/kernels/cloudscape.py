@@ -244,7 +244,7 @@ def sample_mip_level(tex: wp.array(dtype=Any), size: int, level: int, p: wp.vec3
 def sample_mip(tex: wp.array(dtype=Any), size: int, levels: int, lod: float, p: wp.vec3) -> wp.vec4:
     """Twin of ``sample_mip`` in cloudscape.c: level 0 for lod <= 0, else the blend of levels floor(lod) and
     floor(lod) + 1 by frac(lod) (the last level for lod >= levels - 1; level lod alone for a whole lod)."""
-    if lod <= 0.0 or levels <= 1:
+    if lod <= 0.0 or levels <= 1 or wp.isnan(lod):  # a NaN lod: level 0 (as in C), never an int() of NaN
         return sample_mip_level(tex, size, 0, p)
     top = float(levels - 1)
     if lod >= top:

@@ -44,8 +44,12 @@ def interp_fade_cubic(t: float) -> float:
          references=(_PERLIN_2002,))
 @wp.func
 def interp_fade_quintic(t: float) -> float:
-    """vc-2.20: 6t^5 - 15t^4 + 10t^3 in Perlin's Horner form."""
-    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+    """vc-2.20: 6t^5 - 15t^4 + 10t^3 in Perlin's Horner form; 1 where it rounds to 1 + 2^-23 (22,237 floats in
+    [0.99536, 1), fuzz finding Q), as ``ccl_interp_fade_quintic``."""
+    f = t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+    if f > 1.0:
+        return 1.0
+    return f
 
 
 @wp.func

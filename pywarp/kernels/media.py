@@ -19,6 +19,9 @@ from ..core.registry import VARIANT, Arg, declare
 from . import VARIANT_THESIS
 
 TWO_PI = wp.constant(6.28318530717958647692)  # 2 pi
+#: Largest coefficient, radiance, flux, sample or step (CCL_MEDIA_MAX_VALUE, reasons in cclouds/media.h): products,
+#: source terms times dt and their sums over any number of samples stay finite (~1e25 gave Inf x 0 = NaN).
+MAX_VALUE = 1.0e9
 
 
 # --- scalar twins (element-wise; the evaluation kernels are generated) ---------------------------------------------
@@ -27,15 +30,15 @@ _REFS_PBR = ("Pharr, Jakob & Humphreys, Physically Based Rendering, 4th ed., ch.
 
 
 def _coef(name, doc):
-    return Arg(name, doc + " [m^-1], >= 0", lo=0.0)
+    return Arg(name, doc + " [m^-1], in [0, 1e9]", lo=0.0, hi=MAX_VALUE)
 
 
 _SIGMA_A = _coef("sigma_a", "absorption coefficient sigma_a(x)")
 _SIGMA_S = _coef("sigma_s", "scattering coefficient sigma_s(x)")
 _SIGMA_T = _coef("sigma_t", "extinction coefficient sigma_t(x) = sigma_a + sigma_s")
-_L = Arg("L", "radiance L(x, omega) >= 0", lo=0.0)
-_L_E = Arg("L_e", "emitted radiance L_e(x, omega) >= 0", lo=0.0)
-_L_I = Arg("L_i", "in-scattered radiance L_i(x, omega) = int p L domega_i >= 0", lo=0.0)
+_L = Arg("L", "radiance L(x, omega) >= 0", lo=0.0, hi=MAX_VALUE)
+_L_E = Arg("L_e", "emitted radiance L_e(x, omega) >= 0", lo=0.0, hi=MAX_VALUE)
+_L_I = Arg("L_i", "in-scattered radiance L_i(x, omega) = int p L domega_i >= 0", lo=0.0, hi=MAX_VALUE)
 _TAU = Arg("optical_depth", "optical depth tau = int_0^l sigma_t dx (dimensionless) >= 0", lo=0.0)
 
 
@@ -66,7 +69,7 @@ def media_extinction_derivative(sigma_a: float, sigma_s: float, L: float) -> flo
 
 
 @declare("vc-2.4", c="ccl_media_flux_derivative",
-         args=(_SIGMA_T, Arg("phi", "radiant flux Phi(x) [W] >= 0", lo=0.0)), outputs=("dphi_dx",),
+         args=(_SIGMA_T, Arg("phi", "radiant flux Phi(x) [W] >= 0", lo=0.0, hi=MAX_VALUE)), outputs=("dphi_dx",),
          summary="Beer-Lambert law in differential flux form, dPhi/dx = -sigma_t Phi.", references=_REFS_PBR)
 @wp.func
 def media_flux_derivative(sigma_t: float, phi: float) -> float:
@@ -75,7 +78,7 @@ def media_flux_derivative(sigma_t: float, phi: float) -> float:
 
 
 @declare("vc-2.5", c="ccl_media_slab_flux",
-         args=(Arg("phi_i", "flux entering the slab Phi_i [W] >= 0", lo=0.0), _TAU), outputs=("phi_o",),
+         args=(Arg("phi_i", "flux entering the slab Phi_i [W] >= 0", lo=0.0, hi=MAX_VALUE), _TAU), outputs=("phi_o",),
          summary="Flux leaving a slab, Phi_o = Phi_i exp(-tau); tau = sigma_t l for a homogeneous slab of thickness "
                  "l, media_optical_thickness (vc-2.34) of sigma_t for a sampled one.", references=_REFS_PBR)
 @wp.func
@@ -143,11 +146,11 @@ def _check_raymarch(sigma_t, sigma_s, **_):
                          f"{sigma_s[r, k].item()!r} > sigma_t = {sigma_t[r, k].item()!r} at sample {k}")
 
 
-_DT = Arg("dt", "step length Delta t between samples (path length s = n dt) >= 0", lo=0.0)
-_L_BG = Arg("L_bg", "radiance of the surface behind the medium L(x_s) >= 0", lo=0.0)
-_SAMPLES = "samples along the ray on the last axis, >= 0"
+_DT = Arg("dt", "step length Delta t between samples (path length s = n dt) >= 0", lo=0.0, hi=MAX_VALUE)
+_L_BG = Arg("L_bg", "radiance of the surface behind the medium L(x_s) >= 0", lo=0.0, hi=MAX_VALUE)
+_SAMPLES = "samples along the ray on the last axis, in [0, 1e9]"
 _P_NODES = Arg("p", "phase function p(mu) [sr^-1] >= 0 at the n (odd, >= 3) uniform nodes mu_i = -1 + 2 i/(n-1) on "
-                    "the last axis", lo=0.0)
+                    "the last axis", lo=0.0, hi=MAX_VALUE)
 # The sampled-ray entries below are not element-wise (a sum over the sample axis of each ray): their evaluators are
 # pywarp.clouds.media's.
 _ROWS = {"make_warp": "pywarp.clouds.media:rows_warp", "make_c": "pywarp.clouds.media:rows_c"}
@@ -195,10 +198,10 @@ def media_phase_asymmetry(p: wp.array2d(dtype=float), row: int) -> float:
 
 
 @declare("vc-2.17", c="ccl_media_volume_render",
-         args=(Arg("sigma_a", "absorption coefficient, " + _SAMPLES, lo=0.0),
-               Arg("sigma_s", "scattering coefficient, " + _SAMPLES, lo=0.0),
-               Arg("L_e", "emitted radiance, " + _SAMPLES, lo=0.0),
-               Arg("L_i", "in-scattered radiance, " + _SAMPLES, lo=0.0), _DT, _L_BG),
+         args=(Arg("sigma_a", "absorption coefficient, " + _SAMPLES, lo=0.0, hi=MAX_VALUE),
+               Arg("sigma_s", "scattering coefficient, " + _SAMPLES, lo=0.0, hi=MAX_VALUE),
+               Arg("L_e", "emitted radiance, " + _SAMPLES, lo=0.0, hi=MAX_VALUE),
+               Arg("L_i", "in-scattered radiance, " + _SAMPLES, lo=0.0, hi=MAX_VALUE), _DT, _L_BG),
          options=(VARIANT,), outputs=("L",), extra={"n_sample_args": 4}, **_ROWS,
          summary="Volume rendering equation (emission + single scattering) along sampled rays, left Riemann sum: "
                  "T(x,x_s) L_bg + sum_k T(x,x_k) (sigma_a L_e + sigma_s L_i)(x_k) dt with sigma_t = sigma_a + "
@@ -225,9 +228,9 @@ def media_volume_render(sigma_a: wp.array2d(dtype=float), sigma_s: wp.array2d(dt
 
 
 @declare("vc-2.18", c="ccl_media_raymarch",
-         args=(Arg("sigma_t", "extinction coefficient, " + _SAMPLES, lo=0.0),
-               Arg("sigma_s", "scattering coefficient (<= sigma_t), " + _SAMPLES, lo=0.0),
-               Arg("L_i", "in-scattered radiance, " + _SAMPLES, lo=0.0), _DT, _L_BG),
+         args=(Arg("sigma_t", "extinction coefficient, " + _SAMPLES, lo=0.0, hi=MAX_VALUE),
+               Arg("sigma_s", "scattering coefficient (<= sigma_t), " + _SAMPLES, lo=0.0, hi=MAX_VALUE),
+               Arg("L_i", "in-scattered radiance, " + _SAMPLES, lo=0.0, hi=MAX_VALUE), _DT, _L_BG),
          options=(VARIANT,), outputs=("L",), check=_check_raymarch, extra={"n_sample_args": 3}, **_ROWS,
          summary="Raymarching approximation (Riemann sum, no emission): T(x,x_s) L_bg + sum_k T(x,x_k) sigma_s(x_k) "
                  "L_i(x_k) dt. variant='corrected': L_i at x_k; variant='thesis': L_i at x (sample 0) as printed.",
@@ -250,7 +253,7 @@ def media_raymarch(sigma_t: wp.array2d(dtype=float), sigma_s: wp.array2d(dtype=f
 
 @declare("vc-2.34", c="ccl_media_optical_thickness",
          args=(Arg("sigma", "attenuation coefficient to integrate (sigma_t for Beer-Lambert; the text prints "
-                            "sigma_s), " + _SAMPLES, lo=0.0), _DT),
+                            "sigma_s), " + _SAMPLES, lo=0.0, hi=MAX_VALUE), _DT),
          outputs=("tau",), extra={"n_sample_args": 1}, **_ROWS,
          summary="Optical thickness of a sampled path, tau = sum_k sigma(x_k) dt (left Riemann sum of int_0^s sigma "
                  "dx). The text integrates sigma_s; the general definition sigma_t: pass the coefficient you mean.",

@@ -668,11 +668,17 @@ def composite_tile_kernel(row0: int, active: wp.array(dtype=int), background: wp
     r = ratio[0]
     for k in range(tile_start[t], tile_start[t + 1]):
         j = tile_items[k]
-        # the pixels whose centre may lie in the box (the exact test is the shader's)
-        xa = wp.max(x0, int(wp.floor(sprites[j, 0] - sprites[j, 2])) - 1)
-        xb = wp.min(x1, int(wp.floor(sprites[j, 0] + sprites[j, 2])) + 1)
-        ya = wp.max(y0, int(wp.floor(sprites[j, 1] - sprites[j, 3])) - 1)
-        yb = wp.min(y1, int(wp.floor(sprites[j, 1] + sprites[j, 3])) + 1)
+        # the pixels whose centre may lie in the box (the exact test is the shader's); the edges are taken within
+        # the tile +- 2 pixels before the int() (a huge or infinite sprite; binned sprites are not NaN), which keeps
+        # xa..xb and ya..yb as they were
+        fx0 = float(x0) - 2.0
+        fx1 = float(x1) + 2.0
+        fy0 = float(y0) - 2.0
+        fy1 = float(y1) + 2.0
+        xa = wp.max(x0, int(wp.floor(wp.clamp(sprites[j, 0] - sprites[j, 2], fx0, fx1))) - 1)
+        xb = wp.min(x1, int(wp.floor(wp.clamp(sprites[j, 0] + sprites[j, 2], fx0, fx1))) + 1)
+        ya = wp.max(y0, int(wp.floor(wp.clamp(sprites[j, 1] - sprites[j, 3], fy0, fy1))) - 1)
+        yb = wp.min(y1, int(wp.floor(wp.clamp(sprites[j, 1] + sprites[j, 3], fy0, fy1))) + 1)
         for x in range(xa, xb + 1):  # down the columns: the mask is column-major
             for y in range(ya, yb + 1):
                 ndc = wp.vec2(2.0 * ((float(x) + 0.5) / float(w)) - 1.0, 1.0 - 2.0 * ((float(y) + 0.5) / float(h)))

@@ -315,7 +315,8 @@ def rain_terminal_speed(radius_mm: float, slowdown: float) -> float:
             if k < 21 and r >= _TS_R[k + 1]:
                 k = k + 1
         w = (r - _TS_R[k]) / (_TS_R[k + 1] - _TS_R[k])
-        v = _TS_V[k] * (1.0 - w) + _TS_V[k + 1] * w
+        # V_k + w (V_k+1 - V_k), the difference exact: non-decreasing in the radius (as ccl_rain_terminal_speed)
+        v = _TS_V[k] + w * (_TS_V[k + 1] - _TS_V[k])
     return v / slowdown
 
 
@@ -677,8 +678,8 @@ def rain_light_a1(c_l: wp.vec3, dist: float, v_pe: wp.vec3, v_n: wp.vec3, r_half
          references=("Rousseau, Jolivet & Ghazanfarpour 2006, §5",))
 @wp.func
 def rain_light_a2(v_pl: wp.vec3, v_n: wp.vec3) -> float:
-    """rr-A2."""
-    return wp.max(0.0, wp.dot(v_pl, v_n))
+    """rr-A2, at most 1 where the dot of unit vectors rounds above it (as ccl_rain_light_a2)."""
+    return wp.min(wp.max(0.0, wp.dot(v_pl, v_n)), 1.0)
 
 
 @declare("rr-A3", c="ccl_rain_light_a3", args=(_VPL, _VN), outputs=("A3",),

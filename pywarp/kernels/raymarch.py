@@ -132,7 +132,10 @@ class CloudLayer:
 
 
 _DEFAULT_LAYER = CloudLayer()
-_ORIGIN = Arg("origin", "ray origin (km)", unit_name="km")
+#: Largest coordinate and radius of the ray-sphere and layer-segment entries (CCL_RAYMARCH_MAX_DISTANCE, reasons in
+#: cclouds/raymarch.h): |o - c|^2 - r^2 overflowed for an origin 1e19 away and the layer segment ended at inf.
+MAX_DISTANCE = 1.0e15
+_ORIGIN = Arg("origin", "ray origin (km)", lo=-MAX_DISTANCE, hi=MAX_DISTANCE, unit_name="km")
 _DIRECTION = Arg("direction", "unit ray direction", unit=True)
 
 
@@ -140,8 +143,9 @@ _DIRECTION = Arg("direction", "unit ray direction", unit=True)
 
 @declare("vc-A14", c="ccl_raymarch_ray_sphere",
          nonfinite="a ray that misses the sphere gives NaN distances (the documented miss)",
-         args=(_ORIGIN, _DIRECTION, Arg("centre", "sphere centre (km)", unit_name="km"),
-               Arg("radius", "sphere radius", lo=0.0, lo_open=True, unit_name="km")),
+         args=(_ORIGIN, _DIRECTION, Arg("centre", "sphere centre (km)", lo=-MAX_DISTANCE, hi=MAX_DISTANCE,
+                                        unit_name="km"),
+               Arg("radius", "sphere radius", lo=0.0, lo_open=True, hi=MAX_DISTANCE, unit_name="km")),
          outputs=("t_near", "t_far"),
          summary="Ray-sphere intersection distances t_near <= t_far along the unit direction (negative = behind the "
                  "origin); NaN where the ray misses. Used for the Earth and the two cloud-layer spheres (defaults: "
@@ -241,11 +245,13 @@ def _layer_samples(rng, n):
 @declare("vc-A24", c="ccl_raymarch_layer_segment",
          nonfinite="a ray without a segment in the layer gives NaN (the documented no-segment)",
          args=(_ORIGIN, _DIRECTION,
-               Arg("centre", "planet centre (km)", default=(0.0, -EARTH_RADIUS_KM, 0.0), unit_name="km"),
+               Arg("centre", "planet centre (km)", lo=-MAX_DISTANCE, hi=MAX_DISTANCE,
+                   default=(0.0, -EARTH_RADIUS_KM, 0.0), unit_name="km"),
                Arg("r_earth", "Earth radius", lo=0.0, lo_open=True, default=_DEFAULT_LAYER.r_earth, unit_name="km"),
-               # r_inner and r_outer are bounded by r_earth <= r_inner < r_outer (the cross-argument check)
+               # r_inner is bounded by r_earth <= r_inner < r_outer (the cross-argument check)
                Arg("r_inner", "cloud-layer base radius (>= r_earth)", default=_DEFAULT_LAYER.r_inner, unit_name="km"),
-               Arg("r_outer", "cloud-layer top radius (> r_inner)", default=_DEFAULT_LAYER.r_outer, unit_name="km")),
+               Arg("r_outer", "cloud-layer top radius (> r_inner)", hi=MAX_DISTANCE, default=_DEFAULT_LAYER.r_outer,
+                   unit_name="km")),
          outputs=("t_start", "t_end"), check=_check_layer, samples=_layer_samples,
          summary="The raymarch interval through the cloud layer for a camera below (vc-A14: inner far root to outer "
                  "far root, nothing below the horizon), inside (camera to first exit) or above (outer entry to inner "

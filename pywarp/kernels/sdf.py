@@ -125,18 +125,30 @@ def sdf_smooth_union(d1: float, d2: float, k: float) -> float:
 
 
 @wp.func
-def _glsl_mod(x: float, y: float) -> float:
-    return x - y * wp.floor(x / y)
+def _repeat_axis(x: float, c: float, variant: int) -> float:
+    """One axis of the repeat in [-c/2, c/2) for every finite x (twin of ``repeat_axis``, sdf.c): wp.mod is fmodf,
+    the exact remainder; the corrected form shifts it by c (exact), the thesis form takes the float below c/2 where
+    r + c/2 rounds up to c/2 (fuzz finding N5: GLSL's x - c floor(x / c) left the interval)."""
+    h = 0.5 * c
+    r = wp.mod(x, c)
+    if variant != VARIANT_THESIS:
+        if r >= h:
+            return r - c
+        if r < -h:
+            return r + c
+        return r
+    if r >= 0.0:
+        return r - h
+    if r + h < h:
+        return r + h
+    return h * 0.99999994
 
 
 @wp.func
 def sdf_repeat(p: wp.vec3, c: wp.vec3, variant: int) -> wp.vec3:
-    """Kod 4.2 repeat: thesis mod(p, c) - c/2; corrected mod(p + c/2, c) - c/2."""
-    q = p
-    if variant != VARIANT_THESIS:
-        q = wp.vec3(p[0] + 0.5 * c[0], p[1] + 0.5 * c[1], p[2] + 0.5 * c[2])
-    return wp.vec3(_glsl_mod(q[0], c[0]) - 0.5 * c[0], _glsl_mod(q[1], c[1]) - 0.5 * c[1],
-                   _glsl_mod(q[2], c[2]) - 0.5 * c[2])
+    """Kod 4.2 repeat: thesis mod(p, c) - c/2; corrected mod(p + c/2, c) - c/2; in [-c/2, c/2) per axis."""
+    return wp.vec3(_repeat_axis(p[0], c[0], variant), _repeat_axis(p[1], c[1], variant),
+                   _repeat_axis(p[2], c[2], variant))
 
 
 @declare("pt-code-4.2", c="ccl_sdf_operators",
@@ -145,7 +157,8 @@ def sdf_repeat(p: wp.vec3, c: wp.vec3, variant: int) -> wp.vec3:
                Arg("k", "smooth-union width (1 = the printed smoothUnion)", lo=0.0, hi=1e3, lo_open=True, default=1.0,
                    sample_range=(0.05, 4.0)),
                Arg("p", "point to repeat", lo=-1e4, hi=1e4, default=(0.0, 0.0, 0.0), sample_range=(-10.0, 10.0)),
-               Arg("c", "repetition period per axis", lo=0.0, hi=1e4, lo_open=True, default=(1.0, 1.0, 1.0),
+               Arg("c", "repetition period per axis (>= 2^-125: c/2 a normal float)", lo=2.0 ** -125, hi=1e4,
+                   default=(1.0, 1.0, 1.0),
                    sample_range=(0.1, 4.0))),
          options=(VARIANT,), outputs=("union", "intersection", "subtraction", "smooth_union", "repeat"),
          summary="The operators of Kod 4.2: union min(d1, d2) (named opUnion in GLSL, where union is reserved), "

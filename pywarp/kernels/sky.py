@@ -113,8 +113,13 @@ _TURBIDITY = Arg("turbidity", "atmospheric turbidity T of the Preetham fits", lo
                  hi=TURBIDITY_RANGE[1])
 # Perez coefficients: any finite value is valid; the contract tests draw them from the range of the Preetham fits
 # (|A..E| <= 6; exp(B / 0.01) overflows for B > 0.88, as the formula does)
-_PEREZ = tuple(Arg(n, f"Perez coefficient {n}", sample_range=r) for n, r in
-               zip("ABCDE", ((-2.0, 0.0), (-4.0, 0.0), (0.0, 6.0), (-3.0, 0.0), (-0.5, 0.5))))
+#: Bound of the Perez coefficients (CCL_SKY_PEREZ_MAX_COEFFICIENT, reasons in cclouds/sky.h): A, C, E in [-1e6, 1e6],
+#: B and D in [-1e6, 0], so both factors of F are finite (B = D = 0, C = E = -3.4e38 made 0 x -Inf = NaN).
+PEREZ_MAX_COEFFICIENT = 1.0e6
+_PEREZ = tuple(Arg(n, f"Perez coefficient {n}" + (" (<= 0: the luminance falls towards the horizon, the glow away from "
+                                                   "the sun)" if n in "BD" else ""),
+                   lo=-PEREZ_MAX_COEFFICIENT, hi=0.0 if n in "BD" else PEREZ_MAX_COEFFICIENT, sample_range=r)
+               for n, r in zip("ABCDE", ((-2.0, 0.0), (-4.0, 0.0), (0.0, 6.0), (-3.0, 0.0), (-0.5, 0.5))))
 _YZ = Arg("Y_z", "zenith value of the channel (Y_Z, or x_z / y_z for the chromaticities)")
 _PREETHAM_REFS = ("Preetham, Shirley & Smits, A practical analytic model for daylight, SIGGRAPH 1999, appendix A.2",
                   "Zotti, Wilkie & Purgathofer, A critical review of the Preetham skylight model, WSCG 2007")
@@ -464,9 +469,14 @@ def sky_preetham_colour(direction: wp.vec3, turbidity: float, sun_elevation_deg:
     return sky_preetham_rgb(d, sun, p)
 
 
+#: Largest colour component of the gradient sky (CCL_SKY_GRADIENT_MAX_COLOUR, reasons in cclouds/sky.h): the
+#: cloudscape's sky lighting sums the sky over a hemisphere, and a horizon of 1e37 overflowed those sums (NaN pixels).
+GRADIENT_MAX_COLOUR = 1.0e6
+
+
 def _colour_arg(name, doc):
-    return Arg(name, f"{doc} (linear RGB, components >= 0), default {GRADIENT_DEFAULTS[name]}", lo=0.0,
-               default=GRADIENT_DEFAULTS[name], sample_range=(0.0, 2.0))
+    return Arg(name, f"{doc} (linear RGB, components in [0, 1e6]), default {GRADIENT_DEFAULTS[name]}", lo=0.0,
+               hi=GRADIENT_MAX_COLOUR, default=GRADIENT_DEFAULTS[name], sample_range=(0.0, 2.0))
 
 
 @declare("vc-A28", c="ccl_sky_gradient_colour",

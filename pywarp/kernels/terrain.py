@@ -441,8 +441,9 @@ def _normal(p: wp.vec3, h: float, octaves: int, height_scale: float, horizontal_
          options=(HEIGHTMAP,), outputs=("n", "g"), derived=_PERM,
          summary="Kod 7.8 / eq 7.2: g = (map(p + h x) - map(p - h x), map(p + h y) - map(p - h y), map(p + h z) - "
                  "map(p - h z)) with map = y - h(x, z) (so g = 2h (-h_x, 1, -h_z) to first order); n = normalize(g). "
-                 "Outputs n and g (the missing division by 2h does not matter after normalising; g.y = 2h up to the "
-                 "rounding of p.y +- h). The scene evaluates it with more octaves than the march (7.3).",
+                 "Outputs n and g (the missing division by 2h does not matter after normalising; g.y = 2h up to five "
+                 "roundings: |g.y - 2h| <= 2 ulp(|p.y| + h + |H|) + ulp(2h), H the height at (p.x, p.z)). The scene "
+                 "evaluates it with more octaves than the march (7.3).",
          references=_REF)
 @wp.func
 def terrain_normal(p: wp.vec3, h: float, octaves: int, height_scale: float, horizontal_scale: float,
@@ -573,7 +574,10 @@ def terrain_clouds(colour: wp.vec3, ro: wp.vec3, rd: wp.vec3, cloud_height: floa
          references=_REF + ("T. Akenine-Moller, E. Haines, N. Hoffman, Real-Time Rendering, 3rd ed., 2008",))
 @wp.func
 def terrain_water_weight(v: wp.vec3, n: wp.vec3, kappa: float) -> float:
-    return wp.pow(wp.abs(_dot(v, n)), kappa)
+    c = wp.abs(_dot(v, n))
+    if c > 1.0:  # |v . n| of unit vectors rounds up to 1 + 2^-22 (as ccl_terrain_water_weight)
+        c = 1.0
+    return wp.pow(c, kappa)
 
 
 @wp.func

@@ -168,14 +168,31 @@ _AB = (Arg("a", "value at x = 0 (A)"), Arg("b", "value at x = 1 (B)"))
 _X = Arg("x", "position between the two values", lo=0.0, hi=1.0)
 
 
+@wp.func
+def _between(r: float, a: float, b: float) -> float:
+    """r within [min(a, b), max(a, b)]: a (1 - f) + b f rounds up to an ulp outside (1000.00006 for a = b = 1000 in
+    the cosine form, fuzz finding I1), such a result is the nearest end value; a NaN stays NaN (twin of ``between``,
+    valuenoise.c)."""
+    lo = b
+    hi = a
+    if a < b:
+        lo = a
+        hi = b
+    if r < lo:
+        return lo
+    if r > hi:
+        return hi
+    return r
+
+
 @declare("oc-5.1.4.1", c="ccl_valuenoise_linear", args=(*_AB, _X), outputs=("v",),
          summary="Linear_Interp(a, b, x) = a*(1-x) + b*x, as printed; exactly a at x = 0 and b at x = 1 (unlike "
                  "interp_lerp's a + x(b - a), which is the same function but need not give b exactly in float32).",
          references=(_REF_ELIAS,))
 @wp.func
 def valuenoise_linear(a: float, b: float, x: float) -> float:
-    """oc-5.1.4.1: a*(1-x) + b*x."""
-    return a * (1.0 - x) + b * x
+    """oc-5.1.4.1: a*(1-x) + b*x, within [min(a, b), max(a, b)]."""
+    return _between(a * (1.0 - x) + b * x, a, b)
 
 
 @declare("oc-5.1.4.2", c="ccl_valuenoise_cosine", args=(*_AB, _X), outputs=("v",),
@@ -185,10 +202,10 @@ def valuenoise_linear(a: float, b: float, x: float) -> float:
          references=(_REF_ELIAS,))
 @wp.func
 def valuenoise_cosine(a: float, b: float, x: float) -> float:
-    """oc-5.1.4.2: f = (1 - cos(3.1415927 x)) / 2; a(1 - f) + b f."""
+    """oc-5.1.4.2: f = (1 - cos(3.1415927 x)) / 2; a(1 - f) + b f, within [min(a, b), max(a, b)]."""
     ft = x * _PI_PRINTED
     f = (1.0 - wp.cos(ft)) * 0.5
-    return a * (1.0 - f) + b * f
+    return _between(a * (1.0 - f) + b * f, a, b)
 
 
 @declare("oc-5.1.4.3", c="ccl_valuenoise_cubic",

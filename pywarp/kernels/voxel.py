@@ -215,7 +215,7 @@ def _face_distance(i: int, n: int) -> int:
 @wp.func
 def _to_u8(d: float) -> wp.uint8:
     r = wp.floor(d + 0.5)
-    if r < 0.0:
+    if r < 0.0 or wp.isnan(r):  # NaN: 0 (as to_u8 in C), never an int() of NaN
         r = 0.0
     if r > 255.0:
         r = 255.0

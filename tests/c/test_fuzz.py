@@ -4,7 +4,7 @@ finding (crash, sanitizer report, broken contract, timeout, memory blow-up) fail
 under pytest's temporary directory. Skipped when clang with libFuzzer is not available. cclouds/fuzz/README.md says
 how to fuzz longer.
 
-Cost: one build of the library (~20-40 s on 2 cores) plus FUZZ_SECONDS per harness (9 harnesses).
+Cost: one build of the library (~20-40 s on 2 cores) plus FUZZ_SECONDS per harness (13 harnesses).
 """
 from __future__ import annotations
 

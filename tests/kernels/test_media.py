@@ -387,17 +387,17 @@ def test_media_sampled_rays_c_and_warp_agree(rng):
 @pytest.mark.spec("vc-2.1", "vc-2.2", "vc-2.3", "vc-2.4", "vc-2.5", "vc-2.6", "vc-2.7", "vc-2.9", "vc-2.10")
 @pytest.mark.parametrize("impl", ["warp", "c"])
 def test_media_scalar_bad_input_raises_value_error_naming_parameter(impl):
-    with pytest.raises(ValueError, match=r"^sigma_s must be in \[0, inf\), got -1\.0"):
+    with pytest.raises(ValueError, match=r"^sigma_s must be in \[0, 1e\+09\], got -1\.0"):
         pywarp.equation("vc-2.2", impl=impl)(-1.0, 1.0)
     with pytest.raises(ValueError, match=r"^sigma_s must be finite"):
         pywarp.equation("vc-2.3", impl=impl)(1.0, np.nan, 1.0)
-    with pytest.raises(ValueError, match=r"^phi must be in \[0, inf\)"):
+    with pytest.raises(ValueError, match=r"^phi must be in \[0, 1e\+09\]"):
         pywarp.equation("vc-2.4", impl=impl)(1.0, -2.0)
-    with pytest.raises(ValueError, match=r"^L_i must be in \[0, inf\)"):
+    with pytest.raises(ValueError, match=r"^L_i must be in \[0, 1e\+09\]"):
         pywarp.equation("vc-2.9", impl=impl)(1.0, 1.0, 1.0, -1.0)
     with pytest.raises(ValueError, match=r"do not broadcast: sigma_a\(2,\), sigma_s\(3,\)"):
         pywarp.equation("vc-2.9", impl=impl)([1.0, 1.0], [1.0, 1.0, 1.0], 1.0, 1.0)
-    with pytest.raises(ValueError, match=r"^sigma_a must be in \[0, inf\), got -0\.5"):
+    with pytest.raises(ValueError, match=r"^sigma_a must be in \[0, 1e\+09\], got -0\.5"):
         pywarp.equation("vc-2.1", impl=impl)(-0.5, 1.0)
     with pytest.raises(ValueError, match=r"^L must be finite"):
         pywarp.equation("vc-2.1", impl=impl)(0.5, np.inf)
@@ -409,7 +409,7 @@ def test_media_scalar_bad_input_raises_value_error_naming_parameter(impl):
         pywarp.equation("vc-2.7", impl=impl)(0.5, 1.2)
     with pytest.raises(ValueError, match=r"^variant must be one of 'corrected', 'thesis'"):
         pywarp.equation("vc-2.7", impl=impl)(0.5, 0.5, variant="sum")
-    with pytest.raises(ValueError, match=r"^L_e must be in \[0, inf\)"):
+    with pytest.raises(ValueError, match=r"^L_e must be in \[0, 1e\+09\]"):
         pywarp.equation("vc-2.10", impl=impl)(1.0, 1.0, -1.0, 1.0, 1.0)
     with pytest.raises(TypeError, match=r"transmittance\(\): missing a required argument: 'optical_depth'"):
         pywarp.equation("vc-2.6", impl=impl)()
@@ -420,13 +420,13 @@ def test_media_scalar_bad_input_raises_value_error_naming_parameter(impl):
 def test_media_sampled_bad_input_raises_value_error_naming_parameter(impl):
     march = pywarp.equation("vc-2.18", impl=impl)
     ok = np.ones(4)
-    with pytest.raises(ValueError, match=r"^dt must be in \[0, inf\), got -0\.1"):
+    with pytest.raises(ValueError, match=r"^dt must be in \[0, 1e\+09\], got -0\.1"):
         march(ok, ok, ok, -0.1, 0.0)
     with pytest.raises(ValueError, match=r"^dt must be finite"):
         march(ok, ok, ok, np.nan, 0.0)
-    with pytest.raises(ValueError, match=r"^L_bg must be in \[0, inf\)"):
+    with pytest.raises(ValueError, match=r"^L_bg must be in \[0, 1e\+09\]"):
         march(ok, ok, ok, 0.1, -1.0)
-    with pytest.raises(ValueError, match=r"^sigma_t must be in \[0, inf\)"):
+    with pytest.raises(ValueError, match=r"^sigma_t must be in \[0, 1e\+09\]"):
         march([1.0, -1.0, 1.0, 1.0], ok, ok, 0.1, 0.0)
     with pytest.raises(ValueError, match=r"^L_i must be finite"):
         march(ok, ok, [1.0, np.nan, 1.0, 1.0], 0.1, 0.0)
@@ -440,14 +440,14 @@ def test_media_sampled_bad_input_raises_value_error_naming_parameter(impl):
         march(np.ones((2, 4)), np.ones((2, 4)), np.ones((2, 4)), np.ones(3), 0.0)
     with pytest.raises(ValueError, match=r"^variant must be one of"):
         march(ok, ok, ok, 0.1, 0.0, variant="printed")
-    with pytest.raises(ValueError, match=r"^L_e must be in \[0, inf\)"):
+    with pytest.raises(ValueError, match=r"^L_e must be in \[0, 1e\+09\]"):
         pywarp.equation("vc-2.17", impl=impl)(ok, ok, -ok, ok, 0.1, 0.0)
-    with pytest.raises(ValueError, match=r"^sigma must be in \[0, inf\)"):
+    with pytest.raises(ValueError, match=r"^sigma must be in \[0, 1e\+09\]"):
         pywarp.equation("vc-2.34", impl=impl)(-ok, 0.1)
     phase = pywarp.equation("vc-2.8", impl=impl)
     with pytest.raises(ValueError, match=r"^p must hold an odd number >= 3 of samples .* got 4"):
         phase(np.ones(4))
-    with pytest.raises(ValueError, match=r"^p must be in \[0, inf\)"):
+    with pytest.raises(ValueError, match=r"^p must be in \[0, 1e\+09\]"):
         phase([0.1, -0.1, 0.1])
     with pytest.raises(TypeError, match=r"media_raymarch\(\): missing a required argument: 'L_bg'"):
         march(ok, ok, ok, 0.1)
@@ -487,5 +487,5 @@ def test_media_phase_asymmetry_bad_input():
 
     with pytest.raises(ValueError, match=r"^p must hold an odd number >= 3 of samples .* got 4"):
         pywarp.media_phase_asymmetry(np.ones((2, 4), np.float32))
-    with pytest.raises(ValueError, match=r"^p must be in \[0, inf\), got -1\.0"):
+    with pytest.raises(ValueError, match=r"^p must be in \[0, 1e\+09\], got -1\.0"):
         pywarp.media_phase_asymmetry(-np.ones(5, np.float32))

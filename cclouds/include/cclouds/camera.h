@@ -38,7 +38,8 @@ typedef struct {
  * pt-code-7.2: pi/2), aspect -> width / height (> 0), 0 < z_near < z_far (world units).
  * Basis: f = normalize(target - eye), s = normalize(f x up), u = s x f; view rows s, u, -f.
  * Returns CCL_EINVAL (out untouched) for a non-finite input, eye == target, up parallel to the view direction
- * (within ~1e-6 rad) or a parameter outside its range; CCL_OK otherwise. */
+ * (within ~1e-6 rad), a parameter outside its range, or a matrix entry beyond the float32 range (an eye near
+ * FLT_MAX, aspect tan(fov_y / 2) or 1 / z_near above it); CCL_OK otherwise, every matrix entry finite. */
 CCL_API ccl_status ccl_camera_look_at(ccl_vec3 eye, ccl_vec3 target, ccl_vec3 up, float fov_y, float aspect,
                                       float z_near, float z_far, ccl_camera *out);
 

@@ -112,6 +112,13 @@ extern "C" {
  * while the whole product stayed small (a step of 1e-39 km: inf x a density of 0 = a NaN pixel, found by fuzzing).
  * The thesis's factor is 3; 10^6 is far beyond any useful value. */
 #define CCL_CLOUDSCAPE_MAX_LIGHT_FAR_FACTOR 1.0e6f
+/* Largest exposure of a Preetham sky of the thesis variant that ccl_cloudscape_check accepts. The printed tone map
+ * 1 - exp(+k C) (vc-4.5) grows without bound in k C: at exposure 5 the default sky reached -inf and the composite
+ * made NaN pixels of it (-inf x 0, inf - inf). The brightest HDR channel of the model is below 140 (every
+ * direction, T in [2, 10], the sun above the horizon), so at k <= 0.25 the sky stays above -e^35 (~ -1.6e15),
+ * finite through every sum and product of the render. The thesis's own k is 0.03; the variant's sky is <= 0
+ * (black on screen) at every k anyway. */
+#define CCL_CLOUDSCAPE_MAX_THESIS_EXPOSURE 0.25f
 
 /* The four textures of the cloudscape (not owned). */
 typedef struct ccl_cloud_textures {
@@ -311,7 +318,9 @@ CCL_API void ccl_cloudscape_params_default(ccl_cloudscape_params *out);
  * field (a static string; out_field may be NULL). Besides each field's own range: the layer centre finite; the
  * texture-coordinate bound CCL_CLOUDSCAPE_MAX_TEXCOORD for every texture at its size (reported as base_scale_km,
  * curl_scale_km, weather_scale_km, weather_offset, detail_scale_km, curl_strength_km or detail_offset);
- * | |sky.sun| - 1 | <= 1e-3. */
+ * | |sky.sun| - 1 | <= 1e-3; a gradient sky's colours in [0, CCL_SKY_GRADIENT_MAX_COLOUR] (sky.gradient, as
+ * ccl_sky_gradient_init; any exponent keeps the glow in [0, sun] since its cosine is clamped); a Preetham sky of the thesis variant with exposure in
+ * (0, CCL_CLOUDSCAPE_MAX_THESIS_EXPOSURE] (sky.preetham.exposure). */
 CCL_API ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_textures *t,
                                         const ccl_cloudscape_sky *sky, const char **out_field);
 

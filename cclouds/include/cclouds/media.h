@@ -14,6 +14,8 @@
  *     k = 0 .. n-1, with a uniform step dt; the path length is s = n dt. Integrals are left Riemann sums (the printed
  *     sum of vc-2.18 runs over t = 0 .. S-1), so they converge to the integrals at first order in dt. The optical
  *     depth to sample k is tau_k = sum_{j<k} sigma_t[j] dt and T(x, x_k) = exp(-tau_k).
+ *   - Every coefficient, radiance, flux, sample and step dt is in [0, CCL_MEDIA_MAX_VALUE] (the functions with a
+ *     status refuse others; optical depths may be any value >= 0).
  */
 #ifndef CCLOUDS_MEDIA_H
 #define CCLOUDS_MEDIA_H
@@ -23,6 +25,12 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Largest coefficient, radiance, flux, sample or step accepted (10^9 in any unit): every product of two of them
+ * (<= 10^18), each source term times dt (<= 2 x 10^27) and their sum over up to 2^31 samples stay finite, so no result
+ * is Inf or NaN (samples or dt of ~1e25 gave Inf x 0 = NaN with status OK). A cloud's sigma is ~0.01-0.1 m^-1 and
+ * the sun's radiance ~2 x 10^7 W m^-2 sr^-1. */
+#define CCL_MEDIA_MAX_VALUE 1.0e9f
 
 /* Radiance loss by absorption: dL/dx = -sigma_a L.
  * Ref: vc-2.1 (Pharr, Jakob & Humphreys, PBR 4th ed., §11.1.1). sigma_a -> sigma_a(x) >= 0; L -> L(x, omega) >= 0.

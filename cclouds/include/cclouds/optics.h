@@ -26,7 +26,9 @@ extern "C" {
  *   n' = n oriented against d (dot(n', d) <= 0), cos_i = -dot(n', d), eta = n1 / n2,
  *   k = 1 - eta^2 (1 - cos_i^2);
  *   reflected r = d + 2 cos_i n'  (theta_r = theta_i);
- *   refracted t = eta d + (eta cos_i - sqrt(k)) n'  (n1 sin theta_i = n2 sin theta_t), a unit vector;
+ *   refracted t = eta d + (eta cos_i - sqrt(k)) n'  (n1 sin theta_i = n2 sin theta_t), a unit vector up to the
+ *   conditioning of k: | |t| - 1 | <= 1e-5 + 8 eta^2 2^-23 for float unit d, n (k loses eta^2 ulps of cos_i^2:
+ *   4e-6 for water, |t| = 0.72 at eta = 2000, where only rays within 5e-4 rad of the normal refract);
  *   k < 0: total internal reflection, t = (0, 0, 0) (the convention of GLSL/Cg refract) and *out_tir = 1.
  *   Where eta^2 overflows (n2 below ~5e-20 n1), an oblique ray is totally reflected and one along the normal
  *   (1 - cos_i^2 = 0) goes on unchanged, t = d: finite for every index in (0, 10].

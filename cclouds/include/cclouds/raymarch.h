@@ -84,10 +84,16 @@ typedef struct {
  *                               JCGT 9(3), 2020).
  */
 
+/* Largest coordinate (per component of the origin and the centre) and radius of ccl_raymarch_ray_sphere and
+ * ccl_raymarch_layer_segment, in their length unit: |o - c| and the radii below ~3.5e15, so their squares (~1e31)
+ * and the products of the closed form stay finite (an origin 1e19 away overflowed |o - c|^2 - r^2 to inf and the
+ * layer segment ended at t = inf). 10^15 km is a hundred light years; the cloudscape works within 10^5 km. */
+#define CCL_RAYMARCH_MAX_DISTANCE 1.0e15f
+
 /* Ray-sphere intersection.
  * Ref: vc-A14 (cataloguer's closed form; numerically robust form after Haines et al., "Precision Improvements for
  * Ray/Sphere Intersection", Ray Tracing Gems, 2019). o -> ray origin, d -> unit direction, c -> sphere centre,
- * r -> radius (> 0). b = d.(o - c), l = (o - c) - b d, disc = r^2 - |l|^2 = (r - |l|)(r + |l|),
+ * r -> radius (> 0); the components of o and c and r within CCL_RAYMARCH_MAX_DISTANCE. b = d.(o - c), l = (o - c) - b d, disc = r^2 - |l|^2 = (r - |l|)(r + |l|),
  * q = -b - sign(b) sqrt(disc), roots {cq/q, q} with cq = |o - c|^2 - r^2 = (|o - c| - r)(|o - c| + r).
  * Output: *out_t0 <= *out_t1 (may be negative: behind the origin), returns 1; on a miss both NaN, returns 0.
  * A tangent ray gives t0 == t1. NaN input propagates (returns 0). */
@@ -102,7 +108,8 @@ CCL_API int ccl_raymarch_ray_box(ccl_vec3 o, ccl_vec3 d, ccl_vec3 bmin, ccl_vec3
 
 /* The part of the cloud layer a view ray marches through, for every camera position.
  * Ref: vc-A14 (camera below the layer), vc-A24 (inside, above). o -> camera position, d -> unit view direction,
- * c -> common centre, r_earth <= r_inner < r_outer -> radii. With rho = |o - c|:
+ * c -> common centre, r_earth <= r_inner < r_outer -> radii (the components of o and c and the radii within
+ * CCL_RAYMARCH_MAX_DISTANCE, see ccl_raymarch_ray_sphere: the segment is then finite). With rho = |o - c|:
  *   below  (rho < r_inner): no segment if the ray enters the Earth ahead (Earth far root > 0: below the horizon, also
  *          always for an underground camera); else [far root of inner, far root of outer].
  *   inside (r_inner <= rho <= r_outer): [0, first exit]: the inner sphere's near root if > 0, else the outer far root.

@@ -67,10 +67,12 @@ CCL_API float ccl_sdf_subtract(float d1, float d2);
  * is Quilez's smin with the arguments swapped. Ref: pt-code-4.2. k > 0. Output <= min(d1, d2). */
 CCL_API float ccl_sdf_smooth_union(float d1, float d2, float k);
 
-/* Domain repetition with period c (> 0 per axis).
+/* Domain repetition with period c (in [2^-125, FLT_MAX] per axis: c/2 a normal float).
  * variant CCL_VARIANT_THESIS: mod(p, c) - c/2 as printed: an object modelled at the origin appears at (k + 1/2) c;
  * variant CCL_VARIANT_CORRECTED: mod(p + c/2, c) - c/2, the centred form: copies at k c.
- * Output components in [-c/2, c/2). Ref: pt-code-4.2. */
+ * Output components in [-c/2, c/2) for every finite p: the remainder is exact (fmodf), the corrected form exactly
+ * the centred remainder, the thesis form exact but where it rounds up to c/2 (the float below c/2 instead). NaN or
+ * infinite p gives NaN. Ref: pt-code-4.2. */
 CCL_API ccl_vec3 ccl_sdf_repeat(ccl_vec3 p, ccl_vec3 c, ccl_variant variant);
 
 /* The five operators of Kod 4.2 at once (the entry pt-code-4.2): union, intersection, subtraction and smooth union of

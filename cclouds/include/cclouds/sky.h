@@ -52,6 +52,13 @@ typedef struct ccl_preetham {
     int variant;       /* ccl_variant applied to all three errata of the chain: vc-2.39, vc-4.4 and vc-4.5 */
 } ccl_preetham;
 
+/* Largest colour component of the gradient sky that ccl_sky_gradient_init accepts (linear RGB). The cloudscape's sky
+ * lighting sums the sky over a hemisphere of cells (ccl_cloudscape_light): a horizon of 1e37 overflowed those sums
+ * and made NaN pixels; at 10^6 every sum and the colour itself (horizon + zenith + sun <= 3e6) stay finite. The
+ * defaults are below 1 (display-linear colours); the volume sky's colours have the same bound
+ * (CCL_VOLUME_MAX_COLOUR). */
+#define CCL_SKY_GRADIENT_MAX_COLOUR 1.0e6f
+
 /* Per-frame constants of the gradient sky (vc-A28). All colours are linear RGB; see ccl_sky_gradient_defaults. */
 typedef struct ccl_sky_gradient {
     float horizon[3];   /* light blue at the horizon (view y <= 0) */
@@ -74,10 +81,16 @@ CCL_API float ccl_sky_turbidity(float t_m, float t_h);
  * by the factor 0.91). */
 CCL_API float ccl_sky_cie_clear(float theta, float gamma, float theta_s, float Y_z);
 
+/* Bound of the Perez coefficients of ccl_sky_perez and the functions that take A..E: A, C, E in [-M, M], B and D in
+ * [-M, 0] with M = 10^6. B, D <= 0 (the luminance falls towards the horizon and away from the sun) keeps both
+ * exponentials <= 1, so |F| <= (1 + M)(1 + 2M): finite, where finite coefficients such as (-1, 0, -3.4e38, 0,
+ * -3.4e38) gave 0 x -inf = NaN. Preetham's coefficients for 2 <= T <= 10 and the CIE standard skies lie inside. */
+#define CCL_SKY_PEREZ_MAX_COEFFICIENT 1.0e6f
+
 /* Perez all-weather relative luminance F = (1 + A exp(B / cos theta)) (1 + C exp(D gamma) + E cos^2 gamma).
  * Ref: vc-2.36 (Perez, Seals & Michalsky 1993). theta in [0, pi] (cos theta clamped to >= 0.01, see the file
- * comment), gamma in [0, pi]; A..E any finite coefficients. Output: relative luminance (dimensionless); > 0 for the
- * Preetham coefficients of 2 <= T <= 10. NaN propagates. */
+ * comment), gamma in [0, pi]; A..E within CCL_SKY_PEREZ_MAX_COEFFICIENT (B, D <= 0). Output: relative luminance
+ * (dimensionless), finite; > 0 for the Preetham coefficients of 2 <= T <= 10. NaN propagates. */
 CCL_API float ccl_sky_perez(float theta, float gamma, float A, float B, float C, float D, float E);
 
 /* CIE-adopted modified Perez function (CIE standard general sky, CIE S 011/E:2003):
@@ -190,7 +203,8 @@ CCL_API ccl_vec3 ccl_sky_preetham_colour(ccl_vec3 direction, float turbidity, fl
  * sun_exponent 64. */
 CCL_API void ccl_sky_gradient_defaults(ccl_sky_gradient *out);
 
-/* Fill a gradient sky from its colours (linear RGB, each component finite and >= 0) and the sun exponent (> 0,
+/* Fill a gradient sky from its colours (linear RGB, each component in [0, CCL_SKY_GRADIENT_MAX_COLOUR]) and the sun
+ * exponent (> 0,
  * finite). Ref: vc-A28. Returns CCL_EINVAL (leaving *out untouched) for any invalid value or out == NULL. */
 CCL_API ccl_status ccl_sky_gradient_init(ccl_vec3 horizon, ccl_vec3 zenith, ccl_vec3 sun, float sun_exponent,
                                          ccl_sky_gradient *out);
@@ -212,8 +226,8 @@ typedef enum ccl_sky_gradient_output {
  * s = ccl_sky_sun_direction(sun_elevation_deg, sun_azimuth_deg), d = direction / |direction|, then
  * ccl_sky_gradient_rgb with the given colours and exponent.
  * Ref: vc-A28. direction -> any non-zero view vector (Y up), normalised here; sun_elevation_deg in [-90, 90];
- * sun_azimuth_deg any finite value; horizon_colour, zenith_colour, sun_colour -> linear RGB, components >= 0;
- * sun_exponent > 0; output: see ccl_sky_gradient_output. Not validated here (ccl_sky_gradient_init validates). */
+ * sun_azimuth_deg any finite value; horizon_colour, zenith_colour, sun_colour -> linear RGB, components in
+ * [0, CCL_SKY_GRADIENT_MAX_COLOUR]; sun_exponent > 0; output: see ccl_sky_gradient_output. Not validated here (ccl_sky_gradient_init validates). */
 CCL_API ccl_vec3 ccl_sky_gradient_colour(ccl_vec3 direction, float sun_elevation_deg, float sun_azimuth_deg,
                                          ccl_vec3 horizon_colour, ccl_vec3 zenith_colour, ccl_vec3 sun_colour,
                                          float sun_exponent, ccl_sky_gradient_output output);

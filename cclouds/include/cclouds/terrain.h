@@ -206,7 +206,9 @@ CCL_API ccl_vec3 ccl_terrain_lighting(ccl_vec3 n, ccl_vec3 l, float la, ccl_vec3
 
 /* Normal by central differences. Ref: pt-code-7.8, pt-7.2: g = (map(p + h x) - map(p - h x), map(p + h y) -
  * map(p - h y), map(p + h z) - map(p - h z)) with map = y - h(x, z) and `octaves` octaves; returns normalize(g),
- * and g itself (not divided by 2h) through out_g when not NULL. g.y = 2h up to the rounding of p.y +- h.
+ * and g itself (not divided by 2h) through out_g when not NULL. g.y = 2h up to five roundings (p.y +- h, the two
+ * map values, their difference): |g.y - 2h| <= 2 ulp(|p.y| + h + |H|) + ulp(2h), H the height at (p.x, p.z) and
+ * ulp(x) the float spacing at x (0.00402832 for h = 0.002 at p.y ~ 957: within 1.2e-4 of 2h there).
  * h in (0, 1] (Kod 7.8: 0.002). */
 CCL_API ccl_vec3 ccl_terrain_normal(ccl_vec3 p, float h, int32_t octaves, float height_scale, float horizontal_scale,
                                     uint32_t seed, int32_t heightmap, ccl_vec3 *out_g);

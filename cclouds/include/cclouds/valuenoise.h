@@ -69,12 +69,14 @@ CCL_API float ccl_valuenoise_smooth(int32_t x, int32_t y, int32_t z, uint32_t se
 
 /* Linear interpolation, as printed: a (1 - x) + b x. Ref: oc-5.1.4.1 (and the definition oc-5.1.4: x = 0 -> a,
  * x = 1 -> b). a, b -> the end values (any finite float); x -> position in [0, 1]. Exactly a at x = 0 and b at x = 1
- * (a + x (b - a), ccl_interp_lerp, need not give exactly b at x = 1 in float32: hence its own function). */
+ * (a + x (b - a), ccl_interp_lerp, need not give exactly b at x = 1 in float32: hence its own function). Output
+ * between a and b: where the sum rounds an ulp outside (a = b = 1000), the nearest of the two. */
 CCL_API float ccl_valuenoise_linear(float a, float b, float x);
 
 /* Cosine interpolation, as printed: ft = x * 3.1415927, f = (1 - cos(ft)) * .5, a (1 - f) + b f. Ref: oc-5.1.4.2.
  * a, b -> the end values; x -> [0, 1]. Exactly a at x = 0, b at x = 1, (a + b)/2 at x = 1/2 (up to one rounding);
- * (0, 1, 0.25) -> 0.1464466. Output between a and b. */
+ * (0, 1, 0.25) -> 0.1464466. Output between a and b (as ccl_valuenoise_linear: the nearest of the two where the
+ * sum rounds an ulp outside them). */
 CCL_API float ccl_valuenoise_cosine(float a, float b, float x);
 
 /* Cubic interpolation, as printed: P = (v3 - v2) - (v0 - v1), Q = (v0 - v1) - P, R = v2 - v0, S = v1;
