@@ -23,6 +23,7 @@ from ..core.technique import Technique
 init()
 
 from ..kernels import camera as CAM  # noqa: E402
+from ..kernels.volume import render_linear_kernel  # noqa: E402
 from . import model as F  # noqa: E402
 from . import volumes as V  # noqa: E402
 from . import script as S  # noqa: E402
@@ -166,7 +167,7 @@ class FlightTechnique(Technique):
             return self._out.numpy().copy()
         if getattr(self, "_linear", None) is None or self._linear.shape != (h, w, 3):
             self._linear = wp.zeros((h, w, 3), dtype=float, device=self.device)
-        self.launcher.launch(V.render_linear_kernel, h, w, args, [self._linear], progress=band_done)
+        self.launcher.launch(render_linear_kernel, h, w, args, [self._linear], progress=band_done)
         lin = self._linear.numpy()
         if not np.all(np.isfinite(lin)):
             raise RuntimeError("the render produced non-finite pixels")

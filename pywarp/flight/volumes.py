@@ -12,7 +12,7 @@ import warp as wp
 
 from ..core.cbridge import VOLUME_PARAMS
 from ..kernels.volume import (BRICK, LENGTH_RANGE, MAX_GRIDS, VolumeGrid, checked_params, light_kernel, pixels_kernel,
-                              render_kernel, render_linear_kernel)
+                              render_kernel)
 
 
 @dataclass

@@ -33,7 +33,7 @@ _RATIO_GUARD = "converted only where the ratio is below an int bound (the compar
 _LOD = "lod in (0, levels - 1) here (NaN, <= 0 and >= levels - 1 return before)"
 _LIGHT_STEPS = "grid diagonal (<= 1024 sqrt 3 voxels) / light_step_voxels (>= 0.05, checked): < 4e4"
 _BRICK = "a sample position inside the grid box along [t_start, t_end] (the ray-box segment): within the grid"
-_GROUND_CELL = "clamped to +-1e9 first, NaN mapped to -1e9 (a grazing ray with d.x = 0: inf x 0)"
+_GROUND_NOISE = "floor of a coordinate clamped to +-2^23 first (fminf / fmaxf, wp.min / wp.max map NaN to the bound)"
 _AXIS_MAP = "i (nc - 1) / (nf - 1) for 0 <= i < nf: in [0, nc - 1]"
 _TO_U8 = "rounded value clamped to [0, 255] first, NaN mapped to 0"
 _VALUENOISE = ("x, y, z in [0, CCL_VALUENOISE_MAX_COORD] (2^24) by the documented domain, refused outside it by the "
@@ -46,6 +46,8 @@ _PIXEL_U8 = ("clamped to [0, 1]; the pixel is finite on the checked domain (find
 #: (file, function, conversion text) -> why the value is within the integer's range before the cast
 C_SITES = {
     ("cloudscape.c", "axis2", "(int32_t)fx"): _TEXEL_DOMAIN,
+    ("cloudscape.c", "ground_noise", "(int32_t)fx"): _GROUND_NOISE,
+    ("cloudscape.c", "ground_noise", "(int32_t)fz"): _GROUND_NOISE,
     ("cloudscape.c", "sample_mip", "(int)floorf(lod)"): _LOD,
     ("cloudscape.c", "ccl_cloudscape_march", "(int)need"): _RATIO_GUARD,
     ("cloudscape.c", "ccl_cloudscape_march", "(int)kf"): _RATIO_GUARD,
@@ -82,8 +84,6 @@ C_SITES = {
     ("volume.c", "ccl_volume_light",
      "(int)ceilf(sqrtf((float)g.nx * (float)g.nx + (float)g.ny * (float)g.ny + (float)g.nz * (float)g.nz) / step)"):
         _LIGHT_STEPS,
-    ("volume.c", "ccl_volume_background", "(int)fx"): _GROUND_CELL,
-    ("volume.c", "ccl_volume_background", "(int)fz"): _GROUND_CELL,
     ("volume.c", "ccl_volume_pixel", "(int)steps"): _RATIO_GUARD,
     ("volume.c", "ccl_volume_pixel", "(int)floorf(v.x * (1.0f / (float)CCL_VOLUME_BRICK))"): _BRICK,
     ("volume.c", "ccl_volume_pixel", "(int)floorf(v.y * (1.0f / (float)CCL_VOLUME_BRICK))"): _BRICK,
@@ -95,6 +95,8 @@ C_SITES = {
 
 WARP_SITES = {
     ('cloudscape.py', '_axis2', 'int(fx)'): _TEXEL_DOMAIN,
+    ('cloudscape.py', '_ground_noise', 'int(fx)'): _GROUND_NOISE,
+    ('cloudscape.py', '_ground_noise', 'int(fz)'): _GROUND_NOISE,
     ('cloudscape.py', '_empty_texels', 'int(wp.floor(x))'): _TEXEL_DOMAIN,
     ('cloudscape.py', '_empty_texels', 'int(wp.floor(y))'): _TEXEL_DOMAIN,
     ('cloudscape.py', 'cloudscape_march', 'int(gf)'): _RATIO_GUARD,
@@ -134,8 +136,6 @@ WARP_SITES = {
     ('valuenoise.py', 'valuenoise_interpolated', 'int(flz)'): _VALUENOISE,
     ('volume.py', 'light_kernel', 'int(wp.ceil(wp.sqrt(fnx * fnx + fny * fny + fnz * fnz) / step))'): _LIGHT_STEPS,
     ('volume.py', 'render_kernel', 'int(e * 255.0 + 0.5)'): _PIXEL_U8,
-    ('volume.py', 'volume_background', 'int(fx)'): _GROUND_CELL,
-    ('volume.py', 'volume_background', 'int(fz)'): _GROUND_CELL,
     ('volume.py', 'volume_pixel', 'int(ix)'): _BRICK,
     ('volume.py', 'volume_pixel', 'int(iy)'): _BRICK,
     ('volume.py', 'volume_pixel', 'int(iz)'): _BRICK,
