@@ -3,8 +3,8 @@
     python tools/viewer_table.py [--seconds 10] [--baseline OTHER/bin/python] [--window] [--json OUT.json]
 
 For each scene it runs ``pywarp view SCENE --benchmark SECONDS --json --no-window`` (``--window``: also under
-``xvfb-run -a`` with the window), this installation with its temporal previews and with ``--previews scaled`` (the
-whole picture at a reduced size, enlarged: the previews before the temporal reconstruction), and, with
+``xvfb-run -a`` with the window), this installation with ``--previews scaled`` (the default: the whole picture at a
+reduced size, enlarged) and ``--previews temporal`` (the window's size, pywarp.core.temporal), and, with
 ``--baseline``, the same command with another installation's interpreter (e.g. a venv of the commit before; it
 takes no ``--previews`` and reports no quality keys). The runs of a scene follow one another, so the machine's load
 is alike; each row says the load average at its start. Nothing is asserted: the numbers are printed.
@@ -21,14 +21,19 @@ import sys
 SCENES = ("clouds", "terrain", "flight", "rain")
 
 
-def run(python: str, scene: str, seconds: float, extra=(), window=False) -> dict:
+def run(python: str, scene: str, seconds: float, extra=(), window=False, own_env=False) -> dict:
+    """One benchmark; ``own_env``: without PYTHONPATH and CCLOUDS_LIBRARY and with PYTHONSAFEPATH (another
+    installation imports its own package and library, not this source tree's or the working folder's)."""
     cmd = [python, "-m", "pywarp", "view", scene, "--benchmark", str(seconds), "--json", *extra]
+    env = {k: v for k, v in os.environ.items() if not (own_env and k in ("PYTHONPATH", "CCLOUDS_LIBRARY"))}
+    if own_env:
+        env["PYTHONSAFEPATH"] = "1"
     if window:
         cmd = ["xvfb-run", "-a", *cmd]
     else:
         cmd.append("--no-window")
     load = os.getloadavg()[0]
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=1800)
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=1800, env=env)
     lines = [x for x in p.stdout.splitlines() if x.startswith("{")]
     if p.returncode != 0 or not lines:
         return {"error": (p.stderr.strip().splitlines() or ["no output"])[-1], "load": load}
@@ -60,14 +65,16 @@ def main() -> int:
     for sc in a.scenes:
         row = {"scene": sc}
         if a.baseline:
-            row["baseline"] = run(a.baseline, sc, a.seconds)
+            row["baseline"] = run(a.baseline, sc, a.seconds, own_env=True)
         row["scaled"] = run(sys.executable, sc, a.seconds, ["--previews", "scaled"])
-        row["temporal"] = run(sys.executable, sc, a.seconds)
         if a.window:
-            row["temporal_window"] = run(sys.executable, sc, a.seconds, window=True)
+            row["scaled_window"] = run(sys.executable, sc, a.seconds, ["--previews", "scaled"], window=True)
+        row["temporal"] = run(sys.executable, sc, a.seconds, ["--previews", "temporal"])
+        if a.window:
+            row["temporal_window"] = run(sys.executable, sc, a.seconds, ["--previews", "temporal"], window=True)
         rows.append(row)
         print(json.dumps(row), file=sys.stderr, flush=True)
-    cols = [c for c in ("baseline", "scaled", "temporal", "temporal_window") if c in rows[0]]
+    cols = [c for c in ("baseline", "scaled", "scaled_window", "temporal", "temporal_window") if c in rows[0]]
     print("| scene | " + " | ".join(cols) + " | load at start |")
     print("|---|" + "---|" * (len(cols) + 1))
     for row in rows:

@@ -466,10 +466,10 @@ def add_scene_commands(sub, help_for: str | None = None) -> None:
     v.add_argument("--dump", default=None, metavar="DIR",
                    help="with --benchmark: write each sampled frame as shown (SCENE-NN-shown.png), its full render "
                         "(-full.png) and its settings, pose and `pywarp render` command (.json) to DIR")
-    v.add_argument("--previews", choices=("temporal", "scaled"), default="temporal",
-                   help="what moving shows: 'temporal' (default) the window's resolution, 1/4 or 1/16 of its pixels "
-                        "rendered per frame and the rest reprojected from the previous frames; 'scaled' the whole "
-                        "picture at a reduced size, enlarged")
+    v.add_argument("--previews", choices=("scaled", "temporal"), default="scaled",
+                   help="what moving shows: 'scaled' (default) the whole picture at a reduced size, enlarged; "
+                        "'temporal' the window's resolution, 1/4 or 1/16 of its pixels rendered per frame and the "
+                        "rest reprojected from the previous frames (pywarp.core.temporal)")
     v.add_argument("--script", default=None, metavar="FILE",
                    help="play a JSON list of timed events: {\"t\": 0, \"key\": \"W\", \"hold\": 1.5}, "
                         "{\"t\": 2, \"set\": {\"coverage\": 0.7}}, {\"t\": 3, \"screenshot\": \"a.png\"}, "

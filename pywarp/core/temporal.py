@@ -12,7 +12,8 @@ Karis 2014, Yang et al. 2020). :meth:`TemporalUpsampler.resolve` writes the wind
   translates near a surface the clamp below bounds the error), sampled bilinearly and clamped into the colour box of
   this frame's nearest fresh pixel and its four neighbours (Karis 2014's neighbourhood clamping on the fresh grid; the
   cross costs less than a 3 x 3 box and measured as good): history that disagrees with what the neighbourhood shows
-  now -- a disocclusion, a moving object, changed lighting -- is pulled to it, so it cannot ghost;
+  now -- a disocclusion, a moving object, changed lighting -- is pulled to it, so it cannot ghost -- and mixed with
+  the interpolated fresh pixels (:data:`HISTORY_BLEND`);
 * where the history falls outside the previous picture, or there is none, the fresh pixels interpolated bilinearly.
 
 With the camera and the scene still, the clamp is off (the history is then exact) and after f^2 frames every pixel
@@ -27,6 +28,10 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
+#: the share of the fresh pixels' bilinear interpolation mixed into the clamped history while anything changes:
+#: 0.35 measured against 0 on the viewer's motion at 1/16 of the pixels (SSIM against the full render, clouds 0.868 ->
+#: 0.889, flight 0.933 -> 0.955): the sparse cross lets the history flicker, the interpolation steadies it
+HISTORY_BLEND = wp.constant(0.35)
 #: the reduction factors the viewer picks from: 1/f^2 of the pixels are rendered per frame (f must divide both sides)
 FACTORS = (1, 2, 4)
 
@@ -121,6 +126,7 @@ def resolve_pixel(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=w
         lo = wp.min(wp.min(wp.min(s1, s3), wp.min(s4, s5)), s7)
         hi = wp.max(wp.max(wp.max(s1, s3), wp.max(s4, s5)), s7)
         h = wp.min(wp.max(h, lo), hi)
+        h = h + (spatial - h) * HISTORY_BLEND
     return h
 
 

@@ -97,7 +97,9 @@ def test_turning_reuses_the_history():
     spatial = step(up, b).astype(int)
     full = scene(b, W, H).astype(int)
     err, err_spatial = np.abs(img - full).mean(), np.abs(spatial - full).mean()
-    assert err < 0.5 * err_spatial, (err, err_spatial)
+    # HISTORY_BLEND (0.35) of the interpolation stays in a moving picture, so about that share of its error does;
+    # the reprojected history removes most of the rest
+    assert err < (T.HISTORY_BLEND + 0.25) * err_spatial, (err, err_spatial)
 
 
 def test_history_that_disagrees_is_clamped():

@@ -190,7 +190,7 @@ def test_rain_keys_in_a_headless_session_change_the_image(rain):
     from pywarp.viewer.session import Session
 
     s = rain_settings(rain, drops=2000, mode="streaks")
-    session = Session(rain, s)
+    session = Session(rain, s, temporal=True)  # rain's temporal previews: the window's size, the drops whole
     try:
         session.tick(V.Input(dt=0.0, pressed=frozenset({"P"}), held=frozenset({"P"})))  # paused: the rain stands
         first = _settle(session)

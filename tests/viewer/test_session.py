@@ -57,15 +57,13 @@ def clouds():
 
 def test_previews_while_moving_then_the_refined_frame_equals_the_offline_render(clouds, small_settings):
     s0 = small_settings(clouds)
-    session = Session(clouds, s0, fixed_scale=True)  # the reduction stays at its start (a quarter of the pixels)
+    session = Session(clouds, s0)
     try:
         wait_frame(session, full=True)
         for _ in range(4):
             session.tick(V.Input(dt=0.05, held=frozenset({"W"})))
             f = wait_frame(session, version=session.version)
-        # while moving: the window's size, a quarter or a sixteenth of its pixels rendered (pywarp.core.temporal)
-        assert not f.full and f.image.shape[:2] == (s0.height, s0.width)
-        assert f.fresh == (s0.width // 2, s0.height // 2) and f.settings.width == f.fresh[0]
+        assert not f.full and f.image.shape[1] < s0.width  # reduced resolution while moving
         assert f.settings.reprojection  # clouds: temporal reprojection on for the previews
         assert session.settings.camera_z_km < 0.0  # W flew forward (yaw 0: along -z)
         session.clock += 1.0  # still for a while: refined
@@ -74,6 +72,27 @@ def test_previews_while_moving_then_the_refined_frame_equals_the_offline_render(
         assert f.image.shape[:2] == (s0.height, s0.width) and not f.settings.reprojection
         offline = clouds.technique(session.settings).render()
         assert np.array_equal(f.image, offline)
+    finally:
+        session.close()
+
+
+def test_temporal_previews_have_the_window_size_and_a_fraction_rendered(clouds, small_settings):
+    """--previews temporal: while moving, frames of the window's size of which a quarter of the pixels was rendered
+    (the reduction held at its start), reconstructed by pywarp.core.temporal; refined when still."""
+    s0 = small_settings(clouds)
+    session = Session(clouds, s0, fixed_scale=True, temporal=True)
+    try:
+        wait_frame(session, full=True)
+        for _ in range(4):
+            session.tick(V.Input(dt=0.05, held=frozenset({"W"})))
+            f = wait_frame(session, version=session.version)
+        assert not f.full and f.image.shape[:2] == (s0.height, s0.width)
+        assert f.fresh == (s0.width // 2, s0.height // 2) and f.settings.width == f.fresh[0]
+        assert f.settings.reprojection
+        session.clock += 1.0
+        session.tick(V.Input(dt=0.0))
+        f = wait_frame(session, full=True, version=session.version)
+        assert np.array_equal(f.image, clouds.technique(session.settings).render())
     finally:
         session.close()
 
@@ -149,7 +168,7 @@ def test_script_errors_name_the_event():
 
 
 def test_benchmark_mode_counts_the_frames_shown(clouds, small_settings):
-    session = Session(clouds, small_settings(clouds))
+    session = Session(clouds, small_settings(clouds), temporal=True)
     try:
         r = run_benchmark_headless(session, seconds=1.0, warmup_s=0.5)
     finally:
