@@ -158,9 +158,10 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         assert cloud[0].max() == 0 and cloud[:, :, -1].max() == 0
         box = (-50.0, 0.0, -50.0), (100.0, 50.0, 100.0)
         ax.imshow(render_scene([(cloud, *box)], w, h, eye=(0.0, 28.0, 140.0), target=(0.0, 24.0, 0.0), fov=40.0))
-        ax.set_title(f"{kind} up-sampling ({np.count_nonzero(cloud) / cloud.size:.0%} of the voxels)", fontsize=9)
+        ax.set_title(f"{kind} up-sampling\n{np.count_nonzero(cloud) / cloud.size:.0%} of the voxels",
+                     fontsize=6 if quick else 9)
         ax.axis("off")
-    fig.suptitle("oc fig. 5.15: cloud = noise + filtering + larger array (+ falloff envelope)", fontsize=11)
+    fig.suptitle("oc fig. 5.15: noise + filtering + larger array (+ envelope)", fontsize=7 if quick else 11)
     fig.tight_layout()
     outs.append(_save(fig, out_dir / "fig-5.15.png"))
 
@@ -182,8 +183,10 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax = fig.add_axes([0, 0, 1, h / (h + 35)])
     ax.imshow(render_scene(placed, w, h, eye=(0.0, 470.0, 330.0), target=(0.0, 440.0, -100.0), fov=50.0))
     ax.axis("off")
-    fig.text(0.5, 1 - 17 / (h + 35), "oc fig. 5.16: clouds in the scene, per-axis scaled (x, y, z): "
-             + ", ".join(f"{sc}" for _, sc, _ in layout), ha="center", va="center", fontsize=10)
+    label = "oc fig. 5.16: clouds in the scene, per-axis scaled (x, y, z): " + ", ".join(f"{sc}" for _, sc, _ in layout)
+    if quick:  # a 160 px wide figure: the caption alone
+        label = "oc fig. 5.16: scaled clouds"
+    fig.text(0.5, 1 - 17 / (h + 35), label, ha="center", va="center", fontsize=7 if quick else 10)
     outs.append(_save(fig, out_dir / "fig-5.16.png"))
     return outs
 

@@ -53,7 +53,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     for ax, img, title in ((axes[0], classic, f"classic particle rain: one streak colour {CLASSIC_COLOUR}, "
                                               f"{CLASSIC_OPACITY:.0%} opaque"),
                            (axes[1], refracting, "the text's streaks: the refracted scene over the persistence "
-                                                 "time (rr-code-5.2.4, exposure-integrated)")):
+                                                 "time (rr-code-5.2.4)")):
         ax.imshow(np.clip(img, 0, 1), interpolation="nearest")
         ax.set_title(title, fontsize=9)
         ax.axis("off")
