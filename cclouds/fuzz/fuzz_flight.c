@@ -14,8 +14,7 @@
 #include "cclouds/volume.h"
 #include "cclouds/voxel.h"
 #include "fuzz.h"
-
-#define EPS 1.1920929e-7f
+#include "fuzz_vec.h"
 
 static int in_range(float v, int range) {
     return range == CCL_VALUENOISE_UNIT ? (v >= 0.0f && v <= 1.0f) : (v >= -1.0f && v <= 1.0f);

@@ -15,18 +15,8 @@
 #include "cclouds/particles.h"
 #include "cclouds/rain.h"
 #include "fuzz.h"
+#include "fuzz_vec.h"
 
-#define EPS 1.1920929e-7f
-
-static ccl_vec3 v3(float x, float y, float z) {
-    ccl_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
-static float len3(ccl_vec3 a) { return sqrtf(a.x * a.x + a.y * a.y + a.z * a.z); }
 
 static ccl_vec3 fz_dir(fz_reader *r) {
     ccl_vec3 d = v3(fz_unit(r, -1.0f, 1.0f), fz_unit(r, -1.0f, 1.0f), fz_unit(r, -1.0f, 1.0f));

@@ -6,18 +6,8 @@
  * precision of the surface, at most max_steps evaluations, t finite. */
 #include "cclouds/sdf.h"
 #include "fuzz.h"
+#include "fuzz_vec.h"
 
-#define EPS 1.1920929e-7f /* 2^-23 */
-
-static ccl_vec3 v3(float x, float y, float z) {
-    ccl_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
-static float len3(ccl_vec3 a) { return sqrtf(a.x * a.x + a.y * a.y + a.z * a.z); }
 
 /* a point in [-1e4, 1e4]^3: mostly near the scenes' objects, sometimes anywhere in the box */
 static ccl_vec3 fz_point(fz_reader *r) {

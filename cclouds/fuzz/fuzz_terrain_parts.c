@@ -8,18 +8,8 @@
  *   the cloud colour per channel (N12); the water weight in [0, 1] (I3); the wave normal unit; lighting >= 0. */
 #include "cclouds/terrain.h"
 #include "fuzz.h"
+#include "fuzz_vec.h"
 
-#define EPS 1.1920929e-7f
-
-static ccl_vec3 v3(float x, float y, float z) {
-    ccl_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
-static float len3(ccl_vec3 a) { return sqrtf(a.x * a.x + a.y * a.y + a.z * a.z); }
 
 static ccl_vec3 fz_dir(fz_reader *r) {
     if (fz_u8(r) < 24) {
