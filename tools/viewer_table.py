@@ -1,10 +1,11 @@
 """The viewer benchmarks of every scene in one run, as a Markdown table (the README's performance section).
 
     python tools/viewer_table.py [--seconds 10] [--baseline OTHER/bin/python] [--window] [--json OUT.json]
+                                 [--scenes ROW ...] [--previews scaled|temporal ...]
 
-For each scene it runs ``pywarp view SCENE --benchmark SECONDS --json --no-window`` (``--window``: also under
+For each row (a scene, and the cloudscape from below, inside and above its layer: :data:`ROWS`) it runs ``pywarp view SCENE --benchmark SECONDS --json --no-window`` (``--window``: also under
 ``xvfb-run -a`` with the window), this installation with ``--previews scaled`` (the default: the whole picture at a
-reduced size, enlarged) and ``--previews temporal`` (the window's size, pywarp.core.temporal), and, with
+reduced size, enlarged) and ``--previews temporal`` (the window's size, pywarp.core.temporal; ``--previews`` chooses), and, with
 ``--baseline``, the same command with another installation's interpreter (e.g. a venv of the commit before; it
 takes no ``--previews`` and reports no quality keys). The runs of a scene follow one another, so the machine's load
 is alike; each row says the load average at its start. Nothing is asserted: the numbers are printed.
@@ -18,7 +19,16 @@ import shutil
 import subprocess
 import sys
 
-SCENES = ("clouds", "terrain", "flight", "rain")
+#: the rows: a name, its scene and the scene's options. The cloudscape is measured from below the layer (its default
+#: camera, 0.3 km), inside it (2.5 km, the default layer spans 1.5-4 km) and above it (6 km, looking down 25 deg).
+ROWS = {
+    "clouds": ("clouds", ()),
+    "clouds-inside": ("clouds", ("--altitude", "2.5", "--pitch", "0")),
+    "clouds-above": ("clouds", ("--altitude", "6", "--pitch", "-25")),
+    "terrain": ("terrain", ()),
+    "flight": ("flight", ()),
+    "rain": ("rain", ()),
+}
 
 
 def run(python: str, scene: str, seconds: float, extra=(), window=False, own_env=False) -> dict:
@@ -57,21 +67,22 @@ def main() -> int:
     ap.add_argument("--baseline", default=None, metavar="PYTHON")
     ap.add_argument("--window", action="store_true", help="also with the window under xvfb-run")
     ap.add_argument("--json", default=None, metavar="OUT")
-    ap.add_argument("--scenes", nargs="+", default=list(SCENES), choices=SCENES)
+    ap.add_argument("--scenes", nargs="+", default=list(ROWS), choices=list(ROWS), help="the rows (default: all)")
+    ap.add_argument("--previews", nargs="+", default=["scaled", "temporal"], choices=["scaled", "temporal"],
+                    help="the preview modes measured (default: both)")
     a = ap.parse_args()
     if a.window and not shutil.which("xvfb-run"):
         ap.error("--window needs xvfb-run")
     rows = []
-    for sc in a.scenes:
-        row = {"scene": sc}
+    for name in a.scenes:
+        sc, opts = ROWS[name]
+        row = {"scene": name}
         if a.baseline:
-            row["baseline"] = run(a.baseline, sc, a.seconds, own_env=True)
-        row["scaled"] = run(sys.executable, sc, a.seconds, ["--previews", "scaled"])
-        if a.window:
-            row["scaled_window"] = run(sys.executable, sc, a.seconds, ["--previews", "scaled"], window=True)
-        row["temporal"] = run(sys.executable, sc, a.seconds, ["--previews", "temporal"])
-        if a.window:
-            row["temporal_window"] = run(sys.executable, sc, a.seconds, ["--previews", "temporal"], window=True)
+            row["baseline"] = run(a.baseline, sc, a.seconds, opts, own_env=True)
+        for mode in a.previews:
+            row[mode] = run(sys.executable, sc, a.seconds, [*opts, "--previews", mode])
+            if a.window:
+                row[mode + "_window"] = run(sys.executable, sc, a.seconds, [*opts, "--previews", mode], window=True)
         rows.append(row)
         print(json.dumps(row), file=sys.stderr, flush=True)
     cols = [c for c in ("baseline", "scaled", "scaled_window", "temporal", "temporal_window") if c in rows[0]]
