@@ -16,6 +16,9 @@ texts (the scenes' cameras are ``pywarp.kernels.camera``), so they live here, on
 * :func:`run_as_script`: the command line every tutorial has (``--out``, ``--quick``) when it runs as a script;
 * :func:`text_problems` and :func:`checking_legibility`: the text of a figure (titles, axis labels, tick labels, the
   suptitle, figure texts) inside the figure and not overlapping, checked where the tutorials save their figures.
+* :func:`fit_text`: what the tutorials call instead of ``tight_layout`` (or before saving a figure laid out by hand),
+  so that their titles and labels pass that check at any size: too-wide text shrunk to :data:`MIN_FONT_PT`, then
+  wrapped; the layout corrected where ``tight_layout`` misses an overlap; a figure whose text fits left as it was.
 
 Example::
 
@@ -298,7 +301,7 @@ def fit_text(fig, *, tight_layout: bool = False, min_fontsize: float = MIN_FONT_
       text gained, every axes and every other text keeping its place in pixels from the bottom (a title band above
       an image grows; the image is not resampled).
 
-    Returns whether it changed the figure beyond the layout asked for."""
+    Returns whether it changed the figure beyond the ``tight_layout`` asked for (a text, a correction, a size)."""
     changed = False
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
@@ -318,23 +321,24 @@ def fit_text(fig, *, tight_layout: bool = False, min_fontsize: float = MIN_FONT_
             if ax is None:
                 grown.append((t, y0, y1))
     if tight_layout:
-        _tight_with_corrections(fig, tight_kwargs)
+        changed |= _tight_with_corrections(fig, tight_kwargs)
     elif grown:
         for t, y0, y1 in grown:
             _grow_top_for(fig, t, y0, y1)
     return changed
 
 
-def _tight_with_corrections(fig, kwargs) -> None:
+def _tight_with_corrections(fig, kwargs) -> bool:
     """``fig.tight_layout(**kwargs)``, then :func:`fit_text`'s corrections, round by round, each from the overlaps
-    the renderer measures (pixels; ``tight_layout``'s pads are in units of the default font size)."""
+    the renderer measures (pixels; ``tight_layout``'s pads are in units of the default font size). Returns whether
+    it corrected the layout."""
     kw = dict(kwargs)
     fig.tight_layout(**kw)
     extra = TEXT_SLACK_PX + 2.0  # beyond the measured overlap: past the check's slack, and a gap one can see
-    for _ in range(FIT_ROUNDS):
+    for k in range(FIT_ROUNDS):
         found, texts = _problems(fig)
         if not found:
-            return
+            return k > 0
         w, h = fig.bbox.width, fig.bbox.height
         edges = dict(left=0.0, bottom=0.0, right=0.0, top=0.0)
         h_gap = w_gap = 0.0
@@ -367,6 +371,7 @@ def _tight_with_corrections(fig, kwargs) -> None:
         if w_gap:
             kw["w_pad"] = kw.get("w_pad", pad) + w_gap / _font_px(fig)
         fig.tight_layout(**kw)
+    return True
 
 
 def _font_px(fig) -> float:
