@@ -254,10 +254,19 @@ def _protect_math(s: str) -> str:
     return "$".join(p.replace(" ", "\x00") if k % 2 else p for k, p in enumerate(parts))
 
 
+def _protect_terms(s: str) -> str:
+    """Also the spaces around a binary operator (``h_A - h_B``, ``pitch = 9.1``) made non-breaking: a line should not
+    end on an operator or start with one when it can break elsewhere."""
+    import re
+
+    return re.sub(r" ([-+=*/<>]|->) ", "\x00\\1\x00", s)
+
+
 def _fit_width(t, room: float, renderer, min_fontsize: float) -> bool:
     """Text ``t`` no wider than ``room`` pixels: its font size reduced in half points down to ``min_fontsize``, then,
-    if it is still too wide, its words wrapped as one paragraph at the most characters a line that fit (a formula in
-    ``$...$`` kept on one line). Returns whether it changed."""
+    if it is still too wide, its words wrapped as one paragraph onto the fewest lines that fit, of even lengths (a
+    formula in ``$...$`` kept on one line, and a term ``a - b`` too where the lines can break elsewhere). Returns
+    whether it changed."""
     import textwrap
 
     def width():
@@ -274,12 +283,25 @@ def _fit_width(t, room: float, renderer, min_fontsize: float) -> bool:
     if width() <= room:
         return True
     # one paragraph: the text's own line breaks were made for a width it does not have
-    words = _protect_math(" ".join(t.get_text().split()))
-    n = len(words)
-    while width() > room and n > 8:
-        n -= 1
-        t.set_text("\n".join(textwrap.wrap(words, n, break_long_words=False, break_on_hyphens=False))
-                   .replace("\x00", " "))
+    plain = _protect_math(" ".join(t.get_text().split()))
+    for words in (_protect_terms(plain), plain):
+
+        def wrap(n, words=words):
+            return textwrap.wrap(words, n, break_long_words=False, break_on_hyphens=False)
+
+        def show(n, wrap=wrap):
+            t.set_text("\n".join(wrap(n)).replace("\x00", " "))
+
+        n = len(words)
+        while width() > room and n > 8:
+            n -= 1
+            show(n)
+        if width() <= room:
+            lines = len(wrap(n))
+            while n > 8 and len(wrap(n - 1)) == lines:  # as many lines, of even lengths (no word alone on the last)
+                n -= 1
+            show(n)
+            return True
     return True
 
 
@@ -292,6 +314,8 @@ def fit_text(fig, *, tight_layout: bool = False, min_fontsize: float = MIN_FONT_
     * A figure text (the suptitle too) wider than the figure, or an axes title or x label that is wider than its axes
       and sticks out of the figure or overlaps another text, is reduced in size down to ``min_fontsize``
       (:data:`MIN_FONT_PT`) and then wrapped onto more lines (:func:`_fit_width`).
+    * A left-aligned text of an axes (``ax.text``: a panel's label) that runs out at the figure's right edge is
+      reduced and wrapped likewise, to the room between its start and that edge.
     * ``tight_layout``: lays the figure out with ``fig.tight_layout(**tight_kwargs)``, then corrects what that layout
       does not see (the titles of 3-D axes, an image's aspect, text drawn next to an axes), for up to
       :data:`FIT_ROUNDS` rounds: the area below a figure text that overlaps the axes is lowered, an axes title over
@@ -320,6 +344,16 @@ def fit_text(fig, *, tight_layout: bool = False, min_fontsize: float = MIN_FONT_
             changed = True
             if ax is None:
                 grown.append((t, y0, y1))
+    for ax in fig.axes:  # an axes' own left-aligned text (a panel label) running out at the figure's right edge
+        for t in ax.texts:
+            b = t.get_window_extent(renderer)
+            if t.get_visible() and t.get_ha() == "left" and b.x1 > w + TEXT_SLACK_PX and b.x0 < w:
+                changed |= _fit_width(t, w - FIT_MARGIN_PX - b.x0, renderer, min_fontsize)
+                if "\n" in t.get_text():  # more lines: they hang down from where its top was, into its axes
+                    tr = t.get_transform()
+                    x_px = tr.transform(t.get_position())[0]
+                    t.set_verticalalignment("top")
+                    t.set_position(tuple(tr.inverted().transform((x_px, b.y1))))
     if tight_layout:
         changed |= _tight_with_corrections(fig, tight_kwargs)
     elif grown:

@@ -119,12 +119,16 @@ def test_fit_text_makes_a_crowded_figure_legible_and_leaves_a_legible_one_as_it_
     ax.imshow(np.zeros((6, 10)))
     ax.set_axis_off()
     fig.text(0.5, 0.8, "a title much wider than this small figure", ha="center", va="center", fontsize=9)
+    label = ax.text(0.5, 1.0, "a panel label running out of the figure", color="white", fontsize=8)
     bottom, height = ax.get_position().y0 * 90, ax.get_position().height * 90
     assert text_problems(fig)
     assert fit_text(fig) is True
     assert text_problems(fig) == []
     h = fig.bbox.height
     assert h > 90 and abs(ax.get_position().y0 * h - bottom) < 1e-6 and abs(ax.get_position().height * h - height) < 1e-6
+    box = label.get_window_extent(fig.canvas.get_renderer())
+    assert box.x1 <= fig.bbox.width and "\n" in label.get_text()  # wrapped to fit, hanging down into its axes
+    assert box.y1 <= ax.bbox.y1 + 1
     plt.close(fig)
 
 
