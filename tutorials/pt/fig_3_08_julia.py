@@ -3,10 +3,11 @@
 In kind: escape-time images of eq. 3.1 (pt-3.1) for the three maps of the caption (pt-u-julia,
 pywarp.fractal_julia_example): |z| > 16 for the polynomials, Re z > 50 for the exponential map; 300 iterations (100 for
 the exp map); members black, the others coloured by the smooth escape count on a cyclic, perceptually uniform palette
-(twilight) -- three turns over the log of the count for the polynomials; for the exp map one turn per lap of its
+(twilight_shifted) -- three turns over the log of the count for the polynomials; for the exp map one turn per lap of its
 orbits (below), with the super-logarithm as its smooth count and 3 x 3 start values a pixel (its hairs are thinner
 than a pixel). Viewports, iteration counts and palette are not given in the text. Output: figures/pt/fig-3.8.png.
-"""# %% [markdown]
+"""
+# %% [markdown]
 # Every pixel is a start value a_0 in the complex plane. Iterating a_{n+1} = f(a_n), the orbit either stays bounded
 # (the pixel belongs to the filled Julia set, the text's "Julia set": black) or runs off to infinity; the step at which
 # it is certainly gone colours the pixel. For z^d + c, |z| beyond max(|c|, 2^(1/(d-1))) proves escape. For e^z + c
