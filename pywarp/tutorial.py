@@ -16,6 +16,9 @@ texts (the scenes' cameras are ``pywarp.kernels.camera``), so they live here, on
 * :func:`run_as_script`: the command line every tutorial has (``--out``, ``--quick``) when it runs as a script;
 * :func:`text_problems` and :func:`checking_legibility`: the text of a figure (titles, axis labels, tick labels, the
   suptitle, figure texts) inside the figure and not overlapping, checked where the tutorials save their figures.
+* :func:`fit_text`: what the tutorials call instead of ``tight_layout`` (or before saving a figure laid out by hand),
+  so that their titles and labels pass that check at any size: too-wide text shrunk to :data:`MIN_FONT_PT`, then
+  wrapped; the layout corrected where ``tight_layout`` misses an overlap; a figure whose text fits left as it was.
 
 Example::
 
@@ -31,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["pinhole_directions", "fisheye_directions", "row_of_elevation", "billboard_frame", "environment",
-           "one_type_textures", "run_as_script", "text_problems", "checking_legibility"]
+           "one_type_textures", "run_as_script", "text_problems", "checking_legibility", "fit_text"]
 
 
 def pinhole_directions(width: int, height: int, fov_y_deg: float, azimuth_deg: float = 0.0,
@@ -180,41 +183,264 @@ def _overlapping(a, b, e):
     return (ox > e) & (oy > e)
 
 
+def _problems(fig, inside: bool = True) -> list[tuple]:
+    """The problems :func:`text_problems` describes, as records: ("out", i, box, fig size), ("text", i, j) or
+    ("area", i, k) for text i (of the list returned second) sticking out of the figure, overlapping text j, or
+    overlapping the plot area of ``fig.axes[k]``. Returns (records, texts), each text (name, Text, axes, box)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    texts = []
+    for name, t, ax in _texts(fig):
+        b = t.get_window_extent(renderer)
+        if b.width > 0 and b.height > 0:
+            texts.append((name, t, ax, (b.x0, b.y0, b.x1, b.y1)))
+    found = []
+    if not texts:
+        return found, texts
+    a = np.array([box for *_, box in texts])
+    w, h = fig.bbox.width, fig.bbox.height
+    e = TEXT_SLACK_PX
+    if inside:
+        for i, (x0, y0, x1, y1) in enumerate(a):
+            if x0 < -e or y0 < -e or x1 > w + e or y1 > h + e:
+                found.append(("out", i, (x0, y0, x1, y1), (w, h)))
+    for i, j in zip(*np.nonzero(np.triu(_overlapping(a, a, e), 1))):
+        found.append(("text", int(i), int(j)))
+    axes = [(k, ax) for k, ax in enumerate(fig.axes) if ax.get_visible()]
+    if axes:
+        areas = np.array([tuple(ax.bbox.extents) for _, ax in axes])
+        for i, j in zip(*np.nonzero(_overlapping(a, areas, e))):
+            if texts[i][2] is not axes[j][1]:
+                found.append(("area", int(i), axes[j][0]))
+    return found, texts
+
+
 def text_problems(fig, inside: bool = True) -> list[str]:
     """What makes the text of ``fig`` hard to read, from the extents the renderer gives: each text box
     (:func:`_texts`) that sticks out of the figure (when ``inside``; off for a figure saved with
     ``bbox_inches="tight"``, whose saved area grows to take it in), each pair of text boxes that overlap, and each text
     box that overlaps the plot area of another axes (a title over the image above it) -- by more than
     :data:`TEXT_SLACK_PX` either way."""
+    found, texts = _problems(fig, inside)
+    problems = []
+    for rec in found:
+        n = texts[rec[1]][0]
+        if rec[0] == "out":
+            (x0, y0, x1, y1), (w, h) = rec[2], rec[3]
+            problems.append(f"{n} sticks out of the figure ({x0:.0f}, {y0:.0f}, {x1:.0f}, {y1:.0f} in a "
+                            f"{w:.0f} x {h:.0f} figure)")
+        elif rec[0] == "text":
+            problems.append(f"{n} overlaps {texts[rec[2]][0]}")
+        else:
+            problems.append(f"{n} overlaps the plot area of axes {rec[2]}")
+    # the records come in kind order already: out, text, area -- as the messages always did
+    return problems
+
+
+#: The smallest font size (points) :func:`fit_text` shrinks a title or label to before it wraps it onto more lines:
+#: the size of small print in a printed caption, about 10 px a line at the tutorials' 100 dpi (any smaller and the
+#: digits of a quick-mode figure blur together).
+MIN_FONT_PT = 7.0
+#: Pixels :func:`fit_text` keeps between a fitted figure text and the figure's left and right edges.
+FIT_MARGIN_PX = 4.0
+#: Rounds of :func:`fit_text`'s corrections to a tight layout (each re-measures the text and lays out again); two
+#: settle every tutorial figure, the rest are for text a correction pushes into another.
+FIT_ROUNDS = 4
+
+
+def _protect_math(s: str) -> str:
+    """Spaces inside ``$...$`` made non-breaking for :mod:`textwrap` (a wrapped line must not split a formula)."""
+    parts = s.split("$")
+    return "$".join(p.replace(" ", "\x00") if k % 2 else p for k, p in enumerate(parts))
+
+
+def _protect_terms(s: str) -> str:
+    """Also the spaces around a binary operator (``h_A - h_B``, ``pitch = 9.1``) made non-breaking: a line should not
+    end on an operator or start with one when it can break elsewhere."""
+    import re
+
+    return re.sub(r" ([-+=*/<>]|->) ", "\x00\\1\x00", s)
+
+
+def _fit_width(t, room: float, renderer, min_fontsize: float) -> bool:
+    """Text ``t`` no wider than ``room`` pixels: its font size reduced in half points down to ``min_fontsize``, then,
+    if it is still too wide, its words wrapped as one paragraph onto the fewest lines that fit, of even lengths (a
+    formula in ``$...$`` kept on one line, and a term ``a - b`` too where the lines can break elsewhere). Returns
+    whether it changed."""
+    import textwrap
+
+    def width():
+        return t.get_window_extent(renderer).width
+
+    if width() <= room:
+        return False
+    size = t.get_fontsize()
+    while width() > room and size - 0.5 >= min_fontsize - 1e-9:
+        size -= 0.5
+        t.set_fontsize(size)
+    if width() > room and size > min_fontsize:
+        t.set_fontsize(min_fontsize)
+    if width() <= room:
+        return True
+    # one paragraph: the text's own line breaks were made for a width it does not have
+    plain = _protect_math(" ".join(t.get_text().split()))
+    for words in (_protect_terms(plain), plain):
+
+        def wrap(n, words=words):
+            return textwrap.wrap(words, n, break_long_words=False, break_on_hyphens=False)
+
+        def show(n, wrap=wrap):
+            t.set_text("\n".join(wrap(n)).replace("\x00", " "))
+
+        n = len(words)
+        while width() > room and n > 8:
+            n -= 1
+            show(n)
+        if width() <= room:
+            lines = len(wrap(n))
+            while n > 8 and len(wrap(n - 1)) == lines:  # as many lines, of even lengths (no word alone on the last)
+                n -= 1
+            show(n)
+            return True
+    return True
+
+
+def fit_text(fig, *, tight_layout: bool = False, min_fontsize: float = MIN_FONT_PT, **tight_kwargs) -> bool:
+    """Makes the text of ``fig`` legible where it is placed, measured by the renderer (as :func:`text_problems`
+    measures it); call it where a tutorial would call ``fig.tight_layout()`` (``tight_layout=True``) or, for a figure
+    laid out by hand, just before ``savefig``. A figure whose text already fits is left exactly as it was (but for the
+    ``tight_layout`` it asked for), so its image does not change.
+
+    * A figure text (the suptitle too) wider than the figure, or an axes title or x label that is wider than its axes
+      and sticks out of the figure or overlaps another text, is reduced in size down to ``min_fontsize``
+      (:data:`MIN_FONT_PT`) and then wrapped onto more lines (:func:`_fit_width`).
+    * A left-aligned text of an axes (``ax.text``: a panel's label) that runs out at the figure's right edge is
+      reduced and wrapped likewise, to the room between its start and that edge.
+    * ``tight_layout``: lays the figure out with ``fig.tight_layout(**tight_kwargs)``, then corrects what that layout
+      does not see (the titles of 3-D axes, an image's aspect, text drawn next to an axes), for up to
+      :data:`FIT_ROUNDS` rounds: the area below a figure text that overlaps the axes is lowered, an axes title over
+      the plot area of the axes above it gets more space between the rows (``h_pad``), and text that sticks out of
+      the figure's bottom or sides gets that much more room at that edge.
+    * Otherwise (axes placed by hand in figure fractions): the figure grows at the top by the height a wrapped figure
+      text gained, every axes and every other text keeping its place in pixels from the bottom (a title band above
+      an image grows; the image is not resampled).
+
+    Returns whether it changed the figure beyond the ``tight_layout`` asked for (a text, a correction, a size)."""
+    changed = False
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
-    boxes, names, owners = [], [], []
-    for name, t, ax in _texts(fig):
-        b = t.get_window_extent(renderer)
-        if b.width > 0 and b.height > 0:
-            boxes.append((b.x0, b.y0, b.x1, b.y1))
-            names.append(name)
-            owners.append(ax)
-    problems = []
-    if not boxes:
-        return problems
-    a = np.array(boxes)
+    w = fig.bbox.width
+    found, texts = _problems(fig)
+    flagged = {rec[1] for rec in found} | {rec[2] for rec in found if rec[0] == "text"}
+    grown = []
+    for i, (name, t, ax, (x0, y0, x1, y1)) in enumerate(texts):
+        if ax is None:
+            room = w - 2 * FIT_MARGIN_PX
+        elif i in flagged and (t is ax.title or t is ax._left_title or t is ax._right_title or t is ax.xaxis.label):
+            room = ax.bbox.width
+        else:
+            continue
+        if _fit_width(t, room, renderer, min_fontsize):
+            changed = True
+            if ax is None:
+                grown.append((t, y0, y1))
+    for ax in fig.axes:  # an axes' own left-aligned text (a panel label) running out at the figure's right edge
+        for t in ax.texts:
+            b = t.get_window_extent(renderer)
+            if t.get_visible() and t.get_ha() == "left" and b.x1 > w + TEXT_SLACK_PX and b.x0 < w:
+                changed |= _fit_width(t, w - FIT_MARGIN_PX - b.x0, renderer, min_fontsize)
+                if "\n" in t.get_text():  # more lines: they hang down from where its top was, into its axes
+                    tr = t.get_transform()
+                    x_px = tr.transform(t.get_position())[0]
+                    t.set_verticalalignment("top")
+                    t.set_position(tuple(tr.inverted().transform((x_px, b.y1))))
+    if tight_layout:
+        changed |= _tight_with_corrections(fig, tight_kwargs)
+    elif grown:
+        for t, y0, y1 in grown:
+            _grow_top_for(fig, t, y0, y1)
+    return changed
+
+
+def _tight_with_corrections(fig, kwargs) -> bool:
+    """``fig.tight_layout(**kwargs)``, then :func:`fit_text`'s corrections, round by round, each from the overlaps
+    the renderer measures (pixels; ``tight_layout``'s pads are in units of the default font size). Returns whether
+    it corrected the layout."""
+    kw = dict(kwargs)
+    fig.tight_layout(**kw)
+    extra = TEXT_SLACK_PX + 2.0  # beyond the measured overlap: past the check's slack, and a gap one can see
+    for k in range(FIT_ROUNDS):
+        found, texts = _problems(fig)
+        if not found:
+            return k > 0
+        w, h = fig.bbox.width, fig.bbox.height
+        edges = dict(left=0.0, bottom=0.0, right=0.0, top=0.0)
+        h_gap = w_gap = 0.0
+        for rec in found:
+            _, _, ax, (x0, y0, x1, y1) = texts[rec[1]]
+            if rec[0] == "out":
+                edges["left"] = max(edges["left"], -x0 + extra if x0 < 0 else 0.0)
+                edges["bottom"] = max(edges["bottom"], -y0 + extra if y0 < 0 else 0.0)
+                edges["right"] = max(edges["right"], x1 - w + extra if x1 > w else 0.0)
+                edges["top"] = max(edges["top"], y1 - h + extra if y1 > h else 0.0)
+                continue
+            if rec[0] == "text":
+                other_ax, (u0, v0, u1, v1) = texts[rec[2]][2], texts[rec[2]][3]
+            else:
+                other_ax, (u0, v0, u1, v1) = fig.axes[rec[2]], tuple(fig.axes[rec[2]].bbox.extents)
+            ox, oy = min(x1, u1) - max(x0, u0), min(y1, v1) - max(y0, v0)
+            if (ax is None) != (other_ax is None):  # a figure text on the axes' area: shrink that area away from it
+                above = (y0 + y1 > v0 + v1) == (ax is None)  # the figure text is above (a suptitle)
+                edges["top" if above else "bottom"] = max(edges["top" if above else "bottom"], oy + extra)
+            elif oy <= ox:  # one above the other: more space between the rows
+                h_gap = max(h_gap, oy + extra)
+            else:  # side by side: more space between the columns
+                w_gap = max(w_gap, ox + extra)
+        x0, y0, x1, y1 = kw.get("rect", (0.0, 0.0, 1.0, 1.0))  # each edge moves everything laid out by as much
+        kw["rect"] = (x0 + edges["left"] / w, y0 + edges["bottom"] / h, x1 - edges["right"] / w,
+                      y1 - edges["top"] / h)
+        pad = kw.get("pad", 1.08)
+        if h_gap:
+            kw["h_pad"] = kw.get("h_pad", pad) + h_gap / _font_px(fig)
+        if w_gap:
+            kw["w_pad"] = kw.get("w_pad", pad) + w_gap / _font_px(fig)
+        fig.tight_layout(**kw)
+    return True
+
+
+def _font_px(fig) -> float:
+    """The size in pixels of the default font, the unit of ``tight_layout``'s pads."""
+    import matplotlib as mpl
+    from matplotlib.font_manager import FontProperties
+
+    return FontProperties(size=mpl.rcParams["font.size"]).get_size_in_points() * fig.dpi / 72.0
+
+
+def _grow_top_for(fig, t, y0: float, y1: float) -> None:
+    """The figure grown at the top by what figure text ``t`` (before fitting: from ``y0`` to ``y1`` pixels from the
+    bottom) gained in height, ``t`` moved so that its bottom stays at ``y0``; the axes and other texts keep their
+    pixels from the bottom, but texts above ``t`` move up with the top."""
+    renderer = fig.canvas.get_renderer()
+    b = t.get_window_extent(renderer)
     w, h = fig.bbox.width, fig.bbox.height
-    e = TEXT_SLACK_PX
-    if inside:
-        for (x0, y0, x1, y1), n in zip(a, names):
-            if x0 < -e or y0 < -e or x1 > w + e or y1 > h + e:
-                problems.append(f"{n} sticks out of the figure ({x0:.0f}, {y0:.0f}, {x1:.0f}, {y1:.0f} in a "
-                                f"{w:.0f} x {h:.0f} figure)")
-    for i, j in zip(*np.nonzero(np.triu(_overlapping(a, a, e), 1))):
-        problems.append(f"{names[i]} overlaps {names[j]}")
-    axes = [(k, ax) for k, ax in enumerate(fig.axes) if ax.get_visible()]
-    if axes:
-        areas = np.array([tuple(ax.bbox.extents) for _, ax in axes])
-        for i, j in zip(*np.nonzero(_overlapping(a, areas, e))):
-            if owners[i] is not axes[j][1]:
-                problems.append(f"{names[i]} overlaps the plot area of axes {axes[j][0]}")
-    return problems
+    grow = max(0.0, b.height - (y1 - y0))
+    if grow <= 0.5:
+        return
+    new_h = h + grow
+    for ax in fig.axes:
+        p = ax.get_position()
+        ax.set_position([p.x0, p.y0 * h / new_h, p.width, p.height * h / new_h])
+    for other in fig.texts:
+        if other.get_transform() != fig.transFigure:
+            continue
+        x, y = other.get_position()
+        y_px = y * h
+        if other is t:
+            y_px += y0 - b.y0
+        elif other.get_window_extent(renderer).y0 >= y1 - TEXT_SLACK_PX:
+            y_px += grow
+        other.set_position((x, y_px / new_h))
+    fig.set_size_inches(w / fig.dpi, new_h / fig.dpi)
 
 
 @contextmanager

@@ -12,26 +12,10 @@ import numpy as np
 import pytest
 
 from pywarp.core import figures
-from pywarp.tutorial import checking_legibility, text_problems
+from pywarp.tutorial import checking_legibility, fit_text, text_problems
 
 ROOT = Path(__file__).resolve().parents[2]
 TUTORIALS = sorted(p for p in (ROOT / "tutorials").glob("*/*.py") if not p.name.startswith("_"))
-#: Figures whose text the legibility check finds clipped or overlapping in quick mode today (issue 29), each to be
-#: taken off this list when its tutorial is fixed: a long suptitle or label on a figure sized from a small quick-mode
-#: render, or a title over the image above it.
-KNOWN_ILLEGIBLE = {
-    "oc/fig-2.6.png", "oc/fig-2.7.png", "oc/fig-2.8.png", "oc/fig-2.9.png",  # suptitle wider than the quick figure
-    "oc/fig-4.1.png", "oc/fig-4.2.png", "oc/fig-4.3.png",  # suptitle wider than the quick figure
-    "oc/fig-5.2.png", "oc/fig-5.6.png",  # second-row titles over the first row's images
-    "oc/fig-6.1.png",  # suptitle and the pitch/roll x labels wider than the figure, the labels overlap
-    "rr/fig-3.1.png",  # suptitle over panel (b)'s two-line title
-    "rr/fig-3.7.png",  # x labels below the figure's lower edge
-    "rr/fig-6.4.png", "rr/fig-6.5.png", "rr/fig-6.6.png", "rr/fig-6.7.png", "rr/fig-6.8.png",
-    "rr/fig-6.9.png",  # suptitle wider than the quick figure
-    "rr/fig-6.11.png",  # second-row titles over the first row's images
-}
-
-
 def _read_png(path):
     from PIL import Image
 
@@ -52,9 +36,7 @@ def test_tutorial_runs_in_quick_mode(path, tmp_path):
     with checking_legibility() as problems:
         written = figures.load(path).main(tmp_path, quick=True)
     assert written, f"{path.name} wrote nothing"
-    seed = path.parent.name
-    flagged = {f"{seed}/{name}" for name, _ in problems}
-    assert not flagged - KNOWN_ILLEGIBLE, [p for p in problems if f"{seed}/{p[0]}" not in KNOWN_ILLEGIBLE]
+    assert not problems, problems
     for f in written:
         f = Path(f)
         assert f.is_file() and f.parent == tmp_path and f.suffix == ".png"
@@ -83,9 +65,71 @@ def test_legibility_check_finds_clipped_and_overlapping_text():
     plt.close(fig)
 
 
-def test_known_illegible_figures_are_committed_figures():
-    committed = {f"{p.parent.name}/{p.name}" for p in (ROOT / "figures").glob("*/*.png")}
-    assert KNOWN_ILLEGIBLE <= committed
+def test_fit_text_makes_a_crowded_figure_legible_and_leaves_a_legible_one_as_it_was(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    def figure(suptitle):
+        # seven square images in a 2 x 4 grid: tight_layout puts the second row's titles on the first row's images
+        fig, axes = plt.subplots(2, 4, figsize=(13, 7), dpi=50)
+        for ax in axes.ravel()[:7]:
+            ax.imshow(np.arange(16.0).reshape(4, 4))
+            ax.set_title("a title", fontsize=8)
+        for ax in axes.ravel():
+            ax.set_axis_off()
+        fig.suptitle(suptitle, fontsize=11)
+        return fig
+
+    crowded = "a suptitle " + "far wider than the figure, " * 12 + "even at seven points"
+    fig = figure(crowded)
+    fig.tight_layout()
+    found = text_problems(fig)
+    assert any("figure text" in p and "sticks out of the figure" in p for p in found), found
+    assert any("axes 4 title" in p and "plot area of axes 0" in p for p in found), found
+    plt.close(fig)
+    fig = figure(crowded)
+    assert fit_text(fig, tight_layout=True) is True
+    assert text_problems(fig) == []
+    sup = fig.texts[0]
+    assert sup.get_fontsize() >= 7.0 and "\n" in sup.get_text()  # shrunk to the floor, then wrapped
+    assert " ".join(sup.get_text().split()) == crowded  # every word kept
+    plt.close(fig)
+
+    # legible as laid out: fit_text is the tight_layout asked for, the same pixels
+    for name in ("plain", "fitted"):
+        fig, axes = plt.subplots(1, 2, figsize=(4, 2), dpi=50)
+        for ax in axes:
+            ax.plot([0, 1], [1, 0])
+            ax.set_title("fits", fontsize=8)
+        fig.suptitle("fits")
+        if name == "plain":
+            fig.tight_layout()
+        else:
+            assert fit_text(fig, tight_layout=True) is False
+        assert text_problems(fig) == []
+        fig.savefig(tmp_path / f"{name}.png")
+        plt.close(fig)
+    assert (tmp_path / "plain.png").read_bytes() == (tmp_path / "fitted.png").read_bytes()
+
+    # a title band above an image laid out by hand: the band grows, the image keeps its pixels
+    fig = plt.figure(figsize=(1.0, 0.9), dpi=100)
+    ax = fig.add_axes([0, 0, 1, 0.6])
+    ax.imshow(np.zeros((6, 10)))
+    ax.set_axis_off()
+    fig.text(0.5, 0.8, "a title much wider than this small figure", ha="center", va="center", fontsize=9)
+    label = ax.text(0.5, 1.0, "a panel label running out of the figure", color="white", fontsize=8)
+    bottom, height = ax.get_position().y0 * 90, ax.get_position().height * 90
+    assert text_problems(fig)
+    assert fit_text(fig) is True
+    assert text_problems(fig) == []
+    h = fig.bbox.height
+    assert h > 90 and abs(ax.get_position().y0 * h - bottom) < 1e-6 and abs(ax.get_position().height * h - height) < 1e-6
+    box = label.get_window_extent(fig.canvas.get_renderer())
+    assert box.x1 <= fig.bbox.width and "\n" in label.get_text()  # wrapped to fit, hanging down into its axes
+    assert box.y1 <= ax.bbox.y1 + 1
+    plt.close(fig)
 
 
 @pytest.mark.slow

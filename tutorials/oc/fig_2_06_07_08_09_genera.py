@@ -36,7 +36,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from pywarp.clouds import textures as T  # noqa: E402
 from pywarp.clouds.cloudscape import CloudscapeSettings  # noqa: E402
 from pywarp.clouds.technique import CloudscapeTechnique  # noqa: E402
-from pywarp.tutorial import one_type_textures  # noqa: E402
+from pywarp.tutorial import fit_text, one_type_textures  # noqa: E402
 
 #: (file, title, cloudscape settings, overcast): an overcast genus has the weather map's coverage channel set to 1 on
 #: every texel (:func:`overcast_textures`) -- a sheet without gaps; the others keep the map's noise.
@@ -88,6 +88,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         ax.imshow(img)
         ax.axis("off")
         fig.text(0.5, 1 - 17 / (h + 35), f"stand-in: {title}", ha="center", va="center", fontsize=8)
+        fit_text(fig)  # a title wider than a small (quick) image: smaller, wrapped, its band taller
         path = out_dir / name
         fig.savefig(path, dpi=100)
         plt.close(fig)

@@ -49,6 +49,7 @@ from pywarp.core.cbridge import VOLUME_PARAMS  # noqa: E402
 from pywarp.kernels import camera as CAM  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
 from pywarp.flight import volumes as VS  # noqa: E402
+from pywarp.tutorial import fit_text  # noqa: E402
 
 EXTENT = (100.0, 60.0, 100.0)  # box of every volume [m]; the camera looks at it from about 120 m
 SQUASH = 0.6  # the box's height / width: box-unit y times this is isotropic in metres
@@ -157,6 +158,7 @@ def save_with_outlines(background: np.ndarray, result: np.ndarray, ellipsoids, t
         ax.set_ylim(h, 0)
         ax.axis("off")
     fig.text(0.5, 1 - 17 / (h + 35), title, ha="center", va="center", fontsize=9)
+    fit_text(fig)  # a title wider than a small (quick) image: smaller, wrapped, its band taller
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return path
@@ -169,6 +171,7 @@ def save(img: np.ndarray, title: str, path: Path) -> Path:
     ax.imshow(img)
     ax.axis("off")
     fig.text(0.5, 1 - 17 / (h + 35), title, ha="center", va="center", fontsize=9)
+    fit_text(fig)  # a title wider than a small (quick) image: smaller, wrapped, its band taller
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return path

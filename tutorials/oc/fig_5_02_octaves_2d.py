@@ -27,6 +27,7 @@ import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
 from pywarp.flight.clouds import octave_image  # noqa: E402  (the 2-D layer procedure of §5.1.1)
+from pywarp.tutorial import fit_text  # noqa: E402
 
 
 def main(out_dir, quick: bool = False) -> list[Path]:
@@ -55,7 +56,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     for ax in axes.ravel():
         ax.axis("off")
     fig.suptitle("oc fig. 5.2: \"Perlin noise\" in a 2-D array: bilinearly up-sampled layers and their sum", fontsize=11)
-    fig.tight_layout()
+    fit_text(fig, tight_layout=True)  # the layout, with titles and labels that fit (legible in quick mode)
     out = out_dir / "fig-5.2.png"
     fig.savefig(out)
     plt.close(fig)

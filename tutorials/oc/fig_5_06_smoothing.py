@@ -25,6 +25,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pywarp  # noqa: E402
+from pywarp.tutorial import fit_text  # noqa: E402
 
 
 def main(out_dir, quick: bool = False) -> list[Path]:
@@ -62,7 +63,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
             axes[r, c].set_title(f"{title}  (std {img.std():.3f})", fontsize=9)
             axes[r, c].axis("off")
     fig.suptitle("oc fig. 5.6: raw noise -> smoothed noise -> final resolution (bilinear)", fontsize=11)
-    fig.tight_layout()
+    fit_text(fig, tight_layout=True)  # the layout, with titles and labels that fit (legible in quick mode)
     out = out_dir / "fig-5.6.png"
     fig.savefig(out)
     plt.close(fig)

@@ -35,6 +35,7 @@ from pywarp.kernels import camera as CAM  # noqa: E402
 from pywarp.flight import model as F  # noqa: E402
 from pywarp.kernels import volume as V  # noqa: E402
 from pywarp.flight import volumes as VS  # noqa: E402
+from pywarp.tutorial import fit_text  # noqa: E402
 
 MODEL = F.FlightModel()
 POINTS = {"A": (0.0, 0.0, -MODEL.length / 2), "B": (0.0, 0.0, MODEL.length / 2), "C": (-MODEL.span / 2, 0.0, 0.0),
@@ -82,7 +83,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
         ax.set_xticks([])
         ax.set_yticks([])
     fig.suptitle("aircraft with its height points (heights relative to E, the centre of gravity)", fontsize=9)
-    fig.tight_layout()
+    fit_text(fig, tight_layout=True)  # the layout, with titles and labels that fit (legible in quick mode)
     path = out_dir / "fig-6.1.png"
     fig.savefig(path, dpi=100)
     plt.close(fig)

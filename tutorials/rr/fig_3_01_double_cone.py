@@ -23,6 +23,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from pywarp.tutorial import fit_text  # noqa: E402
 
 R, HC = 1.0, 1.4  # cone radius at the viewer's height and half height (apex to base)
 
@@ -79,7 +80,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
          rng, quick)
     fig.suptitle("Fig 3.1 — the double cone of Wang & Wade [2] (schematic): textured cones around the viewer, no "
                  "refraction of the scene", fontsize=10)
-    fig.tight_layout()
+    fit_text(fig, tight_layout=True)  # the layout, with titles and labels that fit (legible in quick mode)
     path = out_dir / "fig-3.1.png"
     fig.savefig(path)
     plt.close(fig)

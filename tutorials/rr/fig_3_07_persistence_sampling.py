@@ -31,6 +31,7 @@ import pywarp  # noqa: E402
 from pywarp.rain.drops import drop_mask  # noqa: E402
 from pywarp.rain.settings import RainSettings  # noqa: E402
 from pywarp.rain.technique import RainTechnique  # noqa: E402
+from pywarp.tutorial import fit_text  # noqa: E402
 
 W, H = 96, 120  # the view (pixels) around the streak
 FOV_VIEW, FOV_CAP = math.radians(60.0), math.radians(150.0)
@@ -141,7 +142,7 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     ax.set_title("(d) the 7 tap colours, their mean, the reduced alpha\n(= the compositing pass's pixel)", fontsize=8)
     fig.suptitle("Fig 3.7 — retinal persistence: sampling of one streak pixel (rr-alg-3.2.3, rr-code-5.2.4)",
                  fontsize=10)
-    fig.tight_layout()
+    fit_text(fig, tight_layout=True)  # the layout, with titles and labels that fit (legible in quick mode)
     path = out_dir / "fig-3.7.png"
     fig.savefig(path)
     plt.close(fig)

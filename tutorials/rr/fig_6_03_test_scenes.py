@@ -30,6 +30,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from pywarp.rain.settings import RainSettings  # noqa: E402
 from pywarp.rain.technique import RainTechnique  # noqa: E402
+from pywarp.tutorial import fit_text  # noqa: E402
 
 #: The three tested scenes (our stand-ins for the text's three Terragen scenes).
 SCENES = {
@@ -52,6 +53,7 @@ def save_frame(img, path, title):
     ax.imshow(img, interpolation="nearest")
     ax.axis("off")
     fig.text(0.5, 1 - 14 / (h + 28), title, ha="center", va="center", fontsize=9)
+    fit_text(fig)  # a title wider than a small (quick) frame: smaller, wrapped, its band taller
     fig.savefig(path)
     plt.close(fig)
 
