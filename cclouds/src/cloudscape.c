@@ -197,6 +197,8 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->phase = CCL_CLOUDSCAPE_PHASE_THESIS;
     out->droplet_um = 15.0f;
     out->ambient_ground_weight = 0.0f;
+    out->ms_depth = 0.0f;
+    out->ms_thin = 0.0f;
     out->mie_delta = 0.0f;
     out->lod = 1;
     out->lod_bias = 0.0f;
@@ -299,6 +301,8 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         return bad(out_field, "droplet_um");
     if (!(p->ambient_ground_weight >= 0.0f && p->ambient_ground_weight <= 1.0f))
         return bad(out_field, "ambient_ground_weight");
+    if (!finite_nonneg(p->ms_depth)) return bad(out_field, "ms_depth");
+    if (!(p->ms_thin >= 0.0f && p->ms_thin <= 1.0f)) return bad(out_field, "ms_thin");
     if (!(p->mie_delta >= 0.0f && p->mie_delta <= 1.0f)) return bad(out_field, "mie_delta");
     if (!(p->lod == 0 || p->lod == 1)) return bad(out_field, "lod");
     if (!(p->weather_detile == 0 || p->weather_detile == 1)) return bad(out_field, "weather_detile");
@@ -635,6 +639,13 @@ float ccl_cloudscape_mie_delta_phase(float cos_theta, float diameter_um, float f
     return ((1.0f - f) * (1.0f - w_d) * ccl_phase_hg(cos_theta, g_hg) + w_d * draine) / (1.0f - f * (1.0f - w_d));
 }
 
+float ccl_cloudscape_ms_gain(float d, float depth, float thin)
+{
+    CCL_REQUIRE(!(d < 0.0f) && !(depth < 0.0f) && !(thin < 0.0f || thin > 1.0f));
+    if (!(depth > 0.0f)) return 1.0f;
+    return thin + (1.0f - thin) * (1.0f - expf(-d / depth));
+}
+
 float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, float cos_theta)
 {
     /* octave i: contribution b^i, optical depth a^i d, eccentricities c^i g (Wrenninge et al. 2013, Hillaire 2016);
@@ -644,8 +655,10 @@ float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, fl
                       : p->mie_delta > 0.0f ? ccl_cloudscape_mie_delta_phase(cos_theta, p->droplet_um, p->mie_delta)
                                             : ccl_phase_mie(cos_theta, p->droplet_um);
     int i;
+    const float gain = ccl_cloudscape_ms_gain(d, p->ms_depth, p->ms_thin);
     for (i = 0; i < p->ms_octaves; ++i) {
         const float di = d * ai;
+        if (i == 1) bi *= gain; /* the octaves i >= 1 by the optical depth towards the sun (1 when ms_depth = 0) */
         const float beer = p->beer ? expf(-di * a) : 1.0f;
         const float powder = p->powder ? 1.0f - expf(-2.0f * di) : 1.0f;
         float phase;

@@ -130,6 +130,8 @@ class CloudscapeParams:
     phase: int
     droplet_um: float
     ambient_ground_weight: float
+    ms_depth: float
+    ms_thin: float
     mie_delta: float
     lod: int
     lod_bias: float
@@ -861,6 +863,23 @@ def cloudscape_mie_delta_phase(cos_theta: float, diameter_um: float, f: float) -
     return ((1.0 - f) * (1.0 - w_d) * phase_hg(cos_theta, g_hg) + w_d * draine) / (1.0 - f * (1.0 - w_d))
 
 
+@declare("vc-x-ms-gain", c="ccl_cloudscape_ms_gain",
+         args=(Arg("d", "optical depth towards the sun", lo=0.0, hi=1.0e6),
+               Arg("depth", "optical depth scale D of the gain; 0 = off", lo=0.0, hi=1.0e6),
+               Arg("thin", "gain at d = 0", lo=0.0, hi=1.0)),
+         outputs=("gain",),
+         summary="Weight of the multiple-scattering octaves by the optical depth towards the sun (beyond the text): "
+                 "t + (1 - t)(1 - exp(-d / D)); 1 when D = 0.",
+         references=("Wrenninge, Kulla & Lundqvist, Oz: the great and volumetric, SIGGRAPH 2013 Talks",
+                     "Hillaire, Physically based sky, atmosphere and cloud rendering in Frostbite, SIGGRAPH 2016"))
+@wp.func
+def cloudscape_ms_gain(d: float, depth: float, thin: float) -> float:
+    """Twin of ``ccl_cloudscape_ms_gain`` (cloudscape.h)."""
+    if not (depth > 0.0):
+        return 1.0
+    return thin + (1.0 - thin) * (1.0 - wp.exp(-d / depth))
+
+
 @wp.func
 def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float) -> float:
     """Twin of ``ccl_cloudscape_energy``: the sun energy of a sample, sum over i < ms_octaves of ms_b^i beer(ms_a^i d)
@@ -876,8 +895,11 @@ def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float)
             mie = cloudscape_mie_delta_phase(cos_theta, p.droplet_um, p.mie_delta)
         else:
             mie = phase_mie(cos_theta, p.droplet_um)
+    gain = cloudscape_ms_gain(d, p.ms_depth, p.ms_thin)
     for i in range(p.ms_octaves):
         di = d * ai
+        if i == 1:
+            bi = bi * gain  # the octaves i >= 1 by the optical depth towards the sun (1 when ms_depth = 0)
         beer = float(1.0)
         if p.beer != 0:
             beer = wp.exp(-di * a)

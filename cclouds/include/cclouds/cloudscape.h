@@ -225,6 +225,10 @@ typedef struct ccl_cloudscape_params {
     float ambient_ground_weight; /* sky mode: ambient_top = (1 - w) x the sky's mean over the upper hemisphere + w x
                                     the unshadowed ground's radiance ground_albedo (sun_colour cos theta_s / pi +
                                     ambient_ground), w in [0, 1] (default 0; 0.5: the mean over the whole sphere) */
+    float ms_depth;             /* octaves i >= 1 x ccl_cloudscape_ms_gain(d, ms_depth, ms_thin): the multiple
+                                   scattering grows with the optical depth d towards the sun, km-free scale > 0;
+                                   0 = off, gain 1 (default 0) */
+    float ms_thin;              /* the gain at d = 0, in [0, 1] (default 0) */
     float mie_delta;            /* sky mode with the Mie phase: the share f in [0, 1] of the forward HG lobe that
                                    the lighting treats as unscattered (delta scaling, ccl_cloudscape_mie_delta_scale /
                                    _phase; default 0: off) */
@@ -405,6 +409,14 @@ CCL_API float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, flo
  * [-1, 1]. ccl_cloudscape_light applies the scale to sigma and sigma_light (sky lighting, phase MIE, mie_delta > 0)
  * and ccl_cloudscape_energy uses p'. Why: a path tracer sees the peak's light go on almost undeviated, which the
  * octaves cannot represent: thin cloud then lets the sky behind through and a thick cloud's base receives more sun. */
+/* The weight of the multiple-scattering octaves (i >= 1) of ccl_cloudscape_energy by the optical depth d towards the
+ * sun (vc-x-ms-gain; beyond the text):
+ *   gain = t + (1 - t) (1 - exp(-d / D)),  D = depth > 0, t = thin in [0, 1];  depth = 0: gain = 1 (the octaves as
+ *   Wrenninge et al. 2013 and Hillaire 2016 have them).
+ * Why: the octaves stand for light scattered more than once, which needs cloud around the sample; a thin wisp (small
+ * d) scatters the sun once, and the octaves then add light the path-traced reference does not have (thin cloud at
+ * 1.2-2.2 times the reference's energy). d >= 0, output in [t, 1]. */
+CCL_API float ccl_cloudscape_ms_gain(float d, float depth, float thin);
 CCL_API float ccl_cloudscape_mie_delta_scale(float diameter_um, float f);
 CCL_API float ccl_cloudscape_mie_delta_phase(float cos_theta, float diameter_um, float f);
 

@@ -1,5 +1,7 @@
-"""Delta scaling of the approximate Mie phase in the real-time lighting (vc-x-mie-delta, vc-x-mie-delta-scale;
-cclouds/cloudscape.h "Delta scaling"): the closed form written out again in float64 from the published fit, the
+"""The terms of the physical real-time lighting model (docs/lighting.rst). The weight of the multiple-scattering
+octaves by the optical depth towards the sun (vc-x-ms-gain): closed form, limits, C and Warp, the energy.
+Delta scaling of the approximate Mie phase (vc-x-mie-delta, vc-x-mie-delta-scale; cclouds/cloudscape.h "Delta
+scaling"): the closed form written out again in float64 from the published fit, the
 identity sigma' p' = sigma p - sigma f (1 - w_D) HG(g_HG), the normalisation, C and Warp agreeing (the functions,
 the energy and the per-frame light set-up), bad values refused, and the path-traced reference's medium untouched."""
 from __future__ import annotations
@@ -144,3 +146,57 @@ def test_the_reference_medium_is_not_delta_scaled():
     r = ReferenceRenderer(s, spp=1)
     assert r.params.sigma == pytest.approx(30.0) and r.params.sigma_light == pytest.approx(30.0)
     assert r.params.mie_delta == 0.0
+
+
+# --- the octaves' weight (vc-x-ms-gain) --------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-x-ms-gain")
+def test_ms_gain_closed_form_and_limits():
+    d = np.linspace(0.0, 20.0, 81)
+    for depth, thin in ((0.5, 0.0), (2.0, 0.3), (7.0, 1.0)):
+        g = np.array([lib().ccl_cloudscape_ms_gain(float(x), depth, thin) for x in d])
+        np.testing.assert_allclose(g, thin + (1 - thin) * (1 - np.exp(-d / depth)), rtol=1e-6, atol=1e-7)
+        assert g[0] == pytest.approx(thin) and np.all(np.diff(g) >= 0) and np.all(g <= 1.0)
+    # off: exactly 1 whatever d and thin
+    assert all(lib().ccl_cloudscape_ms_gain(float(x), 0.0, 0.4) == 1.0 for x in d)
+
+
+@pytest.mark.spec("vc-x-ms-gain")
+def test_ms_gain_c_and_warp_agree():
+    rng = np.random.default_rng(9)
+    d = np.float32(rng.uniform(0, 30, 300))
+    depth = np.float32(np.where(rng.uniform(size=300) < 0.2, 0.0, rng.uniform(0.1, 10, 300)))
+    thin = np.float32(rng.uniform(0, 1, 300))
+    assert_twins_agree("vc-x-ms-gain", d, depth, thin, ulp=4)
+
+
+def test_energy_weighs_the_octaves_by_the_gain():
+    """Without Beer and powder: E = p_0 + gain sum_{i >= 1} b^i p_i, gain from the closed form; C equals Warp."""
+    s = small(phase="mie", droplet_um=15.0, ms_octaves=4, ms_depth=2.0, ms_thin=0.2, beer=False, powder=False)
+    off = small(phase="mie", droplet_um=15.0, ms_octaves=4, beer=False, powder=False)
+    one = small(phase="mie", droplet_um=15.0, ms_octaves=1, beer=False, powder=False)
+    cp, cp_off, cp_one = (CLOUDSCAPE_PARAMS.to_c(x.c_values()) for x in (s, off, one))
+    for d in (0.0, 0.7, 5.0):
+        for c in (-0.5, 0.3, 0.95):
+            e0 = lib().ccl_cloudscape_energy(cp_one, d, 0.0, c)
+            ms = lib().ccl_cloudscape_energy(cp_off, d, 0.0, c) - e0
+            gain = 0.2 + 0.8 * (1 - math.exp(-d / 2.0))
+            assert lib().ccl_cloudscape_energy(cp, d, 0.0, c) == pytest.approx(e0 + gain * ms, rel=2e-6)
+    v = s.c_values()
+    rng = np.random.default_rng(4)
+    d = np.float32(rng.uniform(0, 8, 200))
+    a = np.float32(rng.uniform(0, 3, 200))
+    c = np.float32(rng.uniform(-1, 1, 200))
+    out = wp.zeros(200, dtype=float)
+    wp.launch(_energy_kernel, 200, inputs=[CLOUDSCAPE_PARAMS.warp_struct(v), wp.array(d), wp.array(a), wp.array(c)],
+              outputs=[out])
+    ce = np.array([lib().ccl_cloudscape_energy(cp, float(x), float(y), float(z)) for x, y, z in zip(d, a, c)],
+                  dtype=np.float32)
+    np.testing.assert_array_equal(out.numpy(), ce)
+
+
+def test_ms_gain_bad_values_are_refused():
+    with pytest.raises(ValueError, match="ms_thin"):
+        small(ms_thin=1.5)
+    with pytest.raises(ValueError, match="ms_depth"):
+        small(ms_depth=-1.0)
