@@ -77,15 +77,22 @@ MODELS = {
     # shows how much of the last model's error is the haze
     "+ms, haze off": dict(lighting="sky", ms_octaves=None, silver_weight=None, powder=None, aerial_km=0.0),
 }
-#: The models of the physical medium only (rows after MODELS): ``physical`` -- the lighting model for physical units
-#: and the Mie phase (issue 32; docs/lighting.rst): sky lighting without the powder term, a quarter of the clouds'
-#: ambient from the lit ground below (ambient_ground_weight 0.25), four octaves that keep more of the light
-#: (optical depth x 0.3^i, contribution x 0.6^i), no aerial perspective (the reference's air does not scatter).
-#: Tuned (tools/tune_lighting.py's measure, absolute errors) on noon, from above and view below; low sun and view
-#: above were not seen by the tuning.
+#: The models of the physical medium only (rows after MODELS), for physical units and the Mie phase (issue 32;
+#: docs/lighting.rst), both without the powder term and without aerial perspective (the reference's air does not
+#: scatter), a quarter of the clouds' ambient from the lit ground below (ambient_ground_weight 0.25):
+#:
+#: * ``physical`` -- the Mie phase's forward peak treated as unscattered light (mie_delta 1: extinction x w_D = 0.49
+#:   at 15 um, Draine's lobe as the phase; vc-x-mie-delta), four octaves (optical depth x 0.5^i, contribution x
+#:   0.75^i) weighted by the optical depth d towards the sun, 0.3 + 0.7 (1 - exp(-d / 1.5)) (vc-x-ms-gain).
+#:   Chosen by tools/tune_lighting.py --physical (the largest absolute CIEDE2000 over TUNING_SCENES, cached references
+#:   of 80x45 and 512 paths); low sun and view above were not seen by the tuning.
+#: * ``physical v1`` -- the first model of issue 32, kept for comparison: the full Mie phase, four octaves of
+#:   0.3^i / 0.6^i unweighted.
 PHYSICAL_MODELS = {
     "physical": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
-                     advanced={"ms_a": 0.3, "ms_b": 0.6}),
+                     mie_delta=1.0, ms_depth=1.5, ms_thin=0.3, advanced={"ms_a": 0.5, "ms_b": 0.75}),
+    "physical v1": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
+                        advanced={"ms_a": 0.3, "ms_b": 0.6}),
 }
 #: The scenes and views the ``physical`` model was tuned on (tools/tune_lighting.py); the others were held out.
 TUNING_SCENES = ("noon", "from above", "view below")
