@@ -39,7 +39,8 @@ POWDER = (False, True)
 #: no powder, no aerial perspective. The grid the physical model was chosen from (docs/lighting.rst).
 PHYSICAL_GRID = [
     *((f, a, b, 0.0, 0.0, 0.25) for f in (0.0, 0.5, 1.0) for a, b in ((0.3, 0.6), (0.5, 0.5), (0.3, 0.7))),
-    *((1.0, a, b, 0.0, 0.0, w) for a in (0.4, 0.5) for b in (0.5, 0.6) for w in (0.1, 0.25, 0.5)),
+    *((1.0, a, b, 0.0, 0.0, w) for a in (0.4, 0.5) for b in (0.5, 0.6) for w in (0.25, 0.5)),
+    (1.0, 0.5, 0.5, 0.0, 0.0, 0.1),
     *((1.0, 0.5, b, dd, t, 0.25) for b in (0.6, 0.75) for dd in (0.5, 1.5) for t in (0.0, 0.3)),
     *((1.0, 0.5, b, dd, t, 0.25) for b in (0.8, 0.9) for dd in (1.5, 3.0) for t in (0.2, 0.4)),
 ]
