@@ -28,6 +28,13 @@ def _slug(name: str) -> str:
     return name.replace(" ", "-").replace("+", "")
 
 
+def _role(scene: str) -> str:
+    """' (tuning)' or ' (held out)': whether the physical model's parameters were chosen on this scene."""
+    from pywarp.clouds.bench_reference import TUNING_SCENES
+
+    return " (tuning)" if scene in TUNING_SCENES else " (held out)"
+
+
 def table(res: dict) -> str:
     """The rst list-table of the result: per scene and row, best-scale SSIM / dE, then without rescaling dE and the
     energy ratios R/G/B in thick and thin pixels."""
@@ -42,12 +49,14 @@ def table(res: dict) -> str:
             if "skipped" in m:
                 continue
             a = m["absolute"]
-            rows += [f"   * - {sc['scene']}", f"     - {m['model']}", f"     - {m['ssim']:.3f}",
+            rows += [f"   * - {sc['scene']}{_role(sc['scene'])}", f"     - {m['model']}", f"     - {m['ssim']:.3f}",
                      f"     - {m['delta_e']:.2f}", f"     - {a['delta_e']:.2f}", f"     - {ratio(a['ratio']['thick'])}",
                      f"     - {ratio(a['ratio']['thin'])}"]
         nf = sc["noise_floor"]
+        absf = nf.get("abs_delta_e")
         rows += [f"   * - {sc['scene']}", "     - (noise floor: one half of the paths against the other)",
-                 f"     - {nf['ssim']:.3f}", f"     - {nf['delta_e']:.2f}", "     - ", "     - ", "     - "]
+                 f"     - {nf['ssim']:.3f}", f"     - {nf['delta_e']:.2f}",
+                 "     - " + ("" if absf is None else f"{absf:.2f}"), "     - ", "     - "]
     return "\n".join(rows) + "\n"
 
 
@@ -57,12 +66,15 @@ def main(argv=None) -> int:
     ap.add_argument("--height", type=int, default=54)
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--json", default=None)
+    ap.add_argument("--cache", default=None,
+                    help="folder of cached references (written when missing; pywarp.clouds.bench_reference.compare)")
     args = ap.parse_args(argv)
     import imageio.v3 as iio
 
     from pywarp.clouds.bench_reference import SCENES, VIEWS, compare
 
-    res, images = compare(args.width, args.height, args.spp, scenes=[*SCENES, *VIEWS], medium="physical")
+    res, images = compare(args.width, args.height, args.spp, scenes=[*SCENES, *VIEWS], medium="physical",
+                          cache=args.cache)
     out = ROOT / "docs" / "images" / "lighting"
     out.mkdir(parents=True, exist_ok=True)
     for scene, imgs in images.items():

@@ -2,6 +2,14 @@
 path-traced reference of the three scenes of ``pywarp bench clouds reference``.
 
     python tools/tune_lighting.py [--spp 256] [--width 160 --height 90] [--cache FILE.npz] [--json OUT.json]
+    python tools/tune_lighting.py --physical [--spp 512 --width 80 --height 45] [--reference-cache DIR]
+
+``--physical``: the ``physical`` model of ``pywarp bench clouds reference`` (docs/lighting.rst) in the physical
+medium, by the errors *without rescaling*: every candidate of :data:`PHYSICAL_GRID` (delta scaling of the Mie phase,
+the octaves' a and b, the octaves' weight by the optical depth towards the sun, vc-x-ms-gain) is scored by its
+absolute CIEDE2000 against the reference of every scene and view; the choice is the smallest largest CIEDE2000 over
+the tuning scenes (:data:`pywarp.clouds.bench_reference.TUNING_SCENES`), and the other views are reported as held
+out. References come from (and go to) ``--reference-cache`` (the benchmark's cache, two halves of seeds 0 and 1).
 
 The references are rendered once (two independent halves, as the benchmark does; cached in ``--cache`` when given)
 and every candidate -- ``powder`` x ``ms_octaves`` x ``silver_weight`` x ``silver_g``, the sky lighting and the other
@@ -27,6 +35,15 @@ OCTAVES = (1, 2, 3, 4, 5, 6, 8)
 SILVER_WEIGHTS = (0.0, 0.15, 0.3, 0.5)
 SILVER_GS = (0.6, 0.8)
 POWDER = (False, True)
+#: The candidates of --physical: (mie_delta, ms_a, ms_b, ms_depth, ms_thin, ambient_ground_weight), four octaves,
+#: no powder, no aerial perspective. The grid the physical model was chosen from (docs/lighting.rst).
+PHYSICAL_GRID = [
+    *((f, a, b, 0.0, 0.0, 0.25) for f in (0.0, 0.5, 1.0) for a, b in ((0.3, 0.6), (0.5, 0.5), (0.3, 0.7))),
+    *((1.0, a, b, 0.0, 0.0, w) for a in (0.4, 0.5) for b in (0.5, 0.6) for w in (0.25, 0.5)),
+    (1.0, 0.5, 0.5, 0.0, 0.0, 0.1),
+    *((1.0, 0.5, b, dd, t, 0.25) for b in (0.6, 0.75) for dd in (0.5, 1.5) for t in (0.0, 0.3)),
+    *((1.0, 0.5, b, dd, t, 0.25) for b in (0.8, 0.9) for dd in (1.5, 3.0) for t in (0.2, 0.4)),
+]
 #: Mean CIEDE2000 an octave count may lose against the best one (about half a just-noticeable difference)
 OCTAVE_TOLERANCE = 0.5
 
@@ -53,6 +70,59 @@ def references(base, textures, spp, seed=0, cache=None):
     return out
 
 
+def physical(width, height, spp, cache, json_out=None):
+    """The --physical search (module docstring)."""
+    from pywarp.clouds.bench_reference import (ACCUMULATE, MEDIA, SCENES, TAU_SAMPLES, TUNING_SCENES, VIEWS,
+                                               _load_reference, _save_reference, absolute_errors, exposure)
+    from pywarp.clouds.cloudscape import RenderTextures
+    from pywarp.clouds.reference import ReferenceRenderer
+    from pywarp.clouds.settings import CloudscapeSettings
+    from pywarp.clouds.technique import CloudscapeTechnique
+
+    base = CloudscapeSettings(**{**MEDIA["physical"], "width": width, "height": height, "device": "cpu",
+                                 "threads": None})
+    textures = RenderTextures.generate(base)
+    views = {**SCENES, **VIEWS}
+    refs = {}
+    half = spp // 2
+    for name, changes in views.items():
+        rs = replace(replace(base, **changes), lighting="sky")
+        got = _load_reference(cache, rs, name, spp, 0)
+        if got is None:
+            ra = ReferenceRenderer(rs, textures, spp=half, seed=0)
+            a = ra.render(encode=False).astype(np.float64)
+            rb = ReferenceRenderer(rs, textures, spp=spp - half, seed=1)
+            b = rb.render(encode=False).astype(np.float64)
+            tau = ra.view_optical_depth(samples=TAU_SAMPLES)
+            _save_reference(cache, rs, name, spp, 0, a, b, tau, ra.stats["std_error_image"],
+                            rb.stats["std_error_image"], 0.0)
+            got = (a, b, tau, None, None, 0.0)
+        a, b, tau = got[:3]
+        refs[name] = ((half * a + (spp - half) * b) / spp, tau)
+        print(f"reference {name}: ready", file=sys.stderr, flush=True)
+    rows = []
+    for f, a_, b_, dd, t, w in PHYSICAL_GRID:
+        model = dict(lighting="sky", powder=False, aerial_km=0.0, ms_octaves=4, mie_delta=f, ms_depth=dd, ms_thin=t,
+                     ambient_ground_weight=w, advanced={"ms_a": a_, "ms_b": b_})
+        per = {}
+        for name, (ref, tau) in refs.items():
+            s = replace(base, **views[name], **model)
+            lin = CloudscapeTechnique(s, textures=textures).render_accumulated(None, ACCUMULATE, encode=False)
+            e = absolute_errors(lin, ref, exposure(ref), tau)
+            per[name] = {"delta_e": e["delta_e"], "ratio": e["ratio"]}
+        tuning = max(per[n]["delta_e"] for n in TUNING_SCENES)
+        held = max(per[n]["delta_e"] for n in per if n not in TUNING_SCENES)
+        rows.append({"mie_delta": f, "ms_a": a_, "ms_b": b_, "ms_depth": dd, "ms_thin": t,
+                     "ambient_ground_weight": w, "scenes": per, "tuning_max": tuning, "held_out_max": held})
+        print(f"mie_delta {f} a {a_} b {b_} depth {dd} thin {t} w {w}: tuning max dE {tuning:.2f}, held out max "
+              f"{held:.2f}  " + "  ".join(f"{n} {v['delta_e']:.2f}" for n, v in per.items()), flush=True)
+    best = min(rows, key=lambda r: r["tuning_max"])
+    print(f"\nchosen (smallest largest dE over {', '.join(TUNING_SCENES)}): {best}")
+    if json_out:
+        with open(json_out, "w") as fh:
+            json.dump({"spp": spp, "size": [width, height], "rows": rows}, fh, indent=1)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--spp", type=int, default=256)
@@ -60,7 +130,11 @@ def main(argv=None):
     ap.add_argument("--height", type=int, default=90)
     ap.add_argument("--cache", default=None)
     ap.add_argument("--json", default=None)
+    ap.add_argument("--physical", action="store_true", help="tune the physical model (module docstring)")
+    ap.add_argument("--reference-cache", default=None, help="folder of cached references (--physical)")
     a = ap.parse_args(argv)
+    if a.physical:
+        return physical(a.width, a.height, a.spp, a.reference_cache, a.json)
 
     from pywarp.clouds.bench_reference import ACCUMULATE, SCENES, errors
     from pywarp.clouds.cloudscape import RenderTextures

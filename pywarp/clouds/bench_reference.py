@@ -40,8 +40,10 @@ comparison before physical units, whose numbers it reproduces.
 
 Noise of the reference: its samples are two independent halves (seeds s and s + 1); the report gives the mean
 per-pixel standard error of the (exposed, linear) reference, and the *noise floor*: SSIM and Delta E of one half
-against the other (each with half the paths, so the floor is pessimistic by ~sqrt 2). A model error near the floor
-is noise, not lighting.
+against the other (each with half the paths, so the floor is pessimistic by ~sqrt 2), after the best scale and
+(``noise_floor.abs_delta_e``) without rescaling, under the reference's exposure. A model error near the floor is noise,
+not lighting. The best-scale floor is much larger than the absolute one with the Mie phase: a few fireflies of the
+next-event estimate of the delta sun through the phase's forward peak move the least-squares scale of one half.
 
 Models whose settings do not exist in this installation are skipped with a message (the JSON has ``skipped``).
 """
@@ -75,16 +77,25 @@ MODELS = {
     # shows how much of the last model's error is the haze
     "+ms, haze off": dict(lighting="sky", ms_octaves=None, silver_weight=None, powder=None, aerial_km=0.0),
 }
-#: The models of the physical medium only (rows after MODELS): ``physical`` -- the lighting model for physical units
-#: and the Mie phase (issue 32; docs/lighting.rst): sky lighting without the powder term, a quarter of the clouds'
-#: ambient from the lit ground below (ambient_ground_weight 0.25), four octaves that keep more of the light
-#: (optical depth x 0.3^i, contribution x 0.6^i), no aerial perspective (the reference's air does not scatter).
-#: Tuned (tools/tune_lighting.py's measure, absolute errors) on noon, from above and view below; low sun and view
-#: above were not seen by the tuning.
+#: The models of the physical medium only (rows after MODELS), for physical units and the Mie phase (issue 32;
+#: docs/lighting.rst), both without the powder term and without aerial perspective (the reference's air does not
+#: scatter), a quarter of the clouds' ambient from the lit ground below (ambient_ground_weight 0.25):
+#:
+#: * ``physical`` -- the Mie phase's forward peak treated as unscattered light (mie_delta 1: extinction x w_D = 0.49
+#:   at 15 um, Draine's lobe as the phase; vc-x-mie-delta), four octaves (optical depth x 0.5^i, contribution x
+#:   0.75^i) weighted by the optical depth d towards the sun, 0.3 + 0.7 (1 - exp(-d / 1.5)) (vc-x-ms-gain).
+#:   Chosen by tools/tune_lighting.py --physical (the largest absolute CIEDE2000 over TUNING_SCENES, cached references
+#:   of 80x45 and 512 paths); low sun and view above were not seen by the tuning.
+#: * ``physical v1`` -- the first model of issue 32, kept for comparison: the full Mie phase, four octaves of
+#:   0.3^i / 0.6^i unweighted.
 PHYSICAL_MODELS = {
     "physical": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
-                     advanced={"ms_a": 0.3, "ms_b": 0.6}),
+                     mie_delta=1.0, ms_depth=1.5, ms_thin=0.3, advanced={"ms_a": 0.5, "ms_b": 0.75}),
+    "physical v1": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
+                        advanced={"ms_a": 0.3, "ms_b": 0.6}),
 }
+#: The scenes and views the ``physical`` model was tuned on (tools/tune_lighting.py); the others were held out.
+TUNING_SCENES = ("noon", "from above", "view below")
 #: The row of the renderer's defaults (no lighting change; the medium's units and phase), after MODELS.
 DEFAULT_ROW = "default"
 #: The media of the comparison: what the reference and every model share (the scene's sky units and the clouds'
@@ -208,12 +219,15 @@ def absolute_errors(model: np.ndarray, reference: np.ndarray, ex: float, tau: np
 
 def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | None = None, device: str = "cpu",
             seed: int = 0, scenes=None, progress=None, settings: dict | None = None,
-            medium: str = "display") -> tuple[dict, dict]:
+            medium: str = "display", cache: str | None = None) -> tuple[dict, dict]:
     """Run the comparison: (result, images). ``images[scene]`` maps 'reference' and each rendered model to its
     display image (uint8 sRGB, after the exposure of the table and the model's best scale) -- for the tutorial --
     and ``images[scene]['abs ' + model]`` to the model under the reference's exposure alone (no rescaling).
     ``spp`` >= 4 (two halves). ``settings``: further settings for every render (e.g. smaller textures for a quick
-    run). ``medium``: a key of :data:`MEDIA` (default 'display': the comparison's numbers before physical units)."""
+    run). ``medium``: a key of :data:`MEDIA` (default 'display': the comparison's numbers before physical units).
+    ``cache``: a folder of reference images (:func:`_save_reference`): a scene's reference is read from it when its
+    file matches the reference's settings, size, paths and seed exactly, else rendered and written there (the
+    tuning of the lighting renders each reference once)."""
     from ..core.timing import machine
     from .cloudscape import RenderTextures
     from .technique import CloudscapeTechnique
@@ -243,23 +257,31 @@ def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | 
     half = spp // 2
     for name in names:
         s = replace(base, **views[name])
-        say(f"reference {name}: {width}x{height}, {spp} paths per pixel ...")
-        t0 = time.perf_counter()
-        ra = ReferenceRenderer(replace(s, **ref_changes), textures, spp=half, seed=seed)
-        a = ra.render(encode=False).astype(np.float64)
-        rb = ReferenceRenderer(replace(s, **ref_changes), textures, spp=spp - half, seed=seed + 1)
-        b = rb.render(encode=False).astype(np.float64)
-        seconds = time.perf_counter() - t0
+        rs = replace(s, **ref_changes)
+        cached = _load_reference(cache, rs, name, spp, seed)
+        if cached is not None:
+            say(f"reference {name}: {width}x{height}, {spp} paths per pixel, from {cache}")
+            a, b, tau, se_a, se_b, seconds = cached
+        else:
+            say(f"reference {name}: {width}x{height}, {spp} paths per pixel ...")
+            t0 = time.perf_counter()
+            ra = ReferenceRenderer(rs, textures, spp=half, seed=seed)
+            a = ra.render(encode=False).astype(np.float64)
+            rb = ReferenceRenderer(rs, textures, spp=spp - half, seed=seed + 1)
+            b = rb.render(encode=False).astype(np.float64)
+            seconds = time.perf_counter() - t0
+            tau = ra.view_optical_depth(samples=TAU_SAMPLES)
+            se_a = ra.stats["std_error_image"].astype(np.float64)
+            se_b = rb.stats["std_error_image"].astype(np.float64)
+            _save_reference(cache, rs, name, spp, seed, a, b, tau, se_a, se_b, seconds)
         ref = (half * a + (spp - half) * b) / spp
         ex = exposure(ref)
-        tau = ra.view_optical_depth(samples=TAU_SAMPLES)
-        se_a = ra.stats["std_error_image"].astype(np.float64)
-        se_b = rb.stats["std_error_image"].astype(np.float64)
         se = np.sqrt((half * se_a) ** 2 + ((spp - half) * se_b) ** 2) / spp * ex
         row = {"scene": name, "settings": views[name], "seconds": round(seconds, 2),
                "seconds_per_spp": round(seconds / spp, 4), "exposure": ex,
                "std_error": float(se.mean()), "std_error_max": float(se.max()),
-               "noise_floor": {k: v for k, v in errors(a * ex, b * ex).items() if k != "scale"}, "models": []}
+               "noise_floor": {**{k: v for k, v in errors(a * ex, b * ex).items() if k != "scale"},
+                               "abs_delta_e": absolute_errors(a, b, ex, tau)["delta_e"]}, "models": []}
         target = ref * ex
         imgs = {"reference": (_srgb(target) * 255.0 + 0.5).astype(np.uint8)}
         rows = (*MODELS, *(PHYSICAL_MODELS if medium == "physical" else ()), DEFAULT_ROW)
@@ -284,6 +306,51 @@ def compare(width: int = 160, height: int = 90, spp: int = 1024, workers: int | 
         result["scenes"].append(row)
         images[name] = imgs
     return result, images
+
+
+def _reference_key(settings, name: str, spp: int, seed: int) -> str:
+    """The cache key of a reference: every setting (its repr, which names the medium, size, camera, sun, textures),
+    the scene, the paths and the seed, hashed."""
+    import hashlib
+
+    text = repr((sorted((k, repr(v)) for k, v in vars(settings).items() if k not in ("device", "threads")),
+                 name, int(spp), int(seed), CACHE_VERSION))
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
+
+
+#: Bumped whenever the reference's estimator or the cached arrays change (old files are then ignored).
+CACHE_VERSION = 1
+
+
+def _cache_path(cache, settings, name, spp, seed):
+    from pathlib import Path
+
+    slug = name.replace(" ", "-")
+    return Path(cache) / f"reference-{slug}-{settings.width}x{settings.height}-{spp}-{_reference_key(settings, name, spp, seed)}.npz"
+
+
+def _load_reference(cache, settings, name, spp, seed):
+    """(a, b, tau, se_a, se_b, seconds) of a cached reference, or None (no cache, no file)."""
+    if not cache:
+        return None
+    path = _cache_path(cache, settings, name, spp, seed)
+    if not path.exists():
+        return None
+    z = np.load(path)
+    return (z["a"].astype(np.float64), z["b"].astype(np.float64), z["tau"], z["se_a"].astype(np.float64),
+            z["se_b"].astype(np.float64), float(z["seconds"]))
+
+
+def _save_reference(cache, settings, name, spp, seed, a, b, tau, se_a, se_b, seconds) -> None:
+    """Write a reference's two halves, its view optical depth and standard errors to the cache folder (if any)."""
+    if not cache:
+        return
+    path = _cache_path(cache, settings, name, spp, seed)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp.npz")
+    np.savez(tmp, a=a.astype(np.float32), b=b.astype(np.float32), tau=tau, se_a=se_a.astype(np.float32),
+             se_b=se_b.astype(np.float32), seconds=seconds)
+    tmp.replace(path)
 
 
 def bench_reference(width: int = 160, height: int = 90, spp: int = 1024, workers: int | None = None,
@@ -318,8 +385,10 @@ def report(res: dict) -> str:
                     f"{_ratio_text(a['ratio'][k]):>14}" for k in ("thick", "thin", "clear")))
                 lines.append(f"  {sc['scene']:<11} {m['model']:<22} {m['ssim']:7.3f} {m['delta_e']:7.2f} "
                              f"{m['scale']:7.3f}{tail}")
+        absf = nf.get("abs_delta_e")
         lines.append(f"  {sc['scene']:<11} {'(noise floor)':<22} {nf['ssim']:7.3f} {nf['delta_e']:7.2f}    "
-                     f"-- reference: std. error {sc['std_error']:.4f} of white (max {sc['std_error_max']:.3f}), "
+                     + ("" if absf is None else f"    {'':>7} | {absf:6.2f} ")
+                     + f"-- reference: std. error {sc['std_error']:.4f} of white (max {sc['std_error_max']:.3f}), "
                      f"{sc['seconds']:.0f} s, {sc['seconds_per_spp']:.3f} s per spp")
     return "\n".join(lines)
 

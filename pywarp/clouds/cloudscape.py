@@ -293,6 +293,8 @@ def selector_class(weather: np.ndarray) -> np.ndarray:
 
 #: The fields ccl_cloudscape_light / cloudscape_light fill from the sky model (sky lighting).
 LIGHT_FIELDS = ("sun_colour", "ambient_top", "ambient_bottom", "ambient_ground")
+#: The extinctions ccl_cloudscape_light scales (delta scaling of the Mie phase, mie_delta > 0).
+LIGHT_SCALARS = ("sigma", "sigma_light")
 
 
 def light_params(params: K.CloudscapeParams, sky: "SkyModel", device: str = "cpu") -> K.CloudscapeParams:
@@ -317,6 +319,8 @@ def light_params(params: K.CloudscapeParams, sky: "SkyModel", device: str = "cpu
     rec = out.numpy()[0]
     for name in LIGHT_FIELDS:
         setattr(params, name, wp.vec3(*rec[name].tolist()))
+    for name in LIGHT_SCALARS:
+        setattr(params, name, float(rec[name]))
     return params
 
 

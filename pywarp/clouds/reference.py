@@ -845,7 +845,9 @@ class ReferenceRenderer:
                                     device=self.device, half_base=s.half_base())
         # the sun, sky and medium exactly as the real-time technique sets them up for these settings (its
         # parameters, including any per-frame light set-up from the sky model, and its sky model)
-        rt = CloudscapeTechnique(s, textures=self.textures)
+        # (the medium itself: a lighting model's delta scaling of the Mie phase, mie_delta, is no part of it)
+        medium = replace(s, mie_delta=0.0, advanced={k: v for k, v in s.advanced.items() if k != "mie_delta"})
+        rt = CloudscapeTechnique(medium, textures=self.textures)
         self.params = rt.params
         self.sky = rt.sky
         self.stats: dict = {}

@@ -317,7 +317,8 @@ CLOUDSCAPE_PARAMS = CStruct(
         "aerial_km": ">= 0 and finite", "aerial_height_km": ">= 0 and finite",
         "ms_octaves": f"in [1, {MAX_MS_OCTAVES}]", "ms_a": "in [0, 1]", "ms_b": "in [0, 1]", "ms_c": "in [0, 1]",
         "silver_g": "in (-1, 1)", "silver_weight": "in [0, 1]", "phase": "0 (thesis) or 1 (mie)",
-        "droplet_um": "in [5, 50]", "ambient_ground_weight": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
+        "droplet_um": "in [5, 50]", "ambient_ground_weight": "in [0, 1]", "mie_delta": "in [0, 1]", "ms_depth": ">= 0 and finite",
+        "ms_thin": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
         "lod_bias": "in [-4, 4]", "refine_step_km": ">= 0 and finite", "refine_max": "in [1, 64]",
     })
 #: the layer's fields: computed from the settings (earth_radius_km, layer_base_km, layer_top_km), never ``advanced``
@@ -607,6 +608,23 @@ class CloudscapeSettings(Settings):
                                              "over all directions",
                                          reason="0: the sky's mean, as the thesis's sky-like constants "
                                                 "(ccl_cloudscape_params_default)")
+    mie_delta: float = param(0.0, lo=0.0, hi=1.0, c="mie_delta", group="lighting", cli="--mie-delta",
+                             doc="sky lighting with phase=mie: the share f of the Mie phase's forward HG lobe (the "
+                                 "droplets' diffraction peak) that the lighting treats as unscattered light: "
+                                 "extinction x (1 - f (1 - w_D)), the phase without that share (delta scaling, "
+                                 "vc-x-mie-delta); 0 = off",
+                             reason="0: the thesis's lighting and the earlier numbers; the physical model of "
+                                    "docs/lighting.rst sets it (measured against the path-traced reference)")
+    ms_depth: float = param(0.0, lo=0.0, hi=1e6, c="ms_depth", group="lighting", cli="--ms-depth",
+                            doc="sky lighting: optical depth scale D of the multiple-scattering octaves' weight "
+                                "t + (1 - t)(1 - exp(-d / D)), d the optical depth towards the sun, t = --ms-thin "
+                                "(vc-x-ms-gain); 0 = off (weight 1)",
+                            reason="0: the octaves of Wrenninge et al. 2013 as they are; the physical model of "
+                                   "docs/lighting.rst sets it (measured against the path-traced reference)")
+    ms_thin: float = param(0.0, lo=0.0, hi=1.0, c="ms_thin", group="lighting", cli="--ms-thin",
+                           doc="sky lighting: the octaves' weight at d = 0 (see --ms-depth)",
+                           reason="0: no multiple scattering where there is no cloud towards the sun; used when "
+                                  "ms_depth > 0")
     ms_octaves: int = param(4, kind="int", lo=1, hi=MAX_MS_OCTAVES, c="ms_octaves", group="lighting",
                             doc="sky lighting: multiple-scattering octaves (Wrenninge et al. 2013; 1 = single "
                                 "scattering); octave i scales the optical depth, contribution and phase eccentricity "

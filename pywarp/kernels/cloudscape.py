@@ -28,10 +28,11 @@ from .clouds import (
     clouds_height_gradient,
 )
 from ..core.cbridge import c_constant
+from ..core.registry import Arg, declare
 from .colour import colour_srgb_encode
 from .hash import hash_pcg, hash_unit
 from .interp import interp_fade_cubic
-from .phase import INV_4PI, phase_hg, phase_mie
+from .phase import INV_4PI, MIE_D_RANGE, phase_hg, phase_mie, phase_mie_params
 from .camera import camera_ray
 from .raymarch import (
     raymarch_accumulate,
@@ -129,6 +130,9 @@ class CloudscapeParams:
     phase: int
     droplet_um: float
     ambient_ground_weight: float
+    ms_depth: float
+    ms_thin: float
+    mie_delta: float
     lod: int
     lod_bias: float
     refine_step_km: float
@@ -823,6 +827,59 @@ def sky_colour(sky_kind: int, d: wp.vec3, sun: wp.vec3, preetham: Preetham, grad
 
 # --- lighting (see "Lighting" in cclouds/cloudscape.h) ----------------------------------------------------------------
 
+_MIE_D = Arg("diameter_um", "droplet diameter d [um] of the Mie fit", lo=MIE_D_RANGE[0], hi=MIE_D_RANGE[1])
+_DELTA_F = Arg("f", "share of the forward HG lobe treated as unscattered", lo=0.0, hi=1.0)
+_DELTA_REFS = ("Joseph, Wiscombe & Weinman, The delta-Eddington approximation for radiative flux transfer, J. Atmos. "
+               "Sci. 33:2452-2459, 1976",
+               "Wiscombe, The delta-M method, J. Atmos. Sci. 34:1408-1422, 1977",
+               "Jendersie & d'Eon, An Approximate Mie Scattering Function for Fog and Cloud Rendering, ACM SIGGRAPH "
+               "2023 Talks, article 47")
+
+
+@declare("vc-x-mie-delta-scale", c="ccl_cloudscape_mie_delta_scale", args=(_MIE_D, _DELTA_F), outputs=("s",),
+         summary="Delta scaling of the approximate Mie phase (beyond the text): the extinction factor s = 1 - f (1 - "
+                 "w_D) when a share f of the forward HG lobe is treated as unscattered light.",
+         references=_DELTA_REFS)
+@wp.func
+def cloudscape_mie_delta_scale(diameter_um: float, f: float) -> float:
+    """Twin of ``ccl_cloudscape_mie_delta_scale``: s = 1 - f (1 - w_D(d)) (cloudscape.h, "Delta scaling")."""
+    g_hg, g_d, alpha, w_d = phase_mie_params(diameter_um)
+    return 1.0 - f * (1.0 - w_d)
+
+
+@declare("vc-x-mie-delta", c="ccl_cloudscape_mie_delta_phase",
+         args=(Arg("cos_theta", "cosine of the scattering angle; +1 = forward", lo=-1.0, hi=1.0), _MIE_D, _DELTA_F),
+         outputs=("p",),
+         summary="Delta-scaled approximate Mie phase [sr^-1] (beyond the text): ((1 - f)(1 - w_D) HG(g_HG) + w_D "
+                 "Draine(g_D, alpha)) / (1 - f (1 - w_D)), the phase left when a share f of the forward HG lobe is "
+                 "treated as unscattered.",
+         references=_DELTA_REFS)
+@wp.func
+def cloudscape_mie_delta_phase(cos_theta: float, diameter_um: float, f: float) -> float:
+    """Twin of ``ccl_cloudscape_mie_delta_phase`` (cloudscape.h, "Delta scaling")."""
+    g_hg, g_d, alpha, w_d = phase_mie_params(diameter_um)
+    draine = phase_hg(cos_theta, g_d) * (1.0 + alpha * cos_theta * cos_theta) / (
+        1.0 + alpha * (1.0 + 2.0 * g_d * g_d) / 3.0)
+    return ((1.0 - f) * (1.0 - w_d) * phase_hg(cos_theta, g_hg) + w_d * draine) / (1.0 - f * (1.0 - w_d))
+
+
+@declare("vc-x-ms-gain", c="ccl_cloudscape_ms_gain",
+         args=(Arg("d", "optical depth towards the sun", lo=0.0, hi=1.0e6),
+               Arg("depth", "optical depth scale D of the gain; 0 = off", lo=0.0, hi=1.0e6),
+               Arg("thin", "gain at d = 0", lo=0.0, hi=1.0)),
+         outputs=("gain",),
+         summary="Weight of the multiple-scattering octaves by the optical depth towards the sun (beyond the text): "
+                 "t + (1 - t)(1 - exp(-d / D)); 1 when D = 0.",
+         references=("Wrenninge, Kulla & Lundqvist, Oz: the great and volumetric, SIGGRAPH 2013 Talks",
+                     "Hillaire, Physically based sky, atmosphere and cloud rendering in Frostbite, SIGGRAPH 2016"))
+@wp.func
+def cloudscape_ms_gain(d: float, depth: float, thin: float) -> float:
+    """Twin of ``ccl_cloudscape_ms_gain`` (cloudscape.h)."""
+    if not (depth > 0.0):
+        return 1.0
+    return thin + (1.0 - thin) * (1.0 - wp.exp(-d / depth))
+
+
 @wp.func
 def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float) -> float:
     """Twin of ``ccl_cloudscape_energy``: the sun energy of a sample, sum over i < ms_octaves of ms_b^i beer(ms_a^i d)
@@ -834,9 +891,15 @@ def cloudscape_energy(p: CloudscapeParams, d: float, a: float, cos_theta: float)
     ci = float(1.0)
     mie = float(0.0)
     if p.phase == PHASE_MIE:
-        mie = phase_mie(cos_theta, p.droplet_um)
+        if p.mie_delta > 0.0:
+            mie = cloudscape_mie_delta_phase(cos_theta, p.droplet_um, p.mie_delta)
+        else:
+            mie = phase_mie(cos_theta, p.droplet_um)
+    gain = cloudscape_ms_gain(d, p.ms_depth, p.ms_thin)
     for i in range(p.ms_octaves):
         di = d * ai
+        if i == 1:
+            bi = bi * gain  # the octaves i >= 1 by the optical depth towards the sun (1 when ms_depth = 0)
         beer = float(1.0)
         if p.beer != 0:
             beer = wp.exp(-di * a)
@@ -967,6 +1030,11 @@ def cloudscape_light(p: CloudscapeParams, sky_kind: int, sun: wp.vec3, preetham:
         q.ambient_bottom = wp.vec3(p.ambient_bottom_ratio * top[0], p.ambient_bottom_ratio * top[1],
                                    p.ambient_bottom_ratio * top[2])
         q.ambient_ground = amb_g
+        if p.phase == PHASE_MIE and p.mie_delta > 0.0:
+            # delta scaling: the forward peak's share mie_delta goes on unscattered (cloudscape_mie_delta_scale)
+            scale = cloudscape_mie_delta_scale(p.droplet_um, p.mie_delta)
+            q.sigma = p.sigma * scale
+            q.sigma_light = p.sigma_light * scale
     return q
 
 

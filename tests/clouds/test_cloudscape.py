@@ -35,7 +35,11 @@ def tech():
     ("preetham", "offset", dict(camera_pitch_deg=45.0)),
     # the thesis's march: the early exit at 1/256 without its fill (tests/clouds/test_early_exit.py), every optical
     # depth towards the sun computed (tests/clouds/test_light_interp.py)
-    ("gradient", "offset", dict(advanced={"exit_fill": 0, "exit_eps": 1.0 / 256.0, "light_interp": 0.0}))])
+    ("gradient", "offset", dict(advanced={"exit_fill": 0, "exit_eps": 1.0 / 256.0, "light_interp": 0.0})),
+    # the physical lighting model (docs/lighting.rst): physical units, the Mie phase delta-scaled, the octaves
+    # weighted by the optical depth towards the sun
+    ("preetham", "tilt", dict(units="physical", phase="mie", mie_delta=1.0, ms_depth=1.0, ms_thin=0.2,
+                              aerial_km=0.0))])
 def test_warp_pixels_match_c_reference(sky, jitter, extra):
     """300 sampled pixels of a 96x54 frame. Both sides evaluate the same float32 operations in the same order with
     the same libm (expf, powf, tanf); C is compiled without FMA contraction and Warp's CPU code does not contract

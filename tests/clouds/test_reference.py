@@ -499,10 +499,30 @@ def test_compare_gives_a_row_per_scene_and_model(medium):
         assert a["delta_e"] >= 0.0 and set(a["ratio"]) == set(CLASS_EDGES) == set(a["pixels"])
         for k, r in a["ratio"].items():
             assert (r is None) == (a["pixels"][k] == 0) and (r is None or len(r) == 3)
-    assert sc["std_error"] > 0 and 0 < sc["noise_floor"]["ssim"] <= 1
+    assert sc["std_error"] > 0 and 0 < sc["noise_floor"]["ssim"] <= 1 and sc["noise_floor"]["abs_delta_e"] > 0
     assert "noise floor" in report(res)
     import json
 
     json.dumps(res)  # the --json output
     with pytest.raises(ValueError, match=r"spp must be in \[4, 65536\]"):
         compare(16, 9, spp=3)
+
+
+def test_compare_reads_the_references_it_cached(tmp_path):
+    """compare(cache=DIR) writes each scene's reference (both halves, the view's optical depth) and reads it back on
+    the next run: the same numbers; another path count or scene setting is another file."""
+    from pywarp.clouds.bench_reference import compare
+
+    kw = dict(scenes=["noon"], progress=lambda m: None, settings=SMALL, medium="physical", cache=str(tmp_path))
+    first, _ = compare(16, 9, spp=4, **kw)
+    files = sorted(tmp_path.glob("*.npz"))
+    assert len(files) == 1 and files[0].name.startswith("reference-noon-16x9-4-")
+    said = []
+    again, _ = compare(16, 9, spp=4, **{**kw, "progress": said.append})
+    assert any("from " + str(tmp_path) in m for m in said)
+    for a, b in zip(first["scenes"][0]["models"], again["scenes"][0]["models"]):
+        assert a["absolute"] == b["absolute"] and a["delta_e"] == b["delta_e"]
+    assert first["scenes"][0]["noise_floor"] == again["scenes"][0]["noise_floor"]
+    compare(16, 9, spp=6, **kw)
+    compare(16, 9, spp=4, **{**kw, "settings": {**SMALL, "droplet_um": 20.0}})
+    assert len(list(tmp_path.glob("*.npz"))) == 3

@@ -225,6 +225,13 @@ typedef struct ccl_cloudscape_params {
     float ambient_ground_weight; /* sky mode: ambient_top = (1 - w) x the sky's mean over the upper hemisphere + w x
                                     the unshadowed ground's radiance ground_albedo (sun_colour cos theta_s / pi +
                                     ambient_ground), w in [0, 1] (default 0; 0.5: the mean over the whole sphere) */
+    float ms_depth;             /* octaves i >= 1 x ccl_cloudscape_ms_gain(d, ms_depth, ms_thin): the multiple
+                                   scattering grows with the optical depth d towards the sun, km-free scale > 0;
+                                   0 = off, gain 1 (default 0) */
+    float ms_thin;              /* the gain at d = 0, in [0, 1] (default 0) */
+    float mie_delta;            /* sky mode with the Mie phase: the share f in [0, 1] of the forward HG lobe that
+                                   the lighting treats as unscattered (delta scaling, ccl_cloudscape_mie_delta_scale /
+                                   _phase; default 0: off) */
     int march;                  /* ccl_cloudscape_march_kind: CCL_CLOUDSCAPE_MARCH_FAST (default) or
                                    CCL_CLOUDSCAPE_MARCH_TEXTBOOK (the thesis's loop, see ccl_cloudscape_march) */
 } ccl_cloudscape_params;
@@ -387,6 +394,31 @@ CCL_API size_t ccl_cloudscape_mip3_len(int size);
  * towards the sun (>= 0), a -> absorption factor of vc-2.31 (>= 0), cos_theta in [-1, 1] (view . sun). Output >= 0
  * [1/sr]. p must have passed ccl_cloudscape_check. */
 CCL_API float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, float cos_theta);
+
+/* Delta scaling of the approximate Mie phase (vc-x-mie-delta; beyond the text): the forward HG lobe of ccl_phase_mie
+ * (weight 1 - w_D, g_HG = 0.99 at 15 um: its light stays within a degree or two of the direction of travel -- the
+ * diffraction peak of the droplets) is, for the lighting, light that was not scattered at all. A share f of it is
+ * moved from the scattered to the transmitted light:
+ *   extinction  sigma' = sigma s,  s = ccl_cloudscape_mie_delta_scale(d, f) = 1 - f (1 - w_D),
+ *   phase       p'(cos) = ccl_cloudscape_mie_delta_phase(cos, d, f)
+ *                       = ((1 - f) (1 - w_D) HG(cos, g_HG) + w_D Draine(cos, g_D, alpha)) / s,
+ * which keeps sigma p everywhere but in the peak: sigma' p' = sigma p - sigma f (1 - w_D) HG(g_HG), and p' integrates
+ * to 1. f = 0: sigma and ccl_phase_mie unchanged; f = 1: Draine's lobe alone, with w_D of the extinction.
+ * Ref: Joseph, Wiscombe & Weinman 1976 (the delta-Eddington approximation), Wiscombe 1977 (delta-M), here with the
+ * peak of Jendersie & d'Eon 2023 as the delta. diameter_um in [CCL_PHASE_MIE_D_MIN, _MAX], f in [0, 1], cos_theta in
+ * [-1, 1]. ccl_cloudscape_light applies the scale to sigma and sigma_light (sky lighting, phase MIE, mie_delta > 0)
+ * and ccl_cloudscape_energy uses p'. Why: a path tracer sees the peak's light go on almost undeviated, which the
+ * octaves cannot represent: thin cloud then lets the sky behind through and a thick cloud's base receives more sun. */
+/* The weight of the multiple-scattering octaves (i >= 1) of ccl_cloudscape_energy by the optical depth d towards the
+ * sun (vc-x-ms-gain; beyond the text):
+ *   gain = t + (1 - t) (1 - exp(-d / D)),  D = depth > 0, t = thin in [0, 1];  depth = 0: gain = 1 (the octaves as
+ *   Wrenninge et al. 2013 and Hillaire 2016 have them).
+ * Why: the octaves stand for light scattered more than once, which needs cloud around the sample; a thin wisp (small
+ * d) scatters the sun once, and the octaves then add light the path-traced reference does not have (thin cloud at
+ * 1.2-2.2 times the reference's energy). d >= 0, output in [t, 1]. */
+CCL_API float ccl_cloudscape_ms_gain(float d, float depth, float thin);
+CCL_API float ccl_cloudscape_mie_delta_scale(float diameter_um, float f);
+CCL_API float ccl_cloudscape_mie_delta_phase(float cos_theta, float diameter_um, float f);
 
 /* Size of the ground's albedo patches (ground_variation) [km]: 0.125, fields and woods of a hundred metres or so seen
  * from a low camera (the rain scene's 50 m), with a second octave 4 times smaller inside them. */

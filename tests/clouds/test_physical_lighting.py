@@ -1,0 +1,202 @@
+"""The terms of the physical real-time lighting model (docs/lighting.rst). The weight of the multiple-scattering
+octaves by the optical depth towards the sun (vc-x-ms-gain): closed form, limits, C and Warp, the energy.
+Delta scaling of the approximate Mie phase (vc-x-mie-delta, vc-x-mie-delta-scale; cclouds/cloudscape.h "Delta
+scaling"): the closed form written out again in float64 from the published fit, the
+identity sigma' p' = sigma p - sigma f (1 - w_D) HG(g_HG), the normalisation, C and Warp agreeing (the functions,
+the energy and the per-frame light set-up), bad values refused, and the path-traced reference's medium untouched."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import warp as wp
+
+from helpers import assert_twins_agree
+
+from pywarp.clouds.cloudscape import c_sky
+from pywarp.clouds.settings import CLOUDSCAPE_PARAMS, CloudscapeSettings
+from pywarp.clouds.technique import CloudscapeTechnique
+from pywarp.core.binding import lib
+from pywarp.kernels import cloudscape as K
+
+SMALL = dict(width=24, height=16, base_size=32, detail_size=16, curl_size=32, weather_size=64)
+
+
+def small(**kw) -> CloudscapeSettings:
+    return CloudscapeSettings(**{**SMALL, **kw})
+
+
+def _fit(d: float):
+    """Jendersie & d'Eon 2023's parameters (g_HG, g_D, alpha, w_D), float64."""
+    return (math.exp(-0.0990567 / (d - 1.67154)), math.exp(-2.20679 / (d + 3.91029) - 0.428934),
+            math.exp(3.62489 - 8.29288 / (d + 5.52825)), math.exp(-0.599085 / (d - 0.641583) - 0.665888))
+
+
+def _hg(mu, g):
+    return (1 - g * g) / (4 * math.pi * (1 + g * g - 2 * g * mu) ** 1.5)
+
+
+def _expected(mu, d, f):
+    """((1 - f)(1 - w_D) HG(g_HG) + w_D Draine) / (1 - f (1 - w_D)) in float64 (cloudscape.h)."""
+    g_hg, g_d, al, w_d = _fit(d)
+    draine = _hg(mu, g_d) * (1 + al * mu ** 2) / (1 + al * (1 + 2 * g_d ** 2) / 3)
+    return ((1 - f) * (1 - w_d) * _hg(mu, g_hg) + w_d * draine) / (1 - f * (1 - w_d))
+
+
+@pytest.mark.spec("vc-x-mie-delta", "vc-x-mie-delta-scale")
+@pytest.mark.parametrize("d", [5.0, 15.0, 50.0])
+@pytest.mark.parametrize("f", [0.0, 0.4, 1.0])
+def test_closed_form_and_identity(d, f):
+    mu = np.linspace(-1.0, 1.0, 201)
+    p = np.array([lib().ccl_cloudscape_mie_delta_phase(float(m), d, f) for m in mu])
+    s = lib().ccl_cloudscape_mie_delta_scale(d, f)
+    g_hg, g_d, al, w_d = _fit(d)
+    np.testing.assert_allclose(s, 1 - f * (1 - w_d), rtol=1e-6)
+    np.testing.assert_allclose(p, _expected(mu, d, f), rtol=2e-4)
+    # sigma' p' = sigma p - sigma f (1 - w_D) HG(g_HG): the scattered light outside the peak is kept (p the Mie fit
+    # in float64: the difference cancels in the peak)
+    mie64 = (1 - w_d) * _hg(mu, g_hg) + w_d * _hg(mu, g_d) * (1 + al * mu ** 2) / (1 + al * (1 + 2 * g_d ** 2) / 3)
+    np.testing.assert_allclose(s * p, mie64 - f * (1 - w_d) * _hg(mu, g_hg), rtol=2e-4, atol=1e-6)
+    if f == 0.0:  # off: the Mie phase itself, bit for bit
+        mie = np.array([lib().ccl_phase_mie(float(m), d) for m in mu], dtype=np.float64)
+        np.testing.assert_array_equal(np.float32(p), np.float32(mie))
+
+
+@pytest.mark.spec("vc-x-mie-delta")
+@pytest.mark.parametrize("f", [0.3, 1.0])
+def test_phase_integrates_to_one(f):
+    """2 pi int p'(mu) dmu = 1, by the trapezoid rule in x = log(1 - mu) near the forward peak (width ~ 1 - g_HG)
+    and in mu elsewhere."""
+    d = 15.0
+    x = np.linspace(math.log(1e-9), math.log(0.5), 4001)
+    mu_peak = 1.0 - np.exp(x)
+    vals = np.array([lib().ccl_cloudscape_mie_delta_phase(float(m), d, f) for m in mu_peak], dtype=np.float64)
+    peak = np.trapezoid(vals * np.exp(x), x)  # dmu = -(1 - mu) dx
+    mu = np.linspace(-1.0, 0.5, 4001)
+    rest = np.trapezoid(np.array([lib().ccl_cloudscape_mie_delta_phase(float(m), d, f) for m in mu]), mu)
+    assert abs(2 * math.pi * (peak + rest) - 1.0) < 2e-3
+
+
+@pytest.mark.spec("vc-x-mie-delta", "vc-x-mie-delta-scale")
+def test_c_and_warp_agree():
+    rng = np.random.default_rng(5)
+    mu = np.float32(rng.uniform(-1, 1, 300))
+    d = np.float32(rng.uniform(5, 50, 300))
+    f = np.float32(rng.uniform(0, 1, 300))
+    assert_twins_agree("vc-x-mie-delta", mu, d, f, ulp=8)
+    assert_twins_agree("vc-x-mie-delta-scale", d, f, ulp=4)
+
+
+@wp.kernel
+def _energy_kernel(p: K.CloudscapeParams, d: wp.array(dtype=float), a: wp.array(dtype=float),
+                   c: wp.array(dtype=float), out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = K.cloudscape_energy(p, d[i], a[i], c[i])
+
+
+def test_energy_c_equals_warp_and_uses_the_delta_phase():
+    s = small(phase="mie", droplet_um=12.0, ms_octaves=3, mie_delta=0.7, beer=False, powder=False)
+    v = s.c_values()
+    rng = np.random.default_rng(3)
+    d = np.float32(rng.uniform(0, 8, 300))
+    a = np.float32(rng.uniform(0, 3, 300))
+    c = np.float32(rng.uniform(-1, 1, 300))
+    out = wp.zeros(300, dtype=float)
+    wp.launch(_energy_kernel, 300, inputs=[CLOUDSCAPE_PARAMS.warp_struct(v), wp.array(d), wp.array(a), wp.array(c)],
+              outputs=[out])
+    cp = CLOUDSCAPE_PARAMS.to_c(v)
+    ce = np.array([lib().ccl_cloudscape_energy(cp, float(x), float(y), float(z)) for x, y, z in zip(d, a, c)],
+                  dtype=np.float32)
+    np.testing.assert_array_equal(out.numpy(), ce)
+    # without Beer and powder: sum_i b^i (c^i p' + (1 - c^i) / 4 pi), p' the delta-scaled phase (float64 above)
+    expected = sum(0.5 ** i * (0.5 ** i * _expected(c.astype(np.float64), 12.0, 0.7) + (1 - 0.5 ** i) / (4 * math.pi))
+                   for i in range(3))
+    np.testing.assert_allclose(ce, expected, rtol=3e-4)
+
+
+@pytest.mark.parametrize("phase,lighting,scaled", [("mie", "sky", True), ("thesis", "sky", False),
+                                                   ("mie", "thesis", False)])
+def test_light_setup_scales_the_extinction(phase, lighting, scaled):
+    """ccl_cloudscape_light (and its Warp twin, the technique's parameters) multiply sigma and sigma_light by
+    1 - f (1 - w_D) with sky lighting and the Mie phase only."""
+    s = small(phase=phase, lighting=lighting, units="physical" if lighting == "sky" else "display", mie_delta=0.6,
+              sigma_per_km=30.0)
+    p = CLOUDSCAPE_PARAMS.to_c(s.c_values())
+    lib().ccl_cloudscape_light(p, c_sky(s), p)
+    w = CloudscapeTechnique(s).params
+    k = 1 - 0.6 * (1 - _fit(15.0)[3]) if scaled else 1.0
+    for name in ("sigma", "sigma_light"):
+        assert np.float32(getattr(w, name)) == np.float32(getattr(p, name))
+        assert getattr(p, name) == pytest.approx(30.0 * k, rel=1e-6)
+
+
+def test_bad_values_are_refused():
+    with pytest.raises(ValueError, match="mie_delta"):
+        small(mie_delta=1.5)
+    with pytest.raises(ValueError, match="mie_delta"):
+        small(advanced={"mie_delta": -0.1}).c_params()
+
+
+def test_the_reference_medium_is_not_delta_scaled():
+    """The path tracer's medium is sigma and the full Mie phase whatever the lighting model's mie_delta."""
+    from pywarp.clouds.reference import ReferenceRenderer
+
+    s = small(phase="mie", units="physical", mie_delta=1.0, sigma_per_km=30.0, lighting="sky")
+    r = ReferenceRenderer(s, spp=1)
+    assert r.params.sigma == pytest.approx(30.0) and r.params.sigma_light == pytest.approx(30.0)
+    assert r.params.mie_delta == 0.0
+
+
+# --- the octaves' weight (vc-x-ms-gain) --------------------------------------------------------------------------------
+
+@pytest.mark.spec("vc-x-ms-gain")
+def test_ms_gain_closed_form_and_limits():
+    d = np.linspace(0.0, 20.0, 81)
+    for depth, thin in ((0.5, 0.0), (2.0, 0.3), (7.0, 1.0)):
+        g = np.array([lib().ccl_cloudscape_ms_gain(float(x), depth, thin) for x in d])
+        np.testing.assert_allclose(g, thin + (1 - thin) * (1 - np.exp(-d / depth)), rtol=1e-6, atol=1e-7)
+        assert g[0] == pytest.approx(thin) and np.all(np.diff(g) >= 0) and np.all(g <= 1.0)
+    # off: exactly 1 whatever d and thin
+    assert all(lib().ccl_cloudscape_ms_gain(float(x), 0.0, 0.4) == 1.0 for x in d)
+
+
+@pytest.mark.spec("vc-x-ms-gain")
+def test_ms_gain_c_and_warp_agree():
+    rng = np.random.default_rng(9)
+    d = np.float32(rng.uniform(0, 30, 300))
+    depth = np.float32(np.where(rng.uniform(size=300) < 0.2, 0.0, rng.uniform(0.1, 10, 300)))
+    thin = np.float32(rng.uniform(0, 1, 300))
+    assert_twins_agree("vc-x-ms-gain", d, depth, thin, ulp=4)
+
+
+def test_energy_weighs_the_octaves_by_the_gain():
+    """Without Beer and powder: E = p_0 + gain sum_{i >= 1} b^i p_i, gain from the closed form; C equals Warp."""
+    s = small(phase="mie", droplet_um=15.0, ms_octaves=4, ms_depth=2.0, ms_thin=0.2, beer=False, powder=False)
+    off = small(phase="mie", droplet_um=15.0, ms_octaves=4, beer=False, powder=False)
+    one = small(phase="mie", droplet_um=15.0, ms_octaves=1, beer=False, powder=False)
+    cp, cp_off, cp_one = (CLOUDSCAPE_PARAMS.to_c(x.c_values()) for x in (s, off, one))
+    for d in (0.0, 0.7, 5.0):
+        for c in (-0.5, 0.3, 0.95):
+            e0 = lib().ccl_cloudscape_energy(cp_one, d, 0.0, c)
+            ms = lib().ccl_cloudscape_energy(cp_off, d, 0.0, c) - e0
+            gain = 0.2 + 0.8 * (1 - math.exp(-d / 2.0))
+            assert lib().ccl_cloudscape_energy(cp, d, 0.0, c) == pytest.approx(e0 + gain * ms, rel=2e-6)
+    v = s.c_values()
+    rng = np.random.default_rng(4)
+    d = np.float32(rng.uniform(0, 8, 200))
+    a = np.float32(rng.uniform(0, 3, 200))
+    c = np.float32(rng.uniform(-1, 1, 200))
+    out = wp.zeros(200, dtype=float)
+    wp.launch(_energy_kernel, 200, inputs=[CLOUDSCAPE_PARAMS.warp_struct(v), wp.array(d), wp.array(a), wp.array(c)],
+              outputs=[out])
+    ce = np.array([lib().ccl_cloudscape_energy(cp, float(x), float(y), float(z)) for x, y, z in zip(d, a, c)],
+                  dtype=np.float32)
+    np.testing.assert_array_equal(out.numpy(), ce)
+
+
+def test_ms_gain_bad_values_are_refused():
+    with pytest.raises(ValueError, match="ms_thin"):
+        small(ms_thin=1.5)
+    with pytest.raises(ValueError, match="ms_depth"):
+        small(ms_depth=-1.0)
