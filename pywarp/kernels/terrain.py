@@ -695,6 +695,15 @@ def _terrain_colour(p: TerrainParams, perm: wp.array(dtype=wp.int32), pos: wp.ve
 @wp.func
 def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3, rd: wp.vec3) -> tuple[wp.vec3, int]:
     """pt-code-7.3 with everything of ch. 7 (twin of ccl_terrain_shade): unclamped colour and the view-march steps."""
+    colour, steps, _dist = _shade_dist(p, perm, ro, rd)
+    return colour, steps
+
+
+@wp.func
+def _shade_dist(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
+                rd: wp.vec3) -> tuple[wp.vec3, int, float]:
+    """terrain_shade, and the distance along the ray to the surface the pixel shows (the terrain's t, or the water
+    plane's in front of it; -1 for the sky): the depth the viewer's temporal reconstruction reprojects with."""
     hit = int(0)
     t = float(0.0)
     steps = int(0)
@@ -716,7 +725,7 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
         background = clouds_perm(sky, ro, rd, p.cloud_height, p.wind, p.time, p.cloud_scale, p.cloud_colour, perm,
                                  p.cloud_variant)
     if hit == 0:
-        return background, steps
+        return background, steps, -1.0
     pos = _along(ro, rd, t)
     colour = _terrain_colour(p, perm, pos, t)
     dist = t
@@ -738,7 +747,7 @@ def terrain_shade(p: TerrainParams, perm: wp.array(dtype=wp.int32), ro: wp.vec3,
         dist = tw
     if p.stage >= STAGE_ATMOSPHERE:
         colour = mix3(colour, sky, terrain_fog(dist, p.fog_density, p.fog_variant))
-    return colour, steps
+    return colour, steps, dist
 
 
 @wp.func
@@ -772,17 +781,42 @@ def terrain_pixel(p: TerrainParams, perm: wp.array(dtype=wp.int32), inv_view_pro
     return wp.vec3(ax / inv, ay / inv, az / inv), steps
 
 
+@wp.func
+def _pixel_depth(p: TerrainParams, perm: wp.array(dtype=wp.int32), inv_view_proj_rot: wp.mat44, eye: wp.vec3,
+                 x: int, y: int, width: int, height: int) -> tuple[wp.vec3, int, float]:
+    """terrain_pixel with one ray (samples_per_axis 1: the same operations) and the distance of _shade_dist."""
+    m = inv_view_proj_rot
+    u = (float(x) + 0.5) / float(width)
+    v = (float(y) + 0.5) / float(height)
+    nx = 2.0 * u - 1.0
+    ny = 1.0 - 2.0 * v
+    rd = _normalize(wp.vec3(m[0][0] * nx + m[0][1] * ny + m[0][2] + m[0][3],
+                            m[1][0] * nx + m[1][1] * ny + m[1][2] + m[1][3],
+                            m[2][0] * nx + m[2][1] * ny + m[2][2] + m[2][3]))
+    c, s, dist = _shade_dist(p, perm, eye, rd)
+    return wp.vec3(clamp01(c[0]), clamp01(c[1]), clamp01(c[2])), s, dist
+
+
 @wp.kernel
 def render_kernel(row0: int, p: TerrainParams, perm: wp.array(dtype=wp.int32), inv_view_proj_rot: wp.mat44,
                   eye: wp.vec3, width: int, height: int, out: wp.array3d(dtype=float),
-                  steps: wp.array2d(dtype=wp.int32)):
+                  steps: wp.array2d(dtype=wp.int32), depth: wp.array2d(dtype=float)):
+    """The image: terrain_pixel per pixel; ``depth`` the distance along the pixel's centre ray to the surface it
+    shows (-1: the sky), written for one ray per pixel (-1 everywhere when supersampled)."""
     i, j = wp.tid()
     y = row0 + i
-    c, s = terrain_pixel(p, perm, inv_view_proj_rot, eye, j, y, width, height)
+    c = wp.vec3(0.0, 0.0, 0.0)
+    s = int(0)
+    dist = float(-1.0)
+    if p.samples_per_axis == 1:
+        c, s, dist = _pixel_depth(p, perm, inv_view_proj_rot, eye, j, y, width, height)
+    else:
+        c, s = terrain_pixel(p, perm, inv_view_proj_rot, eye, j, y, width, height)
     out[y, j, 0] = c[0]
     out[y, j, 1] = c[1]
     out[y, j, 2] = c[2]
     steps[y, j] = s
+    depth[y, j] = dist
 
 
 @wp.kernel

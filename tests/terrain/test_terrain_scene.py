@@ -63,6 +63,36 @@ def test_the_frame_is_the_pixel_function():
     np.testing.assert_array_equal(tech.steps_taken()[ys, xs], sw)
 
 
+def test_depth_is_the_distance_to_the_surface_the_pixel_shows():
+    """The frame's depth (what the viewer's temporal reconstruction reprojects with): the point at that distance
+    along each pixel's ray lies on the marched terrain (within PRECISION, the march's hit test) or on the water
+    plane in front of it; the sky's pixels are -1; none for a supersampled frame."""
+    from pywarp.kernels.camera import pose_camera
+
+    s = TerrainSettings(**SMALL)
+    tech = TerrainTechnique(s)
+    tech.render()
+    t = tech.depth().astype(np.float64)
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
+    m = cam.inv_view_proj_rot.astype(np.float64)
+    xs, ys = np.meshgrid(np.arange(s.width) + 0.5, np.arange(s.height) + 0.5)
+    ndc = np.stack([2 * xs / s.width - 1, 1 - 2 * ys / s.height, np.ones_like(xs), np.ones_like(xs)], -1)
+    d = (ndc @ m.T)[..., :3]
+    d /= np.linalg.norm(d, axis=-1, keepdims=True)
+    p = cam.eye.astype(np.float64) + d * t[..., None]
+    sky, hit = t == -1.0, t > 0.0
+    assert sky.any() and hit.any() and np.all(sky | hit)
+    assert np.all(d[..., 1][sky & (d[..., 1] < -0.2)] > 1)  # no sky below the hills in front (a check that can fail)
+    h = ground_height(s, p[..., 0][hit], p[..., 2][hit])
+    water = np.abs(p[..., 1][hit] - s.water_level) < 1e-3
+    land = np.abs(p[..., 1][hit] - h) < s.precision + 1e-3
+    assert np.all(water | land), np.abs(p[..., 1][hit] - h)[~(water | land)].max()
+    assert water.any() and land.mean() > 0.5
+    tech.update(rays_per_pixel=4)
+    tech.render()
+    assert tech.depth() is None
+
+
 def test_settings_defaults_are_the_c_defaults():
     s = TerrainSettings()
     c = TERRAIN_PARAMS.defaults()
