@@ -27,7 +27,6 @@ init()
 
 from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import terrain as K  # noqa: E402
-from ..kernels.noise import perm_array  # noqa: E402
 from . import evaluators as E  # noqa: E402
 from .settings import PREVIEW, TerrainSettings  # noqa: E402
 
@@ -59,7 +58,7 @@ class TerrainTechnique(Technique):
         """Every change is a new parameter struct (checked by ccl_terrain_params_check) and Perlin table."""
         s = self.settings
         self.params = effective(s).warp_params()
-        self.perm = perm_array(s.seed, self.device)
+        self.perm = K.hashed_perm_array(s.seed, self.device)
 
     def allocate(self, width: int, height: int) -> None:
         e = effective(self.settings)
