@@ -202,7 +202,7 @@ static int32_t march_bisect(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, floa
 }
 
 static float shadow_hard(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float t0, float max_t, float precision,
-                         int32_t max_steps)
+                         int32_t max_steps, float min_step)
 {
     float t = t0;
     int32_t i;
@@ -213,13 +213,13 @@ static float shadow_hard(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float t
         d = map(f, q);
         if (d < precision) return 0.0f;
         if (t > max_t) break;
-        t += d;
+        t += d > min_step ? d : min_step; /* min_step 0: t += d (d >= precision > 0 here) */
     }
     return 1.0f;
 }
 
 static float shadow_soft(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float t0, float k, float max_t,
-                         float precision, int32_t max_steps)
+                         float precision, int32_t max_steps, float min_step)
 {
     float shadow = 1.0f;
     float t = t0;
@@ -235,7 +235,7 @@ static float shadow_soft(const heightfield *f, ccl_vec3 ro, ccl_vec3 rd, float t
         if (t > max_t) break;
         s = k * d / t;
         if (s < shadow) shadow = s;
-        t += d;
+        t += d > min_step ? d : min_step; /* min_step 0: t += d (d >= precision > 0 here) */
     }
     return shadow;
 }
@@ -312,7 +312,7 @@ float ccl_terrain_shadow_hard(ccl_vec3 ro, ccl_vec3 rd, float t0, float max_t, f
     heightfield f;
     ccl_noise_perm_table(seed, perm);
     f = field_of(octaves, height_scale, horizontal_scale, perm, heightmap);
-    return shadow_hard(&f, ro, rd, t0, max_t, precision, max_steps);
+    return shadow_hard(&f, ro, rd, t0, max_t, precision, max_steps, 0.0f);
 }
 
 float ccl_terrain_shadow_soft(ccl_vec3 ro, ccl_vec3 rd, float t0, float k, float max_t, float precision,
@@ -323,7 +323,7 @@ float ccl_terrain_shadow_soft(ccl_vec3 ro, ccl_vec3 rd, float t0, float k, float
     heightfield f;
     ccl_noise_perm_table(seed, perm);
     f = field_of(octaves, height_scale, horizontal_scale, perm, heightmap);
-    return shadow_soft(&f, ro, rd, t0, k, max_t, precision, max_steps);
+    return shadow_soft(&f, ro, rd, t0, k, max_t, precision, max_steps, 0.0f);
 }
 
 ccl_vec3 ccl_terrain_lighting(ccl_vec3 n, ccl_vec3 l, float la, ccl_vec3 ca, float ld, ccl_vec3 cd, float shadow)
@@ -441,12 +441,12 @@ void ccl_terrain_params_default(ccl_terrain_params *out)
     p.march_octaves = 4;
     p.height_scale = 12.0f;
     p.horizontal_scale = 24.0f;
-    p.march_method = CCL_TERRAIN_MARCH_DYNAMIC;
+    p.march_method = CCL_TERRAIN_MARCH_BISECT;
     p.max_t = 400.0f;
     p.step_size = 0.1f;
     p.precision = 0.01f;
     p.max_steps = 300;
-    p.step_scale = 0.5f;
+    p.step_scale = 0.8f;
     p.bisect_threshold = 0.25f;
     p.bisect_steps = 6;
     p.slab = 1;
@@ -461,6 +461,7 @@ void ccl_terrain_params_default(ccl_terrain_params *out)
     p.shadow_k = 4.0f;
     p.shadow_max_t = 80.0f;
     p.shadow_bias = 0.02f;
+    p.shadow_min_step = 1.0f;
     p.sun = v3(0.0f, 1.0f, 0.0f); /* overwritten by the settings (elevation, azimuth) */
     p.light_ambient = 0.35f;
     p.light_diffuse = 1.0f;
@@ -544,6 +545,7 @@ ccl_status ccl_terrain_params_check(ccl_terrain_params *p, const char **out_fiel
     CCL_TERRAIN_BAD(!(p->shadow_k > 0.0f && p->shadow_k <= 1000.0f), "shadow_k");
     CCL_TERRAIN_BAD(!(p->shadow_max_t > 0.0f && p->shadow_max_t <= 10000.0f), "shadow_max_t");
     CCL_TERRAIN_BAD(!in_range(p->shadow_bias, 0.0f, 10.0f), "shadow_bias");
+    CCL_TERRAIN_BAD(!in_range(p->shadow_min_step, 0.0f, 100.0f), "shadow_min_step");
     CCL_TERRAIN_BAD(!vec_finite(p->sun) || fabsf(ccl_vec3_length(p->sun) - 1.0f) > 1e-3f, "sun");
     CCL_TERRAIN_BAD(!in_range(p->light_ambient, 0.0f, 100.0f), "light_ambient");
     CCL_TERRAIN_BAD(!in_range(p->light_diffuse, 0.0f, 100.0f), "light_diffuse");
@@ -619,10 +621,10 @@ static ccl_vec3 terrain_colour(const ccl_terrain_params *p, ccl_vec3 pos, float 
         origin = v3(pos.x, height(&fm, pos.x, pos.z) + p->shadow_bias, pos.z);
         if (p->shadows == CCL_TERRAIN_SHADOWS_HARD) {
             shadow = shadow_hard(&fm, origin, p->sun, p->shadow_t0_hard, p->shadow_max_t, p->precision,
-                                 p->max_steps);
+                                 p->max_steps, p->shadow_min_step);
         } else {
             shadow = shadow_soft(&fm, origin, p->sun, p->shadow_t0_soft, p->shadow_k, p->shadow_max_t,
-                                 p->precision, p->max_steps);
+                                 p->precision, p->max_steps, p->shadow_min_step);
         }
     }
     return ccl_terrain_lighting(n, p->sun, p->light_ambient, c, p->light_diffuse, c, shadow);

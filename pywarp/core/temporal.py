@@ -19,9 +19,10 @@ Karis 2014, Yang et al. 2020). :meth:`TemporalUpsampler.resolve` writes the wind
 With the camera and the scene still, the clamp is off (the history is then exact) and after f^2 frames every pixel
 has been rendered once: the picture is the full render. What a scene feeds the pass: its uint8 frame at the reduced
 size rendered with the phase's ``jitter_px`` (:meth:`pywarp.core.technique.Technique.jitter`) and its camera
-(:func:`pywarp.viewer.session.technique_camera`: the same matrices at any size of the same aspect). Per-pixel depth
-(the terrain's ray distance, the clouds' reprojection depth) would make the reprojection exact under translation too;
-it is not fed yet.
+(:func:`pywarp.viewer.session.technique_camera`: the same matrices at any size of the same aspect). A scene may also feed
+per-pixel depth (the distance along each fresh pixel's ray; the terrain's march does): each window pixel then takes
+the depth of its nearest fresh pixel and its history from where that point was in the previous picture -- exact under
+translation too (walking towards a hill), not only under turning.
 """
 from __future__ import annotations
 
@@ -32,6 +33,11 @@ import warp as wp
 #: 0.35 measured against 0 on the viewer's motion at 1/16 of the pixels (SSIM against the full render, clouds 0.868 ->
 #: 0.889, flight 0.933 -> 0.955): the sparse cross lets the history flicker, the interpolation steadies it
 HISTORY_BLEND = wp.constant(0.35)
+#: with depth: the four fresh pixels around a window pixel whose depths are within this ratio of each other lie on
+#: one smooth surface, and the pixel's depth is their bilinear interpolation (else the nearest one's: an edge).
+#: 1.25: the ground seen at a grazing angle changes its depth by ~10-20 % per fresh pixel at 1/16 of the pixels;
+#: a silhouette over a farther slope changes it by more
+DEPTH_SMOOTH = wp.constant(1.25)
 #: the reduction factors the viewer picks from: 1/f^2 of the pixels are rendered per frame (f must divide both sides)
 FACTORS = (1, 2, 4)
 
@@ -65,16 +71,49 @@ def reprojection(camera, previous, width: int, height: int) -> np.ndarray:
     return to_px @ to_clip @ to_dir @ to_ndc
 
 
+def _mat44(m) -> wp.mat44:
+    return wp.mat44(*np.asarray(m, np.float32).ravel().tolist())
+
+
 def factor_for(width: int, height: int, wanted: int) -> int:
     """The largest factor of :data:`FACTORS` up to ``wanted`` that divides both sides (1 always does)."""
     return max(f for f in FACTORS if f <= wanted and width % f == 0 and height % f == 0)
 
 
 @wp.func
+def depth_reprojection(x: int, y: int, t: float, width: int, height: int, inv_view_proj_rot: wp.mat44,
+                       eye: wp.vec3, prev_view_proj: wp.mat44) -> wp.vec3:
+    """The previous picture's pixel (homogeneous: (x w, y w, w), w > 0 in front of the previous camera) of the point
+    at distance ``t`` along window pixel (x, y)'s unit ray (vc-A25's ray through ``inv_view_proj_rot`` from ``eye``):
+    the reprojection with depth, exact under translation too."""
+    nx = 2.0 * (float(x) + 0.5) / float(width) - 1.0
+    ny = 1.0 - 2.0 * (float(y) + 0.5) / float(height)
+    m = inv_view_proj_rot
+    d = wp.normalize(wp.vec3(m[0][0] * nx + m[0][1] * ny + m[0][2] + m[0][3],
+                             m[1][0] * nx + m[1][1] * ny + m[1][2] + m[1][3],
+                             m[2][0] * nx + m[2][1] * ny + m[2][2] + m[2][3]))
+    c = prev_view_proj * wp.vec4(eye[0] + d[0] * t, eye[1] + d[1] * t, eye[2] + d[2] * t, 1.0)
+    w = float(width)
+    h = float(height)
+    return wp.vec3(c[0] * w * 0.5 + c[3] * (w * 0.5 - 0.5), -c[1] * h * 0.5 + c[3] * (h * 0.5 - 0.5), c[3])
+
+
+@wp.func
 def resolve_pixel(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=wp.vec3, ndim=2), f: int, ox: int,
                   oy: int, has_hist: int, clamp: int, g: wp.mat33, width: int, height: int, x: int,
                   y: int) -> wp.vec3:
-    """One pixel of the window's picture (see the module docstring)."""
+    """One pixel of the window's picture (see the module docstring), the far-field reprojection."""
+    return resolve_pixel_depth(fresh, hist, f, ox, oy, has_hist, clamp, g, width, height, x, y, fresh, 0,
+                               wp.identity(n=4, dtype=float), wp.vec3(0.0, 0.0, 0.0), wp.identity(n=4, dtype=float))
+
+
+@wp.func
+def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=wp.vec3, ndim=2), f: int,
+                        ox: int, oy: int, has_hist: int, clamp: int, g: wp.mat33, width: int, height: int, x: int,
+                        y: int, depth: wp.array(dtype=wp.vec3, ndim=2), has_depth: int, inv_view_proj_rot: wp.mat44,
+                        eye: wp.vec3, prev_view_proj: wp.mat44) -> wp.vec3:
+    """One pixel of the window's picture (see the module docstring); with ``has_depth`` the history is found
+    through the depth of the nearest fresh pixel (``depth[j, i][0]``, distance along the ray; < 0: far field)."""
     lh = fresh.shape[0]
     lw = fresh.shape[1]
     dx = x - ox
@@ -95,6 +134,20 @@ def resolve_pixel(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=w
     if has_hist == 0:
         return spatial
     q = g * wp.vec3(float(x), float(y), 1.0)
+    if has_depth != 0:
+        # the depth of the nearest fresh pixel; on a smooth surface (the four around within DEPTH_SMOOTH of each
+        # other) their bilinear interpolation, which follows a plane's depth between the fresh pixels
+        t = depth[wp.min(int(v + 0.5), lh - 1), wp.min(int(u + 0.5), lw - 1)][0]
+        t00 = depth[j0, i0][0]
+        t10 = depth[j0, i1][0]
+        t01 = depth[j1, i0][0]
+        t11 = depth[j1, i1][0]
+        tlo = wp.min(wp.min(t00, t10), wp.min(t01, t11))
+        thi = wp.max(wp.max(t00, t10), wp.max(t01, t11))
+        if tlo > 0.0 and thi <= tlo * DEPTH_SMOOTH:
+            t = (t00 * (1.0 - a) + t10 * a) * (1.0 - b) + (t01 * (1.0 - a) + t11 * a) * b
+        if t > 0.0:
+            q = depth_reprojection(x, y, t, width, height, inv_view_proj_rot, eye, prev_view_proj)
     if q[2] <= 0.0:  # the point was behind the previous camera
         return spatial
     px = q[0] / q[2]
@@ -133,11 +186,14 @@ def resolve_pixel(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=w
 @wp.kernel
 def resolve_kernel(row0: int, fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=wp.vec3, ndim=2),
                    f: int, ox: int, oy: int, has_hist: int, clamp: int, g: wp.mat33, width: int, height: int,
+                   depth: wp.array(dtype=wp.vec3, ndim=2), has_depth: int, inv_view_proj_rot: wp.mat44,
+                   eye: wp.vec3, prev_view_proj: wp.mat44,
                    out: wp.array(dtype=wp.vec3, ndim=2),
                    shown: wp.array(dtype=wp.uint8, ndim=3)):
     i, x = wp.tid()
     y = row0 + i
-    c = resolve_pixel(fresh, hist, f, ox, oy, has_hist, clamp, g, width, height, x, y)
+    c = resolve_pixel_depth(fresh, hist, f, ox, oy, has_hist, clamp, g, width, height, x, y, depth, has_depth,
+                            inv_view_proj_rot, eye, prev_view_proj)
     out[y, x] = c
     for k in range(3):
         shown[y, x, k] = wp.uint8(int(wp.clamp(c[k], 0.0, 255.0) + 0.5))
@@ -187,11 +243,14 @@ class TemporalUpsampler:
         ox, oy = self._phases[self.count % len(self._phases)]
         return self.width // f, self.height // f, ((ox + 0.5) / f - 0.5, (oy + 0.5) / f - 0.5)
 
-    def resolve(self, fresh: np.ndarray, camera, key=None) -> np.ndarray:
+    def resolve(self, fresh: np.ndarray, camera, key=None, depth: np.ndarray | None = None) -> np.ndarray:
         """The window's picture (uint8, height x width x 3) from ``fresh`` (the planned render, uint8) and the
         frame's ``camera`` (:class:`pywarp.kernels.camera.Camera` without the jitter, any size of this aspect).
         ``key``: what the picture depends on besides the camera (the scene's settings other than its size); the
-        clamp is off while the key and the camera stay the same."""
+        clamp is off while the key and the camera stay the same. ``depth``: optional, ``fresh``'s size, each pixel's
+        distance along its (jittered) unit ray from the camera's eye to the surface it shows (< 0 or not finite:
+        far, e.g. the sky); with it the history is reprojected through the nearest fresh pixel's depth, exact under
+        translation as well as turning (without it: the far-field homography)."""
         f = self.factor
         ox, oy = self._phases[self.count % len(self._phases)]
         lw, lh = self.width // f, self.height // f
@@ -201,10 +260,22 @@ class TemporalUpsampler:
         has_hist = self._prev_cam is not None
         still = has_hist and key == self._prev_key and all(
             np.array_equal(getattr(camera, n), getattr(self._prev_cam, n)) for n in ("view_proj", "inv_view_proj"))
-        g = reprojection(camera, self._prev_cam if has_hist else camera, self.width, self.height)
+        prev = self._prev_cam if has_hist else camera
+        g = reprojection(camera, prev, self.width, self.height)
+        if depth is not None:
+            depth = np.asarray(depth, np.float32)
+            if depth.shape != (lh, lw):
+                raise ValueError(f"depth must be {lw}x{lh} (the planned size), got "
+                                 f"{'x'.join(str(n) for n in depth.shape[::-1])}")
+            d = np.where(np.isfinite(depth), depth, -1.0).astype(np.float32)
+            dep = wp.array(np.repeat(d[..., None], 3, axis=2), dtype=wp.vec3, device=self.device)
+        else:
+            dep = src
         self.launcher.launch(resolve_kernel, self.height, self.width,
                              [src, self._hist, f, ox, oy, int(has_hist), int(not still),
-                              wp.mat33(*g.astype(np.float32).ravel().tolist()), self.width, self.height],
+                              wp.mat33(*g.astype(np.float32).ravel().tolist()), self.width, self.height,
+                              dep, int(depth is not None), _mat44(camera.inv_view_proj_rot),
+                              wp.vec3(*np.asarray(camera.eye, np.float32).tolist()), _mat44(prev.view_proj)],
                              [self._out, self._shown])
         self._hist, self._out = self._out, self._hist
         self._prev_cam, self._prev_key = camera, key

@@ -27,7 +27,6 @@ init()
 
 from ..kernels import camera as CAM  # noqa: E402
 from ..kernels import terrain as K  # noqa: E402
-from ..kernels.noise import perm_array  # noqa: E402
 from . import evaluators as E  # noqa: E402
 from .settings import PREVIEW, TerrainSettings  # noqa: E402
 
@@ -59,12 +58,13 @@ class TerrainTechnique(Technique):
         """Every change is a new parameter struct (checked by ccl_terrain_params_check) and Perlin table."""
         s = self.settings
         self.params = effective(s).warp_params()
-        self.perm = perm_array(s.seed, self.device)
+        self.perm = K.hashed_perm_array(s.seed, self.device)
 
     def allocate(self, width: int, height: int) -> None:
         e = effective(self.settings)
         self._buffers = {"out": wp.zeros((e.height, e.width, 3), dtype=float, device=self.device),
-                         "steps": wp.zeros((e.height, e.width), dtype=wp.int32, device=self.device)}
+                         "steps": wp.zeros((e.height, e.width), dtype=wp.int32, device=self.device),
+                         "depth": wp.zeros((e.height, e.width), dtype=float, device=self.device)}
 
     def render(self, pose: Pose | None = None, progress=None, encode: bool = True) -> np.ndarray:
         """One frame: uint8 (height, width, 3) through the display transform of the ``exposure_ev`` and ``tonemap``
@@ -78,7 +78,7 @@ class TerrainTechnique(Technique):
         band_done = None if progress is None else (lambda n, total=s.height: progress(n / total))
         self.launcher.launch(K.render_kernel, s.height, s.width,
                              [self.params, self.perm, cam.mat44("inv_view_proj_rot"), cam.eye_vec3(), s.width,
-                              s.height], [b["out"], b["steps"]], progress=band_done)
+                              s.height], [b["out"], b["steps"], b["depth"]], progress=band_done)
         self.frame += 1
         img = b["out"].numpy()
         if not np.all(np.isfinite(img)):
@@ -89,6 +89,16 @@ class TerrainTechnique(Technique):
         if not encode:
             return img.copy()
         return display.encode_encoded(img, full.exposure_ev, full.tonemap)
+
+    def depth(self) -> np.ndarray | None:
+        """Distance along each pixel's centre ray to the surface it shows in the last frame (float32, the rendered
+        size; -1 for the sky), as the temporal reconstruction reprojects with (:mod:`pywarp.core.temporal`); None
+        for a supersampled or enlarged preview frame."""
+        full = self.settings
+        s = effective(full)
+        if s.rays_per_pixel != 1 or (s.width, s.height) != (full.width, full.height):
+            return None
+        return self._buffers["depth"].numpy().copy()
 
     def steps_taken(self) -> np.ndarray:
         """View-march height evaluations per pixel of the last frame (summed over the sub-samples)."""

@@ -294,7 +294,9 @@ class RenderWorker:
             if temporal:
                 pose = self.tech.pose(req.pose)
                 fresh = np.asarray(self.tech.render(self.tech.jitter(pose, jitter), progress=progress), np.uint8)
-                img = up.resolve(fresh, technique_camera(self.tech, pose), key=self._key(req.settings))
+                depth = getattr(self.tech, "depth", None)  # the scene's per-pixel depth where it has one
+                img = up.resolve(fresh, technique_camera(self.tech, pose), key=self._key(req.settings),
+                                 depth=depth() if depth is not None else None)
             else:
                 img = self.tech.render(req.pose, progress=progress)
         finally:

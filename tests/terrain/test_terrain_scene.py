@@ -37,9 +37,12 @@ def final_image():
     {"camera_y": 40.0, "camera_pitch_deg": -30.0, "shadows": "hard"},
     {"slab": False, "march": "bisect"},
     dict(PREVIEW),
-    {"precision_per_unit": 0.01, "camera_y": 30.0},
+    {"precision_per_unit": 0.01, "camera_y": 30.0, "march": "dynamic"},
+    {"march": "dynamic", "step_scale": 0.5, "shadow_min_step": 0.0},
+    {"shadows": "hard", "shadow_min_step": 3.0},
 ], ids=["final", "bisect", "hard-thesis", "ss4-materials", "atmosphere-seed5", "test-fixed", "test-fixed-slab-above",
-        "above-slab-hard", "no-slab-bisect", "preview", "precision-growth"])
+        "above-slab-hard", "no-slab-bisect", "preview", "precision-growth", "text-march-and-shadows",
+        "hard-min-step"])
 def test_warp_pixels_match_the_c_reference(changes):
     """The C reference pixel (ccl_terrain_pixel) and the Warp pixel perform the same float32 operations in the same
     order with the same libm calls: the results are expected bit-identical, and so are the step counts."""
@@ -61,6 +64,69 @@ def test_the_frame_is_the_pixel_function():
     cw, sw = render_pixels_warp(s, xs, ys)
     np.testing.assert_array_equal(img[ys, xs], cw)
     np.testing.assert_array_equal(tech.steps_taken()[ys, xs], sw)
+
+
+def test_depth_is_the_distance_to_the_surface_the_pixel_shows():
+    """The frame's depth (what the viewer's temporal reconstruction reprojects with): the point at that distance
+    along each pixel's ray lies on the marched terrain (within PRECISION: Kod 7.5's hit test, the dynamic march) or
+    on the water plane in front of it; the sky's pixels are -1; none for a supersampled frame."""
+    from pywarp.kernels.camera import pose_camera
+
+    s = TerrainSettings(**SMALL, march="dynamic", step_scale=0.5)
+    tech = TerrainTechnique(s)
+    tech.render()
+    t = tech.depth().astype(np.float64)
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
+    m = cam.inv_view_proj_rot.astype(np.float64)
+    xs, ys = np.meshgrid(np.arange(s.width) + 0.5, np.arange(s.height) + 0.5)
+    ndc = np.stack([2 * xs / s.width - 1, 1 - 2 * ys / s.height, np.ones_like(xs), np.ones_like(xs)], -1)
+    d = (ndc @ m.T)[..., :3]
+    d /= np.linalg.norm(d, axis=-1, keepdims=True)
+    p = cam.eye.astype(np.float64) + d * t[..., None]
+    sky, hit = t == -1.0, t > 0.0
+    assert sky.any() and hit.any() and np.all(sky | hit)
+    assert np.all(d[..., 1][sky & (d[..., 1] < -0.2)] > 1)  # no sky below the hills in front (a check that can fail)
+    h = ground_height(s, p[..., 0][hit], p[..., 2][hit])
+    water = np.abs(p[..., 1][hit] - s.water_level) < 1e-3
+    land = np.abs(p[..., 1][hit] - h) < s.precision + 1e-3
+    assert np.all(water | land), np.abs(p[..., 1][hit] - h)[~(water | land)].max()
+    assert water.any() and land.mean() > 0.5
+    tech.update(rays_per_pixel=4)
+    tech.render()
+    assert tech.depth() is None
+
+
+def test_the_hashed_table_gives_the_same_fbm():
+    """The scene's table (hashed_perm_array: the permutation and the 2-D lattice hashes) gives fbm_perm bit for bit
+    what the plain permutation gives -- negative, large (near the 2^24 limit of the fraction) and non-finite
+    coordinates included -- and its first 512 entries are the permutation (every other reader of perm)."""
+    import warp as wp
+
+    from pywarp.kernels import terrain as K
+    from pywarp.kernels.noise import perm_array, perm_table
+
+    @wp.kernel
+    def fbm_kernel(x: wp.array(dtype=float), z: wp.array(dtype=float), perm: wp.array(dtype=wp.int32),
+                   out: wp.array(dtype=float)):
+        i = wp.tid()
+        out[i] = K.fbm_perm(x[i], z[i], 1 + i % 9, perm)
+
+    rng = np.random.default_rng(3)
+    x = np.concatenate([rng.uniform(-300, 300, 4000), rng.uniform(-2.0 ** 22, 2.0 ** 22, 500), [np.inf, np.nan, 0.0,
+                                                                                               -1.0, 255.5]])
+    z = np.concatenate([rng.uniform(-300, 300, 4000), rng.uniform(-2.0 ** 22, 2.0 ** 22, 500), [0.0, 1.0, np.nan,
+                                                                                               -256.0, 1e-30]])
+    for seed in (0, 5):
+        outs = []
+        for perm in (perm_array(seed, "cpu"), K.hashed_perm_array(seed, "cpu")):
+            out = wp.zeros(x.size, dtype=float, device="cpu")
+            wp.launch(fbm_kernel, x.size, [wp.array(x.astype(np.float32), dtype=float, device="cpu"),
+                                           wp.array(z.astype(np.float32), dtype=float, device="cpu"), perm, out],
+                      device="cpu")
+            outs.append(out.numpy())
+        np.testing.assert_array_equal(outs[0], outs[1])
+        assert np.isnan(outs[0][-5:-2]).all() and np.isfinite(outs[0][:-5]).all()
+        np.testing.assert_array_equal(K.hashed_perm_array(seed, "cpu").numpy()[:512], perm_table(seed))
 
 
 def test_settings_defaults_are_the_c_defaults():
@@ -199,8 +265,9 @@ def test_the_slab_changes_no_pixel_for_a_camera_inside_it(changes):
 
 def test_the_slab_from_above_moves_hits_by_less_than_precision():
     """A camera above the slab starts its rays at the slab's top: the march's step sequence changes, the hits move
-    along the ray by less than PRECISION, so the image stays within a few display levels (and far fewer steps)."""
-    changes = {"camera_y": 60.0, "camera_pitch_deg": -35.0, "shadows": "none"}
+    along the ray by less than PRECISION (Kod 7.5's hit test: the dynamic march), so the image stays within a few
+    display levels (and far fewer steps)."""
+    changes = {"camera_y": 60.0, "camera_pitch_deg": -35.0, "shadows": "none", "march": "dynamic", "step_scale": 0.5}
     on = TerrainTechnique(TerrainSettings(**SMALL, **changes))
     off = TerrainTechnique(TerrainSettings(**SMALL, **dict(changes, slab=False)))
     a, b = on.render(encode=False), off.render(encode=False)
@@ -251,11 +318,12 @@ def test_controls_mouse_look_and_w_walk_forward_above_the_ground():
 
 def test_precision_growing_with_distance_ends_the_march_earlier_and_zero_is_the_printed_test():
     """precision_per_unit c: the dynamic march hits when d < PRECISION + c t -- fewer steps for grazing rays, the
-    hits at most c t higher; c = 0 is Kod 7.5 (the default image)."""
-    base = TerrainTechnique(TerrainSettings(**SMALL))
-    grow = TerrainTechnique(TerrainSettings(**SMALL, precision_per_unit=0.004))
+    hits at most c t higher; c = 0 is Kod 7.5."""
+    dynamic = dict(SMALL, march="dynamic", step_scale=0.5)
+    base = TerrainTechnique(TerrainSettings(**dynamic))
+    grow = TerrainTechnique(TerrainSettings(**dynamic, precision_per_unit=0.004))
     a, b = base.render(encode=False), grow.render(encode=False)
     assert grow.steps_taken().sum() < base.steps_taken().sum()
     assert np.abs(a - b).mean() < 0.05 and not np.array_equal(a, b)
-    zero = TerrainTechnique(TerrainSettings(**SMALL, precision_per_unit=0.0)).render(encode=False)
+    zero = TerrainTechnique(TerrainSettings(**dynamic, precision_per_unit=0.0)).render(encode=False)
     np.testing.assert_array_equal(zero, a)

@@ -31,7 +31,10 @@ import numpy as np  # noqa: E402
 from pywarp.terrain.settings import TerrainSettings  # noqa: E402
 from pywarp.terrain.technique import TerrainTechnique  # noqa: E402
 
-SCENE = dict(stage="atmosphere", sun_elevation_deg=25.0, sun_azimuth_deg=100.0, camera_pitch_deg=-12.0)
+# shadow_min_step 0: the shadow rays step by the vertical gap as Kod 7.6 / 7.7 print it (the scene's default steps at
+# least 1 unit, which changes the penumbrae by a few grey levels)
+SCENE = dict(stage="atmosphere", sun_elevation_deg=25.0, sun_azimuth_deg=100.0, camera_pitch_deg=-12.0,
+             shadow_min_step=0.0)
 
 
 def _save(img, path, title):

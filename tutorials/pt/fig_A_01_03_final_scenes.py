@@ -5,9 +5,10 @@ are renders of our terrain scene with its final settings (pywarp.terrain.setting
 from three viewpoints chosen to show what the demo shows: A.1 the scene's default view (``pywarp render terrain``),
 A.2 a lake against the sun from its shore, A.3 a view from high above the hills with the sun behind the camera.
 
-Equations: everything of the final scene -- pt-code-7.1/7.2 (pixel, camera ray), pt-code-7.5 (dynamic march,
-halved step), pt-code-7.9 = pt-alg-3.2 (fBm terrain), pt-code-7.8 with pt-alg-7.3-lod (normals), pt-code-7.7 (soft
-shadows), pt-7.1 (light), pt-alg-7.3-material (materials, grass), pt-code-7.10 (sky, sun glow), pt-code-7.11
+Equations: everything of the final scene -- pt-code-7.1/7.2 (pixel, camera ray), pt-alg-9-bisect (the dynamic
+march of pt-code-7.5 at 0.8 of the step, refined by bisection; the text's halved dynamic step gives the same picture
+within SSIM 0.996), pt-code-7.9 = pt-alg-3.2 (fBm terrain), pt-code-7.8 with pt-alg-7.3-lod (normals), pt-code-7.7
+(soft shadows, steps of at least 1 unit), pt-7.1 (light), pt-alg-7.3-material (materials, grass), pt-code-7.10 (sky, sun glow), pt-code-7.11
 (clouds), pt-alg-7.3.4 with pt-7.4 (water), pt-7.3 (fog, printed form). Outputs: figures/pt/fig-A.1.png,
 figures/pt/fig-A.2.png, figures/pt/fig-A.3.png.
 """

@@ -103,6 +103,7 @@ typedef struct ccl_terrain_params {
     float shadow_k;            /* softness factor k (Kod 7.7: 4), (0, 1000] */
     float shadow_max_t;        /* MAX_T of the shadow rays, (0, 10000] */
     float shadow_bias;         /* lift of the shadow ray's origin above the terrain, [0, 10] */
+    float shadow_min_step;     /* smallest step of the shadow rays, [0, 100]; 0: Kod 7.6/7.7's t += d as printed */
     ccl_vec3 sun;              /* unit direction towards the sun (light vector l of eq 7.1) */
     float light_ambient;       /* L_a, [0, 100] */
     float light_diffuse;       /* L_d, [0, 100] */
