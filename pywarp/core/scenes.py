@@ -175,6 +175,10 @@ def register(scene: Scene) -> Scene:
     if scene.default_path is not None and scene.default_path not in scene.paths:
         raise ValueError(f"default_path must be one of the scene's paths {sorted(scene.paths)}, "
                          f"got {scene.default_path!r}")
+    if "still" not in scene.benchmarks:  # every scene's full-quality still, timed as `pywarp render` makes it
+        from .bench_still import benchmark
+
+        scene.benchmarks["still"] = benchmark(scene.name)
     with _lock:
         _scenes[scene.name] = scene
     return scene
