@@ -17,7 +17,7 @@ Choices the text leaves open (spec erratum 16: no step sizes; the application us
   time (one rain second per second: ``time_s`` += dt / ``clock_rate``) unless it is paused (P) or the viewer's own
   time plays (F5, the benchmark), which advances ``time_s`` itself. P stops the controls' clock (the table names
   ``clock_rate`` = 0; setting it would rewind the particle system, whose time is ``time_s * clock_rate``);
-* the preview frames (while the view moves) use a capture of :data:`PREVIEW_CAPTURE` px instead of 512 (the
+* the preview frames (while the view moves) use a capture of :data:`PREVIEW_CAPTURE` px instead of 256 (the
   background is rendered twice per new pose: the view and the 150 deg capture; the capture is the larger one).
 """
 from __future__ import annotations
