@@ -187,11 +187,13 @@ class TemporalUpsampler:
         ox, oy = self._phases[self.count % len(self._phases)]
         return self.width // f, self.height // f, ((ox + 0.5) / f - 0.5, (oy + 0.5) / f - 0.5)
 
-    def resolve(self, fresh: np.ndarray, camera, key=None) -> np.ndarray:
+    def resolve(self, fresh: np.ndarray, camera, key=None, clamp: bool | None = None) -> np.ndarray:
         """The window's picture (uint8, height x width x 3) from ``fresh`` (the planned render, uint8) and the
         frame's ``camera`` (:class:`pywarp.kernels.camera.Camera` without the jitter, any size of this aspect).
         ``key``: what the picture depends on besides the camera (the scene's settings other than its size); the
-        clamp is off while the key and the camera stay the same."""
+        clamp is off while the key and the camera stay the same. ``clamp=False``: off whatever moves -- for a
+        picture that is a function of the view direction only (a background seen from its own place, as rain's),
+        where the far-field reprojection is exact and the clamp would only blur the history."""
         f = self.factor
         ox, oy = self._phases[self.count % len(self._phases)]
         lw, lh = self.width // f, self.height // f
@@ -203,7 +205,7 @@ class TemporalUpsampler:
             np.array_equal(getattr(camera, n), getattr(self._prev_cam, n)) for n in ("view_proj", "inv_view_proj"))
         g = reprojection(camera, self._prev_cam if has_hist else camera, self.width, self.height)
         self.launcher.launch(resolve_kernel, self.height, self.width,
-                             [src, self._hist, f, ox, oy, int(has_hist), int(not still),
+                             [src, self._hist, f, ox, oy, int(has_hist), int(not still if clamp is None else clamp),
                               wp.mat33(*g.astype(np.float32).ravel().tolist()), self.width, self.height],
                              [self._out, self._shown])
         self._hist, self._out = self._out, self._hist

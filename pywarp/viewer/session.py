@@ -253,7 +253,7 @@ class RenderWorker:
         return {f.name: getattr(s, f.name) for f in dataclasses.fields(s) if f.name not in ("width", "height")}
 
     def _render(self, req: _Request) -> None:
-        own = self.temporal and self.tech is not None and self.tech.previews_at_full_size
+        own = self.tech is not None and self.tech.previews_at_full_size
         temporal = not req.full and self.tech is not None and self._temporal(req.settings) and not own
         if not req.full and own:
             target = dataclasses.replace(req.settings, **dict(self.preview_changes(req.settings)))
