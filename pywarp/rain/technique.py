@@ -236,8 +236,9 @@ def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, e
 BACKGROUND_REFINE_FRAMES = 16
 #: a reconstructed view is refined at most every this many frames (background_scale > 1): the frames between show the
 #: drops over the view as it is (the drops move every frame; a refinement costs a background frame at 1/16 of the
-#: pixels, several drop frames' time). A new direction is always rendered.
-BACKGROUND_REFINE_EVERY = 2
+#: pixels, ~4 drop frames' CPU time). A new direction is always rendered. 3: measured on the benchmark's turn (a 5 deg
+#: step every 3 frames at 30 frames/s), 67-79 ms of CPU a frame against 101 with 2
+BACKGROUND_REFINE_EVERY = 3
 
 
 class RainTechnique(Technique):
