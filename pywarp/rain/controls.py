@@ -184,6 +184,7 @@ class RainControls(Controls):
         return Step(changes=changes, moving=bool(look), message=msg)
 
     def preview(self, settings) -> dict:
-        """A small capture, and the background reconstructed from a sixteenth of its pixels per frame (the drops are
-        drawn whole every frame: the viewer renders rain previews at the window's size)."""
-        return {"capture_size": min(settings.capture_size, PREVIEW_CAPTURE), "background_scale": 4}
+        """A small capture, the background reconstructed from a sixteenth of its pixels per frame and the drops
+        composited at half the width and height over it (the viewer renders rain previews at the window's size)."""
+        return {"capture_size": min(settings.capture_size, PREVIEW_CAPTURE), "background_scale": 4,
+                "particles_scale": 2}

@@ -370,16 +370,31 @@ class RainTechnique(Technique):
             up.set_factor(factor)
         return up
 
-    def frame_inputs(self, pose: Pose | None = None) -> dict:
-        """Everything the compositing pass takes for the current state (for tests and the C comparison)."""
+    def particles_factor(self) -> int:
+        """The reduction the drops are composited at: ``particles_scale`` where it divides both sides, else 1."""
+        k = self.settings.particles_scale
+        return k if self.settings.width % k == 0 and self.settings.height % k == 0 else 1
+
+    def frame_inputs(self, pose: Pose | None = None, factor: int = 1) -> dict:
+        """Everything the compositing pass takes for the current state (for tests and the C comparison); ``factor``
+        > 1: at 1/factor of the width and height, the view averaged over factor x factor blocks."""
         s = self.settings
         pose = pose or Pose.from_settings(s)
         self._advance()
         view, capture = self.images(pose)
+        self._view = view  # the full view of this frame (render adds the drops' change to it)
+        if factor > 1:  # averaged once per view (the same array while the view is cached)
+            small = getattr(self, "_small_view", None)
+            if small is None or small[0] is not view or small[1] != factor:
+                h, w = view.shape[:2]
+                small = self._small_view = (view, factor, np.ascontiguousarray(
+                    view.reshape(h // factor, factor, w // factor, factor, 3).mean((1, 3)), np.float32))
+            view = small[2]
         lights = dict(s.light_values())
         lit = P.lights_on(P.check_lights(lights))
         streaks = s.streaks if s.mode == "streaks" else "off"
-        out = sprites(self.system.state(), pose, s.width, s.height, s, self.extent, streaks, positions=lit)
+        out = sprites(self.system.state(), pose, s.width // factor, s.height // factor, s, self.extent, streaks,
+                      positions=lit)
         sp = out[0] if lit else out
         ins = dict(background=view, capture=capture, mask=self.mask, sprites=sp,
                    fov_view=math.radians(pose.fov_y_deg), fov_capture=math.radians(s.capture_fov_deg),
@@ -395,13 +410,30 @@ class RainTechnique(Technique):
         """One frame: uint8 (height, width, 3) through the display transform of the ``exposure_ev`` and ``tonemap``
         settings (:func:`pywarp.core.display.encode_encoded`: the colours are display-encoded), or the float frame
         with ``encode=False``."""
-        ins = self.frame_inputs(pose)
+        k = self.particles_factor()
+        ins = self.frame_inputs(pose, k)
         out = P.composite(**ins, launcher=self.launcher, cache=self._device_cache)
+        if k > 1:  # the drops' change to the reduced view, enlarged, over the full view
+            out = self._view + enlarge2(out - ins["background"])
         if progress is not None:
             progress(1.0)
         if not encode:
             return out
         return display.encode_encoded(out, self.settings.exposure_ev, self.settings.tonemap)
+
+
+def enlarge2(a: np.ndarray) -> np.ndarray:
+    """(h, w, c) -> (2 h, 2 w, c) bilinearly (pixel centres aligned: output pixel 2 i + d, d in {0, 1}, samples the
+    input at i - 1/4 + d/2; the edges clamped), float32."""
+    a = np.asarray(a, np.float32)
+    for axis in (0, 1):
+        n = a.shape[axis]
+        p = np.concatenate([a.take([0], axis), a, a.take([n - 1], axis)], axis)
+        mid = p.take(range(1, n + 1), axis)
+        even = 0.75 * mid + 0.25 * p.take(range(0, n), axis)
+        odd = 0.75 * mid + 0.25 * p.take(range(2, n + 2), axis)
+        a = np.stack([even, odd], axis + 1).reshape(a.shape[:axis] + (2 * n,) + a.shape[axis + 1:])
+    return a.astype(np.float32)
 
 
 def render_image(settings: RainSettings | None = None, pose: Pose | None = None) -> np.ndarray:

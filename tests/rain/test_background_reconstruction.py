@@ -48,3 +48,34 @@ def test_a_turn_reuses_the_previous_view():
     seen = slice(0, 64 - 4)  # the columns the previous view covers (a 2 deg turn right exposes ~1.5 px at the right)
     # measured 0.65 (the history resampled bilinearly blurs a little); 1 where the history is not used
     assert np.abs(turned - full)[:, seen].mean() < 0.8 * np.abs(alone - full)[:, seen].mean()
+
+
+def test_enlarge2_is_bilinear_with_aligned_centres():
+    from pywarp.rain.technique import enlarge2
+
+    c = np.full((3, 4, 3), 0.25, np.float32)
+    assert np.array_equal(enlarge2(c), np.full((6, 8, 3), 0.25, np.float32))
+    x = np.arange(5, dtype=np.float32)  # a ramp: input pixel i at centre i; output 2i + d at i - 1/4 + d/2
+    ramp = np.broadcast_to(x[None, :, None], (2, 5, 1))
+    out = enlarge2(ramp)[0, :, 0]
+    want = np.clip(np.arange(10) / 2.0 - 0.25, 0.0, 4.0)  # the edges clamped
+    assert np.allclose(out, want, atol=1e-6)
+
+
+def test_drops_at_half_size_change_nothing_where_there_are_none():
+    """particles_scale 2 (the viewer's previews): the view plus the drops' enlarged change to the reduced view -- no
+    drops, the view itself; with drops, the same frame every run and close to the full-size drops."""
+    base = dict(SMALL, width=320, height=180, background="panorama", drops=3000)
+    none = dict(base, drops=0)
+    empty = RainTechnique(RainSettings(**none, particles_scale=2)).render(encode=False)
+    view = RainTechnique(RainSettings(**none)).render(encode=False)
+    assert np.array_equal(empty, view)
+    half = [RainTechnique(RainSettings(**base, particles_scale=2, time_s=1.0)).render() for _ in range(2)]
+    assert np.array_equal(half[0], half[1])
+    full = RainTechnique(RainSettings(**base, time_s=1.0)).render().astype(int)
+    still = RainTechnique(RainSettings(**none, time_s=1.0)).render().astype(int)
+    drops_change = np.abs(full - still).mean()
+    assert drops_change > 0.2  # the drops show
+    assert np.abs(half[0].astype(int) - full).mean() < 0.5 * drops_change
+    with_odd = RainTechnique(RainSettings(**dict(base, width=63, height=36), particles_scale=2, time_s=1.0))
+    assert with_odd.particles_factor() == 1

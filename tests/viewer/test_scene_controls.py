@@ -126,7 +126,8 @@ def test_rain_preview_frames_take_a_smaller_capture(rain):
     from pywarp.rain.controls import PREVIEW_CAPTURE
 
     s = rain_settings(rain)
-    assert V.make_controls(rain, s).preview(s) == {"capture_size": PREVIEW_CAPTURE, "background_scale": 4}
+    assert V.make_controls(rain, s).preview(s) == {"capture_size": PREVIEW_CAPTURE, "background_scale": 4,
+                                                   "particles_scale": 2}
 
 
 def test_rain_background_cached_by_direction_and_reconstructed_while_turning():
