@@ -109,7 +109,7 @@ def compare_images(new: np.ndarray, old: np.ndarray) -> dict:
     from skimage.color import deltaE_ciede2000, rgb2lab
     from skimage.metrics import structural_similarity
 
-    from ..viewer.session import luminance
+    from .display import luminance
 
     new, old = np.asarray(new, np.uint8), np.asarray(old, np.uint8)
     if new.shape != old.shape:
@@ -159,7 +159,6 @@ def bench_still(scene: str, width: int = 640, height: int = 360, repeat: int = 3
     import tempfile
 
     from .baseline import BaselineProcess, check_baseline
-    from .scenes import scene as get_scene
     from .timing import Progress, machine
 
     if isinstance(repeat, bool) or not isinstance(repeat, int) or repeat < 1:
@@ -167,17 +166,16 @@ def bench_still(scene: str, width: int = 640, height: int = 360, repeat: int = 3
     for name, v in (("width", width), ("height", height)):
         if isinstance(v, bool) or not isinstance(v, int) or not 1 <= v <= 8192:
             raise ValueError(f"{name} must be an integer in [1, 8192], got {v!r}")
-    sc = get_scene(scene)
     python = None if baseline is None else check_baseline(baseline)
     device = device or "cpu"
     load_before = list(os.getloadavg()) if hasattr(os, "getloadavg") else None
     with tempfile.TemporaryDirectory(prefix="pywarp-bench-still-") as folder:
-        cfg = {"scene": sc.name, "width": width, "height": height, "device": device, "workers": workers,
+        cfg = {"scene": scene, "width": width, "height": height, "device": device, "workers": workers,
                "out": folder}
+        ns = _probe_module()
+        probe = ns["StillProbe"]({**cfg, "tag": "ours"})  # the scene and its settings checked before the baseline
         other = BaselineProcess(python, {**cfg, "tag": "baseline"}, _STILL_PROBE) if python else None
         try:
-            ns = _probe_module()
-            probe = ns["StillProbe"]({**cfg, "tag": "ours"})
             info = {"ours": ns["describe"](probe)}
             if other is not None:
                 info["baseline"] = {**{k: v for k, v in other.info.items() if k != "ready"}, "interpreter": python}
@@ -201,13 +199,13 @@ def bench_still(scene: str, width: int = 640, height: int = 360, repeat: int = 3
                                np.array_equal(np.load(a["image"]), np.load(best["image"])) for a in ans)}
         if process:
             for name, side in sides.items():
-                ms, img = _process_ms(python if name == "baseline" else sys.executable, sc.name, width, height,
+                ms, img = _process_ms(python if name == "baseline" else sys.executable, scene, width, height,
                                       device, folder, own_env=name == "baseline")
                 side.update(process_ms=round(ms, 1), process_start_ms=round(ms - side["still_ms"], 1),
                             process_image_identical=bool(np.array_equal(img, side["image"])))
     ours, base = sides["ours"], sides.get("baseline")
     result = {
-        "benchmark": "still", "schema": STILL_SCHEMA, "scene": sc.name, "width": width, "height": height,
+        "benchmark": "still", "schema": STILL_SCHEMA, "scene": probe.sc.name, "width": width, "height": height,
         "device": device, "workers": workers, "repeat": repeat,
         "ours": {k: v for k, v in ours.items() if k != "image"},
         "baseline": None if base is None else {k: v for k, v in base.items() if k != "image"},
@@ -251,17 +249,16 @@ def report_still(res: dict) -> str:
     return "\n".join(lines)
 
 
-def benchmark(scene: str):
-    """The ``still`` benchmark of ``scene`` (:class:`pywarp.core.scenes.Benchmark`), added to every registered
-    scene."""
-    from .scenes import Benchmark
+#: What ``pywarp bench SCENE still`` says it measures and how long it takes (:func:`pywarp.core.scenes.register` adds
+#: the benchmark to every scene)
+STILL_DESCRIPTION = ("a full-quality still as `pywarp render` makes it (warm, in-process; the command's process start "
+                     "measured once), with --baseline beside another installation's: times, ratio, image SSIM / "
+                     "CIEDE2000")
+STILL_EXPECTED = "10 s - 2 min (x2 with --baseline)"
 
-    def run(**kw):
-        res = bench_still(scene, **kw)
-        res.pop("images", None)
-        return res
 
-    return Benchmark("still", "a full-quality still as `pywarp render` makes it (warm, in-process; the command's "
-                     "process start measured once), with --baseline beside another installation's: times, ratio, "
-                     "image SSIM / CIEDE2000", run, report_still, defaults=dict(STILL_DEFAULTS),
-                     expected="10 s - 2 min (x2 with --baseline)", check=check_still)
+def run_still(scene: str, **kw) -> dict:
+    """:func:`bench_still` as the benchmark runs it (the images left out of the result: it is printed as JSON)."""
+    res = bench_still(scene, **kw)
+    res.pop("images", None)
+    return res

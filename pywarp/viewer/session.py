@@ -713,9 +713,7 @@ class Benchmark:
         }
 
 
-def luminance(img: np.ndarray) -> np.ndarray:
-    """Rec. 709 luma of a uint8 sRGB picture (0..255, float64): what SSIM is measured on."""
-    return np.asarray(img, np.float64)[..., :3] @ np.array([0.2126, 0.7152, 0.0722])
+from ..core.display import luminance  # noqa: E402  (the quality keys' SSIM is on it; kept importable here)
 
 
 def displayed(img: np.ndarray, width: int, height: int) -> np.ndarray:

@@ -98,5 +98,5 @@ def test_bad_options_are_refused_before_anything_runs(tmp_path):
         bench_still("flight", repeat=0)
     with pytest.raises(ValueError, match="width must be an integer"):
         bench_still("flight", width=0)
-    with pytest.raises(ValueError, match="scene"):
+    with pytest.raises(ValueError, match="no-such-scene"):
         bench_still("no-such-scene")
