@@ -32,8 +32,11 @@ import warp as wp
 #: 0.35 measured against 0 on the viewer's motion at 1/16 of the pixels (SSIM against the full render, clouds 0.868 ->
 #: 0.889, flight 0.933 -> 0.955): the sparse cross lets the history flicker, the interpolation steadies it
 HISTORY_BLEND = wp.constant(0.35)
-#: the reduction factors the viewer picks from: 1/f^2 of the pixels are rendered per frame (f must divide both sides)
-FACTORS = (1, 2, 4)
+#: the reduction factors a reconstruction may use: 1/f^2 of the pixels are rendered per frame (f must divide both
+#: sides); the viewer's own previews pick from the first three (:data:`VIEWER_FACTORS`), rain's background renders a
+#: new direction at 8
+FACTORS = (1, 2, 4, 8)
+VIEWER_FACTORS = (1, 2, 4)
 
 
 def phases(f: int) -> list[tuple[int, int]]:

@@ -234,10 +234,15 @@ def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, e
 #: 16 = the 4 x 4 phases of the viewer's reduction, after which every pixel of the view has been rendered once (each
 #: costs a background frame at 1/16 of the pixels; the rain's turns come 10 times a second while a key is held)
 BACKGROUND_REFINE_FRAMES = 16
+#: a view of a new direction (background_scale > 1) samples this many times more sparsely than its refinements (a
+#: 5 deg turn of the viewer's benchmark exposes 35 of 640 columns: the rest is the turned previous view). Measured on
+#: the benchmark (640x360, 2 cores, load 4-6): 2 gives 22 frames/s, SSIM 0.887 / 0.855 (mean / p5); 1 gives 5.7
+#: frames/s, SSIM 0.93 / 0.91 (a new direction then costs ~110 ms of CPU, and at that rate every frame is a new one)
+NEW_DIRECTION_FACTOR = 2
 #: a reconstructed view is refined at most every this many frames (background_scale > 1): the frames between show the
 #: drops over the view as it is (the drops move every frame; a refinement costs a background frame at 1/16 of the
-#: pixels, ~4 drop frames' CPU time). A new direction is always rendered. 3: measured on the benchmark's turn (a 5 deg
-#: step every 3 frames at 30 frames/s), 67-79 ms of CPU a frame against 101 with 2
+#: pixels, ~4 drop frames' CPU time). A new direction is always rendered. 3: measured on the benchmark's turn, 22
+#: frames/s against 16 with 2 at the same SSIM (0.887 / 0.885)
 BACKGROUND_REFINE_EVERY = 3
 
 
@@ -248,9 +253,9 @@ class RainTechnique(Technique):
 
     settings_class = RainSettings
     #: the viewer renders rain's previews at the window's size in either preview mode (the drops drawn whole every
-    #: frame; the background reconstructed from a sixteenth of its pixels at full quality, ``background_scale``):
-    #: measured on the benchmark's turn, SSIM against the full render 0.82 (the picture at 1/64 of the pixels
-    #: enlarged, the terrain at its preview quality) -> 0.93
+    #: frame, at half size; the background reconstructed at full quality, ``background_scale``): measured on the
+    #: benchmark's turn, SSIM against the full render 0.82 / 0.76 (the picture at 1/64 of the pixels enlarged, the
+    #: terrain at its preview quality) -> 0.887 / 0.855
     previews_at_full_size = True
 
     def __init__(self, settings: RainSettings | None = None):
@@ -319,8 +324,9 @@ class RainTechnique(Technique):
         """(view, capture) of the background for ``pose``: display-encoded RGB float32. Each is cached by what it
         depends on -- the direction and the field of view, not the position: a background is seen from its own
         place, turned with the view -- so a camera that moves without turning pays for neither. With
-        ``background_scale`` > 1 a view not yet cached comes from the temporal reconstruction (full quality, 1/16 of
-        the pixels, the previous view turned with the camera) and is refined by another reconstructed frame every
+        ``background_scale`` > 1 a view not yet cached comes from the temporal reconstruction (full quality, 1/64 of
+        the pixels at 4 (:data:`NEW_DIRECTION_FACTOR`), the previous view turned with the camera) and is refined by
+        another reconstructed frame (1/16 of the pixels) every
         :data:`BACKGROUND_REFINE_EVERY` calls while the direction stays, :data:`BACKGROUND_REFINE_FRAMES` times (then
         it is the full render); a full view cached for the same direction is used as it is."""
         s = self.settings
@@ -335,7 +341,9 @@ class RainTechnique(Technique):
             self._idle_calls = 0
             scene_bg = isinstance(self.background, SceneBackground)
             if s.background_scale > 1 and scene_bg:  # a new direction, or the same one refined by another frame
-                up = self._upsampler(s.width, s.height, s.background_scale)
+                # a new direction at half the sampling again (NEW_DIRECTION_FACTOR): most of it is the turned history
+                up = self._upsampler(s.width, s.height, s.background_scale * (NEW_DIRECTION_FACTOR if view is None
+                                                                             else 1))
                 img = self.background.render_reconstructed(pose, s.width, s.height, pose.fov_y_deg, up)
                 view = (img, False, 1 if view is None else view[2] + 1)
             else:

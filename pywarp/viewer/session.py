@@ -233,13 +233,13 @@ class RenderWorker:
     def _adapt_factor(self, seconds: float) -> None:
         """The reduction factor of the temporal previews: doubled when a preview takes over 1.25 budgets, halved when
         the frame it would give (about f^2/(f/2)^2 = 4 times the work) fits in 0.8 of one."""
-        from ..core.temporal import FACTORS
+        from ..core.temporal import VIEWER_FACTORS
 
         self._ema = seconds if self._ema is None else 0.6 * self._ema + 0.4 * seconds
         self._since_scale += 1
         if self.fixed_scale or self._since_scale < 3:
             return
-        if self._ema > 1.25 * self.budget_s and self.factor < FACTORS[-1]:
+        if self._ema > 1.25 * self.budget_s and self.factor < VIEWER_FACTORS[-1]:
             self.factor *= 2
         elif self.factor > 1 and 4.0 * self._ema < 0.8 * self.budget_s:
             self.factor //= 2
