@@ -18,7 +18,7 @@ Choices the text leaves open (spec erratum 16: no step sizes; the application us
   time plays (F5, the benchmark), which advances ``time_s`` itself. P stops the controls' clock (the table names
   ``clock_rate`` = 0; setting it would rewind the particle system, whose time is ``time_s * clock_rate``);
 * the preview frames (while the view moves) use a capture of :data:`PREVIEW_CAPTURE` px instead of 256 (the
-  background is rendered twice per new pose: the view and the 150 deg capture; the capture is the larger one).
+  background is rendered twice per new pose: the view and the 150 deg capture; the capture costs per pixel too).
 """
 from __future__ import annotations
 
@@ -33,9 +33,10 @@ from .settings import CONTROLS, MODES, PANORAMA, SHAPES
 REPEAT_DELAY_S = 0.25
 REPEAT_HZ = 10.0
 #: edge of the wide-angle capture in preview frames (px): the capture is seen only through the drops, a few pixels
-#: each; the background (a rendered scene) costs per pixel, and 512 x 512 is 2.3x a 640 x 360 view. 64: the
-#: default frame with it against the full one, SSIM 0.96 on luminance (32: 0.94, 128: 0.98)
-PREVIEW_CAPTURE = 64
+#: each, and is rendered again at every new direction (a turn). 32: the default 640x360 frame with it against the
+#: full one (capture 256), SSIM 0.997-0.998 on luminance, CIEDE2000 0.18-0.21 mean (64: 0.998, 16: 0.996), at a
+#: quarter of 64's background pixels
+PREVIEW_CAPTURE = 32
 #: one W / S / Q / E step in seconds of the free-fly camera's speed (FREE_FLY_SPEED): 50 m over the clouds (km),
 #: 2 m in a scene in metres
 MOVE_STEP_S = 0.1
