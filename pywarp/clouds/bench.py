@@ -548,13 +548,8 @@ if __name__ == "__main__":
         raise
 """
 
-#: Variables removed from the baseline's environment: they point at this checkout (its package, its C library), and
-#: the other interpreter must import its own installation
-_BASELINE_ENV_DROP = ("PYTHONPATH", "PYTHONHOME", "PYTHONSTARTUP", "CCLOUDS_LIBRARY", "CCLOUDS_INCLUDE_DIR")
-
-
-class BaselineError(ValueError):
-    """The ``--baseline`` interpreter is missing, cannot import pywarp, or failed during the measurement."""
+from ..core.baseline import BaselineError, BaselineProcess  # noqa: E402,F401  (BaselineError: re-exported)
+from ..core.baseline import check_baseline as _check_baseline  # noqa: E402
 
 
 def check_speed(baseline: str | None = None, **_) -> None:
@@ -564,98 +559,11 @@ def check_speed(baseline: str | None = None, **_) -> None:
         _check_baseline(baseline)
 
 
-def _check_baseline(python) -> str:
-    import os
-    import shutil
-
-    if not isinstance(python, (str, os.PathLike)) or not str(python):
-        raise BaselineError(f"--baseline must be the path of a Python interpreter, got {python!r}")
-    found = shutil.which(str(python))
-    if found is None:
-        why = "not executable" if os.path.exists(str(python)) else "no such file"
-        raise BaselineError(f"--baseline must be a Python interpreter with pywarp installed; {str(python)!r}: {why}")
-    return found
-
-
-class _BaselineProcess:
-    """The probe in another interpreter, answering one command at a time (so that the two sides never run at once)."""
+class _BaselineProcess(BaselineProcess):
+    """The speed probe (:data:`_SPEED_PROBE`) in another interpreter."""
 
     def __init__(self, python: str, cfg: dict):
-        import json
-        import os
-        import subprocess
-        import tempfile
-
-        self.python = python
-        env = {k: v for k, v in os.environ.items() if k not in _BASELINE_ENV_DROP}
-        self._dir = tempfile.TemporaryDirectory(prefix="pywarp-baseline-")  # no source folder on its path
-        self._err = tempfile.TemporaryFile()
-        self.proc = subprocess.Popen([python, "-c", _SPEED_PROBE, json.dumps(cfg)], stdin=subprocess.PIPE,
-                                     stdout=subprocess.PIPE, stderr=self._err, text=True, env=env,
-                                     cwd=self._dir.name)
-        self.info = self._answer("start")
-
-    def _stderr_tail(self, lines: int = 3) -> str:
-        self._err.seek(0)
-        text = self._err.read().decode("utf-8", "replace").strip().splitlines()
-        return " | ".join(line.strip() for line in text[-lines:]) or "no output"
-
-    def _fail(self, what: str):
-        try:
-            rc = self.proc.wait(timeout=30)
-        except Exception:  # noqa: BLE001  (still running after a broken answer)
-            self.proc.kill()
-            rc = self.proc.wait()
-        tail = self._stderr_tail()
-        self.close()
-        raise BaselineError(f"--baseline {self.python} failed {what} (exit status {rc}): {tail}")
-
-    def _answer(self, what: str) -> dict:
-        import json
-
-        line = self.proc.stdout.readline()
-        if not line:
-            self._fail(f"at the {what}" if what == "start" else f"while measuring {what}")
-        try:
-            reply = json.loads(line)
-        except ValueError:
-            reply = None
-        if not isinstance(reply, dict):
-            self.proc.kill()
-            self._fail(f"at the {what}: it answered {line.strip()[:80]!r}, not the probe's JSON")
-        if "error" in reply:
-            self._fail(f"at the {what}" if what == "start" else f"while measuring {what}")
-        return reply
-
-    def measure(self, kind: str) -> float:
-        try:
-            self.proc.stdin.write(kind + "\n")
-            self.proc.stdin.flush()
-        except (BrokenPipeError, OSError):
-            self._fail(f"while measuring {kind}")
-        ms = self._answer(kind).get("ms")
-        if not isinstance(ms, (int, float)):
-            self._fail(f"while measuring {kind}: no time in its answer")
-        return float(ms)
-
-    def close(self) -> None:
-        import subprocess
-
-        if self.proc.poll() is None:
-            try:
-                self.proc.stdin.write("quit\n")
-                self.proc.stdin.flush()
-                self.proc.wait(timeout=30)
-            except (OSError, ValueError, subprocess.TimeoutExpired):
-                self.proc.kill()
-                self.proc.wait()
-        for f in (self.proc.stdin, self.proc.stdout):
-            try:
-                f.close()
-            except (OSError, ValueError):
-                pass
-        self._err.close()
-        self._dir.cleanup()
+        super().__init__(python, cfg, _SPEED_PROBE)
 
 
 def _speed_probe_module() -> dict:

@@ -154,3 +154,8 @@ def encode_encoded(rgb, exposure_ev: float, tonemap: str) -> np.ndarray:
     c *= np.float32(ENCODED_CURVE_SAMPLES - 1)
     c += np.float32(0.5)
     return table[c.astype(np.uint16)]
+
+
+def luminance(img: np.ndarray) -> np.ndarray:
+    """Rec. 709 luma of a uint8 sRGB picture (0..255, float64): what the benchmarks' SSIM is measured on."""
+    return np.asarray(img, np.float64)[..., :3] @ np.array([0.2126, 0.7152, 0.0722])

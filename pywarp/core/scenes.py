@@ -35,6 +35,7 @@ camera is the scene's ``controls`` (:mod:`pywarp.viewer.controls`).
 """
 from __future__ import annotations
 
+import functools
 import importlib
 import json
 import threading
@@ -175,6 +176,13 @@ def register(scene: Scene) -> Scene:
     if scene.default_path is not None and scene.default_path not in scene.paths:
         raise ValueError(f"default_path must be one of the scene's paths {sorted(scene.paths)}, "
                          f"got {scene.default_path!r}")
+    if "still" not in scene.benchmarks:  # every scene's full-quality still, timed as `pywarp render` makes it
+        from . import bench_still as B
+
+        scene.benchmarks["still"] = Benchmark(
+            "still", B.STILL_DESCRIPTION, functools.partial(Lazy("pywarp.core.bench_still:run_still"), scene.name),
+            "pywarp.core.bench_still:report_still", defaults=dict(B.STILL_DEFAULTS), expected=B.STILL_EXPECTED,
+            check="pywarp.core.bench_still:check_still")
     with _lock:
         _scenes[scene.name] = scene
     return scene

@@ -38,8 +38,11 @@ HISTORY_BLEND = wp.constant(0.35)
 #: 1.25: the ground seen at a grazing angle changes its depth by ~10-20 % per fresh pixel at 1/16 of the pixels;
 #: a silhouette over a farther slope changes it by more
 DEPTH_SMOOTH = wp.constant(1.25)
-#: the reduction factors the viewer picks from: 1/f^2 of the pixels are rendered per frame (f must divide both sides)
-FACTORS = (1, 2, 4)
+#: the reduction factors a reconstruction may use: 1/f^2 of the pixels are rendered per frame (f must divide both
+#: sides); the viewer's own previews pick from the first three (:data:`VIEWER_FACTORS`), rain's background renders a
+#: new direction at 8
+FACTORS = (1, 2, 4, 8)
+VIEWER_FACTORS = (1, 2, 4)
 
 
 def phases(f: int) -> list[tuple[int, int]]:
@@ -243,14 +246,17 @@ class TemporalUpsampler:
         ox, oy = self._phases[self.count % len(self._phases)]
         return self.width // f, self.height // f, ((ox + 0.5) / f - 0.5, (oy + 0.5) / f - 0.5)
 
-    def resolve(self, fresh: np.ndarray, camera, key=None, depth: np.ndarray | None = None) -> np.ndarray:
+    def resolve(self, fresh: np.ndarray, camera, key=None, depth: np.ndarray | None = None,
+                clamp: bool | None = None) -> np.ndarray:
         """The window's picture (uint8, height x width x 3) from ``fresh`` (the planned render, uint8) and the
         frame's ``camera`` (:class:`pywarp.kernels.camera.Camera` without the jitter, any size of this aspect).
         ``key``: what the picture depends on besides the camera (the scene's settings other than its size); the
         clamp is off while the key and the camera stay the same. ``depth``: optional, ``fresh``'s size, each pixel's
         distance along its (jittered) unit ray from the camera's eye to the surface it shows (< 0 or not finite:
         far, e.g. the sky); with it the history is reprojected through the nearest fresh pixel's depth, exact under
-        translation as well as turning (without it: the far-field homography)."""
+        translation as well as turning (without it: the far-field homography). ``clamp=False``: off whatever moves --
+        for a picture that is a function of the view direction only (a background seen from its own place, as
+        rain's), where the far-field reprojection is exact and the clamp would only blur the history."""
         f = self.factor
         ox, oy = self._phases[self.count % len(self._phases)]
         lw, lh = self.width // f, self.height // f
@@ -272,7 +278,8 @@ class TemporalUpsampler:
         else:
             dep = src
         self.launcher.launch(resolve_kernel, self.height, self.width,
-                             [src, self._hist, f, ox, oy, int(has_hist), int(not still),
+                             [src, self._hist, f, ox, oy, int(has_hist),
+                              int(not still if clamp is None else clamp),
                               wp.mat33(*g.astype(np.float32).ravel().tolist()), self.width, self.height,
                               dep, int(depth is not None), _mat44(camera.inv_view_proj_rot),
                               wp.vec3(*np.asarray(camera.eye, np.float32).tolist()), _mat44(prev.view_proj)],

@@ -82,7 +82,7 @@ class FlightTechnique(Technique):
         if stale & {"flight", "clouds", "device"}:
             self._build_clouds()
         if stale & {"flight", "clouds", "device", "light"}:
-            self.volumes.compute_light(self.settings.c_values())
+            self.volumes.compute_light(self.settings.c_values(), launcher=self.launcher, needed_only=True)
 
     def _build_flight(self) -> None:
         s = self.settings

@@ -228,12 +228,9 @@ def volume_box(g: VolumeGrid, eye: wp.vec3, d: wp.vec3):
 
 # --- the light volume ---------------------------------------------------------------------------------------------------
 
-@wp.kernel
-def light_kernel(p: VolumeParams, g: VolumeGrid, density: wp.array(dtype=wp.uint8),
-                 # output: the grid's light volume (its own array, offset 0)
-                 out: wp.array(dtype=float)):
-    """Twin of ``ccl_volume_light``: one thread per voxel."""
-    i = wp.tid()
+@wp.func
+def volume_light_voxel(p: VolumeParams, g: VolumeGrid, density: wp.array(dtype=wp.uint8), i: int):
+    """Transmittance towards the sun of voxel ``i`` of grid ``g`` (``ccl_volume_light``'s per-voxel march)."""
     nx = g.nx
     ny = g.ny
     nz = g.nz
@@ -257,7 +254,34 @@ def light_kernel(p: VolumeParams, g: VolumeGrid, density: wp.array(dtype=wp.uint
         if q[0] < 0.0 or q[1] < 0.0 or q[2] < 0.0 or q[0] > fnx or q[1] > fny or q[2] > fnz:
             break
         total = total + volume_sample(density, g.offset, nx, ny, nz, q, _INV_255)
-    out[i] = wp.exp(-tau * total)
+    return wp.exp(-tau * total)
+
+
+@wp.kernel
+def light_kernel(p: VolumeParams, g: VolumeGrid, density: wp.array(dtype=wp.uint8),
+                 # output: the grid's light volume (its own array, offset 0)
+                 out: wp.array(dtype=float)):
+    """Twin of ``ccl_volume_light``: one thread per voxel."""
+    i = wp.tid()
+    out[i] = volume_light_voxel(p, g, density, i)
+
+
+@wp.kernel
+def light_rows_kernel(row0: int, p: VolumeParams, g: VolumeGrid, density: wp.array(dtype=wp.uint8),
+                      needed: wp.array(dtype=wp.uint8), needed_only: int,
+                      # output: the grid's light volume (its own array, offset 0)
+                      out: wp.array(dtype=float)):
+    """:data:`light_kernel` as rows (z, y) x columns x of the grid, for the multi-core tile launcher
+    (:class:`pywarp.core.runtime.TileLauncher`): the same voxels, each one thread's. ``needed_only`` != 0: voxels
+    whose ``needed`` is 0 (none of their trilinear cells holds density: no ray reads them) are set to 1, not
+    marched."""
+    r, x = wp.tid()
+    i = (row0 + r) * g.nx + x
+    if needed_only != 0:
+        if needed[i] == wp.uint8(0):
+            out[i] = 1.0
+            return
+    out[i] = volume_light_voxel(p, g, density, i)
 
 
 # --- background: sky, ground, aircraft ----------------------------------------------------------------------------------

@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core.display import luminance
 from ..core.scenes import Scene
 from .controls import Input, make_controls
 
@@ -236,13 +237,13 @@ class RenderWorker:
     def _adapt_factor(self, seconds: float) -> None:
         """The reduction factor of the temporal previews: doubled when a preview takes over 1.25 budgets, halved when
         the frame it would give (about f^2/(f/2)^2 = 4 times the work) fits in 0.8 of one."""
-        from ..core.temporal import FACTORS
+        from ..core.temporal import VIEWER_FACTORS
 
         self._ema = seconds if self._ema is None else 0.6 * self._ema + 0.4 * seconds
         self._since_scale += 1
         if self.fixed_scale or self._since_scale < 3:
             return
-        if self._ema > 1.25 * self.budget_s and self.factor < FACTORS[-1]:
+        if self._ema > 1.25 * self.budget_s and self.factor < VIEWER_FACTORS[-1]:
             self.factor *= 2
         elif self.factor > 1 and 4.0 * self._ema < 0.8 * self.budget_s:
             self.factor //= 2
@@ -256,7 +257,7 @@ class RenderWorker:
         return {f.name: getattr(s, f.name) for f in dataclasses.fields(s) if f.name not in ("width", "height")}
 
     def _render(self, req: _Request) -> None:
-        own = self.temporal and self.tech is not None and self.tech.previews_at_full_size
+        own = self.tech is not None and self.tech.previews_at_full_size
         temporal = not req.full and self.tech is not None and self._temporal(req.settings) and not own
         if not req.full and own:
             target = dataclasses.replace(req.settings, **dict(self.preview_changes(req.settings)))
@@ -720,11 +721,6 @@ class Benchmark:
             "meets_quality": (quality["ssim_mean"] >= TARGET_SSIM[0] and quality["ssim_p5"] >= TARGET_SSIM[1])
             if quality.get("ssim_mean") is not None else None,
         }
-
-
-def luminance(img: np.ndarray) -> np.ndarray:
-    """Rec. 709 luma of a uint8 sRGB picture (0..255, float64): what SSIM is measured on."""
-    return np.asarray(img, np.float64)[..., :3] @ np.array([0.2126, 0.7152, 0.0722])
 
 
 def displayed(img: np.ndarray, width: int, height: int) -> np.ndarray:

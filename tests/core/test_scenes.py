@@ -22,7 +22,7 @@ def test_clouds_is_registered_and_the_default():
     assert sc.settings is CloudscapeSettings and issubclass(sc.settings, Settings)
     assert sc.description and sc.default_path == "flythrough" and sc.path().name == "flythrough"
     assert set(sc.benchmarks) == {"tiles", "cloudscape", "textures", "reprojection", "dask", "speed",
-                                  "reference"}
+                                  "reference", "still"}
     assert {"camera_altitude_km", "camera_pitch_deg", "camera_yaw_deg"} <= set(sc.path().start_fields)
     assert sc.outputs["render"] == "cloudscape.png"
     with pytest.raises(ValueError, match=r"^scene must be one of 'clouds'(, '[a-z]+')*, got 'nope'$"):
@@ -112,9 +112,9 @@ def test_cli_bench_every_benchmark_has_json_and_honours_device(fake_benchmarks, 
     (["bench", "tiles", "--repeat", "x"], "--repeat must be an integer, got 'x'"),
     (["bench", "tiles", "--device", "cuda:3"], "--device must be one of 'cpu'"),
     (["bench", "nope"], "benchmark must be one of 'tiles', 'cloudscape', 'textures', 'reprojection', 'dask', "
-                        "'speed', 'reference' (scene clouds), got 'nope'"),
+                        "'speed', 'reference', 'still' (scene clouds), got 'nope'"),
     (["bench", "clouds", "drops"], "benchmark must be one of 'tiles', 'cloudscape', 'textures', 'reprojection', "
-                                   "'dask', 'speed', 'reference' (scene clouds), got 'drops'"),
+                                   "'dask', 'speed', 'reference', 'still' (scene clouds), got 'drops'"),
 ])
 def test_cli_bench_bad_arguments(fake_benchmarks, capsys, argv, message):
     with pytest.raises(SystemExit) as exc:

@@ -134,7 +134,7 @@ WARP_SITES = {
     ('valuenoise.py', 'valuenoise_interpolated', 'int(flx)'): _VALUENOISE,
     ('valuenoise.py', 'valuenoise_interpolated', 'int(fly)'): _VALUENOISE,
     ('valuenoise.py', 'valuenoise_interpolated', 'int(flz)'): _VALUENOISE,
-    ('volume.py', 'light_kernel', 'int(wp.ceil(wp.sqrt(fnx * fnx + fny * fny + fnz * fnz) / step))'): _LIGHT_STEPS,
+    ('volume.py', 'volume_light_voxel', 'int(wp.ceil(wp.sqrt(fnx * fnx + fny * fny + fnz * fnz) / step))'): _LIGHT_STEPS,
     ('volume.py', 'render_kernel', 'int(e * 255.0 + 0.5)'): _PIXEL_U8,
     ('volume.py', 'volume_pixel', 'int(ix)'): _BRICK,
     ('volume.py', 'volume_pixel', 'int(iy)'): _BRICK,
