@@ -266,7 +266,12 @@ def test_measure_ladder_keeps_every_repetition_and_splits_the_reprojected_frame(
         assert split["raymarch"][r] > 0.0 and split["reprojection"][r] > 0.0 and split["other"][r] >= 0.0
         parts = split["raymarch"][r] + split["reprojection"][r] + split["other"][r]
         assert parts >= detail["samples"]["reprojection"][r] * (1.0 - 1e-9)
-    assert len(detail["dense_samples"]["unoptimised"]) == 2 and 0.0 < ladder["dense_clouds_cut_percent"] < 100.0
+    # the cut is the best early-exit frame against the best unoptimised one, from the repetitions it reports (its
+    # sign is a timing: a loaded machine may make either faster, so it is not asserted)
+    dense = detail["dense_samples"]
+    assert len(dense["unoptimised"]) == 2 and len(dense["early_exit"]) == 2
+    assert ladder["dense_clouds_cut_percent"] == pytest.approx(
+        100.0 * (1.0 - min(dense["early_exit"]) / min(dense["unoptimised"])))
 
 
 def test_a_renamed_reprojection_kernel_is_an_error_not_zero(monkeypatch):
