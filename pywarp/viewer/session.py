@@ -255,6 +255,12 @@ class RenderWorker:
         """What a picture depends on besides the camera and the size (the history's clamp is off while it stays)."""
         return {f.name: getattr(s, f.name) for f in dataclasses.fields(s) if f.name not in ("width", "height")}
 
+    def _mark_preview(self, preview: bool) -> None:
+        """Tell a technique with a ``preview`` attribute whether the next frame is a preview (the clouds reproject
+        their previews above the layer too: :meth:`pywarp.clouds.technique.CloudscapeTechnique.reprojects`)."""
+        if isinstance(getattr(self.tech, "preview", None), bool):
+            self.tech.preview = preview
+
     def _render(self, req: _Request) -> None:
         own = self.temporal and self.tech is not None and self.tech.previews_at_full_size
         temporal = not req.full and self.tech is not None and self._temporal(req.settings) and not own
@@ -285,6 +291,7 @@ class RenderWorker:
             if req.full and self._req is not None and self._req.key != req.key:
                 raise Cancelled()
 
+        self._mark_preview(not req.full)
         counted = req.full and isinstance(getattr(self.tech, "frame", None), int)
         saved = self.tech.frame if counted else None
         if counted:
