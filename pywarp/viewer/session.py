@@ -7,7 +7,7 @@ Rendering runs on a thread of its own (:class:`RenderWorker`), one frame at a ti
 frames, so the window stays responsive while a frame renders. While the view moves (keys held, a slider dragged, time
 playing) the worker renders **previews**: the scene's settings at a reduced resolution (the scale adapts so that a
 preview takes about :data:`PREVIEW_BUDGET_S`) with the controls' preview changes (clouds: their temporal reprojection
-on), enlarged by the window. Once nothing has changed for :data:`STILL_S` it renders the **refined** frame: the
+on, below the layer and above its top, and a cheaper march: :mod:`pywarp.clouds.controls`), enlarged by the window. Once nothing has changed for :data:`STILL_S` it renders the **refined** frame: the
 settings as they are, full resolution, frame counter 0 -- the image ``pywarp render`` gives for the same settings. A
 refined frame that a newer state makes stale is cancelled between bands.
 
