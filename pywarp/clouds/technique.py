@@ -48,6 +48,11 @@ class CloudscapeTechnique(Technique):
     temporal reprojection (vc-A26)."""
 
     settings_class = CloudscapeSettings
+    #: True while the viewer renders a preview frame (:class:`pywarp.viewer.session.RenderWorker` sets it; ``pywarp
+    #: render`` and the stills never do): with reprojection on and the depth-aware reprojection
+    #: (``reprojection_depth="clouds"``), a camera above the layer top reprojects too instead of marching every pixel
+    #: (see :meth:`reprojects`)
+    preview: bool = False
 
     def __init__(self, settings: CloudscapeSettings | None = None, generator=None, sky: SkyModel | None = None,
                  textures: RenderTextures | None = None):
@@ -103,19 +108,31 @@ class CloudscapeTechnique(Technique):
     def camera_in_layer_or_above(self, pose: Pose) -> bool:
         return pose.y >= self.settings.layer_base_km
 
+    def reprojects(self, pose: Pose, wanted: bool) -> bool:
+        """Whether a frame with reprojection ``wanted`` reprojects at ``pose``. The thesis's rule (vc-A24): not
+        inside or above the layer, where the view ray does not always hit the inner sphere that its reprojection goes
+        through. A :attr:`preview` above the layer top is the exception when the reprojection is depth-aware: each
+        pixel's point is found from the depth of what it shows (the clouds' or the ground's distance, refined from
+        the inner sphere's hit), which from above is as good as from below; the rays that miss the inner sphere (the
+        sky over the horizon) take the reduced buffer. Measured on the viewer's motion from 6 km looking 25 deg down
+        (SSIM against the full render, 640 x 360): 320 x 180 reprojected (80 x 45 marched per frame) 0.916 against
+        0.877 for 80 x 45 marched whole and enlarged, at about 1.3 times its frame time. Inside the layer the rays
+        looking up miss the inner sphere and would all take the reduced buffer: the full march stays."""
+        if not wanted or not self.camera_in_layer_or_above(pose):
+            return bool(wanted)
+        return self.preview and self.settings.reprojection_depth == "clouds" and pose.y > self.settings.layer_top_km
+
     def render(self, pose: Pose | None = None, reprojection: bool | None = None,
                encode: bool = True, progress=None) -> np.ndarray:
         """Render one frame; returns uint8 sRGB (height, width, 3), or the display-linear float frame when
         ``encode=False``. Reprojection (default: the setting) falls back to a full render when the camera is inside
-        or above the layer (vc-A24) and on the first frame. ``progress``: optional callable, called with a fraction
+        or above the layer (vc-A24; above it, previews excepted: :meth:`reprojects`) and on the first frame. ``progress``: optional callable, called with a fraction
         of the frame (the fractions add up to 1) as each band of the cloud pass -- nearly all of the time --
         finishes."""
         s = self.settings
         pose = pose or Pose.from_settings(s)
         cam = CAM.pose_camera(pose, s.width, s.height)
-        reproj = s.reprojection if reprojection is None else bool(reprojection)
-        if reproj and self.camera_in_layer_or_above(pose):
-            reproj = False  # vc-A24: the view ray does not always hit the inner sphere
+        reproj = self.reprojects(pose, s.reprojection if reprojection is None else bool(reprojection))
         b = self._buffers
         h, w = s.height, s.width
         layer = s.layer()

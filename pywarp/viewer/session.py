@@ -7,7 +7,7 @@ Rendering runs on a thread of its own (:class:`RenderWorker`), one frame at a ti
 frames, so the window stays responsive while a frame renders. While the view moves (keys held, a slider dragged, time
 playing) the worker renders **previews**: the scene's settings at a reduced resolution (the scale adapts so that a
 preview takes about :data:`PREVIEW_BUDGET_S`) with the controls' preview changes (clouds: their temporal reprojection
-on), enlarged by the window. Once nothing has changed for :data:`STILL_S` it renders the **refined** frame: the
+on, below the layer and above its top, and a cheaper march: :mod:`pywarp.clouds.controls`), enlarged by the window. Once nothing has changed for :data:`STILL_S` it renders the **refined** frame: the
 settings as they are, full resolution, frame counter 0 -- the image ``pywarp render`` gives for the same settings. A
 refined frame that a newer state makes stale is cancelled between bands.
 
@@ -256,6 +256,12 @@ class RenderWorker:
         """What a picture depends on besides the camera and the size (the history's clamp is off while it stays)."""
         return {f.name: getattr(s, f.name) for f in dataclasses.fields(s) if f.name not in ("width", "height")}
 
+    def _mark_preview(self, preview: bool) -> None:
+        """Tell a technique with a ``preview`` attribute whether the next frame is a preview (the clouds reproject
+        their previews above the layer too: :meth:`pywarp.clouds.technique.CloudscapeTechnique.reprojects`)."""
+        if isinstance(getattr(self.tech, "preview", None), bool):
+            self.tech.preview = preview
+
     def _render(self, req: _Request) -> None:
         own = self.tech is not None and self.tech.previews_at_full_size
         temporal = not req.full and self.tech is not None and self._temporal(req.settings) and not own
@@ -286,6 +292,7 @@ class RenderWorker:
             if req.full and self._req is not None and self._req.key != req.key:
                 raise Cancelled()
 
+        self._mark_preview(not req.full)
         counted = req.full and isinstance(getattr(self.tech, "frame", None), int)
         saved = self.tech.frame if counted else None
         if counted:

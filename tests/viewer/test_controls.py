@@ -100,8 +100,18 @@ def test_free_fly_speed_keys_and_nothing_held_is_still():
     assert ctl.speed == v / 2
 
 
-def test_clouds_preview_turns_reprojection_on():
-    assert V.make_controls(clouds(), flat()).preview(flat()) == {"reprojection": True}
+def test_clouds_preview_turns_reprojection_on_with_a_cheaper_march():
+    from pywarp.clouds.controls import PREVIEW_MARCH, PREVIEW_SAMPLES
+
+    changes = V.make_controls(clouds(), flat()).preview(flat())
+    assert changes == {"reprojection": True, "samples_min": PREVIEW_SAMPLES[0], "samples_max": PREVIEW_SAMPLES[1],
+                       "advanced": PREVIEW_MARCH}
+    # the preview settings are valid settings, and a user's own values win where they are already cheaper or set
+    own = flat(samples_min=16, samples_max=24, advanced={"exit_eps": 0.1})
+    mine = V.make_controls(clouds(), own).preview(own)
+    assert (mine["samples_min"], mine["samples_max"]) == (16, 24)
+    assert mine["advanced"]["exit_eps"] == 0.1 and mine["advanced"]["light_interp"] == PREVIEW_MARCH["light_interp"]
+    __import__("dataclasses").replace(own, **mine)
     assert V.FreeFlyControls.bindings and V.FreeFlyControls.benchmark_keys
 
 
