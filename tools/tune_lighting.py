@@ -142,15 +142,20 @@ def physical(width, height, spp, cache, json_out=None, grid=1, objective="delta_
             lin = CloudscapeTechnique(s, textures=textures).render_accumulated(None, ACCUMULATE, encode=False)
             e = absolute_errors(lin, ref, exposure(ref), tau)
             per[name] = {"delta_e": e["delta_e"], "ratio": e["ratio"]}
+        held_out = [n for n in per if n not in TUNING_SCENES]
         tuning = _score(per, TUNING_SCENES, objective)
-        held = _score(per, [n for n in per if n not in TUNING_SCENES], objective)
-        rows.append({**label, "scenes": per, "tuning_max": tuning, "held_out_max": held})
+        held = _score(per, held_out, objective)
+        rows.append({**label, "scenes": per, "tuning_max": tuning, "held_out_max": held,
+                     **{f"tuning_{o}": _score(per, TUNING_SCENES, o) for o in ("delta_e", "both")},
+                     **{f"held_out_{o}": _score(per, held_out, o) for o in ("delta_e", "both")}})
         print(" ".join(f"{k} {v}" for k, v in label.items()) + f": tuning {objective} {tuning:.2f}, held out "
               f"{held:.2f}  " + "  ".join(f"{n} {v['delta_e']:.2f} thick "
                                           + "/".join(f"{x:.2f}" for x in v["ratio"]["thick"])
                                           for n, v in per.items()), flush=True)
     best = min(rows, key=lambda r: r["tuning_max"])
     print(f"\nchosen (smallest largest {objective} over {', '.join(TUNING_SCENES)}): {best}")
+    other = "both" if objective == "delta_e" else "delta_e"
+    print(f"\nby --objective {other}: {min(rows, key=lambda r: r['tuning_' + other])}")
     if json_out:
         with open(json_out, "w") as fh:
             json.dump({"spp": spp, "size": [width, height], "grid": grid, "objective": objective, "rows": rows}, fh,

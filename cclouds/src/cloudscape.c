@@ -137,11 +137,13 @@
  *                             CCL_CLOUDSCAPE_PHASE_MIE the approximate Mie phase of 15 um droplets (effective radius
  *                             7.5 um, in the 5-10 um of fair-weather cumulus; g = 0.87). Octave i then takes c^i of
  *                             it and 1 - c^i of the isotropic phase: the mean cosine c^i g, as HG(c^i g) has.
- *   mie_delta 0, ms_depth 0, ms_thin 0   off: the octaves and the phase as above, and the earlier images. The
- *                             physical model of docs/lighting.rst sets mie_delta 1, ms_depth 1.5, ms_thin 0.3 (with
- *                             ms_a 0.5, ms_b 0.75): chosen against the path-traced reference in physical units
- *                             (tools/tune_lighting.py --physical); it is not the default because it does not yet meet
- *                             the targets of the comparison in every view (the docs give the numbers). */
+ *   mie_delta 0, ms_depth 0, ms_thin 0, ms_view 0 (ms_view_trans 1), ambient_aniso 0   off: the octaves, the
+ *                             phase and the ambient as above, and the earlier images. The physical model of
+ *                             docs/lighting.rst sets mie_delta 1, ms_depth 1.5, ms_thin 0.2, ms_view 2,
+ *                             ms_view_trans 0.3, ambient_aniso 0.3 (with ms_a 0.5, ms_b 0.75): chosen against the
+ *                             path-traced reference in physical units (tools/tune_lighting.py --physical --grid 2);
+ *                             it is not the default because it does not yet meet the targets of the comparison in
+ *                             every view (the docs give the numbers). */
 void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
 {
     static const float sun[3] = {12.0f, 11.52f, 10.56f};
@@ -873,7 +875,9 @@ static float light_depth(const ccl_cloudscape_params *p, const ccl_cloud_texture
 }
 
 /* vc-2.31 + vc-A20: the light of a lit sample from its optical depth towards the sun (E of vc-2.31 with the
- * multiple-scattering octaves, dual-lobe phase, beer / powder flags) and the ambient by relative height */
+ * multiple-scattering octaves, dual-lobe phase, beer / powder flags) and the ambient by relative height; trans: the
+ * view transmittance in front of the sample and view the view direction, for the octaves' weight by the depth into
+ * the cloud (vc-x-ms-view) and the ambient's anisotropy (vc-x-ambient-aniso), both 1 at their defaults */
 static ccl_vec3 sample_light(const ccl_cloudscape_params *p, float d_light, float precip, ccl_vec3 pos,
                              float cos_theta, float trans, ccl_vec3 view)
 {

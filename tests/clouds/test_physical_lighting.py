@@ -280,3 +280,21 @@ def test_ms_view_and_ambient_aniso_bad_values_are_refused():
         small(ms_view_trans=0.0)
     with pytest.raises(ValueError, match="ambient_aniso"):
         small(ambient_aniso=1.5)
+
+
+def test_the_reference_ignores_the_view_terms_and_its_cache_key_too():
+    """The path tracer does not read ms_view, ms_view_trans, ambient_aniso (real-time only): the same image with and
+    without them, so they do not key its cache (bench_reference.NOT_IN_REFERENCE_KEY) and the references cached
+    before them stay valid; a setting it reads (the sun) changes the key."""
+    from dataclasses import replace
+
+    from pywarp.clouds.bench_reference import _reference_key
+    from pywarp.clouds.reference import ReferenceRenderer
+
+    s = small(phase="mie", units="physical", lighting="sky", width=12, height=8)
+    t = replace(s, ms_view=3.0, ms_view_trans=0.3, ambient_aniso=0.6)
+    a = ReferenceRenderer(s, spp=2, seed=3).render(encode=False)
+    b = ReferenceRenderer(t, spp=2, seed=3).render(encode=False)
+    np.testing.assert_array_equal(a, b)
+    assert _reference_key(s, "v", 2, 0) == _reference_key(t, "v", 2, 0)
+    assert _reference_key(s, "v", 2, 0) != _reference_key(replace(s, sun_elevation_deg=10.0), "v", 2, 0)
