@@ -889,8 +889,10 @@ static ccl_vec3 sample_light(const ccl_cloudscape_params *p, float d_light, floa
                                                CCL_VARIANT_CORRECTED);
     /* the ambient's anisotropy by the view direction and the octaves' weight by the depth into the cloud along the
      * view (vc-x-ambient-aniso, vc-x-ms-view; 1 at their defaults) */
-    const float amb_w = ccl_cloudscape_ambient_aniso(ccl_vec3_dot(view, ccl_vec3_normalize(rel)), trans,
-                                                     p->ambient_aniso);
+    const float amb_w = p->ambient_aniso > 0.0f /* (off: no normalisation per sample) */
+                            ? ccl_cloudscape_ambient_aniso(ccl_vec3_dot(view, ccl_vec3_normalize(rel)), trans,
+                                                           p->ambient_aniso)
+                            : 1.0f;
     ccl_vec3 light;
     if (p->ms_view > 0.0f && p->ms_octaves > 1) {
         /* the octaves i >= 1 (the whole energy less that of one octave) by the depth into the cloud */

@@ -533,8 +533,9 @@ def sample_light(p: CloudscapeParams, d_light: float, precip: float, pos: wp.vec
     anisotropy (vc-x-ambient-aniso); both off (weight 1) at their defaults."""
     a = p.absorption_base + p.absorption_precip * precip
     e = cloudscape_energy(p, d_light, a, cos_theta)
-    up = wp.normalize(pos - p.centre)
-    amb_w = cloudscape_ambient_aniso(wp.dot(view, up), trans, p.ambient_aniso)
+    amb_w = float(1.0)
+    if p.ambient_aniso > 0.0:  # (off: no normalisation per sample)
+        amb_w = cloudscape_ambient_aniso(wp.dot(view, wp.normalize(pos - p.centre)), trans, p.ambient_aniso)
     if p.ms_view > 0.0 and p.ms_octaves > 1:
         q = p
         q.ms_octaves = 1
