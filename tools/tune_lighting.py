@@ -3,6 +3,7 @@ path-traced reference of the three scenes of ``pywarp bench clouds reference``.
 
     python tools/tune_lighting.py [--spp 256] [--width 160 --height 90] [--cache FILE.npz] [--json OUT.json]
     python tools/tune_lighting.py --physical [--spp 512 --width 80 --height 45] [--reference-cache DIR]
+        [--grid 1|2] [--objective delta_e|both]
 
 ``--physical``: the ``physical`` model of ``pywarp bench clouds reference`` (docs/lighting.rst) in the physical
 medium, by the errors *without rescaling*: every candidate of :data:`PHYSICAL_GRID` (delta scaling of the Mie phase,
@@ -10,6 +11,10 @@ the octaves' a and b, the octaves' weight by the optical depth towards the sun, 
 absolute CIEDE2000 against the reference of every scene and view; the choice is the smallest largest CIEDE2000 over
 the tuning scenes (:data:`pywarp.clouds.bench_reference.TUNING_SCENES`), and the other views are reported as held
 out. References come from (and go to) ``--reference-cache`` (the benchmark's cache, two halves of seeds 0 and 1).
+``--grid 2``: :data:`PHYSICAL_GRID_2`, the octaves' weight by the depth into the cloud along the view
+(vc-x-ms-view) and the ambient's anisotropy (vc-x-ambient-aniso) on top of grid 1's choice. ``--objective both``:
+the choice by both targets of issue 32 as shares of their bounds (:data:`DE_TARGET`, :data:`ENERGY_TOLERANCE`);
+the run prints the choice by the other objective too.
 
 The references are rendered once (two independent halves, as the benchmark does; cached in ``--cache`` when given)
 and every candidate -- ``powder`` x ``ms_octaves`` x ``silver_weight`` x ``silver_g``, the sky lighting and the other
