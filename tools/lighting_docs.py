@@ -5,8 +5,8 @@ machine finishes in about half an hour.
 
     python tools/lighting_docs.py [--width 96 --height 54 --spp 128] [--json OUT.json]
 
-Writes docs/images/lighting/<scene>-<row>.png (the reference exposed for display and the rows ``default`` and
-``physical`` under the reference's exposure alone -- no rescaling) and docs/lighting_table.inc (included by the
+Writes docs/images/lighting/<scene>-<row>.png (the reference exposed for display and the rows ``default``,
+``physical`` and ``physical energy`` under the reference's exposure alone -- no rescaling) and docs/lighting_table.inc (included by the
 page). The images stay linear up to the renderer's display step (clamp, sRGB); a shared display transform would
 replace :func:`pywarp.clouds.bench_reference._srgb` here and in the benchmark.
 """
@@ -20,8 +20,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-#: The rows shown as images (the reference besides): the renderer's defaults and the physical model.
-IMAGE_ROWS = ("default", "physical")
+#: The rows shown as images (the reference besides): the renderer's defaults and the physical models.
+IMAGE_ROWS = ("default", "physical", "physical energy")
 
 
 def _slug(name: str) -> str:

@@ -137,11 +137,13 @@
  *                             CCL_CLOUDSCAPE_PHASE_MIE the approximate Mie phase of 15 um droplets (effective radius
  *                             7.5 um, in the 5-10 um of fair-weather cumulus; g = 0.87). Octave i then takes c^i of
  *                             it and 1 - c^i of the isotropic phase: the mean cosine c^i g, as HG(c^i g) has.
- *   mie_delta 0, ms_depth 0, ms_thin 0   off: the octaves and the phase as above, and the earlier images. The
- *                             physical model of docs/lighting.rst sets mie_delta 1, ms_depth 1.5, ms_thin 0.3 (with
- *                             ms_a 0.5, ms_b 0.75): chosen against the path-traced reference in physical units
- *                             (tools/tune_lighting.py --physical); it is not the default because it does not yet meet
- *                             the targets of the comparison in every view (the docs give the numbers). */
+ *   mie_delta 0, ms_depth 0, ms_thin 0, ms_view 0 (ms_view_trans 1), ambient_aniso 0   off: the octaves, the
+ *                             phase and the ambient as above, and the earlier images. The physical model of
+ *                             docs/lighting.rst sets mie_delta 1, ms_depth 1.5, ms_thin 0.2, ms_view 2,
+ *                             ms_view_trans 0.3, ambient_aniso 0.3 (with ms_a 0.5, ms_b 0.75): chosen against the
+ *                             path-traced reference in physical units (tools/tune_lighting.py --physical --grid 2);
+ *                             it is not the default because it does not yet meet the targets of the comparison in
+ *                             every view (the docs give the numbers). */
 void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
 {
     static const float sun[3] = {12.0f, 11.52f, 10.56f};
@@ -204,6 +206,9 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->ambient_ground_weight = 0.0f;
     out->ms_depth = 0.0f;
     out->ms_thin = 0.0f;
+    out->ms_view = 0.0f;
+    out->ms_view_trans = 1.0f;
+    out->ambient_aniso = 0.0f;
     out->mie_delta = 0.0f;
     out->lod = 1;
     out->lod_bias = 0.0f;
@@ -308,6 +313,9 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
         return bad(out_field, "ambient_ground_weight");
     if (!finite_nonneg(p->ms_depth)) return bad(out_field, "ms_depth");
     if (!(p->ms_thin >= 0.0f && p->ms_thin <= 1.0f)) return bad(out_field, "ms_thin");
+    if (!(p->ms_view >= 0.0f && p->ms_view <= 1000.0f)) return bad(out_field, "ms_view");
+    if (!(p->ms_view_trans >= 0.001f && p->ms_view_trans <= 1.0f)) return bad(out_field, "ms_view_trans");
+    if (!(p->ambient_aniso >= 0.0f && p->ambient_aniso <= 1.0f)) return bad(out_field, "ambient_aniso");
     if (!(p->mie_delta >= 0.0f && p->mie_delta <= 1.0f)) return bad(out_field, "mie_delta");
     if (!(p->lod == 0 || p->lod == 1)) return bad(out_field, "lod");
     if (!(p->weather_detile == 0 || p->weather_detile == 1)) return bad(out_field, "weather_detile");
@@ -651,6 +659,18 @@ float ccl_cloudscape_ms_gain(float d, float depth, float thin)
     return thin + (1.0f - thin) * (1.0f - expf(-d / depth));
 }
 
+float ccl_cloudscape_ms_view(float trans, float k, float t0)
+{
+    CCL_REQUIRE(!(trans < 0.0f || trans > 1.0f) && !(k < 0.0f) && t0 > 0.0f);
+    return 1.0f + k * fmaxf(1.0f - trans / t0, 0.0f);
+}
+
+float ccl_cloudscape_ambient_aniso(float mu, float trans, float alpha)
+{
+    CCL_REQUIRE(!(mu < -1.0f || mu > 1.0f) && !(trans < 0.0f || trans > 1.0f) && !(alpha < 0.0f || alpha > 1.0f));
+    return 1.0f + alpha * mu * trans;
+}
+
 float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, float a, float cos_theta)
 {
     /* octave i: contribution b^i, optical depth a^i d, eccentricities c^i g (Wrenninge et al. 2013, Hillaire 2016);
@@ -855,19 +875,36 @@ static float light_depth(const ccl_cloudscape_params *p, const ccl_cloud_texture
 }
 
 /* vc-2.31 + vc-A20: the light of a lit sample from its optical depth towards the sun (E of vc-2.31 with the
- * multiple-scattering octaves, dual-lobe phase, beer / powder flags) and the ambient by relative height */
+ * multiple-scattering octaves, dual-lobe phase, beer / powder flags) and the ambient by relative height; trans: the
+ * view transmittance in front of the sample and view the view direction, for the octaves' weight by the depth into
+ * the cloud (vc-x-ms-view) and the ambient's anisotropy (vc-x-ambient-aniso), both 1 at their defaults */
 static ccl_vec3 sample_light(const ccl_cloudscape_params *p, float d_light, float precip, ccl_vec3 pos,
-                             float cos_theta)
+                             float cos_theta, float trans, ccl_vec3 view)
 {
     const ccl_cloud_layer *L = &p->layer;
     const float a = p->absorption_base + p->absorption_precip * precip;
-    const float e = ccl_cloudscape_energy(p, d_light, a, cos_theta);
-    const float h = ccl_clouds_relative_height(ccl_vec3_length(ccl_vec3_sub(pos, L->centre)), L->r_inner, L->r_outer,
+    float e = ccl_cloudscape_energy(p, d_light, a, cos_theta);
+    const ccl_vec3 rel = ccl_vec3_sub(pos, L->centre);
+    const float h = ccl_clouds_relative_height(ccl_vec3_length(rel), L->r_inner, L->r_outer,
                                                CCL_VARIANT_CORRECTED);
+    /* the ambient's anisotropy by the view direction and the octaves' weight by the depth into the cloud along the
+     * view (vc-x-ambient-aniso, vc-x-ms-view; 1 at their defaults) */
+    const float amb_w = p->ambient_aniso > 0.0f /* (off: no normalisation per sample) */
+                            ? ccl_cloudscape_ambient_aniso(ccl_vec3_dot(view, ccl_vec3_normalize(rel)), trans,
+                                                           p->ambient_aniso)
+                            : 1.0f;
     ccl_vec3 light;
-    light.x = p->sun_colour[0] * e + (p->ambient_bottom[0] + (p->ambient_top[0] - p->ambient_bottom[0]) * h);
-    light.y = p->sun_colour[1] * e + (p->ambient_bottom[1] + (p->ambient_top[1] - p->ambient_bottom[1]) * h);
-    light.z = p->sun_colour[2] * e + (p->ambient_bottom[2] + (p->ambient_top[2] - p->ambient_bottom[2]) * h);
+    if (p->ms_view > 0.0f && p->ms_octaves > 1) {
+        /* the octaves i >= 1 (the whole energy less that of one octave) by the depth into the cloud */
+        ccl_cloudscape_params q = *p;
+        float e1;
+        q.ms_octaves = 1;
+        e1 = ccl_cloudscape_energy(&q, d_light, a, cos_theta);
+        e = e1 + (e - e1) * ccl_cloudscape_ms_view(trans, p->ms_view, p->ms_view_trans);
+    }
+    light.x = p->sun_colour[0] * e + amb_w * (p->ambient_bottom[0] + (p->ambient_top[0] - p->ambient_bottom[0]) * h);
+    light.y = p->sun_colour[1] * e + amb_w * (p->ambient_bottom[1] + (p->ambient_top[1] - p->ambient_bottom[1]) * h);
+    light.z = p->sun_colour[2] * e + amb_w * (p->ambient_bottom[2] + (p->ambient_top[2] - p->ambient_bottom[2]) * h);
     return light;
 }
 
@@ -957,7 +994,7 @@ void ccl_cloudscape_march_textbook(const ccl_cloudscape_params *p, const ccl_clo
         d = textbook_light_depth(p, t, pos, to_sun); /* vc-A19: only where the density is non-zero */
         /* vc-2.31 + vc-A20: L = sun E(d, a, theta, g) + the ambient by relative height; vc-A21: C += T (1 -
          * exp(-sigma rho dt)) L, T *= exp(-sigma rho dt), and stop once O_D = 1 - T has reached its maximum */
-        if (march_sample(p, rho, dt, sample_light(p, d, precip, pos, cos_theta), t_i, &C, &T, &depth_w, &depth_sum))
+        if (march_sample(p, rho, dt, sample_light(p, d, precip, pos, cos_theta, T, dir), t_i, &C, &T, &depth_w, &depth_sum))
             break;
     }
     out_rgb[0] = C.x;
@@ -1100,7 +1137,7 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     continue;
                 }
                 d_cur = light_depth(p, t, pos, to_sun, t_i, pixel_angle);
-                light = sample_light(p, d_cur, precip, pos, cos_theta);
+                light = sample_light(p, d_cur, precip, pos, cos_theta, trans, dir);
                 if (pend) {
                     /* the waiting sample: the mean of its neighbours' optical depths where it is the middle of three
                      * consecutive samples and its weight in the pixel times the largest difference of their lights
@@ -1113,7 +1150,7 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     pend = 0;
                     if (t_i - pend_t > 1.5f * dt || w_p * diff > p->light_interp)
                         d_p = light_depth(p, t, pend_pos, to_sun, pend_t, pixel_angle);
-                    if (march_sample(p, pend_rho, dt, sample_light(p, d_p, pend_precip, pend_pos, cos_theta), pend_t,
+                    if (march_sample(p, pend_rho, dt, sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, dir), pend_t,
                                      &colour, &trans, &depth_w, &depth_sum))
                         break;
                 }
@@ -1126,7 +1163,7 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
             if (pend) /* the ray ended with a sample waiting (a stop never leaves one) */
                 march_sample(p, pend_rho, dt,
                              sample_light(p, light_depth(p, t, pend_pos, to_sun, pend_t, pixel_angle), pend_precip,
-                                          pend_pos, cos_theta),
+                                          pend_pos, cos_theta, trans, dir),
                              pend_t, &colour, &trans, &depth_w, &depth_sum);
         }
     }

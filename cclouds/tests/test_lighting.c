@@ -316,6 +316,10 @@ static void test_check_names_the_lighting_fields(void)
     BAD(q.ms_c = NAN, "ms_c");
     BAD(q.silver_g = 1.0f, "silver_g");
     BAD(q.silver_weight = 1.01f, "silver_weight");
+    BAD(q.ms_view = -1.0f, "ms_view");
+    BAD(q.ms_view = NAN, "ms_view");
+    BAD(q.ms_view_trans = 0.0f, "ms_view_trans");
+    BAD(q.ambient_aniso = 1.5f, "ambient_aniso");
     /* the march's parameters of this renderer: the exit's fill, the light interpolation, the far light sample's
      * distance (each factor finite, their product too large: its weight x 0 was a NaN pixel, found by fuzzing) */
     BAD(q.exit_fill = 2, "exit_fill");
@@ -327,6 +331,26 @@ static void test_check_names_the_lighting_fields(void)
     BAD((q.light_step_km = 1.0e-39f, q.light_far_factor = 3.0e38f), "light_far_factor");
     BAD(q.light_far_factor = 1.01e6f, "light_far_factor");
 #undef BAD
+}
+
+/* vc-x-ms-view and vc-x-ambient-aniso against their closed forms in double, their limits and their defaults (off) */
+static void test_view_weights_closed_form(void)
+{
+    ccl_cloudscape_params p;
+    int i;
+    for (i = 0; i <= 20; ++i) {
+        const double T = i / 20.0, mu = -1.0 + i / 10.0;
+        const double wv = 1.0 + 3.0 * fmax(1.0 - T / 0.3, 0.0);
+        CCL_CHECK(fabs((double)ccl_cloudscape_ms_view((float)T, 3.0f, 0.3f) - wv) <= 1e-6 * wv);
+        CCL_CHECK(ccl_cloudscape_ms_view((float)T, 0.0f, 0.3f) == 1.0f);
+        CCL_CHECK(fabs((double)ccl_cloudscape_ambient_aniso((float)mu, 0.8f, 0.5f) - (1.0 + 0.5 * mu * 0.8)) <= 1e-6);
+        CCL_CHECK(ccl_cloudscape_ambient_aniso((float)mu, 0.8f, 0.0f) == 1.0f);
+    }
+    CCL_CHECK(ccl_cloudscape_ms_view(0.0f, 3.0f, 0.3f) == 4.0f && ccl_cloudscape_ms_view(0.3f, 3.0f, 0.3f) == 1.0f);
+    CCL_CHECK(ccl_cloudscape_ambient_aniso(-1.0f, 1.0f, 0.4f) == 0.6f);
+    CCL_CHECK(ccl_cloudscape_ambient_aniso(0.7f, 0.0f, 1.0f) == 1.0f);
+    ccl_cloudscape_params_default(&p);
+    CCL_CHECK(p.ms_view == 0.0f && p.ms_view_trans == 1.0f && p.ambient_aniso == 0.0f);
 }
 
 int main(void)
@@ -341,5 +365,6 @@ int main(void)
     CCL_RUN(test_light_hemisphere_means_of_a_gradient_sky);
     CCL_RUN(test_ground_clear_and_under_an_opaque_layer);
     CCL_RUN(test_check_names_the_lighting_fields);
+    CCL_RUN(test_view_weights_closed_form);
     return ccl_test_report();
 }

@@ -78,19 +78,32 @@ MODELS = {
     "+ms, haze off": dict(lighting="sky", ms_octaves=None, silver_weight=None, powder=None, aerial_km=0.0),
 }
 #: The models of the physical medium only (rows after MODELS), for physical units and the Mie phase (issue 32;
-#: docs/lighting.rst), both without the powder term and without aerial perspective (the reference's air does not
-#: scatter), a quarter of the clouds' ambient from the lit ground below (ambient_ground_weight 0.25):
+#: docs/lighting.rst), all without the powder term and without aerial perspective (the reference's air does not
+#: scatter), a quarter of the clouds' ambient from the lit ground below (ambient_ground_weight 0.25), the Mie phase's
+#: forward peak treated as unscattered light (mie_delta 1: extinction x w_D = 0.49 at 15 um, Draine's lobe as the
+#: phase; vc-x-mie-delta), four octaves (optical depth x 0.5^i, contribution x 0.75^i) weighted by the optical depth d
+#: towards the sun, t + (1 - t)(1 - exp(-d / 1.5)) (vc-x-ms-gain):
 #:
-#: * ``physical`` -- the Mie phase's forward peak treated as unscattered light (mie_delta 1: extinction x w_D = 0.49
-#:   at 15 um, Draine's lobe as the phase; vc-x-mie-delta), four octaves (optical depth x 0.5^i, contribution x
-#:   0.75^i) weighted by the optical depth d towards the sun, 0.3 + 0.7 (1 - exp(-d / 1.5)) (vc-x-ms-gain).
-#:   Chosen by tools/tune_lighting.py --physical (the largest absolute CIEDE2000 over TUNING_SCENES, cached references
-#:   of 80x45 and 512 paths); low sun and view above were not seen by the tuning.
+#: * ``physical`` -- t = 0.2; the octaves also weighted by the depth into the cloud along the view, 1 + 2 max(1 - T /
+#:   0.3, 0) (T the view transmittance in front of the sample, vc-x-ms-view), and the ambient by the view direction,
+#:   1 + 0.3 mu T (vc-x-ambient-aniso). Chosen by tools/tune_lighting.py --physical --grid 2 (the smallest largest
+#:   absolute CIEDE2000 over TUNING_SCENES, cached references of 80x45 and 512 paths).
+#: * ``physical energy`` -- the same terms chosen by --objective both (both targets of issue 32 as shares of their
+#:   bounds, CIEDE2000 / 3 and |thick energy - 1| / 0.1, largest over TUNING_SCENES): t = 0.2, view weight 1 + 4
+#:   max(1 - T / 0.5, 0), ambient 1 + 0.3 mu T: thick cloud within ~10 % of the reference's energy, CIEDE2000 higher.
+#: * ``physical v2`` -- the model before the view terms (tools/tune_lighting.py --physical, grid 1): t = 0.3.
 #: * ``physical v1`` -- the first model of issue 32, kept for comparison: the full Mie phase, four octaves of
 #:   0.3^i / 0.6^i unweighted.
+#:
+#: Low sun and view above were not seen by any tuning.
+_PHYSICAL = dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
+                 mie_delta=1.0, ms_depth=1.5)
 PHYSICAL_MODELS = {
-    "physical": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
-                     mie_delta=1.0, ms_depth=1.5, ms_thin=0.3, advanced={"ms_a": 0.5, "ms_b": 0.75}),
+    "physical": dict(**_PHYSICAL, ms_thin=0.2, ms_view=2.0, ms_view_trans=0.3, ambient_aniso=0.3,
+                     advanced={"ms_a": 0.5, "ms_b": 0.75}),
+    "physical energy": dict(**_PHYSICAL, ms_thin=0.2, ms_view=4.0, ms_view_trans=0.5, ambient_aniso=0.3,
+                            advanced={"ms_a": 0.5, "ms_b": 0.75}),
+    "physical v2": dict(**_PHYSICAL, ms_thin=0.3, advanced={"ms_a": 0.5, "ms_b": 0.75}),
     "physical v1": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
                         advanced={"ms_a": 0.3, "ms_b": 0.6}),
 }
@@ -313,11 +326,15 @@ def _reference_key(settings, name: str, spp: int, seed: int) -> str:
     the scene, the paths and the seed, hashed."""
     import hashlib
 
-    text = repr((sorted((k, repr(v)) for k, v in vars(settings).items() if k not in ("device", "threads")),
+    text = repr((sorted((k, repr(v)) for k, v in vars(settings).items()
+                        if k not in ("device", "threads") and k not in NOT_IN_REFERENCE_KEY),
                  name, int(spp), int(seed), CACHE_VERSION))
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
 
 
+#: Settings of the real-time lighting alone, added after the cache's key was defined: the path tracer does not read
+#: them, so they do not key its references (the files cached before them stay valid).
+NOT_IN_REFERENCE_KEY = frozenset({"ms_view", "ms_view_trans", "ambient_aniso"})
 #: Bumped whenever the reference's estimator or the cached arrays change (old files are then ignored).
 CACHE_VERSION = 1
 

@@ -318,7 +318,7 @@ CLOUDSCAPE_PARAMS = CStruct(
         "ms_octaves": f"in [1, {MAX_MS_OCTAVES}]", "ms_a": "in [0, 1]", "ms_b": "in [0, 1]", "ms_c": "in [0, 1]",
         "silver_g": "in (-1, 1)", "silver_weight": "in [0, 1]", "phase": "0 (thesis) or 1 (mie)",
         "droplet_um": "in [5, 50]", "ambient_ground_weight": "in [0, 1]", "mie_delta": "in [0, 1]", "ms_depth": ">= 0 and finite",
-        "ms_thin": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
+        "ms_thin": "in [0, 1]", "ms_view": "in [0, 1000]", "ms_view_trans": "in [0.001, 1]", "ambient_aniso": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
         "lod_bias": "in [-4, 4]", "refine_step_km": ">= 0 and finite", "refine_max": "in [1, 64]",
     })
 #: the layer's fields: computed from the settings (earth_radius_km, layer_base_km, layer_top_km), never ``advanced``
@@ -625,6 +625,22 @@ class CloudscapeSettings(Settings):
                            doc="sky lighting: the octaves' weight at d = 0 (see --ms-depth)",
                            reason="0: no multiple scattering where there is no cloud towards the sun; used when "
                                   "ms_depth > 0")
+    ms_view: float = param(0.0, lo=0.0, hi=1000.0, c="ms_view", group="lighting", cli="--ms-view",
+                           doc="sky lighting: the multiple-scattering octaves' weight by the depth into the cloud "
+                               "along the view, 1 + k (1 - T), T the view transmittance in front of the sample "
+                               "(vc-x-ms-view); 0 = off",
+                           reason="0: the octaves of Wrenninge et al. 2013 as they are; the physical model of "
+                                  "docs/lighting.rst sets it (measured against the path-traced reference)")
+    ms_view_trans: float = param(1.0, lo=0.001, hi=1.0, c="ms_view_trans", group="lighting", cli="--ms-view-trans",
+                                 doc="sky lighting: the view transmittance T0 below which --ms-view's weight grows: "
+                                     "1 + k max(1 - T / T0, 0)",
+                                 reason="1: the weight grows from the cloud's surface on; the physical model of "
+                                        "docs/lighting.rst sets it (measured)")
+    ambient_aniso: float = param(0.0, lo=0.0, hi=1.0, c="ambient_aniso", group="lighting", cli="--ambient-aniso",
+                                 doc="sky lighting: the ambient's weight by the view direction, 1 + alpha mu T, mu the "
+                                     "cosine of the view with the local up (vc-x-ambient-aniso); 0 = off (isotropic)",
+                                 reason="0: the thesis's isotropic ambient; the physical model of docs/lighting.rst "
+                                        "sets it (measured against the path-traced reference)")
     ms_octaves: int = param(4, kind="int", lo=1, hi=MAX_MS_OCTAVES, c="ms_octaves", group="lighting",
                             doc="sky lighting: multiple-scattering octaves (Wrenninge et al. 2013; 1 = single "
                                 "scattering); octave i scales the optical depth, contribution and phase eccentricity "

@@ -132,6 +132,9 @@ class CloudscapeParams:
     ambient_ground_weight: float
     ms_depth: float
     ms_thin: float
+    ms_view: float
+    ms_view_trans: float
+    ambient_aniso: float
     mie_delta: float
     lod: int
     lod_bias: float
@@ -491,18 +494,58 @@ def light_depth(p: CloudscapeParams, tex: CloudTextures, pos: wp.vec3, to_sun: w
     return d_light * p.sigma_light
 
 
+@declare("vc-x-ms-view", c="ccl_cloudscape_ms_view",
+         args=(Arg("trans", "view transmittance in front of the sample", lo=0.0, hi=1.0),
+               Arg("k", "growth of the weight; 0 = off", lo=0.0, hi=1.0e3),
+               Arg("t0", "view transmittance below which the weight grows", lo=1.0e-3, hi=1.0)),
+         outputs=("weight",),
+         summary="Weight of the multiple-scattering octaves by the depth into the cloud along the view (beyond the "
+                 "text): 1 + k max(1 - T / T0, 0), T the view transmittance in front of the sample; 1 when k = 0.",
+         references=("Wrenninge, Kulla & Lundqvist, Oz: the great and volumetric, SIGGRAPH 2013 Talks",))
 @wp.func
-def sample_light(p: CloudscapeParams, d_light: float, precip: float, pos: wp.vec3, cos_theta: float) -> wp.vec3:
+def cloudscape_ms_view(trans: float, k: float, t0: float) -> float:
+    """Twin of ``ccl_cloudscape_ms_view`` (cloudscape.h)."""
+    return 1.0 + k * wp.max(1.0 - trans / t0, 0.0)
+
+
+@declare("vc-x-ambient-aniso", c="ccl_cloudscape_ambient_aniso",
+         args=(Arg("mu", "cosine of the view direction with the local up", lo=-1.0, hi=1.0),
+               Arg("trans", "view transmittance in front of the sample", lo=0.0, hi=1.0),
+               Arg("alpha", "anisotropy; 0 = off", lo=0.0, hi=1.0)),
+         outputs=("weight",),
+         summary="Weight of the ambient by the view direction (beyond the text): 1 + alpha mu T: a forward-scattering "
+                 "cloud sends the sky light from above on downwards, less back up; the weight fades with the view "
+                 "transmittance T (deeper, the light is scattered many times and isotropic); 1 when alpha = 0.",
+         references=("Henyey & Greenstein, Diffuse radiation in the galaxy, ApJ 93, 1941",))
+@wp.func
+def cloudscape_ambient_aniso(mu: float, trans: float, alpha: float) -> float:
+    """Twin of ``ccl_cloudscape_ambient_aniso`` (cloudscape.h)."""
+    return 1.0 + alpha * mu * trans
+
+
+@wp.func
+def sample_light(p: CloudscapeParams, d_light: float, precip: float, pos: wp.vec3, cos_theta: float, trans: float,
+                 view: wp.vec3) -> wp.vec3:
     """vc-2.31 + vc-A20: the light of a lit sample from its optical depth towards the sun ``d_light`` (E of vc-2.31
     with the multiple-scattering octaves, dual-lobe phase, beer / powder flags) and the ambient by relative height
-    (twin of ``sample_light`` in cloudscape.c)."""
+    (twin of ``sample_light`` in cloudscape.c). ``trans``: the view transmittance in front of the sample and ``view``
+    the view direction, for the octaves' weight by the depth into the cloud (vc-x-ms-view) and the ambient's
+    anisotropy (vc-x-ambient-aniso); both off (weight 1) at their defaults."""
     a = p.absorption_base + p.absorption_precip * precip
     e = cloudscape_energy(p, d_light, a, cos_theta)
+    amb_w = float(1.0)
+    if p.ambient_aniso > 0.0:  # (off: no normalisation per sample)
+        amb_w = cloudscape_ambient_aniso(wp.dot(view, wp.normalize(pos - p.centre)), trans, p.ambient_aniso)
+    if p.ms_view > 0.0 and p.ms_octaves > 1:
+        q = p
+        q.ms_octaves = 1
+        e1 = cloudscape_energy(q, d_light, a, cos_theta)
+        e = e1 + (e - e1) * cloudscape_ms_view(trans, p.ms_view, p.ms_view_trans)
     h = clouds_relative_height(wp.length(pos - p.centre), p.r_inner, p.r_outer, 0)
     return wp.vec3(
-        p.sun_colour[0] * e + (p.ambient_bottom[0] + (p.ambient_top[0] - p.ambient_bottom[0]) * h),
-        p.sun_colour[1] * e + (p.ambient_bottom[1] + (p.ambient_top[1] - p.ambient_bottom[1]) * h),
-        p.sun_colour[2] * e + (p.ambient_bottom[2] + (p.ambient_top[2] - p.ambient_bottom[2]) * h))
+        p.sun_colour[0] * e + amb_w * (p.ambient_bottom[0] + (p.ambient_top[0] - p.ambient_bottom[0]) * h),
+        p.sun_colour[1] * e + amb_w * (p.ambient_bottom[1] + (p.ambient_top[1] - p.ambient_bottom[1]) * h),
+        p.sun_colour[2] * e + amb_w * (p.ambient_bottom[2] + (p.ambient_top[2] - p.ambient_bottom[2]) * h))
 
 
 @wp.func
@@ -597,7 +640,7 @@ def cloudscape_march_textbook(p: CloudscapeParams, tex: CloudTextures, eye: wp.v
             # vc-2.31 + vc-A20: L = sun E(d, a, theta, g) + the ambient by relative height; vc-A21: C += T (1 -
             # exp(-sigma rho dt)) L, T *= exp(-sigma rho dt), and stop once O_D = 1 - T has reached its maximum
             C, T, depth_w, depth_sum, stop = march_sample(p, C, T, depth_w, depth_sum, rho, dt,
-                                                          sample_light(p, d, precip, pos, cos_theta), t_i)
+                                                          sample_light(p, d, precip, pos, cos_theta, T, dir), t_i)
             if stop != 0:
                 break
     depth = float(0.0)
@@ -758,7 +801,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                         pend_pos = pos
                         continue
                     d_cur = light_depth(p, tex, pos, to_sun, t_i, pixel_angle)
-                    light = sample_light(p, d_cur, precip, pos, cos_theta)
+                    light = sample_light(p, d_cur, precip, pos, cos_theta, trans, d)
                     if pend != 0:
                         # the waiting sample: the mean of its neighbours' optical depths where it is the middle of
                         # three consecutive samples and its weight in the pixel times the largest difference of
@@ -773,7 +816,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                             d_p = light_depth(p, tex, pend_pos, to_sun, pend_t, pixel_angle)
                         colour, trans, depth_w, depth_sum, stop = march_sample(
                             p, colour, trans, depth_w, depth_sum, pend_rho, dt,
-                            sample_light(p, d_p, pend_precip, pend_pos, cos_theta), pend_t)
+                            sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, d), pend_t)
                         if stop != 0:
                             break
                     computed = 1
@@ -788,7 +831,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 d_p = light_depth(p, tex, pend_pos, to_sun, pend_t, pixel_angle)
                 colour, trans, depth_w, depth_sum, stop = march_sample(
                     p, colour, trans, depth_w, depth_sum, pend_rho, dt,
-                    sample_light(p, d_p, pend_precip, pend_pos, cos_theta), pend_t)
+                    sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, d), pend_t)
     depth = float(0.0)
     if depth_w > 0.0:
         depth = depth_sum / depth_w

@@ -200,3 +200,101 @@ def test_ms_gain_bad_values_are_refused():
         small(ms_thin=1.5)
     with pytest.raises(ValueError, match="ms_depth"):
         small(ms_depth=-1.0)
+
+
+# --- the octaves' weight by the depth along the view (vc-x-ms-view), the ambient's anisotropy (vc-x-ambient-aniso) -----
+
+@pytest.mark.spec("vc-x-ms-view")
+def test_ms_view_closed_form_and_limits():
+    trans = np.linspace(0.0, 1.0, 101)
+    for k, t0 in ((1.0, 1.0), (3.0, 0.3), (0.5, 0.05)):
+        w = np.array([lib().ccl_cloudscape_ms_view(float(x), k, t0) for x in trans])
+        np.testing.assert_allclose(w, 1 + k * np.maximum(1 - trans / t0, 0), rtol=1e-6)
+        # 1 + k where the view is opaque, 1 from T0 on (thin cloud untouched), never growing with T
+        assert w[0] == pytest.approx(1 + k) and np.all(w[trans >= t0] == 1.0) and np.all(np.diff(w) <= 0)
+    assert all(lib().ccl_cloudscape_ms_view(float(x), 0.0, 0.3) == 1.0 for x in trans)  # off
+
+
+@pytest.mark.spec("vc-x-ambient-aniso")
+def test_ambient_aniso_closed_form_and_limits():
+    mu = np.linspace(-1.0, 1.0, 41)
+    for alpha, trans in ((0.5, 1.0), (0.8, 0.4), (1.0, 0.0)):
+        w = np.array([lib().ccl_cloudscape_ambient_aniso(float(m), trans, alpha) for m in mu])
+        np.testing.assert_allclose(w, 1 + alpha * mu * trans, rtol=1e-6, atol=1e-7)
+        # from above (mu < 0) less ambient, from below more, a horizontal view and an opaque view in front: 1
+        assert np.all(w[mu < 0] <= 1.0) and np.all(w[mu > 0] >= 1.0) and np.all(w >= 1 - alpha - 1e-7)
+    assert lib().ccl_cloudscape_ambient_aniso(0.0, 1.0, 1.0) == 1.0
+    assert all(lib().ccl_cloudscape_ambient_aniso(float(m), 0.7, 0.0) == 1.0 for m in mu)  # off
+
+
+@pytest.mark.spec("vc-x-ms-view", "vc-x-ambient-aniso")
+def test_ms_view_and_ambient_aniso_c_and_warp_agree():
+    rng = np.random.default_rng(11)
+    trans = np.float32(rng.uniform(0, 1, 300))
+    k = np.float32(np.where(rng.uniform(size=300) < 0.2, 0.0, rng.uniform(0, 8, 300)))
+    t0 = np.float32(rng.uniform(0.01, 1, 300))
+    assert_twins_agree("vc-x-ms-view", trans, k, t0, ulp=4)
+    mu = np.float32(rng.uniform(-1, 1, 300))
+    alpha = np.float32(rng.uniform(0, 1, 300))
+    assert_twins_agree("vc-x-ambient-aniso", mu, trans, alpha, ulp=4)
+
+
+def test_ms_view_and_ambient_aniso_change_the_image_as_stated():
+    """Whole pixels, C and Warp: the view weight brightens the clouds and never darkens a pixel (weight >= 1 on the
+    octaves only); with the ambient's anisotropy a view from above is darker than without, one from below brighter;
+    C and Warp agree on sampled pixels with both terms on."""
+    from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
+
+    phys = dict(units="physical", phase="mie", lighting="sky", mie_delta=1.0, ms_depth=1.5, ms_thin=0.3,
+                aerial_km=0.0, powder=False, jitter="none")
+    rng = np.random.default_rng(2)
+    xs, ys = rng.integers(0, SMALL["width"], 200), rng.integers(0, SMALL["height"], 200)
+
+    def px(**kw):
+        t = CloudscapeTechnique(small(**{**phys, **kw}))
+        return render_pixels_warp(t, xs, ys), t
+
+    below = dict(camera_altitude_km=0.3, camera_pitch_deg=25.0)
+    above = dict(camera_altitude_km=6.0, camera_pitch_deg=-35.0)
+    base_b, _ = px(**below)
+    view_b, _ = px(ms_view=3.0, ms_view_trans=0.3, **below)
+    assert np.all(view_b >= base_b - 1e-6) and np.mean(view_b.sum(1) > base_b.sum(1) + 1e-4) > 0.1
+    aniso_b, _ = px(ambient_aniso=0.6, **below)
+    base_a, _ = px(**above)
+    aniso_a, _ = px(ambient_aniso=0.6, **above)
+    cloudy_b = np.any(np.abs(aniso_b - base_b) > 1e-5, axis=1)
+    cloudy_a = np.any(np.abs(aniso_a - base_a) > 1e-5, axis=1)
+    assert cloudy_a.mean() > 0.1 and cloudy_b.mean() > 0.1
+    assert aniso_a[cloudy_a].sum() < base_a[cloudy_a].sum() and aniso_b[cloudy_b].sum() > base_b[cloudy_b].sum()
+    for view in (below, above):
+        w, t = px(ms_view=3.0, ms_view_trans=0.3, ambient_aniso=0.6, **view)
+        c = render_pixels_c(t.settings, t.textures, xs, ys)
+        assert np.all(np.isfinite(w))
+        np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
+
+
+def test_ms_view_and_ambient_aniso_bad_values_are_refused():
+    with pytest.raises(ValueError, match="ms_view"):
+        small(ms_view=-1.0)
+    with pytest.raises(ValueError, match="ms_view_trans"):
+        small(ms_view_trans=0.0)
+    with pytest.raises(ValueError, match="ambient_aniso"):
+        small(ambient_aniso=1.5)
+
+
+def test_the_reference_ignores_the_view_terms_and_its_cache_key_too():
+    """The path tracer does not read ms_view, ms_view_trans, ambient_aniso (real-time only): the same image with and
+    without them, so they do not key its cache (bench_reference.NOT_IN_REFERENCE_KEY) and the references cached
+    before them stay valid; a setting it reads (the sun) changes the key."""
+    from dataclasses import replace
+
+    from pywarp.clouds.bench_reference import _reference_key
+    from pywarp.clouds.reference import ReferenceRenderer
+
+    s = small(phase="mie", units="physical", lighting="sky", width=12, height=8)
+    t = replace(s, ms_view=3.0, ms_view_trans=0.3, ambient_aniso=0.6)
+    a = ReferenceRenderer(s, spp=2, seed=3).render(encode=False)
+    b = ReferenceRenderer(t, spp=2, seed=3).render(encode=False)
+    np.testing.assert_array_equal(a, b)
+    assert _reference_key(s, "v", 2, 0) == _reference_key(t, "v", 2, 0)
+    assert _reference_key(s, "v", 2, 0) != _reference_key(replace(s, sun_elevation_deg=10.0), "v", 2, 0)

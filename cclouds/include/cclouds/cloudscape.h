@@ -229,6 +229,11 @@ typedef struct ccl_cloudscape_params {
                                    scattering grows with the optical depth d towards the sun, km-free scale > 0;
                                    0 = off, gain 1 (default 0) */
     float ms_thin;              /* the gain at d = 0, in [0, 1] (default 0) */
+    float ms_view;              /* octaves i >= 1 x ccl_cloudscape_ms_view(T, ms_view, ms_view_trans), T the view
+                                   transmittance in front of the sample, in [0, 1000] (default 0: off) */
+    float ms_view_trans;        /* T0 of ccl_cloudscape_ms_view, in [0.001, 1] (default 1) */
+    float ambient_aniso;        /* the ambient x ccl_cloudscape_ambient_aniso(mu, T, ambient_aniso), mu the cosine of
+                                   the view direction with the local up, in [0, 1] (default 0: off) */
     float mie_delta;            /* sky mode with the Mie phase: the share f in [0, 1] of the forward HG lobe that
                                    the lighting treats as unscattered (delta scaling, ccl_cloudscape_mie_delta_scale /
                                    _phase; default 0: off) */
@@ -417,6 +422,21 @@ CCL_API float ccl_cloudscape_energy(const ccl_cloudscape_params *p, float d, flo
  * d) scatters the sun once, and the octaves then add light the path-traced reference does not have (thin cloud at
  * 1.2-2.2 times the reference's energy). d >= 0, output in [t, 1]. */
 CCL_API float ccl_cloudscape_ms_gain(float d, float depth, float thin);
+/* The weight of the multiple-scattering octaves (i >= 1) by the depth into the cloud along the view (vc-x-ms-view;
+ * beyond the text):  weight = 1 + k max(1 - T / T0, 0),  T in [0, 1] the view transmittance in front of the sample,
+ * k >= 0, T0 in (0, 1]; k = 0: 1. Why: light that has gone deep into a thick cloud is trapped there and scattered
+ * many times; the octaves, functions of the optical depth towards the sun only, leave thick cloud at 0.7-0.9 of the
+ * path-traced energy. A thin cloud (tau < 3, with delta scaling T > 0.2 along its whole ray) keeps T above T0 and is
+ * left as it is. Output in [1, 1 + k]. */
+CCL_API float ccl_cloudscape_ms_view(float trans, float k, float t0);
+/* The weight of the ambient by the view direction (vc-x-ambient-aniso; beyond the text):
+ *   weight = 1 + alpha mu T,  mu in [-1, 1] the cosine of the view direction with the local up, T in [0, 1] the view
+ *   transmittance in front of the sample, alpha in [0, 1]; alpha = 0: 1.
+ * Why: the ambient is the sky's light from above (mostly), and a forward-scattering cloud sends it on downwards: seen
+ * from below (mu > 0) a thin cloud shows more of it, seen from above (mu < 0) less (thin cloud from above at 1.2-1.5
+ * of the reference's energy with an isotropic ambient). Deeper in the cloud (T small) the light has been scattered
+ * many times and is isotropic. Output in [1 - alpha, 1 + alpha]. */
+CCL_API float ccl_cloudscape_ambient_aniso(float mu, float trans, float alpha);
 CCL_API float ccl_cloudscape_mie_delta_scale(float diameter_um, float f);
 CCL_API float ccl_cloudscape_mie_delta_phase(float cos_theta, float diameter_um, float f);
 
