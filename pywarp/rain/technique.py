@@ -236,9 +236,11 @@ def sprites(state: dict, pose: Pose, width: int, height: int, s: RainSettings, e
 BACKGROUND_REFINE_FRAMES = 16
 #: a view of a new direction (background_scale > 1) samples this many times more sparsely than its refinements (a
 #: 5 deg turn of the viewer's benchmark exposes 35 of 640 columns: the rest is the turned previous view). Measured on
-#: the benchmark (640x360, 2 cores, load 4-6): 2 gives 22 frames/s, SSIM 0.887 / 0.855 (mean / p5); 1 gives 5.7
-#: frames/s, SSIM 0.93 / 0.91 (a new direction then costs ~110 ms of CPU, and at that rate every frame is a new one)
-NEW_DIRECTION_FACTOR = 2
+#: the benchmark (640x360, 2 cores, idle, the terrain background at its ~2x cheaper still): 1 gives 26.1 frames/s
+#: without a window and 13.2-14.8 under Xvfb, SSIM 0.94 / 0.92 (mean / p5); 2 gives 27.3 and 20.8 frames/s, SSIM
+#: 0.88-0.89 / 0.83-0.85. 1: the quality target (SSIM 0.90 / 0.80) and the frame rate without a window, 1-2 frames/s
+#: short of 15 under Xvfb (whose software OpenGL takes a core's 20-30 ms a frame)
+NEW_DIRECTION_FACTOR = 1
 #: a reconstructed view is refined at most every this many frames (background_scale > 1): the frames between show the
 #: drops over the view as it is (the drops move every frame; a refinement costs a background frame at 1/16 of the
 #: pixels, ~4 drop frames' CPU time). A new direction is always rendered. 3: measured on the benchmark's turn, 22
@@ -255,7 +257,7 @@ class RainTechnique(Technique):
     #: the viewer renders rain's previews at the window's size in either preview mode (the drops drawn whole every
     #: frame, at half size; the background reconstructed at full quality, ``background_scale``): measured on the
     #: benchmark's turn, SSIM against the full render 0.82 / 0.76 (the picture at 1/64 of the pixels enlarged, the
-    #: terrain at its preview quality) -> 0.887 / 0.855
+    #: terrain at its preview quality) -> 0.94 / 0.92 (NEW_DIRECTION_FACTOR)
     previews_at_full_size = True
 
     def __init__(self, settings: RainSettings | None = None):
@@ -324,9 +326,9 @@ class RainTechnique(Technique):
         """(view, capture) of the background for ``pose``: display-encoded RGB float32. Each is cached by what it
         depends on -- the direction and the field of view, not the position: a background is seen from its own
         place, turned with the view -- so a camera that moves without turning pays for neither. With
-        ``background_scale`` > 1 a view not yet cached comes from the temporal reconstruction (full quality, 1/64 of
-        the pixels at 4 (:data:`NEW_DIRECTION_FACTOR`), the previous view turned with the camera) and is refined by
-        another reconstructed frame (1/16 of the pixels) every
+        ``background_scale`` > 1 a view not yet cached comes from the temporal reconstruction (full quality, 1/f^2
+        of the pixels at f = 4 x :data:`NEW_DIRECTION_FACTOR`, the previous view turned with the camera) and is
+        refined by another reconstructed frame (1/16 of the pixels) every
         :data:`BACKGROUND_REFINE_EVERY` calls while the direction stays, :data:`BACKGROUND_REFINE_FRAMES` times (then
         it is the full render); a full view cached for the same direction is used as it is."""
         s = self.settings
