@@ -21,6 +21,7 @@ import math
 import numpy as np
 import warp as wp
 
+from ..core.baseline import probe_source
 from ..core.runtime import TileLauncher, init
 from ..core.timing import Progress, best_ms, interleaved_ms, machine, median_ms  # noqa: F401  (machine: re-exported)
 
@@ -462,13 +463,7 @@ SPEED_MEASUREMENTS = ("reprojected", "full_same_size", "full")
 #: that pywarp.clouds.cloudscape with CameraPose, before that pywarp.cloudscape). As a program it answers one JSON line
 #: per command (:data:`SPEED_MEASUREMENTS`, then ``quit``) on the original stdout; everything else that writes to
 #: stdout (library notices) is sent to stderr.
-_SPEED_PROBE = r"""
-import dataclasses, json, os, sys, time
-
-if __name__ == "__main__":  # the protocol keeps the real stdout; anything else printed (import notices) goes to stderr
-    proto = os.fdopen(os.dup(1), "w")
-    os.dup2(2, 1)
-
+_SPEED_PROBE = probe_source(r"""
 try:
     from pywarp.clouds.settings import CloudscapeSettings
     from pywarp.clouds.technique import CloudscapeTechnique
@@ -528,25 +523,14 @@ def describe(probe):
             "python_version": sys.version.split()[0], "settings_not_applied": probe.not_applied}
 
 
-if __name__ == "__main__":
-    def send(obj):
-        proto.write(json.dumps(obj) + "\n")
-        proto.flush()
+PROBE_CLASS = SpeedProbe
 
-    try:
-        probe = SpeedProbe(json.loads(sys.argv[1]))
-        send(dict(describe(probe), ready=True))
-        for line in sys.stdin:
-            cmd = line.strip()
-            if cmd == "quit":
-                break
-            if cmd not in ("reprojected", "full", "full_same_size"):
-                raise ValueError("unknown command " + repr(cmd))
-            send({"ms": getattr(probe, cmd)()})
-    except Exception as exc:
-        send({"error": type(exc).__name__ + ": " + str(exc)})
-        raise
-"""
+
+def answer(probe, cmd):
+    if cmd not in ("reprojected", "full", "full_same_size"):
+        raise ValueError("unknown command " + repr(cmd))
+    return {"ms": getattr(probe, cmd)()}
+""")
 
 from ..core.baseline import BaselineError, BaselineProcess  # noqa: E402,F401  (BaselineError: re-exported)
 from ..core.baseline import check_baseline as _check_baseline  # noqa: E402

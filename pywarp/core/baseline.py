@@ -10,6 +10,46 @@ from __future__ import annotations
 BASELINE_ENV_DROP = ("PYTHONPATH", "PYTHONHOME", "PYTHONSTARTUP", "CCLOUDS_LIBRARY", "CCLOUDS_INCLUDE_DIR")
 
 
+#: The start of every probe's source: the protocol keeps the real stdout; anything else printed (import notices) goes
+#: to stderr
+PROBE_HEAD = r"""
+import dataclasses, json, os, sys, time
+
+if __name__ == "__main__":  # the protocol keeps the real stdout; anything else printed (import notices) goes to stderr
+    proto = os.fdopen(os.dup(1), "w")
+    os.dup2(2, 1)
+"""
+
+#: The end of every probe's source: as a program it builds ``PROBE_CLASS(config)``, answers ``describe(probe)`` with
+#: ``ready``, then one JSON line per command (``answer(probe, command)``) until ``quit``; an error is answered as
+#: ``{"error": ...}`` before the program fails
+PROBE_SERVE = r"""
+if __name__ == "__main__":
+    def send(obj):
+        proto.write(json.dumps(obj) + "\n")
+        proto.flush()
+
+    try:
+        probe = PROBE_CLASS(json.loads(sys.argv[1]))
+        send(dict(describe(probe), ready=True))
+        for line in sys.stdin:
+            cmd = line.strip()
+            if cmd == "quit":
+                break
+            send(answer(probe, cmd))
+    except Exception as exc:
+        send({"error": type(exc).__name__ + ": " + str(exc)})
+        raise
+"""
+
+
+def probe_source(body: str) -> str:
+    """A probe's whole source: :data:`PROBE_HEAD`, ``body`` (which defines ``PROBE_CLASS``, ``describe(probe)`` and
+    ``answer(probe, command)``, using only what the measured installations have), :data:`PROBE_SERVE`. Self-contained:
+    the other interpreter runs it with ``-c`` and needs nothing of this module."""
+    return PROBE_HEAD + body + PROBE_SERVE
+
+
 class BaselineError(ValueError):
     """The ``--baseline`` interpreter is missing, cannot import pywarp, or failed during the measurement."""
 

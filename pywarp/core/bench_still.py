@@ -21,6 +21,8 @@ import sys
 
 import numpy as np
 
+from .baseline import probe_source
+
 #: Version of the JSON of :func:`bench_still` (keys are only ever added)
 STILL_SCHEMA = 1
 #: The benchmark's options and their defaults (the issue's still: 640 x 360)
@@ -31,13 +33,7 @@ STILL_DEFAULTS = {"width": 640, "height": 360, "repeat": 3, "workers": None, "ba
 #: has: ``pywarp.core.scenes.scene(name)`` with ``settings``, ``technique``, ``command_defaults``. As a program it
 #: answers one JSON line per command (``still``, then ``quit``) on the original stdout; anything else printed (library
 #: notices) goes to stderr. Each still's image is saved as ``.npy`` in the folder ``out`` of the configuration.
-_STILL_PROBE = r"""
-import dataclasses, json, os, sys, time
-
-if __name__ == "__main__":  # the protocol keeps the real stdout; anything else printed (import notices) goes to stderr
-    proto = os.fdopen(os.dup(1), "w")
-    os.dup2(2, 1)
-
+_STILL_PROBE = probe_source(r"""
 import numpy as np
 from pywarp.core.scenes import scene as _scene
 
@@ -74,25 +70,14 @@ def describe(probe):
             "settings_not_applied": probe.not_applied}
 
 
-if __name__ == "__main__":
-    def send(obj):
-        proto.write(json.dumps(obj) + "\n")
-        proto.flush()
+PROBE_CLASS = StillProbe
 
-    try:
-        probe = StillProbe(json.loads(sys.argv[1]))
-        send(dict(describe(probe), ready=True))
-        for line in sys.stdin:
-            cmd = line.strip()
-            if cmd == "quit":
-                break
-            if cmd != "still":
-                raise ValueError("unknown command " + repr(cmd))
-            send(probe.still())
-    except Exception as exc:
-        send({"error": type(exc).__name__ + ": " + str(exc)})
-        raise
-"""
+
+def answer(probe, cmd):
+    if cmd != "still":
+        raise ValueError("unknown command " + repr(cmd))
+    return probe.still()
+""")
 
 
 def _probe_module() -> dict:
