@@ -214,14 +214,17 @@ int ccl_particles_tap(const float *mask, int mask_size, const float *capture, in
 {
     const float *m;
     int mx, my;
-    float uc, vc;
+    float uc, vc, qx, qy;
     if (!(mask_u >= 0.0f && mask_u < 1.0f && mask_v >= 0.0f && mask_v < 1.0f)) return 0;
     mx = clampi((int)(mask_u * (float)mask_size), 0, mask_size - 1);
     my = clampi((int)(mask_v * (float)mask_size), 0, mask_size - 1);
     m = mask + 4 * ((size_t)my * (size_t)mask_size + (size_t)mx);
     if (!(m[3] > 0.0f && m[2] > 0.0f)) return 0;
-    uc = p_o.x + scale * (m[0] / m[2]);
-    vc = p_o.y - scale * (m[1] / m[2]);
+    qx = m[0] / m[2];
+    qy = m[1] / m[2];
+    if (qx != qx || qy != qy) return 0; /* a NaN exit direction (or 0/0, Inf/Inf): the texel has no ray */
+    uc = p_o.x + scale * qx;
+    vc = p_o.y - scale * qy;
     *out_rgb = fetch(capture, capture_size, uc, vc, filter);
     return 1;
 }

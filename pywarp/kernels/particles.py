@@ -358,10 +358,13 @@ def particles_tap(mask: wp.array(dtype=float), mask_size: int, capture: wp.array
         my = wp.clamp(int(mask_v * float(mask_size)), 0, mask_size - 1)
         m = 4 * (my * mask_size + mx)
         if mask[m + 3] > 0.0 and mask[m + 2] > 0.0:
-            uc = p_o[0] + scale * (mask[m] / mask[m + 2])
-            vc = p_o[1] - scale * (mask[m + 1] / mask[m + 2])
-            rgb = particles_fetch(capture, capture_size, uc, vc, filt)
-            hit = 1
+            qx = mask[m] / mask[m + 2]
+            qy = mask[m + 1] / mask[m + 2]
+            if qx == qx and qy == qy:  # a NaN exit direction (or 0/0, Inf/Inf): the texel has no ray
+                uc = p_o[0] + scale * qx
+                vc = p_o[1] - scale * qy
+                rgb = particles_fetch(capture, capture_size, uc, vc, filt)
+                hit = 1
     return hit, rgb
 
 

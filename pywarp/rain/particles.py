@@ -166,14 +166,16 @@ def particles_streak_np(speed, persistence_s, radius):
 
 def pack_mask(mask: np.ndarray) -> np.ndarray:
     """The refraction mask (n, n, 4) as the frame kernel reads it: per texel (x / z, y / z) in float32 (the quotients
-    the shader forms), NaN where the texel is outside the drop or has no ray (a <= 0 or z <= 0), stored COLUMN-major
+    the shader forms), NaN where the texel is outside the drop or has no ray (a <= 0, z <= 0, or a NaN
+    quotient), stored COLUMN-major
     (texel (row my, column mx) at 2 (mx n + my)): a streak's taps walk down one mask column, so they share cache lines
     (the row-major RGBA mask made every tap a cache miss). Half the memory, no division per tap, the same values."""
     m = np.asarray(mask, np.float32)
     ok = (m[..., 3] > 0) & (m[..., 2] > 0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        q = np.stack([np.where(ok, m[..., 0] / m[..., 2], np.float32(np.nan)),
-                      np.where(ok, m[..., 1] / m[..., 2], np.float32(np.nan))], -1).astype(np.float32)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        qx, qy = m[..., 0] / m[..., 2], m[..., 1] / m[..., 2]
+    ok &= ~(np.isnan(qx) | np.isnan(qy))  # a NaN exit direction: no ray (as ccl_particles_tap)
+    q = np.stack([np.where(ok, qx, np.float32(np.nan)), np.where(ok, qy, np.float32(np.nan))], -1).astype(np.float32)
     return np.ascontiguousarray(q.transpose(1, 0, 2)).reshape(-1)
 
 

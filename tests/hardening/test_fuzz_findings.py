@@ -562,14 +562,13 @@ TAP_FAR = [((0.5, 0.5, 2e-33, 0.5), (0, -1)),         # the finding's texel: P_c
 def test_particles_tap_reads_the_edge_texel_for_huge_and_infinite_capture_coordinates(filt):
     """Before: the capture coordinate times the size was converted to int before the clamp, undefined for |u size|
     >= 2^31 or +-Inf; in practice the far right edge read column 0 (INT_MIN clamped) and an infinite coordinate gave
-    NaN (Inf - Inf weight). Now any non-NaN P_c beyond the capture reads its edge texel, a NaN P_c gives NaN; C and
-    Warp alike."""
+    NaN (Inf - Inf weight). Now any non-NaN P_c beyond the capture reads its edge texel; C and Warp alike (a NaN
+    exit direction has no ray: the next test)."""
     size = 4
     cap = (np.arange(size * size * 3, dtype=np.float32).reshape(size, size, 3) + 1.0) / 64.0
-    cases = TAP_FAR + [((float("inf"), 0.0, float("inf"), 1.0), None)]  # x / z = NaN
-    for texel, rc in cases:
+    for texel, rc in TAP_FAR:
         mask = np.float32(texel)
-        want = np.full(3, np.nan, np.float32) if rc is None else cap[rc]
+        want = cap[rc]
         rgb = ffi().new("ccl_vec3 *")
         p_o = ffi().new("ccl_vec2 *")
         p_o.x, p_o.y = 0.5, 0.5
@@ -584,6 +583,58 @@ def test_particles_tap_reads_the_edge_texel_for_huge_and_infinite_capture_coordi
         assert hit == 1 and hits.numpy()[0] == 1
         for got in (np.float32([rgb.x, rgb.y, rgb.z]), out.numpy()[0]):
             np.testing.assert_array_equal(got, want, err_msg=str(texel))
+
+
+@pytest.mark.parametrize("filt", [PK.NEAREST, PK.LINEAR], ids=["nearest", "linear"])
+def test_particles_tap_a_nan_exit_direction_has_no_ray(filt):
+    """Fuzz finding (fuzz_optics, composite: pixel NaN): a mask texel inside the drop (a > 0, z > 0) with x or y
+    NaN, or x / z = Inf / Inf, made the tap fetch the capture at a NaN point. Now such a texel has no ray -- the tap
+    misses, as outside the drop -- in C and Warp, and the packed mask marks it (NaN). Before, the tap hit with NaN
+    rgb (this test fails on that library)."""
+    from pywarp.rain.particles import pack_mask
+
+    size = 4
+    cap = (np.arange(size * size * 3, dtype=np.float32).reshape(size, size, 3) + 1.0) / 64.0
+    for texel in [(np.nan, 0.5, 0.5, 1.0), (0.5, np.nan, 0.5, 1.0), (float("inf"), 0.0, float("inf"), 1.0),
+                  (np.nan, np.nan, 1.0, 1.0)]:
+        mask = np.float32(texel)
+        rgb = ffi().new("ccl_vec3 *")
+        p_o = ffi().new("ccl_vec2 *")
+        p_o.x, p_o.y = 0.5, 0.5
+        hit = lib().ccl_particles_tap(ffi().from_buffer("float[]", mask), 1,
+                                      ffi().from_buffer("float[]", np.ascontiguousarray(cap.ravel())), size,
+                                      0.5, 0.5, p_o[0], 1.0, filt, rgb)
+        hits = wp.zeros(1, dtype=int, device="cpu")
+        wp.launch(_particles_tap_kernel, dim=1, inputs=[wp.array(mask, device="cpu"),
+                                                         wp.array(cap.ravel(), device="cpu"), size, filt],
+                  outputs=[wp.zeros(1, dtype=wp.vec3, device="cpu"), hits], device="cpu")
+        assert hit == 0 and hits.numpy()[0] == 0, str(texel)
+        assert np.isnan(pack_mask(mask.reshape(1, 1, 4))).all(), str(texel)
+
+
+def test_particles_composite_of_the_finding_is_in_the_unit_range():
+    """The fuzz finding's composite, replayed: two sprites over a 6 x 5 background, a 4 x 4 mask with NaN exit
+    directions inside the drop, a 4 x 4 capture; every pixel in [0, 1]."""
+    w, h = 6, 5
+    rng = np.random.default_rng(7)
+    bg = rng.uniform(0, 1, (h, w, 3)).astype(np.float32)
+    cap = rng.uniform(0, 1, (4, 4, 3)).astype(np.float32)
+    mask = np.tile(np.float32([0.396, 0.396, 0.698, 1.0]), (4, 4, 1))
+    mask[1, 1] = (-0.99994, np.nan, np.nan, 1.0)
+    mask[2, 0] = (0.992, np.nan, 2.35e-38, 1.0)
+    mask[1, 2] = (np.nan, np.nan, np.nan, 1.0)
+    sp = ffi().new("ccl_particles_sprite[2]")
+    for j, (cx, cy, r, hh, tap, depth) in enumerate([(4.98, 4.28, 2.82, 8.73, 0.112, 7.0),
+                                                      (4.98, 4.28, 0.1, 0.1, 0.0, 0.1)]):
+        sp[j].cx, sp[j].cy, sp[j].radius, sp[j].half_height, sp[j].tap_offset, sp[j].depth = cx, cy, r, hh, tap, depth
+    out = np.zeros((h, w, 3), np.float32)
+    buf = lambda a: ffi().from_buffer("float[]", np.ascontiguousarray(a.ravel()))  # noqa: E731
+    for streaks in (PK.DROPS, PK.STREAKS_THESIS, PK.STREAKS_PHYSICAL):
+        for filt in (PK.NEAREST, PK.LINEAR):
+            st = lib().ccl_particles_composite(buf(bg), w, h, sp, 2, buf(mask), 4, buf(cap), 4, 0.1, 0.015625, filt,
+                                               streaks, 0.996, ffi().from_buffer("float[]", out))
+            assert st == 0
+            assert np.all(np.isfinite(out)) and out.min() >= 0.0 and out.max() <= 1.0
 
 
 # --- issue 31, N6: the metaball field for radii whose square leaves the floats --------------------------------------

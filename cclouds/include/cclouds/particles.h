@@ -157,7 +157,8 @@ typedef struct {
 } ccl_particles_sprite;
 
 /* The refraction colour of one drop tap (rr-code-5.2.3's body, its defects fixed): mask texel (nearest) at
- * (mask_u, mask_v) in [0, 1) (outside: no drop); if inside (a > 0) and the ray exists (z > 0), P_c = P_o + scale
+ * (mask_u, mask_v) in [0, 1) (outside: no drop); if inside (a > 0) and the ray exists (z > 0, x / z and y / z
+ * not NaN: a texel with a NaN exit direction has no ray), P_c = P_o + scale
  * (x, y) / z with scale = 0.5 / tan(fov_capture/2) (so that a drop in the centre of the view samples its refracted
  * direction exactly; the mask's y points up, capture v down), the capture fetched at P_c (nearest or bilinear,
  * clamped to the edge: any finite or infinite P_c beyond the capture reads its edge texels; a NaN P_c gives NaN
