@@ -369,53 +369,76 @@ def particles_tap(mask: wp.array(dtype=float), mask_size: int, capture: wp.array
 
 
 @wp.func
+def _sprite_taps(sprites: wp.array2d(dtype=float), j: int, px: float, py: float, streaks: int):
+    """Where the taps of sprite j lie at pixel centre (px, py) (the geometry of the loop body of
+    ``ccl_particles_shade_pixel``): (lo, hi, mu, w, cover), taps i = lo..hi at mask (mu, :func:`_tap_v`); none (hi <
+    lo) when the pixel misses the sprite. Physical streaks: STREAK_SAMPLES colour samples across the chord of
+    half-length w = h, ``cover`` the streak's coverage of the pixel; otherwise one tap at mask v = w (STREAK_TAPS
+    along the streak with ``streaks`` on) and cover 1."""
+    dx = px - sprites[j, 0]
+    dy = py - sprites[j, 1]
+    radius = sprites[j, 2]
+    lo = int(0)
+    hi = int(-1)
+    mu = float(0.0)
+    w = float(0.0)
+    cover = float(1.0)
+    if streaks == STREAKS_PHYSICAL:
+        if wp.abs(dx) < radius + 0.5 and wp.abs(dy) < sprites[j, 3] + 0.5:
+            alpha, mu_s, hc = particles_streak_cover(sprites[j, 0], sprites[j, 1], radius, sprites[j, 3], px, py)
+            if alpha > 0.0:
+                hi = STREAK_SAMPLES - 1
+                mu = mu_s
+                w = hc
+                cover = alpha
+    elif wp.abs(dx) < radius and wp.abs(dy) < sprites[j, 3]:
+        mu = dx / (2.0 * radius) + 0.5
+        w = dy / (2.0 * sprites[j, 3]) + 0.5
+        hi = 0
+        if streaks != 0:
+            lo = -(STREAK_TAPS // 2)
+            hi = STREAK_TAPS // 2
+    return lo, hi, mu, w, cover
+
+
+@wp.func
+def _tap_v(sprites: wp.array2d(dtype=float), j: int, streaks: int, i: int, w: float) -> float:
+    """Mask v of tap i of :func:`_sprite_taps`."""
+    if streaks == STREAKS_PHYSICAL:
+        return _sample_v(i, w, sprites[j, 2])
+    return w - float(i) * sprites[j, 4]
+
+
+@wp.func
+def _sprite_over(c: wp.vec3, s: wp.vec3, hits: int, streaks: int, cover: float, opacity: float) -> wp.vec3:
+    """The mean colour of a sprite's ``hits`` taps (their sum ``s``) over colour c: with the opacity times the
+    streak's coverage (physical streaks), times the share of taps that hit (``streaks`` on), or the opacity."""
+    if hits == 0:
+        return c
+    a = opacity
+    if streaks == STREAKS_PHYSICAL:
+        a = opacity * cover
+    elif streaks != 0:
+        a = opacity * (float(hits) / float(STREAK_TAPS))
+    return wp.vec3(c[0] + (s[0] / float(hits) - c[0]) * a, c[1] + (s[1] / float(hits) - c[1]) * a,
+                   c[2] + (s[2] / float(hits) - c[2]) * a)
+
+
+@wp.func
 def particles_shade_sprite(c: wp.vec3, sprites: wp.array2d(dtype=float), j: int, mask: wp.array(dtype=float),
                            mask_size: int, capture: wp.array(dtype=float), capture_size: int, px: float, py: float,
                            p_o: wp.vec2, scale: float, filt: int, streaks: int, opacity: float) -> wp.vec3:
     """Sprite j composited over colour c at pixel centre (px, py) (the loop body of ``ccl_particles_shade_pixel``)."""
-    dx = px - sprites[j, 0]
-    dy = py - sprites[j, 1]
-    radius = sprites[j, 2]
-    out = c
-    if streaks == STREAKS_PHYSICAL:
-        if wp.abs(dx) < radius + 0.5 and wp.abs(dy) < sprites[j, 3] + 0.5:
-            alpha, mu, hc = particles_streak_cover(sprites[j, 0], sprites[j, 1], radius, sprites[j, 3], px, py)
-            if alpha > 0.0:
-                s = wp.vec3(0.0, 0.0, 0.0)
-                hits = int(0)
-                for i in range(STREAK_SAMPLES):
-                    h, rgb = particles_tap(mask, mask_size, capture, capture_size, mu, _sample_v(i, hc, radius), p_o,
-                                           scale, filt)
-                    if h != 0:
-                        s = wp.vec3(s[0] + rgb[0], s[1] + rgb[1], s[2] + rgb[2])
-                        hits = hits + 1
-                if hits > 0:
-                    a = opacity * alpha
-                    out = wp.vec3(c[0] + (s[0] / float(hits) - c[0]) * a, c[1] + (s[1] / float(hits) - c[1]) * a,
-                                  c[2] + (s[2] / float(hits) - c[2]) * a)
-    elif wp.abs(dx) < radius and wp.abs(dy) < sprites[j, 3]:
-        mu = dx / (2.0 * radius) + 0.5
-        mv = dy / (2.0 * sprites[j, 3]) + 0.5
-        lo = int(0)
-        hi = int(0)
-        if streaks != 0:
-            lo = -(STREAK_TAPS // 2)
-            hi = STREAK_TAPS // 2
-        s = wp.vec3(0.0, 0.0, 0.0)
-        hits = int(0)
-        for i in range(lo, hi + 1):
-            h, rgb = particles_tap(mask, mask_size, capture, capture_size, mu, mv - float(i) * sprites[j, 4], p_o,
-                                   scale, filt)
-            if h != 0:
-                s = wp.vec3(s[0] + rgb[0], s[1] + rgb[1], s[2] + rgb[2])
-                hits = hits + 1
-        if hits > 0:
-            alpha = opacity
-            if streaks != 0:
-                alpha = opacity * (float(hits) / float(STREAK_TAPS))
-            out = wp.vec3(c[0] + (s[0] / float(hits) - c[0]) * alpha, c[1] + (s[1] / float(hits) - c[1]) * alpha,
-                          c[2] + (s[2] / float(hits) - c[2]) * alpha)
-    return out
+    lo, hi, mu, w, cover = _sprite_taps(sprites, j, px, py, streaks)
+    s = wp.vec3(0.0, 0.0, 0.0)
+    hits = int(0)
+    for i in range(lo, hi + 1):
+        h, rgb = particles_tap(mask, mask_size, capture, capture_size, mu, _tap_v(sprites, j, streaks, i, w), p_o,
+                               scale, filt)
+        if h != 0:
+            s = wp.vec3(s[0] + rgb[0], s[1] + rgb[1], s[2] + rgb[2])
+            hits = hits + 1
+    return _sprite_over(c, s, hits, streaks, cover, opacity)
 
 
 # --- the light-drop model in the compositing pass (rr-A1..rr-A3, rr-CF; the text never implemented it) --------------
@@ -543,53 +566,18 @@ def _shade_sprite_packed(c: wp.vec3, sprites: wp.array2d(dtype=float), j: int, o
                          L: ParticlesLights) -> wp.vec3:
     """:func:`particles_shade_sprite` with :func:`_tap_packed` (the frame kernel's form; the same operations); with
     ``lit`` every hit's colour goes through :func:`_light_tap` (``ccl_particles_shade_pixel_lit``)."""
-    dx = px - sprites[j, 0]
-    dy = py - sprites[j, 1]
-    radius = sprites[j, 2]
-    out = c
-    if streaks == STREAKS_PHYSICAL:
-        if wp.abs(dx) < radius + 0.5 and wp.abs(dy) < sprites[j, 3] + 0.5:
-            alpha, mu, hc = particles_streak_cover(sprites[j, 0], sprites[j, 1], radius, sprites[j, 3], px, py)
-            if alpha > 0.0:
-                s = wp.vec3(0.0, 0.0, 0.0)
-                hits = int(0)
-                for i in range(STREAK_SAMPLES):
-                    h, rgb, t = _tap_packed(offsets, mask_size, capture, capture_size, mu, _sample_v(i, hc, radius),
-                                            p_o, scale, filt)
-                    if h != 0 and lit != 0:
-                        rgb = _light_tap(L, positions[j], normals, t, rgb)
-                    if h != 0:
-                        s = wp.vec3(s[0] + rgb[0], s[1] + rgb[1], s[2] + rgb[2])
-                        hits = hits + 1
-                if hits > 0:
-                    a = opacity * alpha
-                    out = wp.vec3(c[0] + (s[0] / float(hits) - c[0]) * a, c[1] + (s[1] / float(hits) - c[1]) * a,
-                                  c[2] + (s[2] / float(hits) - c[2]) * a)
-    elif wp.abs(dx) < radius and wp.abs(dy) < sprites[j, 3]:
-        mu = dx / (2.0 * radius) + 0.5
-        mv = dy / (2.0 * sprites[j, 3]) + 0.5
-        lo = int(0)
-        hi = int(0)
-        if streaks != 0:
-            lo = -(STREAK_TAPS // 2)
-            hi = STREAK_TAPS // 2
-        s = wp.vec3(0.0, 0.0, 0.0)
-        hits = int(0)
-        for i in range(lo, hi + 1):
-            h, rgb, t = _tap_packed(offsets, mask_size, capture, capture_size, mu, mv - float(i) * sprites[j, 4],
-                                    p_o, scale, filt)
-            if h != 0 and lit != 0:
-                rgb = _light_tap(L, positions[j], normals, t, rgb)
-            if h != 0:
-                s = wp.vec3(s[0] + rgb[0], s[1] + rgb[1], s[2] + rgb[2])
-                hits = hits + 1
-        if hits > 0:
-            alpha = opacity
-            if streaks != 0:
-                alpha = opacity * (float(hits) / float(STREAK_TAPS))
-            out = wp.vec3(c[0] + (s[0] / float(hits) - c[0]) * alpha, c[1] + (s[1] / float(hits) - c[1]) * alpha,
-                          c[2] + (s[2] / float(hits) - c[2]) * alpha)
-    return out
+    lo, hi, mu, w, cover = _sprite_taps(sprites, j, px, py, streaks)
+    s = wp.vec3(0.0, 0.0, 0.0)
+    hits = int(0)
+    for i in range(lo, hi + 1):
+        h, rgb, t = _tap_packed(offsets, mask_size, capture, capture_size, mu, _tap_v(sprites, j, streaks, i, w), p_o,
+                                scale, filt)
+        if h != 0 and lit != 0:
+            rgb = _light_tap(L, positions[j], normals, t, rgb)
+        if h != 0:
+            s = wp.vec3(s[0] + rgb[0], s[1] + rgb[1], s[2] + rgb[2])
+            hits = hits + 1
+    return _sprite_over(c, s, hits, streaks, cover, opacity)
 
 
 @wp.func
