@@ -15,7 +15,7 @@ texts (the scenes' cameras are ``pywarp.kernels.camera``), so they live here, on
   scene of the cloud-genus figures (this one renders with Warp);
 * :func:`run_as_script`: the command line every tutorial has (``--out``, ``--quick``) when it runs as a script;
 * :func:`text_problems` and :func:`checking_legibility`: the text of a figure (titles, axis labels, tick labels, the
-  suptitle, figure texts) inside the figure and not overlapping, checked where the tutorials save their figures.
+  suptitle, figure texts, labels placed in an axes) inside the figure and not overlapping, checked where the tutorials save their figures.
 * :func:`fit_text`: what the tutorials call instead of ``tight_layout`` (or before saving a figure laid out by hand),
   so that their titles and labels pass that check at any size: too-wide text shrunk to :data:`MIN_FONT_PT`, then
   wrapped; the layout corrected where ``tight_layout`` misses an overlap; a figure whose text fits left as it was.
@@ -157,14 +157,18 @@ def run_as_script(main, doc: str, out: str, argv=None) -> list:
 TEXT_SLACK_PX = 2.0
 
 
-def _texts(fig):
-    """(description, Text, its axes or None) of every drawn, non-empty title, axis label, tick label and figure text
-    of ``fig`` (the suptitle is a figure text); the ticks are those the axis draws (inside its view limits)."""
+def _texts(fig, annotations: bool = True):
+    """(description, Text, its axes or None) of every drawn, non-empty title, axis label, tick label, text placed in an
+    axes (``ax.text``, ``ax.annotate``) and figure text of ``fig`` (the suptitle is a figure text); the ticks are those
+    the axis draws (inside its view limits). ``annotations=False``: without the texts placed in an axes (a layout
+    does not move them)."""
     out = [(f"figure text {t.get_text()!r}", t, None) for t in fig.texts]
     for i, ax in enumerate(fig.axes):
         if not ax.get_visible():
             continue
         out += [(f"axes {i} title {t.get_text()!r}", t, ax) for t in (ax.title, ax._left_title, ax._right_title)]
+        if annotations:  # ax.text / ax.annotate labels
+            out += [(f"axes {i} text {t.get_text()!r}", t, ax) for t in ax.texts]
         if not ax.axison:
             continue
         for axis, which in ((ax.xaxis, "x"), (ax.yaxis, "y")):
@@ -183,15 +187,21 @@ def _overlapping(a, b, e):
     return (ox > e) & (oy > e)
 
 
-def _problems(fig, inside: bool = True) -> list[tuple]:
+def _problems(fig, inside: bool = True, annotations: bool = True) -> list[tuple]:
     """The problems :func:`text_problems` describes, as records: ("out", i, box, fig size), ("text", i, j) or
     ("area", i, k) for text i (of the list returned second) sticking out of the figure, overlapping text j, or
-    overlapping the plot area of ``fig.axes[k]``. Returns (records, texts), each text (name, Text, axes, box)."""
+    overlapping the plot area of ``fig.axes[k]``. Returns (records, texts), each text (name, Text, axes, box).
+    ``annotations``: whether the texts placed in an axes count (:func:`fit_text`'s layout leaves them out: moving the
+    axes does not separate two labels inside one)."""
+    from matplotlib.text import Text
+
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     texts = []
-    for name, t, ax in _texts(fig):
-        b = t.get_window_extent(renderer)
+    for name, t, ax in _texts(fig, annotations):
+        b = Text.get_window_extent(t, renderer)  # an annotation's own extent takes in its arrow: the text's only
+        if ax is not None and t in ax.texts and t.get_clip_on() and not b.overlaps(ax.bbox):
+            continue  # clipped by its axes: not drawn
         if b.width > 0 and b.height > 0:
             texts.append((name, t, ax, (b.x0, b.y0, b.x1, b.y1)))
     found = []
@@ -330,7 +340,7 @@ def fit_text(fig, *, tight_layout: bool = False, min_fontsize: float = MIN_FONT_
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     w = fig.bbox.width
-    found, texts = _problems(fig)
+    found, texts = _problems(fig, annotations=False)
     flagged = {rec[1] for rec in found} | {rec[2] for rec in found if rec[0] == "text"}
     grown = []
     for i, (name, t, ax, (x0, y0, x1, y1)) in enumerate(texts):
@@ -370,7 +380,7 @@ def _tight_with_corrections(fig, kwargs) -> bool:
     fig.tight_layout(**kw)
     extra = TEXT_SLACK_PX + 2.0  # beyond the measured overlap: past the check's slack, and a gap one can see
     for k in range(FIT_ROUNDS):
-        found, texts = _problems(fig)
+        found, texts = _problems(fig, annotations=False)
         if not found:
             return k > 0
         w, h = fig.bbox.width, fig.bbox.height

@@ -65,6 +65,37 @@ def test_legibility_check_finds_clipped_and_overlapping_text():
     plt.close(fig)
 
 
+def test_text_problems_checks_the_labels_placed_in_an_axes():
+    """Labels placed with ax.text / ax.annotate count: two that overlap are reported; an annotation's arrow over
+    another label is not (the text's own box counts), nor is a clipped text outside its axes (it is not drawn)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(3, 2), dpi=100)
+    ax.plot([0, 1], [0, 1])
+    ax.set_axis_off()  # no tick labels: only the placed labels are in question
+    ax.annotate("label one", (0.2, 0.2), xytext=(0.1, 0.8), arrowprops=dict(arrowstyle="->"))
+    ax.text(0.6, 0.5, "label two")  # the arrow of "label one" passes nowhere near; apart from it
+    ax.text(5.0, 5.0, "clipped away", clip_on=True)  # outside the view limits: not drawn
+    assert text_problems(fig) == []
+    ax.text(0.62, 0.52, "label three")  # on top of "label two"
+    found = text_problems(fig)
+    assert any("axes 0 text 'label two'" in p and "'label three'" in p for p in found), found
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(3, 2), dpi=100)
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    ax.set_axis_off()
+    ax.text(0.45, 0.5, "a label")
+    # the arrow of this annotation crosses "a label"; its text stands clear of it
+    ax.annotate("far", (0.5, 0.52), xytext=(0.1, 0.15), arrowprops=dict(arrowstyle="-"))
+    assert text_problems(fig) == []
+    plt.close(fig)
+
+
 def test_fit_text_makes_a_crowded_figure_legible_and_leaves_a_legible_one_as_it_was(tmp_path):
     import matplotlib
 

@@ -41,6 +41,9 @@ MODEL = F.FlightModel()
 POINTS = {"A": (0.0, 0.0, -MODEL.length / 2), "B": (0.0, 0.0, MODEL.length / 2), "C": (-MODEL.span / 2, 0.0, 0.0),
           "D": (MODEL.span / 2, 0.0, 0.0), "E": (0.0, 0.0, 0.0)}
 POS = np.array([0.0, 300.0, 0.0])
+#: quick mode's label offsets (points) from each height point: the small image puts A, B, D and E within ~20 px of
+#: each other, so the letters stand apart on leader lines (nose A below, tail B above right, wing tips outwards)
+QUICK_LABEL_OFFSETS = {"A": (-6, -16), "B": (10, 14), "C": (12, -10), "D": (-14, 12), "E": (-2, 17)}
 
 
 def panel(nose: float, wing: float, width: int, height: int):
@@ -73,12 +76,20 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     for ax, (title, nose, wing) in zip(axes, cases):
         img, pts, pitch, roll = panel(nose, wing, w, h)
         ax.imshow(img)
+        heights = ""
         for name, (px, py, alt) in pts.items():
-            ax.plot(px, py, "o", ms=6, mfc="yellow", mec="black")
-            ax.annotate(f"{name}  {alt - POS[1]:+.1f} m", (px, py), xytext=(6, -8), textcoords="offset points",
-                        fontsize=8, color="black", bbox=dict(boxstyle="round,pad=0.15", fc="white", alpha=0.75))
+            ax.plot(px, py, "o", ms=4 if quick else 6, mfc="yellow", mec="black")
+            if quick:  # the points lie a few pixels apart: each letter on a leader line, the heights in the caption
+                ax.annotate(name, (px, py), xytext=QUICK_LABEL_OFFSETS[name], textcoords="offset points", fontsize=7,
+                            ha="center", va="center", bbox=dict(boxstyle="round,pad=0.1", fc="white", alpha=0.8),
+                            arrowprops=dict(arrowstyle="-", lw=0.6, color="black", shrinkA=0, shrinkB=2))
+                heights += f", {name} {alt - POS[1]:+.1f}"
+            else:
+                ax.annotate(f"{name}  {alt - POS[1]:+.1f} m", (px, py), xytext=(6, -8), textcoords="offset points",
+                            fontsize=8, color="black", bbox=dict(boxstyle="round,pad=0.15", fc="white", alpha=0.75))
         ax.set_title(title, fontsize=9)
-        ax.set_xlabel(f"pitch = atan2(h_A - h_B, {MODEL.length:g}) = {math.degrees(pitch):.1f} deg,  "
+        ax.set_xlabel((f"heights (m): {heights[2:]};  " if quick else "")
+                      + f"pitch = atan2(h_A - h_B, {MODEL.length:g}) = {math.degrees(pitch):.1f} deg,  "
                       f"roll = atan2(h_C - h_D, {MODEL.span:g}) = {math.degrees(roll):.1f} deg", fontsize=8)
         ax.set_xticks([])
         ax.set_yticks([])
