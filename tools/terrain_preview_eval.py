@@ -4,7 +4,7 @@
     python tools/terrain_preview_eval.py [--frames 60 --first 18 --every 6] [--dump DIR] [--policy NAME=JSON ...]
 
 The motion is the viewer benchmark's (``W`` held: walking along the view at the controls' speed, time playing at the
-viewer's 20x) in fixed steps of 1/30 s, so that it does not depend on the machine's speed. The motion starts from the
+viewer's 20x) in fixed steps of 1/30 s (``--fps``: another rate, e.g. the benchmark's on a loaded machine), so that it does not depend on the machine's speed. The motion starts from the
 full render of its first pose (the viewer's refined frame before the keys are pressed). A policy is either
 ``{"scaled": [w, h]}`` -- the preview settings at w x h, enlarged bilinearly to 640 x 360 as the window shows it --
 or ``{"factor": f, "depth": true, "water": true, "blend": b, "reject": r, "cubic": true}`` -- the temporal
@@ -40,7 +40,7 @@ DT = 1.0 / 30.0
 TIME_SCALE = 20.0
 
 
-def motion(base, frames: int) -> list:
+def motion(base, frames: int, dt: float = DT) -> list:
     """The settings of frames 0..frames: the controls' step with ``W`` held, time advancing at the viewer's rate."""
     from pywarp.terrain.controls import TerrainControls
     from pywarp.viewer.controls import Input
@@ -49,8 +49,8 @@ def motion(base, frames: int) -> list:
     s = base
     out = [s]
     for _ in range(frames):
-        step = ctl.step(s, Input(dt=DT, held=frozenset({"W"})))
-        s = dataclasses.replace(s, **step.changes, time_s=s.time_s + DT * TIME_SCALE)
+        step = ctl.step(s, Input(dt=dt, held=frozenset({"W"})))
+        s = dataclasses.replace(s, **step.changes, time_s=s.time_s + dt * TIME_SCALE)
         out.append(s)
     return out
 
@@ -61,6 +61,7 @@ def main() -> int:
     ap.add_argument("--first", type=int, default=18)
     ap.add_argument("--every", type=int, default=6)
     ap.add_argument("--dump", default=None)
+    ap.add_argument("--fps", type=float, default=30.0, help="frames per second of the motion (its step)")
     ap.add_argument("--verbose", action="store_true", help="print each compared frame's SSIM")
     ap.add_argument("--policy", action="append", default=[], metavar="NAME=JSON")
     a = ap.parse_args()
@@ -82,7 +83,9 @@ def main() -> int:
     from pywarp.viewer.session import displayed, luminance, technique_camera
 
     base = TerrainSettings(width=W, height=H)
-    states = motion(base, a.frames)
+    if not a.fps > 0:
+        ap.error("--fps must be > 0")
+    states = motion(base, a.frames, 1.0 / a.fps)
     full = TerrainTechnique(base)
     refs: dict[int, np.ndarray] = {}
 

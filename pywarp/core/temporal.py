@@ -30,8 +30,7 @@ textured surface: it lets through what the cross happens to span and clips detai
 
 * the point's distance from the previous eye must agree with the history's depths there (:data:`DEPTH_REJECT`), else
   the point was hidden (a disocclusion) -- tried for the pixel's own depth and then each of the four fresh pixels'
-  around (at a silhouette the pixel may lie on either side); on a smooth surface the point is moved along the ray to
-  the history's own distance (the interpolated depth between fresh pixels is only approximate);
+  around (at a silhouette the pixel may lie on either side);
 * a kept history is sampled with Catmull-Rom (:data:`CUBIC_HISTORY`; bilinear resampling blurs it further every
   frame), from the history pixels of that surface only at an occluder's edge, and not mixed with the interpolation
   (:data:`DEPTH_BLEND`);
@@ -63,6 +62,11 @@ DEPTH_BLEND = 0.0
 #: 0.875 / 0.876 / 0.877 on the terrain's walk (the depths interpolated between fresh pixels at a grazing angle are
 #: ~10-20 % off); a wall 2 units in front of ground 3-5 away (tests) is still told apart
 DEPTH_REJECT = 1.5
+#: with depth: a kept history enlarged since its pixels were rendered (walking towards the ground) is worth less
+#: than this frame's interpolation once its sharpness (1 when rendered, divided by the enlargement of every frame
+#: since) falls to 1/f; from SHARPNESS_MIX / f down to 1/f the interpolation is mixed in linearly. 2: measured on
+#: the terrain's walk against a loaded machine's rate (tools/terrain_preview_eval.py --fps 14)
+SHARPNESS_MIX = wp.constant(2.0)
 #: with depth: the history sampled with Catmull-Rom (Karis 2014; clamped into its four nearest pixels' box, no
 #: ringing) rather than bilinearly, which blurs it further every frame: SSIM 0.854 against 0.825 on the terrain's walk
 CUBIC_HISTORY = True
@@ -238,8 +242,11 @@ def history_candidate(x: int, y: int, tc: float, d: wp.vec3, g: wp.mat33, eye: w
                       height: int) -> wp.vec4:
     """Whether the previous picture saw the point at distance ``tc`` along window pixel (x, y)'s unit ray ``d``
     (``tc`` <= 0: the far field, seen where the history's depth is far too): (px, py, t, 1) with the point's pixel
-    in the previous picture and its distance refined onto the history's surface -- the point of the ray at the
-    history's distance from the previous eye, where that is within ``reject`` too -- else (.., .., .., 0)."""
+    in the previous picture, where its distance from the previous eye lies within ``reject`` of the range of the
+    history's depths at the four pixels around it (which pixels agree, :func:`sample_surface` picks), else
+    (.., .., .., 0). (Moving the point along the ray onto the history's own depth measured worse: SSIM 0.883
+    against 0.890 on the terrain's walk -- the history's depths between fresh pixels are estimates, and the error
+    fed back into the next frame's history.)"""
     no = wp.vec4(0.0, 0.0, tc, 0.0)
     q = g * wp.vec3(float(x), float(y), 1.0)
     if tc > 0.0:
@@ -254,7 +261,6 @@ def history_candidate(x: int, y: int, tc: float, d: wp.vec3, g: wp.mat33, eye: w
         if hist_depth[wp.clamp(int(py + 0.5), 0, height - 1), wp.clamp(int(px + 0.5), 0, width - 1)] <= 0.0:
             return wp.vec4(px, py, tc, 1.0)
         return no
-    # the history's depths at the four pixels around (px, py): the point must lie within ``reject`` of their range
     cx = wp.clamp(px, 0.0, float(width - 1))
     cy = wp.clamp(py, 0.0, float(height - 1))
     x0 = wp.max(wp.min(int(cx), width - 2), 0)
@@ -273,19 +279,6 @@ def history_candidate(x: int, y: int, tc: float, d: wp.vec3, g: wp.mat33, eye: w
     dist = wp.length(e + d * tc)  # the point's distance from the previous eye
     if dist * reject < lo or dist > hi * reject:  # outside the range the history saw there
         return no
-    if h00 > 0.0 and h10 > 0.0 and h01 > 0.0 and h11 > 0.0 and hi <= lo * DEPTH_SMOOTH:
-        # a smooth surface: the point of this ray at the history's (bilinear) distance from the previous eye
-        ta = wp.clamp(cx - float(x0), 0.0, 1.0)
-        tb = wp.clamp(cy - float(y0), 0.0, 1.0)
-        hd = (h00 * (1.0 - ta) + h10 * ta) * (1.0 - tb) + (h01 * (1.0 - ta) + h11 * ta) * tb
-        bb = wp.dot(d, e)
-        disc = bb * bb - wp.dot(e, e) + hd * hd  # |e + d s| = hd
-        if disc >= 0.0:
-            s = -bb + wp.sqrt(disc)
-            if s > 0.0 and wp.max(s, tc) <= reject * wp.min(s, tc):
-                q2 = project_point(eye + d * s, prev_view_proj, width, height)
-                if q2[2] > 0.0:
-                    return wp.vec4(q2[0] / q2[2], q2[1] / q2[2], s, 1.0)
     return wp.vec4(px, py, tc, 1.0)
 
 
@@ -296,7 +289,8 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
                         eye: wp.vec3, prev_view_proj: wp.mat44, hist_depth: wp.array(dtype=float, ndim=2),
                         reject: float, prev_eye: wp.vec3, blend: float, cubic: int,
                         changing: wp.array(dtype=wp.uint8, ndim=2), has_changing: int,
-                        clamp_blend: float) -> tuple[wp.vec3, float]:
+                        clamp_blend: float, hist_res: wp.array(dtype=float, ndim=2),
+                        enlarge: wp.array(dtype=float, ndim=2)) -> tuple[wp.vec3, float, float]:
     """One pixel of the window's picture (see the module docstring) and the depth it shows (-1: far field): with
     ``has_depth`` the history is found through the depth of the nearest fresh pixel (``depth[j, i]``, distance along
     the ray; < 0: far field); with ``reject`` > 0 too (the history has its depth, ``hist_depth``) the history is kept
@@ -312,7 +306,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
         t_own = -1.0
         if has_depth != 0:
             t_own = depth[dy // f, dx // f]
-        return c, t_own
+        return c, t_own, 1.0
     # this pixel in the fresh grid: bilinear weights, and the nearest fresh pixel (the centre of the clamp's cross)
     u = wp.clamp(float(dx) / float(f), 0.0, float(lw - 1))
     v = wp.clamp(float(dy) / float(f), 0.0, float(lh - 1))
@@ -344,7 +338,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
         if tlo > 0.0 and thi <= tlo * DEPTH_SMOOTH:
             t = (t00 * (1.0 - a) + t10 * a) * (1.0 - b) + (t01 * (1.0 - a) + t11 * a) * b
     if has_hist == 0:
-        return spatial, t
+        return spatial, t, 1.0 / float(f)
     steady = int(1)  # the nearest fresh pixel shows a surface whose colour only the motion changes
     if has_changing != 0:
         if changing[cj, ci] != wp.uint8(0):
@@ -377,19 +371,28 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
                     else:
                         hs = vec4_of(sample_history(hist, found[0], found[1], width, height, cubic), 1.0)
         if hs[3] != 0.0:
+            # the history's sharpness at the point (1: rendered there; 1/f: the interpolation's), lost as the point
+            # comes nearer (its picture enlarged by the previous distance over this one); below SHARPNESS_MIX / f the
+            # interpolation of this frame's fresh pixels takes over, wholly at 1/f
+            rh = hist_res[wp.clamp(int(found[1] + 0.5), 0, height - 1), wp.clamp(int(found[0] + 0.5), 0, width - 1)]
+            grow = enlarge[cj, ci]  # the fresh cell's enlargement; else the distances' ratio (size ~ 1/distance)
+            if grow <= 0.0:
+                grow = wp.length(eye - prev_eye + d * tk) / wp.max(tk, 1.0e-6)
+            res = wp.min(1.0, rh / wp.max(grow, 1.0e-6))
+            w = wp.max(wp.clamp((SHARPNESS_MIX - res * float(f)) / (SHARPNESS_MIX - 1.0), 0.0, 1.0), blend)
             h = wp.vec3(hs[0], hs[1], hs[2])
-            h = h + (spatial - h) * blend
-            return h, tk
-        return spatial, t
+            h = h + (spatial - h) * w
+            return h, tk, res + (1.0 / float(f) - res) * w
+        return spatial, t, 1.0 / float(f)
     q = g * wp.vec3(float(x), float(y), 1.0)
     if has_depth != 0 and t > 0.0:
         q = depth_reprojection(x, y, t, width, height, inv_view_proj_rot, eye, prev_view_proj)
     if q[2] <= 0.0:  # the point was behind the previous camera
-        return spatial, t
+        return spatial, t, 1.0 / float(f)
     px = q[0] / q[2]
     py = q[1] / q[2]
     if px < -0.5 or py < -0.5 or px > float(width) - 0.5 or py > float(height) - 0.5:  # off the previous picture
-        return spatial, t
+        return spatial, t, 1.0 / float(f)
     h = sample_history(hist, px, py, width, height, cubic)
     if clamp != 0:
         xa = wp.max(ci - 1, 0)
@@ -405,7 +408,45 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
         hi = wp.max(wp.max(wp.max(s1, s3), wp.max(s4, s5)), s7)
         h = wp.min(wp.max(h, lo), hi)
         h = h + (spatial - h) * clamp_blend
-    return h, t
+        return h, t, 1.0 / float(f)
+    # unclamped (a still view): the history as it is, and its sharpness with it
+    return h, t, hist_res[wp.clamp(int(py + 0.5), 0, height - 1), wp.clamp(int(px + 0.5), 0, width - 1)]
+
+
+@wp.kernel
+def enlargement_kernel(row0: int, depth: wp.array(dtype=float, ndim=2), f: int, ox: int, oy: int, width: int,
+                       height: int, inv_view_proj_rot: wp.mat44, eye: wp.vec3, prev_view_proj: wp.mat44,
+                       out: wp.array(dtype=float, ndim=2)):
+    """How much the picture of each fresh pixel's surface has been enlarged since the previous frame (linear: the
+    square root of f^2 over the area its cell -- it and its right and lower neighbours -- covered in the previous
+    picture); -1 where the three do not lie on one smooth surface in front of both cameras (an edge, the sky)."""
+    i, j = wp.tid()
+    jj = row0 + i
+    lh = depth.shape[0]
+    lw = depth.shape[1]
+    ja = wp.min(jj, lh - 2)
+    ia = wp.min(j, lw - 2)
+    t0 = depth[ja, ia]
+    t1 = depth[ja, ia + 1]
+    t2 = depth[ja + 1, ia]
+    lo = wp.min(wp.min(t0, t1), t2)
+    hi = wp.max(wp.max(t0, t1), t2)
+    m = float(-1.0)
+    if lo > 0.0 and hi <= lo * DEPTH_SMOOTH:
+        x0 = f * ia + ox
+        y0 = f * ja + oy
+        q0 = depth_reprojection(x0, y0, t0, width, height, inv_view_proj_rot, eye, prev_view_proj)
+        q1 = depth_reprojection(x0 + f, y0, t1, width, height, inv_view_proj_rot, eye, prev_view_proj)
+        q2 = depth_reprojection(x0, y0 + f, t2, width, height, inv_view_proj_rot, eye, prev_view_proj)
+        if q0[2] > 0.0 and q1[2] > 0.0 and q2[2] > 0.0:
+            ax = q1[0] / q1[2] - q0[0] / q0[2]
+            ay = q1[1] / q1[2] - q0[1] / q0[2]
+            bx = q2[0] / q2[2] - q0[0] / q0[2]
+            by = q2[1] / q2[2] - q0[1] / q0[2]
+            area = wp.abs(ax * by - ay * bx)
+            if area > 1.0e-6:
+                m = wp.sqrt(float(f * f) / area)
+    out[jj, j] = m
 
 
 @wp.kernel
@@ -415,15 +456,18 @@ def resolve_kernel(row0: int, fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.a
                    eye: wp.vec3, prev_view_proj: wp.mat44, hist_depth: wp.array(dtype=float, ndim=2),
                    reject: float, prev_eye: wp.vec3, blend: float, cubic: int,
                    changing: wp.array(dtype=wp.uint8, ndim=2), has_changing: int, clamp_blend: float,
+                   hist_res: wp.array(dtype=float, ndim=2), enlarge: wp.array(dtype=float, ndim=2),
                    out: wp.array(dtype=wp.vec3, ndim=2), out_depth: wp.array(dtype=float, ndim=2),
+                   out_res: wp.array(dtype=float, ndim=2),
                    shown: wp.array(dtype=wp.uint8, ndim=3)):
     i, x = wp.tid()
     y = row0 + i
-    c, r = resolve_pixel_depth(fresh, hist, f, ox, oy, has_hist, clamp, g, width, height, x, y, depth, has_depth,
+    c, r, res = resolve_pixel_depth(fresh, hist, f, ox, oy, has_hist, clamp, g, width, height, x, y, depth, has_depth,
                             inv_view_proj_rot, eye, prev_view_proj, hist_depth, reject, prev_eye, blend, cubic,
-                            changing, has_changing, clamp_blend)
+                            changing, has_changing, clamp_blend, hist_res, enlarge)
     out[y, x] = c
     out_depth[y, x] = r
+    out_res[y, x] = res
     for k in range(3):
         shown[y, x, k] = wp.uint8(int(wp.clamp(c[k], 0.0, 255.0) + 0.5))
 
@@ -456,6 +500,9 @@ class TemporalUpsampler:
         self._out = wp.zeros((self.height, self.width), dtype=wp.vec3, device=self.device)
         self._hdepth = wp.zeros((self.height, self.width), dtype=float, device=self.device)
         self._odepth = wp.zeros((self.height, self.width), dtype=float, device=self.device)
+        # each pixel's sharpness: 1 rendered, 1/f interpolated, less for a history enlarged since it was rendered
+        self._hres = wp.ones((self.height, self.width), dtype=float, device=self.device)
+        self._ores = wp.ones((self.height, self.width), dtype=float, device=self.device)
         self._hdepth_ok = False  # whether the history has its depth (the frame before came with depth)
         self._shown = wp.zeros((self.height, self.width, 3), dtype=wp.uint8, device=self.device)
         self._no_changing = wp.zeros((1, 1), dtype=wp.uint8, device=self.device)  # unread
@@ -483,6 +530,7 @@ class TemporalUpsampler:
         self._hdepth_ok = depth is not None
         if depth is not None:
             self._hdepth = self._depth_array(depth, self.width, self.height)
+            self._hres = wp.ones((self.height, self.width), dtype=float, device=self.device)
         self._prev_cam = camera
         self._prev_key = key
 
@@ -543,6 +591,14 @@ class TemporalUpsampler:
             chg = self._no_changing
         with_depth = depth is not None and self._hdepth_ok and has_hist
         reject = self.depth_reject if with_depth and not still else 0.0
+        if reject > 0.0:
+            grow = wp.empty((lh, lw), dtype=float, device=self.device)
+            self.launcher.launch(enlargement_kernel, lh, lw,
+                                 [dep, f, ox, oy, self.width, self.height, _mat44(camera.inv_view_proj_rot),
+                                  wp.vec3(*np.asarray(camera.eye, np.float32).tolist()), _mat44(prev.view_proj)],
+                                 [grow])
+        else:
+            grow = self._no_depth  # unread
         self.launcher.launch(resolve_kernel, self.height, self.width,
                              [src, self._hist, f, ox, oy, int(has_hist),
                               int(not still if clamp is None else clamp),
@@ -551,10 +607,11 @@ class TemporalUpsampler:
                               wp.vec3(*np.asarray(camera.eye, np.float32).tolist()), _mat44(prev.view_proj),
                               self._hdepth, float(reject), wp.vec3(*np.asarray(prev.eye, np.float32).tolist()),
                               float(self.depth_blend), int(self.cubic and depth is not None), chg,
-                              int(changing is not None), float(HISTORY_BLEND)],
-                             [self._out, self._odepth, self._shown])
+                              int(changing is not None), float(HISTORY_BLEND), self._hres, grow],
+                             [self._out, self._odepth, self._ores, self._shown])
         self._hist, self._out = self._out, self._hist
         self._hdepth, self._odepth = self._odepth, self._hdepth
+        self._hres, self._ores = self._ores, self._hres
         self._hdepth_ok = depth is not None
         self._prev_cam, self._prev_key = camera, key
         self.count += 1

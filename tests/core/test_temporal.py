@@ -165,7 +165,7 @@ def test_depth_reprojects_the_history_under_translation():
     up.reset()
     spatial = np.abs(ground_step(up, b, False).astype(int) - full.astype(int))[on].mean()
     # with depth (and the history's depth) the history is kept by geometry, sampled with Catmull-Rom and not mixed
-    # with the interpolation (DEPTH_BLEND 0): measured 0.97 against 3.77 without depth, 5.62 interpolating alone
+    # with the interpolation (DEPTH_BLEND 0): measured 1.29 against 3.77 without depth, 5.62 interpolating alone
     assert errs[True] < 0.5 * errs[False], (errs, spatial)
     assert errs[True] < 0.35 * spatial, (errs, spatial)
 
