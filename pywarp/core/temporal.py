@@ -34,14 +34,20 @@ textured surface: it lets through what the cross happens to span and clips detai
 * a kept history is sampled with Catmull-Rom (:data:`CUBIC_HISTORY`; bilinear resampling blurs it further every
   frame), from the history pixels of that surface only at an occluder's edge, and not mixed with the interpolation
   (:data:`DEPTH_BLEND`);
+* a kept history that has been enlarged since its pixels were rendered (walking into a slope) loses sharpness
+  (:data:`SHARPNESS_MIX`): each pixel carries it (1 rendered, divided by each frame's enlargement, measured per fresh
+  cell), and where it falls to 1/f this frame's interpolation takes over -- else a stretched history smears;
 * the far field (sky) and what the scene marks as ``changing`` (water: waves in time, reflections with the view)
   keep the colour clamp above.
 
 Measured on the terrain viewer benchmark's walk (``W`` held, time playing; tools/terrain_preview_eval.py, 640 x 360,
-SSIM of the shown frame against the full render at 8 moments, mean / 5th percentile): at 1/16 of the pixels the
-colour clamp gives 0.808 / 0.795 (Catmull-Rom alone 0.812), the depth's rejection with the interpolation mixed in at
-0.1 0.846, without it 0.854, with the water clamped 0.876 / 0.867 (the enlarged 213 x 120 frame of the same CPU time:
-0.834 / 0.820); at 1/4 of the pixels 0.938 for ~2.6 times the CPU.
+SSIM on luminance of the shown frame against the full render, mean / 5th percentile; CPU ms of a frame, one run on
+a loaded 2-core machine). 2 s at 30 frames/s: the enlarged 213 x 120 frame 0.834 / 0.820 (65 ms); at 1/16 of the
+pixels the colour clamp 0.808 / 0.795 (53 ms), with Catmull-Rom 0.812 / 0.800, the depth's rejection sampled
+bilinearly 0.839 / 0.827, with Catmull-Rom but the water trusted 0.857 / 0.842, as here 0.868 / 0.856 (62 ms), the
+interpolation mixed in at 0.1 0.821 / 0.809; at 1/4 of the pixels 0.933 / 0.922 (167 ms). The benchmark's whole
+13 s at 28 frames/s (over a crest): 0.890 / 0.832 against the enlarged frame's 0.892 / 0.851 (the history moved
+onto its own depth: 0.883 / 0.807; without the sharpness: 0.878 / 0.776).
 """
 from __future__ import annotations
 
@@ -53,22 +59,24 @@ import warp as wp
 #: 0.889, flight 0.933 -> 0.955): the sparse cross lets the history flicker, the interpolation steadies it
 HISTORY_BLEND = 0.35
 #: with depth (the frame and its history): the share of the fresh pixels' bilinear interpolation mixed into a history
-#: kept by geometry: 0 -- measured against 0.05 and 0.1 (SSIM 0.854 against 0.846 at 0.1, module docstring): every
-#: share of the blurred interpolation stays in a moving picture, and what changes besides the motion (water, sky) is
-#: colour-clamped instead
+#: kept by geometry (at least; the sharpness may ask more): 0 -- SSIM 0.868 against 0.821 at 0.1 (module docstring):
+#: every share of the blurred interpolation stays in a moving picture, and what changes besides the motion (water,
+#: sky) is colour-clamped instead
 DEPTH_BLEND = 0.0
 #: with depth: the history is kept where the point's distance from the previous eye and the history's own depths
 #: there are within this ratio (else a disocclusion: the fresh interpolation). 1.5: 1.25 / 1.5 / 2 measured SSIM
-#: 0.875 / 0.876 / 0.877 on the terrain's walk (the depths interpolated between fresh pixels at a grazing angle are
-#: ~10-20 % off); a wall 2 units in front of ground 3-5 away (tests) is still told apart
+#: 0.875 / 0.876 / 0.877 on the terrain's walk (before the sharpness; the depths interpolated between fresh pixels at
+#: a grazing angle are ~10-20 % off, 1.1 rejected half the ground); a wall 2 units in front of ground 3-5 away
+#: (tests) is still told apart
 DEPTH_REJECT = 1.5
 #: with depth: a kept history enlarged since its pixels were rendered (walking towards the ground) is worth less
 #: than this frame's interpolation once its sharpness (1 when rendered, divided by the enlargement of every frame
-#: since) falls to 1/f; from SHARPNESS_MIX / f down to 1/f the interpolation is mixed in linearly. 2: measured on
-#: the terrain's walk against a loaded machine's rate (tools/terrain_preview_eval.py --fps 14)
+#: since) falls to 1/f; from SHARPNESS_MIX / f down to 1/f the interpolation is mixed in linearly. 2: SSIM 0.883 /
+#: 0.807 (mean / 5th percentile) against 0.882 / 0.791 at 1.25 on the terrain benchmark's whole walk at 28 frames/s
+#: (tools/terrain_preview_eval.py --fps 28 --frames 364; measured while the history was still moved onto its depth)
 SHARPNESS_MIX = wp.constant(2.0)
 #: with depth: the history sampled with Catmull-Rom (Karis 2014; clamped into its four nearest pixels' box, no
-#: ringing) rather than bilinearly, which blurs it further every frame: SSIM 0.854 against 0.825 on the terrain's walk
+#: ringing) rather than bilinearly, which blurs it further every frame: SSIM 0.868 against 0.839 on the terrain's walk
 CUBIC_HISTORY = True
 #: with depth: the four fresh pixels around a window pixel whose depths are within this ratio of each other lie on
 #: one smooth surface, and the pixel's depth is their bilinear interpolation (else the nearest one's: an edge).
