@@ -359,3 +359,25 @@ def test_changing_marks_the_water_and_the_viewer_prefers_temporal_previews():
     tech.update(rays_per_pixel=4)
     tech.render()
     assert tech.changing() is None
+
+
+def test_the_viewer_takes_the_techniques_preview_mode_unless_told():
+    """The viewer's render thread previews through the temporal reconstruction where the technique asks for it
+    (the terrain does) and `pywarp view --previews scaled|temporal` was not given; given, it wins."""
+    from types import SimpleNamespace
+
+    from pywarp.core import scenes as S
+    from pywarp.viewer.session import RenderWorker
+
+    sc = S.scene("terrain")
+    for asked, expected in ((None, True), (False, False), (True, True)):
+        worker = RenderWorker(sc, temporal=asked)
+        try:
+            assert worker.temporal == (asked is True)  # before the technique exists: only what was asked
+            worker.tech = SimpleNamespace(preview_mode=TerrainTechnique.preview_mode)
+            assert worker.temporal == expected
+            worker.tech = SimpleNamespace(preview_mode="scaled")
+            assert worker.temporal == (asked is True)
+        finally:
+            worker.tech = None
+            worker.close()
