@@ -370,7 +370,8 @@ def cmd_view(args) -> int:
         raise ValueError("--dump needs --benchmark (it writes the benchmark's sampled frames)")
     return view(sc, settings, window=window, script=script, benchmark=args.benchmark, as_json=args.json,
                 screenshot_dir=args.screenshot_dir, window_screenshot=args.window_screenshot,
-                state_out=args.state_out, seconds=args.seconds, dump=args.dump, temporal=args.previews == "temporal")
+                state_out=args.state_out, seconds=args.seconds, dump=args.dump,
+                temporal=None if args.previews is None else args.previews == "temporal")
 
 
 # --- the parsers ---------------------------------------------------------------------------------------------------------
@@ -466,10 +467,11 @@ def add_scene_commands(sub, help_for: str | None = None) -> None:
     v.add_argument("--dump", default=None, metavar="DIR",
                    help="with --benchmark: write each sampled frame as shown (SCENE-NN-shown.png), its full render "
                         "(-full.png) and its settings, pose and `pywarp render` command (.json) to DIR")
-    v.add_argument("--previews", choices=("scaled", "temporal"), default="scaled",
-                   help="what moving shows: 'scaled' (default) the whole picture at a reduced size, enlarged; "
-                        "'temporal' the window's resolution, 1/4 or 1/16 of its pixels rendered per frame and the "
-                        "rest reprojected from the previous frames (pywarp.core.temporal)")
+    v.add_argument("--previews", choices=("scaled", "temporal"), default=None,
+                   help="what moving shows: 'scaled' the whole picture at a reduced size, enlarged; 'temporal' the "
+                        "window's resolution, 1/4 or 1/16 of its pixels rendered per frame and the rest reprojected "
+                        "from the previous frames (pywarp.core.temporal); default: the scene's own choice "
+                        "(terrain: temporal, the others: scaled)")
     v.add_argument("--script", default=None, metavar="FILE",
                    help="play a JSON list of timed events: {\"t\": 0, \"key\": \"W\", \"hold\": 1.5}, "
                         "{\"t\": 2, \"set\": {\"coverage\": 0.7}}, {\"t\": 3, \"screenshot\": \"a.png\"}, "

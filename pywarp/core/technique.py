@@ -47,6 +47,11 @@ class Technique:
     #: True: the viewer renders this scene's previews at the window's size with the controls' preview changes (the
     #: scene reconstructs what it must itself: rain's background); False: through pywarp.core.temporal
     previews_at_full_size: bool = False
+    #: what the viewer shows while the view moves unless told (``pywarp view --previews``): "scaled" (the frame at a
+    #: reduced size, enlarged) or "temporal" (the window's size through :mod:`pywarp.core.temporal`, 1/f^2 of the
+    #: pixels rendered per frame); a scene whose reconstruction measures closer to the full render at the viewer's
+    #: frame rate says "temporal" (the terrain, with its exact depth)
+    preview_mode: str = "scaled"
 
     def __init__(self, settings=None):
         self.settings = settings if settings is not None else self.settings_class()

@@ -42,12 +42,12 @@ def check_window() -> None:
 
 def view(scene, settings, *, window: bool = True, script: Script | None = None, benchmark: float | None = None,
          as_json: bool = False, screenshot_dir=".", window_screenshot=None, state_out=None,
-         warmup_s: float = 3.0, seconds: float | None = None, dump=None, temporal: bool = False) -> int:
+         warmup_s: float = 3.0, seconds: float | None = None, dump=None, temporal: bool | None = None) -> int:
     """Run the viewer; returns the exit status (0). ``benchmark``: seconds of the benchmark mode (prints its report,
     or JSON as the last line with ``as_json``); ``state_out``: write the session's final state (settings, frame
     counts, screenshots) as JSON; ``seconds``: quit after this long (wall time); ``dump``: a folder for the
     benchmark's sampled frames (:func:`pywarp.viewer.session.compare_samples`); ``temporal``: previews through the
-    temporal reconstruction (else enlarged reduced frames)."""
+    temporal reconstruction (True) or enlarged reduced frames (False); None: the technique's ``preview_mode``."""
     if window:
         check_window()
     # the panel shows the settings `pywarp view` takes (e.g. not the clouds' accumulate, which only render uses)

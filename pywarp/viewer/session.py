@@ -14,9 +14,11 @@ refined frame that a newer state makes stale is cancelled between bands.
 ``temporal=True`` (``pywarp view --previews temporal``) renders the previews at the window's resolution through the
 temporal reconstruction of :mod:`pywarp.core.temporal` instead: 1/f^2 of the pixels per frame (f in 1, 2, 4 adapting
 to the same budget), a sub-pixel phase each, the rest the previous picture reprojected and clamped (rain draws its
-drops whole and reconstructs only its background). Measured with the viewer benchmark (README, performance), it is
-not the default: on this 2-core CPU, at the frame rate the budget asks, the enlarged reduced frames are as close to
-the full render (SSIM) and faster.
+drops whole and reconstructs only its background). Without ``temporal`` (None) the technique's
+:attr:`~pywarp.core.technique.Technique.preview_mode` decides: the terrain's is "temporal" (its exact depth keeps a
+sharp history: tools/terrain_preview_eval.py), the other scenes' "scaled" -- measured with the viewer benchmark
+(README, performance): on this 2-core CPU, at the frame rate the budget asks, their enlarged reduced frames are as
+close to the full render (SSIM) and faster.
 """
 from __future__ import annotations
 
@@ -120,10 +122,10 @@ class RenderWorker:
     The technique is made on the thread, with the first request's settings (so the window opens at once)."""
 
     def __init__(self, scene: Scene, preview=None, budget_s: float = PREVIEW_BUDGET_S,
-                 scale_index: int = START_SCALE, fixed_scale: bool = False, temporal: bool = False,
+                 scale_index: int = START_SCALE, fixed_scale: bool = False, temporal: bool | None = None,
                  factor: int = START_FACTOR):
         self.scene = scene
-        self.temporal = bool(temporal)
+        self._temporal_asked = None if temporal is None else bool(temporal)
         self.factor = int(factor)
         self._up = None  # the temporal reconstruction (pywarp.core.temporal, imported with the first preview)
         self.preview_changes = preview or (lambda s: {})
@@ -172,6 +174,14 @@ class RenderWorker:
             self._stop = True
             self._cond.notify_all()
         self._thread.join(timeout)
+
+    @property
+    def temporal(self) -> bool:
+        """Whether previews go through the temporal reconstruction: as asked (``pywarp view --previews``), else the
+        technique's :attr:`~pywarp.core.technique.Technique.preview_mode` (False until the technique is made)."""
+        if self._temporal_asked is not None:
+            return self._temporal_asked
+        return self.tech is not None and getattr(self.tech, "preview_mode", "scaled") == "temporal"
 
     @property
     def scale(self) -> float:
@@ -233,6 +243,14 @@ class RenderWorker:
         if up.factor != T.factor_for(s.width, s.height, self.factor):
             up.set_factor(self.factor)
         return up
+
+    def _depth(self) -> tuple:
+        """The last frame's (depth, changing) where the technique gives them (:meth:`pywarp.core.temporal.
+        TemporalUpsampler.resolve`'s arguments), else None each."""
+        depth = getattr(self.tech, "depth", None)
+        d = depth() if depth is not None else None
+        changing = getattr(self.tech, "changing", None)
+        return d, (changing() if changing is not None and d is not None else None)
 
     def _adapt_factor(self, seconds: float) -> None:
         """The reduction factor of the temporal previews: doubled when a preview takes over 1.25 budgets, halved when
@@ -302,9 +320,9 @@ class RenderWorker:
             if temporal:
                 pose = self.tech.pose(req.pose)
                 fresh = np.asarray(self.tech.render(self.tech.jitter(pose, jitter), progress=progress), np.uint8)
-                depth = getattr(self.tech, "depth", None)  # the scene's per-pixel depth where it has one
+                depth, changing = self._depth()  # the scene's per-pixel depth where it has one
                 img = up.resolve(fresh, technique_camera(self.tech, pose), key=self._key(req.settings),
-                                 depth=depth() if depth is not None else None)
+                                 depth=depth, changing=changing)
             else:
                 img = self.tech.render(req.pose, progress=progress)
         finally:
@@ -319,7 +337,7 @@ class RenderWorker:
         elif self._temporal(req.settings) and img.shape[:2] == (req.settings.height, req.settings.width):
             # the refined frame is the next preview's history: the first frame of a new motion starts sharp
             self._upsampler(req.settings).remember(img, technique_camera(self.tech, req.pose),
-                                                   key=self._key(req.settings))
+                                                   key=self._key(req.settings), depth=self._depth()[0])
         self.frames += 1
         size = (img.shape[1], img.shape[0])
         fresh_size = (fresh.shape[1], fresh.shape[0]) if temporal else size
@@ -441,7 +459,7 @@ class Session:
     def __init__(self, scene: Scene, settings, *, script: Script | None = None, exclude=(),
                  budget_s: float = PREVIEW_BUDGET_S, still_s: float = STILL_S, screenshot_dir=".",
                  scale_index: int = START_SCALE, fixed_scale: bool = False, time_scale: float = 20.0,
-                 temporal: bool = False):
+                 temporal: bool | None = None):
         self.scene = scene
         self.settings = settings
         self.controls = make_controls(scene, settings)

@@ -141,10 +141,12 @@ def ground(pose: Pose, width: int, height: int) -> tuple[np.ndarray, np.ndarray]
     return (img * 255.0 + 0.5).astype(np.uint8), t.astype(np.float32)
 
 
-def ground_step(up: T.TemporalUpsampler, pose: Pose, with_depth: bool) -> np.ndarray:
+def ground_step(up: T.TemporalUpsampler, pose: Pose, with_depth: bool, key=None, scene_fn=None,
+                changing=None) -> np.ndarray:
     lw, lh, jitter = up.plan()
-    fresh, t = ground(Pose(**{**pose.__dict__, "jitter_px": jitter}), lw, lh)
-    return up.resolve(fresh, pose_camera(pose, W, H), key=None, depth=t if with_depth else None)
+    fresh, t = (scene_fn or ground)(Pose(**{**pose.__dict__, "jitter_px": jitter}), lw, lh)
+    chg = None if changing is None else changing(Pose(**{**pose.__dict__, "jitter_px": jitter}), lw, lh)
+    return up.resolve(fresh, pose_camera(pose, W, H), key=key, depth=t if with_depth else None, changing=chg)
 
 
 def test_depth_reprojects_the_history_under_translation():
@@ -162,9 +164,10 @@ def test_depth_reprojects_the_history_under_translation():
         errs[with_depth] = np.abs(img - full.astype(int))[on].mean()
     up.reset()
     spatial = np.abs(ground_step(up, b, False).astype(int) - full.astype(int))[on].mean()
-    assert errs[True] < 0.7 * errs[False], (errs, spatial)  # measured 2.34 against 3.77
-    # HISTORY_BLEND of the interpolation stays in a moving picture; the depth's history removes most of the rest
-    assert errs[True] < (T.HISTORY_BLEND + 0.25) * spatial, (errs, spatial)
+    # with depth (and the history's depth) the history is kept by geometry, sampled with Catmull-Rom and not mixed
+    # with the interpolation (DEPTH_BLEND 0): measured 1.29 against 3.77 without depth, 5.62 interpolating alone
+    assert errs[True] < 0.5 * errs[False], (errs, spatial)
+    assert errs[True] < 0.35 * spatial, (errs, spatial)
 
 
 def test_depth_of_a_still_view_and_its_checks():
@@ -177,3 +180,129 @@ def test_depth_of_a_still_view_and_its_checks():
     lw, lh, _ = up.plan()
     with pytest.raises(ValueError, match="depth must be 32x18"):
         up.resolve(np.zeros((lh, lw, 3), np.uint8), pose_camera(pose, W, H), depth=np.zeros((5, 5), np.float32))
+
+
+def test_a_still_camera_converges_through_the_depths_rejection():
+    """The camera still (looking down at the ground, no sky) while the key changes every frame (time playing): the
+    depth's path -- not the still view's exact copy -- keeps each pixel's history at its own place, so after f^2
+    frames every pixel is its fresh render. (Near a grazing horizon, where the depths interpolated between the fresh
+    pixels disagree by more than DEPTH_REJECT from frame to frame, a pixel falls back to the interpolation.)"""
+    for f in (2, 4):
+        up = T.TemporalUpsampler(launcher("cpu", None), W, H, f)
+        pose = Pose(y=1.5, pitch_deg=-50.0, fov_y_deg=60.0)
+        full, t = ground(pose, W, H)
+        assert np.all(t > 0)
+        first = ground_step(up, pose, True, key=0).astype(int)
+        for k in range(1, f * f):
+            img = ground_step(up, pose, True, key=k).astype(int)
+        err = np.abs(img - full.astype(int))
+        assert err.max() <= 1
+        assert np.abs(first - full.astype(int)).mean() > 5 * max(err.mean(), 0.01)
+
+
+def walled(pose: Pose, width: int, height: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`ground` with a magenta wall in front: the plane z = -2 for |x| < 0.4, y < 3 (its own distances)."""
+    img, t = ground(pose, width, height)
+    d = rays(pose, width, height)
+    ahead = d[..., 2] < -1e-3
+    tw = np.where(ahead, (-2.0 - pose.z) / np.where(ahead, d[..., 2], -1.0), -1.0)
+    px, py = pose.x + d[..., 0] * tw, pose.y + d[..., 1] * tw
+    wall = ahead & (np.abs(px) < 0.4) & (py < 3.0) & ((t < 0) | (tw < t))
+    img = img.copy()
+    img[wall] = (255, 0, 255)
+    return img, np.where(wall, tw, t).astype(np.float32)
+
+
+def test_disocclusion_rejects_the_history():
+    """Stepping sideways past a wall: the ground it hid in the previous frame appears. The history there, reprojected
+    through this frame's depth, shows the wall (~2 away where the ground is ~3-5): the depth's test rejects it and
+    the pixel is interpolated from this frame's ground -- no magenta ghost. The same history reprojected through the
+    depth but not tested (a history without its depth, no clamp) does show it (the check can fail). Pixels within 3
+    of the wall now are left out: their interpolation and their silhouette candidates reach the wall's own pixels."""
+    a = Pose(x=0.0, y=1.5, pitch_deg=-25.0, fov_y_deg=60.0)
+    b = Pose(x=0.35, y=1.5, pitch_deg=-25.0, fov_y_deg=60.0)
+    full_a, ta = walled(a, W, H)
+    full_b, tb = walled(b, W, H)
+    # the pixels of b showing ground whose point a saw behind the wall: project the ground points into a
+    d = rays(b, W, H)
+    p = np.stack([b.x + d[..., 0] * tb, b.y + d[..., 1] * tb, b.z + d[..., 2] * tb, np.ones_like(tb)], -1)
+    clip = p.astype(np.float64) @ pose_camera(a, W, H).view_proj.astype(np.float64).T
+    ax = np.round((clip[..., 0] / clip[..., 3] + 1) / 2 * W - 0.5).astype(int)
+    ay = np.round((1 - clip[..., 1] / clip[..., 3]) / 2 * H - 0.5).astype(int)
+    inside = (ax >= 0) & (ax < W) & (ay >= 0) & (ay < H)
+    was_wall = np.zeros_like(inside)
+    was_wall[inside] = np.all(full_a[ay[inside], ax[inside]] == (255, 0, 255), -1)
+    wall_b = np.all(full_b == (255, 0, 255), -1)
+    near_wall = wall_b.copy()
+    for dy in range(-3, 4):
+        for dx in range(-3, 4):
+            near_wall |= np.roll(np.roll(wall_b, dy, 0), dx, 1)
+    opened = was_wall & (tb > 0) & ~near_wall
+    assert opened.sum() >= 8
+    ghost, err = {}, {}
+    for tested in (True, False):
+        up = T.TemporalUpsampler(launcher("cpu", None), W, H, 2)
+        up.remember(full_a, pose_camera(a, W, H), depth=ta if tested else None)
+        lw, lh, jitter = up.plan()
+        fresh, t = walled(Pose(**{**b.__dict__, "jitter_px": jitter}), lw, lh)
+        img = up.resolve(fresh, pose_camera(b, W, H), key=1, depth=t, clamp=None if tested else False).astype(int)
+        magenta = (img[..., 0] > 150) & (img[..., 1] < 90) & (img[..., 2] > 150)
+        ghost[tested] = int((magenta & opened).sum())
+        err[tested] = float(np.abs(img - full_b.astype(int))[opened].mean())
+    assert ghost[True] == 0 and ghost[False] >= opened.sum() // 2, (ghost, int(opened.sum()))
+    assert err[True] < 0.5 * err[False], err  # measured 24.0 against 72.5 (the interpolation of a grazing texture)
+
+
+def test_changing_pixels_keep_the_colour_clamp():
+    """Where the scene marks its surface as changing (water), a change of its colour is not carried by the depth's
+    trusted history: marked, no pixel keeps the old bright colour; unmarked, the stale history stays (the check
+    can fail)."""
+    def bright(pose, w, h):
+        return ground(pose, w, h)
+
+    def dark(pose, w, h):
+        img, t = ground(pose, w, h)
+        img = np.where((t > 0)[..., None], img // 5, img).astype(np.uint8)
+        return img, t
+
+    def all_ground(pose, w, h):
+        return ground(pose, w, h)[1] > 0
+
+    pose = Pose(y=1.5, pitch_deg=-50.0, fov_y_deg=60.0)  # the ground only
+    moved = Pose(z=-0.05, y=1.5, pitch_deg=-50.0, fov_y_deg=60.0)
+    worst = {}
+    for marked in (True, False):
+        up = T.TemporalUpsampler(launcher("cpu", None), W, H, 2)
+        for k in range(4):
+            ground_step(up, pose, True, key=0, scene_fn=bright, changing=all_ground if marked else None)
+        img = ground_step(up, moved, True, key=1, scene_fn=dark,
+                          changing=all_ground if marked else None).astype(int)
+        full, t = dark(moved, W, H)
+        worst[marked] = int((img - full.astype(int))[t > 0].max())
+    assert worst[True] <= 20 and worst[False] > 60, worst
+    up = T.TemporalUpsampler(launcher("cpu", None), W, H, 2)
+    lw, lh, _ = up.plan()
+    with pytest.raises(ValueError, match="changing must come with depth"):
+        up.resolve(np.zeros((lh, lw, 3), np.uint8), pose_camera(pose, W, H), changing=np.zeros((lh, lw), bool))
+    with pytest.raises(ValueError, match="depth_reject must be"):
+        T.TemporalUpsampler(launcher("cpu", None), W, H, 2, depth_reject=0.5)
+
+
+def test_catmull_rom_weights():
+    """The history's cubic weights sum to 1, reproduce a linear function (their first moment is the offset) and
+    are the tap's own value at offset 0 (interpolating: the history is unchanged where it does not move)."""
+    import warp as wp
+
+    @wp.kernel
+    def weights(ts: wp.array(dtype=float), out: wp.array(dtype=wp.vec4)):
+        k = wp.tid()
+        out[k] = T.catmull_rom(ts[k])
+
+    ts = np.linspace(0.0, 1.0, 11).astype(np.float32)
+    out = wp.zeros(len(ts), dtype=wp.vec4, device="cpu")
+    wp.launch(weights, dim=len(ts), inputs=[wp.array(ts, dtype=float, device="cpu")], outputs=[out], device="cpu")
+    w = out.numpy().astype(np.float64)
+    np.testing.assert_allclose(w.sum(1), 1.0, atol=1e-6)
+    np.testing.assert_allclose(w @ np.array([-1.0, 0.0, 1.0, 2.0]), ts, atol=1e-6)
+    np.testing.assert_allclose(w[0], [0, 1, 0, 0], atol=1e-7)
+    np.testing.assert_allclose(w[-1], [0, 0, 1, 0], atol=1e-7)

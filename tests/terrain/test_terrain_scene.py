@@ -327,3 +327,57 @@ def test_precision_growing_with_distance_ends_the_march_earlier_and_zero_is_the_
     assert np.abs(a - b).mean() < 0.05 and not np.array_equal(a, b)
     zero = TerrainTechnique(TerrainSettings(**dynamic, precision_per_unit=0.0)).render(encode=False)
     np.testing.assert_array_equal(zero, a)
+
+
+def test_changing_marks_the_water_and_the_viewer_prefers_temporal_previews():
+    """TerrainTechnique.changing (what the temporal reconstruction colour-clamps rather than trusts by depth): true
+    exactly at the pixels whose depth's point lies on the water plane -- found here from the ray geometry of the
+    camera, not from the method -- false on the land above it and the sky; the technique asks the viewer for
+    temporal previews; none for a supersampled frame."""
+    from pywarp.kernels.camera import pose_camera
+    from pywarp.terrain.technique import WATER_TOLERANCE
+
+    s = TerrainSettings(**SMALL)
+    tech = TerrainTechnique(s)
+    assert tech.preview_mode == "temporal"
+    tech.render()
+    t = tech.depth().astype(np.float64)
+    chg = tech.changing()
+    assert chg.shape == t.shape and chg.dtype == bool
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
+    m = cam.inv_view_proj_rot.astype(np.float64)
+    xs, ys = np.meshgrid(np.arange(s.width) + 0.5, np.arange(s.height) + 0.5)
+    ndc = np.stack([2 * xs / s.width - 1, 1 - 2 * ys / s.height, np.ones_like(xs), np.ones_like(xs)], -1)
+    d = (ndc @ m.T)[..., :3]
+    d /= np.linalg.norm(d, axis=-1, keepdims=True)
+    y = cam.eye[1] + d[..., 1] * t
+    water = (t > 0) & (np.abs(y - s.water_level) < 1e-3)
+    land = (t > 0) & (y > s.water_level + 0.05 * (1 + t))
+    assert water.sum() > 20 and land.sum() > 20
+    assert np.all(chg[water]) and not np.any(chg[land]) and not np.any(chg[t < 0])
+    assert np.all(np.abs(y[chg] - s.water_level) <= WATER_TOLERANCE * (1 + t[chg]) + 1e-6)
+    tech.update(rays_per_pixel=4)
+    tech.render()
+    assert tech.changing() is None
+
+
+def test_the_viewer_takes_the_techniques_preview_mode_unless_told():
+    """The viewer's render thread previews through the temporal reconstruction where the technique asks for it
+    (the terrain does) and `pywarp view --previews scaled|temporal` was not given; given, it wins."""
+    from types import SimpleNamespace
+
+    from pywarp.core import scenes as S
+    from pywarp.viewer.session import RenderWorker
+
+    sc = S.scene("terrain")
+    for asked, expected in ((None, True), (False, False), (True, True)):
+        worker = RenderWorker(sc, temporal=asked)
+        try:
+            assert worker.temporal == (asked is True)  # before the technique exists: only what was asked
+            worker.tech = SimpleNamespace(preview_mode=TerrainTechnique.preview_mode)
+            assert worker.temporal == expected
+            worker.tech = SimpleNamespace(preview_mode="scaled")
+            assert worker.temporal == (asked is True)
+        finally:
+            worker.tech = None
+            worker.close()
