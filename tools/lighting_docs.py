@@ -54,9 +54,12 @@ def table(res: dict) -> str:
                      f"     - {ratio(a['ratio']['thin'])}"]
         nf = sc["noise_floor"]
         absf = nf.get("abs_delta_e")
-        rows += [f"   * - {sc['scene']}", "     - (noise floor: one half of the paths against the other)",
+        te = nf.get("thick_energy")
+        halves = "" if te is None else "halves " + " / ".join("--" if v is None else f"{100 * v:+.1f} %" for v in te)
+        rows += [f"   * - {sc['scene']}", f"     - (noise floor: one half of the {sc.get('spp', res['spp'])} paths "
+                 "against the other)",
                  f"     - {nf['ssim']:.3f}", f"     - {nf['delta_e']:.2f}",
-                 "     - " + ("" if absf is None else f"{absf:.2f}"), "     - ", "     - "]
+                 "     - " + ("" if absf is None else f"{absf:.2f}"), f"     - {halves}", "     - "]
     return "\n".join(rows) + "\n"
 
 
@@ -68,13 +71,16 @@ def main(argv=None) -> int:
     ap.add_argument("--json", default=None)
     ap.add_argument("--cache", default=None,
                     help="folder of cached references (written when missing; pywarp.clouds.bench_reference.compare)")
+    ap.add_argument("--converged", default=None,
+                    help="folder of converged references (tools/lighting_references.py), read instead of rendering "
+                         "(--spp is then unused)")
     args = ap.parse_args(argv)
     import imageio.v3 as iio
 
     from pywarp.clouds.bench_reference import SCENES, VIEWS, compare
 
     res, images = compare(args.width, args.height, args.spp, scenes=[*SCENES, *VIEWS], medium="physical",
-                          cache=args.cache)
+                          cache=args.cache, converged=args.converged)
     out = ROOT / "docs" / "images" / "lighting"
     out.mkdir(parents=True, exist_ok=True)
     for scene, imgs in images.items():
