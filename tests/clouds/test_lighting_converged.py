@@ -119,11 +119,13 @@ def test_the_model_meets_the_targets_without_rescaling(view, target, base_and_te
 def test_compare_reads_the_converged_references():
     """compare(converged=DIR) takes each scene's reference from the folder with its own path count (the row's
     ``spp``) and reports the halves' thick-energy difference in the noise floor; only in the physical medium."""
-    from pywarp.clouds.bench_reference import compare
+    from pywarp.clouds.bench_reference import compare, report
 
     small = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
     res, images = compare(80, 45, scenes=["low sun"], settings=small, medium="physical", converged=str(FOLDER),
                           progress=lambda m: None)
+    assert res["spp"] is None and res["converged"] == str(FOLDER)
+    assert "converged references" in report(res) and "2048 paths" in report(res)
     row = res["scenes"][0]
     z = load_converged(FOLDER, "low sun", 80, 45)
     assert row["spp"] == z["spp"]
