@@ -10,7 +10,7 @@ halves of :data:`SPP` [view] / 2 paths per pixel with seeds 0 and 1, and the vie
 samples). The file ``<view>.npz`` holds the halves ``a``, ``b`` (linear float32, height x width x 3), ``tau``, their
 standard-error images ``se_a``, ``se_b``, ``spp``, ``seed`` (of the first half), ``width``, ``height`` and
 ``seconds`` (render time, for the record). ``--cache DIR`` also writes each into the benchmark's reference cache
-(``compare(..., spp=SPP, cache=DIR)`` then reads it instead of rendering).
+(``compare(..., spp=SPP[view], cache=DIR)`` then reads it instead of rendering).
 
 Why these path counts: the reference's thick-cloud energy has a firefly tail (next-event estimation of the delta
 sun through the Mie phase's forward peak): at 512 paths the halves differ by 2-9 % and their CIEDE2000 floor is
