@@ -4,6 +4,8 @@ path-traced reference of the three scenes of ``pywarp bench clouds reference``.
     python tools/tune_lighting.py [--spp 256] [--width 160 --height 90] [--cache FILE.npz] [--json OUT.json]
     python tools/tune_lighting.py --physical [--spp 512 --width 80 --height 45] [--reference-cache DIR]
         [--grid 1|2] [--objective delta_e|both]
+    python tools/tune_lighting.py --physical --grid 3 --width 80 --height 45 --objective both
+        --converged tests/data/lighting_reference
 
 ``--physical``: the ``physical`` model of ``pywarp bench clouds reference`` (docs/lighting.rst) in the physical
 medium, by the errors *without rescaling*: every candidate of :data:`PHYSICAL_GRID` (delta scaling of the Mie phase,
@@ -14,7 +16,9 @@ out. References come from (and go to) ``--reference-cache`` (the benchmark's cac
 ``--grid 2``: :data:`PHYSICAL_GRID_2`, the octaves' weight by the depth into the cloud along the view
 (vc-x-ms-view) and the ambient's anisotropy (vc-x-ambient-aniso) on top of grid 1's choice. ``--objective both``:
 the choice by both targets of issue 32 as shares of their bounds (:data:`DE_TARGET`, :data:`ENERGY_TOLERANCE`);
-the run prints the choice by the other objective too.
+the run prints the choice by the other objective too. ``--converged DIR`` (with ``--grid 3``,
+:data:`PHYSICAL_GRID_3`): the references are the converged ones of tools/lighting_references.py (80x45, 2048-4096
+paths per view; tests/data/lighting_reference), read instead of rendered, each with its own path count.
 
 The references are rendered once (two independent halves, as the benchmark does; cached in ``--cache`` when given)
 and every candidate -- ``powder`` x ``ms_octaves`` x ``silver_weight`` x ``silver_g``, the sky lighting and the other
@@ -55,6 +59,11 @@ PHYSICAL_GRID = [
 #: the octaves' weight at d = 0 and the octaves' phase eccentricity factor.
 PHYSICAL_GRID_2 = [(k, t0, al, t, c) for k in (2.0, 3.0, 4.0) for t0 in (0.3, 0.5) for al in (0.0, 0.3, 0.6)
                    for t in (0.2, 0.3) for c in (0.5, 0.25)]
+#: The third grid of --physical (--grid 3), against the converged references (--converged): on top of grid 1's
+#: choice (mie_delta 1, ms_a 0.5, ms_depth 1.5, ms_thin 0.2, ambient_ground_weight 0.25, ms_c 0.5, the ambient's
+#: anisotropy 0.3), (ms_view, ms_view_trans, ms_b) around the two models grid 2 chose against 512-path references
+#: ('physical' k 2, T0 0.3; 'physical energy' k 4, T0 0.5; both ms_b 0.75).
+PHYSICAL_GRID_3 = [(k, t0, b_) for k in (2.0, 3.0, 4.0, 5.0) for t0 in (0.3, 0.5, 0.7) for b_ in (0.75, 0.8)]
 #: --objective both: a candidate's score is the largest over the tuning scenes of max(dE / DE_TARGET, |energy - 1| /
 #: ENERGY_TOLERANCE) of the thick class's three channels -- the two targets of issue 32, each as a share of its
 #: bound (<= 1: both met)
@@ -102,6 +111,13 @@ def _candidates(grid):
                    dict(lighting="sky", powder=False, aerial_km=0.0, ms_octaves=4, mie_delta=f, ms_depth=dd,
                         ms_thin=t, ambient_ground_weight=w, advanced={"ms_a": a_, "ms_b": b_}))
         return
+    if grid == 3:
+        for k, t0, b_ in PHYSICAL_GRID_3:
+            yield ({"ms_view": k, "ms_view_trans": t0, "ms_b": b_},
+                   dict(lighting="sky", powder=False, aerial_km=0.0, ms_octaves=4, mie_delta=1.0, ms_depth=1.5,
+                        ms_thin=0.2, ambient_ground_weight=0.25, ms_view=k, ms_view_trans=t0, ambient_aniso=0.3,
+                        advanced={"ms_a": 0.5, "ms_b": b_}))
+        return
     for k, t0, al, t, c in PHYSICAL_GRID_2:
         yield ({"ms_view": k, "ms_view_trans": t0, "ambient_aniso": al, "ms_thin": t, "ms_c": c},
                dict(lighting="sky", powder=False, aerial_km=0.0, ms_octaves=4, mie_delta=1.0, ms_depth=1.5,
@@ -109,10 +125,11 @@ def _candidates(grid):
                     advanced={"ms_a": 0.5, "ms_b": 0.75, "ms_c": c}))
 
 
-def physical(width, height, spp, cache, json_out=None, grid=1, objective="delta_e"):
+def physical(width, height, spp, cache, json_out=None, grid=1, objective="delta_e", converged=None):
     """The --physical search (module docstring)."""
     from pywarp.clouds.bench_reference import (ACCUMULATE, MEDIA, SCENES, TAU_SAMPLES, TUNING_SCENES, VIEWS,
-                                               _load_reference, _save_reference, absolute_errors, exposure)
+                                               _load_reference, _save_reference, absolute_errors, exposure,
+                                               load_converged)
     from pywarp.clouds.cloudscape import RenderTextures
     from pywarp.clouds.reference import ReferenceRenderer
     from pywarp.clouds.settings import CloudscapeSettings
@@ -126,6 +143,11 @@ def physical(width, height, spp, cache, json_out=None, grid=1, objective="delta_
     half = spp // 2
     for name, changes in views.items():
         rs = replace(replace(base, **changes), lighting="sky")
+        if converged:
+            z = load_converged(converged, name, width, height)
+            refs[name] = (z["ref"], z["tau"])
+            print(f"reference {name}: {z['spp']} paths, converged", file=sys.stderr, flush=True)
+            continue
         got = _load_reference(cache, rs, name, spp, 0)
         if got is None:
             ra = ReferenceRenderer(rs, textures, spp=half, seed=0)
@@ -176,12 +198,16 @@ def main(argv=None):
     ap.add_argument("--json", default=None)
     ap.add_argument("--physical", action="store_true", help="tune the physical model (module docstring)")
     ap.add_argument("--reference-cache", default=None, help="folder of cached references (--physical)")
-    ap.add_argument("--grid", type=int, choices=(1, 2), default=1, help="--physical: PHYSICAL_GRID or _GRID_2")
+    ap.add_argument("--converged", default=None,
+                    help="--physical: folder of converged references (tools/lighting_references.py; 80x45), read "
+                         "instead of rendering; --spp is then unused")
+    ap.add_argument("--grid", type=int, choices=(1, 2, 3), default=1,
+                    help="--physical: PHYSICAL_GRID, _GRID_2 or _GRID_3")
     ap.add_argument("--objective", choices=("delta_e", "both"), default="delta_e",
                     help="--physical: the largest CIEDE2000, or both targets as shares of their bounds (DE_TARGET)")
     a = ap.parse_args(argv)
     if a.physical:
-        return physical(a.width, a.height, a.spp, a.reference_cache, a.json, a.grid, a.objective)
+        return physical(a.width, a.height, a.spp, a.reference_cache, a.json, a.grid, a.objective, a.converged)
 
     from pywarp.clouds.bench_reference import ACCUMULATE, SCENES, errors
     from pywarp.clouds.cloudscape import RenderTextures

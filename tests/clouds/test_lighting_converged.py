@@ -1,0 +1,138 @@
+"""The real-time lighting against the converged path-traced references (tests/data/lighting_reference, made by
+tools/lighting_references.py; docs/lighting.rst): issue 32's targets without any rescaling, absolute CIEDE2000 <= 3
+and the thick cloud's energy (tau >= 3; from above the sunlit tops) within +-10 % per channel, in every scene and
+view of ``pywarp bench clouds reference`` at 80x45 -- the tuning views and the two held out alike.
+
+The references are the judge, and the reason to believe them is independent of this project's code: the path tracer
+agrees with Mitsuba 3 within its noise (tests/clouds/test_crosscheck_mitsuba.py). Their own noise is checked here
+too: the standard error of the thick cloud's energy is <= 2.5 % per channel (1-2 % measured), so a target of
++-10 % is not decided by the reference's noise, and the two halves of independent seeds agree within it."""
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pywarp.clouds.bench_reference import (ACCUMULATE, CONVERGED, CONVERGED_MODEL, MEDIA, SCENES, TUNING_SCENES,
+                                           VIEWS, absolute_errors, class_mask, exposure, load_converged,
+                                           model_settings)
+
+ROOT = Path(__file__).resolve().parents[2]
+FOLDER = ROOT / CONVERGED
+VIEW_NAMES = [*SCENES, *VIEWS]
+#: issue 32's targets
+DE_MAX = 3.0
+ENERGY = (0.90, 1.10)
+
+
+@pytest.fixture(scope="module")
+def base_and_textures():
+    from pywarp.clouds.cloudscape import RenderTextures
+    from pywarp.clouds.settings import CloudscapeSettings
+
+    base = CloudscapeSettings(**{**MEDIA["physical"], "width": 80, "height": 45, "device": "cpu", "threads": None})
+    return base, RenderTextures.generate(base)
+
+
+def _thick_energy(z):
+    """(sum over the thick pixels of the full reference per channel, its standard error, the halves' difference in
+    standard errors of the difference) from the per-pixel standard-error images (pixels independent)."""
+    m = class_mask(z["tau"], "thick")
+    n, h = z["spp"], z["spp"] // 2
+    sa, sb = z["a"][m].sum(axis=0), z["b"][m].sum(axis=0)
+    ea, eb = np.sqrt((z["se_a"][m] ** 2).sum(axis=0)), np.sqrt((z["se_b"][m] ** 2).sum(axis=0))
+    full = (h * sa + (n - h) * sb) / n
+    se = np.sqrt((h * ea) ** 2 + ((n - h) * eb) ** 2) / n
+    return full, se, (sa - sb) / np.sqrt(ea ** 2 + eb ** 2)
+
+
+@pytest.mark.parametrize("view", VIEW_NAMES)
+def test_the_references_are_converged(view):
+    """Each file is 80x45, finite and non-negative, with thick cloud to judge; the thick cloud's energy of the full
+    reference has a standard error <= 2.5 % per channel (so the target of +-10 % is >= 4 standard errors away), and
+    its two halves (independent seeds) agree within 4 standard errors of their difference."""
+    z = load_converged(FOLDER, view, 80, 45)
+    assert z["spp"] >= 2048
+    for k in ("a", "b"):
+        assert np.all(np.isfinite(z[k])) and z[k].min() >= 0.0
+    assert np.mean(z["tau"] >= 3.0) > 0.05
+    full, se, z_halves = _thick_energy(z)
+    assert np.all(se / full <= 0.025), se / full
+    assert np.all(np.abs(z_halves) <= 4.0), z_halves
+
+
+def test_the_tuning_views_leave_two_held_out():
+    assert set(TUNING_SCENES) < set(VIEW_NAMES)
+    assert {"low sun", "view above"}.isdisjoint(TUNING_SCENES)
+
+
+def test_a_reference_of_another_size_is_refused():
+    with pytest.raises(ValueError, match="80x45"):
+        load_converged(FOLDER, "noon", 160, 90)
+    with pytest.raises(FileNotFoundError, match="lighting_references"):
+        load_converged(FOLDER, "no such view")
+
+
+#: The targets CONVERGED_MODEL misses today (docs/lighting.rst, "Against the converged references"): no candidate
+#: of tools/tune_lighting.py --grid 3 meets them all -- the thick cloud's energy needs a weight that depends on the
+#: sun's elevation and on the side the cloud is seen from, which the existing terms do not have. Strict: a model that
+#: meets one of them makes its test fail until the mark is removed.
+MISSES = {("low sun", "delta_e"), ("from above", "delta_e"), ("view below", "delta_e"), ("view above", "delta_e"),
+          ("noon", "energy"), ("low sun", "energy"), ("view below", "energy"), ("view above", "energy")}
+_ERRORS = {}
+
+
+def _model_errors(view, base_and_textures):
+    if view not in _ERRORS:
+        from pywarp.clouds.technique import CloudscapeTechnique
+
+        base, textures = base_and_textures
+        z = load_converged(FOLDER, view, 80, 45)
+        ms, why = model_settings(replace(base, **{**SCENES, **VIEWS}[view]), CONVERGED_MODEL)
+        assert ms is not None, why
+        lin = CloudscapeTechnique(ms, textures=textures).render_accumulated(None, ACCUMULATE, encode=False)
+        _ERRORS[view] = absolute_errors(lin, z["ref"], exposure(z["ref"]), z["tau"])
+    return _ERRORS[view]
+
+
+def _cases():
+    for view in VIEW_NAMES:
+        for target in ("delta_e", "energy"):
+            marks = [pytest.mark.xfail(strict=True, reason="issue 32: not met by any model of the existing terms")] \
+                if (view, target) in MISSES else []
+            yield pytest.param(view, target, marks=marks, id=f"{view}-{target}")
+
+
+@pytest.mark.parametrize("view, target", list(_cases()))
+def test_the_model_meets_the_targets_without_rescaling(view, target, base_and_textures):
+    """CONVERGED_MODEL (bench_reference) against the converged reference, under the reference's exposure alone: the
+    mean CIEDE2000 <= 3, the thick cloud's energy within 0.90-1.10 of the reference's per channel."""
+    e = _model_errors(view, base_and_textures)
+    if target == "delta_e":
+        assert e["delta_e"] <= DE_MAX, e["delta_e"]
+    else:
+        assert all(ENERGY[0] <= v <= ENERGY[1] for v in e["ratio"]["thick"]), e["ratio"]["thick"]
+
+
+def test_compare_reads_the_converged_references():
+    """compare(converged=DIR) takes each scene's reference from the folder with its own path count (the row's
+    ``spp``) and reports the halves' thick-energy difference in the noise floor; only in the physical medium."""
+    from pywarp.clouds.bench_reference import compare, report
+
+    small = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
+    res, images = compare(80, 45, scenes=["low sun"], settings=small, medium="physical", converged=str(FOLDER),
+                          progress=lambda m: None)
+    assert res["spp"] is None and res["converged"] == str(FOLDER)
+    assert "converged references" in report(res) and "2048 paths" in report(res)
+    row = res["scenes"][0]
+    z = load_converged(FOLDER, "low sun", 80, 45)
+    assert row["spp"] == z["spp"]
+    np.testing.assert_allclose(row["exposure"], exposure(z["ref"]))
+    te = row["noise_floor"]["thick_energy"]
+    np.testing.assert_allclose(te, z["a"][class_mask(z["tau"], "thick")].sum(axis=0)
+                               / z["b"][class_mask(z["tau"], "thick")].sum(axis=0) - 1.0, rtol=1e-9)
+    assert images["low sun"]["reference"].shape == (45, 80, 3)
+    with pytest.raises(ValueError, match="physical"):
+        compare(80, 45, scenes=["low sun"], settings=small, medium="display", converged=str(FOLDER))
