@@ -20,7 +20,8 @@ PANEL_WIDTH = 470
 #: the UI's frame-rate cap (frames/s): input, drawing and picking up frames; rendering runs on its own thread
 UI_FPS_MAX = 60.0
 #: while the render thread works, a UI frame waits up to this long (s) for its next frame: the UI then runs at the
-#: rendering's pace (a software-GL window under Xvfb costs ~20-30 ms of CPU per frame, taken from the renderer)
+#: rendering's pace (every UI frame costs CPU taken from the renderer: under Xvfb's software OpenGL, llvmpipe, ~15 ms a
+#: frame at 640 x 360, most of it rasterising the panel and the image; see :meth:`Window.gui`)
 UI_WAIT_S = 1.0 / 15.0
 #: UI frames per second when nothing changes (hello_imgui's idling)
 UI_FPS_IDLE = 10.0
@@ -153,6 +154,8 @@ class Window:
         from imgui_bundle import hello_imgui, imgui
 
         s = self.session
+        if self.t0 is None:
+            self._background()  # the theme is applied by now
         s.wait_frame(UI_WAIT_S)
         now = time.perf_counter()
         dt = 0.0 if self.last is None else now - self.last
@@ -160,9 +163,18 @@ class Window:
         vp = imgui.get_main_viewport()
         imgui.set_next_window_pos(vp.work_pos)
         imgui.set_next_window_size(vp.work_size)
+        # no background quad over the whole window: the clear colour is its colour (:meth:`_background`); under a
+        # software OpenGL (llvmpipe) the blended full-window quad cost ~10 ms of CPU a UI frame, 40 % of the window's cost
         flags = (imgui.WindowFlags_.no_decoration.value | imgui.WindowFlags_.no_move.value
-                 | imgui.WindowFlags_.no_saved_settings.value | imgui.WindowFlags_.no_bring_to_front_on_focus.value)
+                 | imgui.WindowFlags_.no_saved_settings.value | imgui.WindowFlags_.no_bring_to_front_on_focus.value
+                 | imgui.WindowFlags_.no_background.value)
         imgui.begin("pywarp view", None, flags)
+        style = imgui.get_style()
+        if style.window_border_size > 0:  # the window's frame, which the background pass drew (a few thin quads)
+            p0, size = imgui.get_window_pos(), imgui.get_window_size()
+            imgui.get_background_draw_list().add_rect(p0, imgui.ImVec2(p0.x + size.x, p0.y + size.y),
+                                                      imgui.get_color_u32(imgui.Col_.border.value),
+                                                      style.window_rounding, style.window_border_size)
         imgui.begin_child("panel", imgui.ImVec2(PANEL_WIDTH, 0), imgui.ChildFlags_.borders.value)
         self._stats(imgui)
         imgui.separator()
@@ -216,6 +228,16 @@ class Window:
         elif s.worker.busy() or inp.held or inp.pressed or self.dragging or s.script is not None \
                 or self.benchmark is not None or s.time_playing:
             hello_imgui.request_refresh()  # no idling while anything happens
+
+    @staticmethod
+    def _background() -> None:
+        """The window's clear colour: the theme's window background as it looked blended over the (black) clear
+        colour when the main ImGui window drew it, so the window looks as before without drawing it."""
+        from imgui_bundle import hello_imgui, imgui
+
+        c = imgui.get_style().color_(imgui.Col_.window_bg.value)
+        hello_imgui.get_runner_params().imgui_window_params.background_color = \
+            imgui.ImVec4(c.x * c.w, c.y * c.w, c.z * c.w, 1.0)
 
     def _release(self) -> None:
         # the texture is deleted while its OpenGL context exists (deleting it later would crash)
