@@ -2,7 +2,8 @@
 where neither Xvfb nor a display exists: every registered scene opens and Esc exits 0 without a traceback; a
 scripted flight's screenshot matches the offline render of the same camera and settings (SSIM >= 0.9); the keys
 moved the camera as they say; a panel change (coverage) changes the image; the image is really drawn in the window
-(found in the window's own screenshot); real key events (xdotool) drive the camera and quit."""
+(found in the window's own screenshot) and the window looks as before its background quad was dropped; real key
+events (xdotool) drive the camera and quit."""
 from __future__ import annotations
 
 import json
@@ -20,6 +21,10 @@ from pywarp.core import scenes as S
 from pywarp.viewer import controls as V
 
 PANEL_WIDTH = 470  # pywarp.viewer.window.PANEL_WIDTH (not imported: it imports imgui-bundle)
+#: the window's background and frame colours (sRGB) in a screenshot of the window as it was drawn with ImGui's own
+#: full-window background (imgui-bundle 1.93's default theme)
+WINDOW_BG = (30, 31, 33)
+WINDOW_FRAME = (77, 78, 79)
 
 
 def ssim(a, b) -> float:
@@ -92,6 +97,12 @@ def test_clouds_script_screenshot_matches_the_offline_render(display, run_view, 
     assert np.mean(np.abs(a.astype(float) - b.astype(float))) > 1.0  # coverage changed the image
     win = np.asarray(Image.open(tmp_path / "win.png"))[..., :3]
     assert find(win, b) < 2.0  # the last frame is on screen, drawn 1:1 as a texture beside the panel
+    # the window looks as it did when ImGui drew a background over all of it (colours read from a screenshot of
+    # that version): the empty area below the image in the theme's window colour, a 1-px frame at the edges
+    h, w = win.shape[:2]
+    assert np.abs(win[h - 20:h - 4, w - 60:w - 4].astype(int) - WINDOW_BG).max() <= 2
+    for edge in (win[h // 2, 0], win[h // 2, w - 1], win[0, w // 2], win[h - 1, w // 2]):
+        assert np.abs(edge.astype(int) - WINDOW_FRAME).max() <= 2
 
 
 @pytest.mark.skipif(shutil.which("xdotool") is None, reason="xdotool is not installed (apt-get install xdotool)")
