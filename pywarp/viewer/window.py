@@ -9,7 +9,10 @@ state and renders on its own thread.
 """
 from __future__ import annotations
 
+import sys
 import time
+
+import numpy as np
 
 from .controls import Binding, Input
 from .panel import draw as draw_panel
@@ -45,6 +48,45 @@ def key_table(imgui) -> dict:
     for n in range(1, 13):
         t[f"F{n}"] = [getattr(K, f"f{n}")]
     return t
+
+
+_GL = []  # [libGL through ctypes, or None where it cannot be loaded]
+
+
+def _tex_sub_image(texture_id: int, img) -> bool:
+    """Replace the pixels of the RGB texture ``texture_id`` (of ``img``'s size) with ``img`` (H x W x 3 uint8,
+    C-contiguous) by ``glTexSubImage2D``; False where libGL cannot be called (then the caller re-creates the storage
+    with ``GlTexture.update_from_image``, which costs about twice the CPU under llvmpipe: 1.6 against 0.8 ms at 640 x
+    360)."""
+    import ctypes
+    import ctypes.util
+
+    if not _GL:
+        name = ctypes.util.find_library("GL") if sys.platform.startswith("linux") else None
+        try:
+            _GL.append(ctypes.CDLL(name) if name else None)
+        except OSError:
+            _GL.append(None)
+    gl = _GL[0]
+    if gl is None or img.ndim != 3 or img.shape[2] != 3 or img.dtype != np.uint8 or not img.flags.c_contiguous:
+        return False
+    texture_2d, rgb, unsigned_byte = 0x0DE1, 0x1907, 0x1401
+    # rows packed tightly (alignment 1, no row length or skips), the unpack state restored after
+    store = {0x0CF5: 1, 0x0CF2: 0, 0x0CF3: 0, 0x0CF4: 0}  # UNPACK_ALIGNMENT, _ROW_LENGTH, _SKIP_ROWS, _SKIP_PIXELS
+    saved = {}
+    for k in store:
+        v = ctypes.c_int(0)
+        gl.glGetIntegerv(k, ctypes.byref(v))
+        saved[k] = v.value
+    for k, v in store.items():
+        gl.glPixelStorei(k, v)
+    gl.glBindTexture(texture_2d, int(texture_id))
+    gl.glTexSubImage2D(texture_2d, 0, 0, 0, img.shape[1], img.shape[0], rgb, unsigned_byte,
+                       img.ctypes.data_as(ctypes.c_void_p))
+    gl.glBindTexture(texture_2d, 0)
+    for k, v in saved.items():
+        gl.glPixelStorei(k, v)
+    return True
 
 
 class Window:
@@ -99,7 +141,7 @@ class Window:
         if self.texture is None or self.texture_shape != img.shape:
             self.texture = immvision.GlTexture(img)
             self.texture_shape = img.shape
-        else:
+        elif not _tex_sub_image(self.texture.texture_id, img):
             self.texture.update_from_image(img)
 
     def _stats(self, imgui) -> None:
