@@ -23,8 +23,8 @@ PANEL_WIDTH = 470
 #: the UI's frame-rate cap (frames/s): input, drawing and picking up frames; rendering runs on its own thread
 UI_FPS_MAX = 60.0
 #: while the render thread works, a UI frame waits up to this long (s) for its next frame: the UI then runs at the
-#: rendering's pace (every UI frame costs CPU taken from the renderer: under Xvfb's software OpenGL, llvmpipe, ~15 ms a
-#: frame at 640 x 360, most of it rasterising the panel and the image; see :meth:`Window.gui`)
+#: rendering's pace (every UI frame costs CPU taken from the renderer: under Xvfb's software OpenGL, llvmpipe, ~13 ms a
+#: frame at 640 x 360: the clear, the swap and ImGui ~5.5, the panel ~4, the image ~2.5; tools/window_cost.py)
 UI_WAIT_S = 1.0 / 15.0
 #: UI frames per second when nothing changes (hello_imgui's idling)
 UI_FPS_IDLE = 10.0
@@ -206,7 +206,7 @@ class Window:
         imgui.set_next_window_pos(vp.work_pos)
         imgui.set_next_window_size(vp.work_size)
         # no background quad over the whole window: the clear colour is its colour (:meth:`_background`); under a
-        # software OpenGL (llvmpipe) the blended full-window quad cost ~10 ms of CPU a UI frame, 40 % of the window's cost
+        # software OpenGL (llvmpipe) the blended full-window quad cost ~6 of the window's ~19 ms of CPU a UI frame
         flags = (imgui.WindowFlags_.no_decoration.value | imgui.WindowFlags_.no_move.value
                  | imgui.WindowFlags_.no_saved_settings.value | imgui.WindowFlags_.no_bring_to_front_on_focus.value
                  | imgui.WindowFlags_.no_background.value)
