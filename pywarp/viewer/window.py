@@ -9,7 +9,10 @@ state and renders on its own thread.
 """
 from __future__ import annotations
 
+import sys
 import time
+
+import numpy as np
 
 from .controls import Binding, Input
 from .panel import draw as draw_panel
@@ -20,7 +23,8 @@ PANEL_WIDTH = 470
 #: the UI's frame-rate cap (frames/s): input, drawing and picking up frames; rendering runs on its own thread
 UI_FPS_MAX = 60.0
 #: while the render thread works, a UI frame waits up to this long (s) for its next frame: the UI then runs at the
-#: rendering's pace (a software-GL window under Xvfb costs ~20-30 ms of CPU per frame, taken from the renderer)
+#: rendering's pace (every UI frame costs CPU taken from the renderer: under Xvfb's software OpenGL, llvmpipe, ~13 ms a
+#: frame at 640 x 360: the clear, the swap and ImGui ~5.5, the panel ~4, the image ~2.5; tools/window_cost.py)
 UI_WAIT_S = 1.0 / 15.0
 #: UI frames per second when nothing changes (hello_imgui's idling)
 UI_FPS_IDLE = 10.0
@@ -44,6 +48,45 @@ def key_table(imgui) -> dict:
     for n in range(1, 13):
         t[f"F{n}"] = [getattr(K, f"f{n}")]
     return t
+
+
+_GL = []  # [libGL through ctypes, or None where it cannot be loaded]
+
+
+def _tex_sub_image(texture_id: int, img) -> bool:
+    """Replace the pixels of the RGB texture ``texture_id`` (of ``img``'s size) with ``img`` (H x W x 3 uint8,
+    C-contiguous) by ``glTexSubImage2D``; False where libGL cannot be called (then the caller re-creates the storage
+    with ``GlTexture.update_from_image``, which costs about twice the CPU under llvmpipe: 1.6 against 0.8 ms at 640 x
+    360)."""
+    import ctypes
+    import ctypes.util
+
+    if not _GL:
+        name = ctypes.util.find_library("GL") if sys.platform.startswith("linux") else None
+        try:
+            _GL.append(ctypes.CDLL(name) if name else None)
+        except OSError:
+            _GL.append(None)
+    gl = _GL[0]
+    if gl is None or img.ndim != 3 or img.shape[2] != 3 or img.dtype != np.uint8 or not img.flags.c_contiguous:
+        return False
+    texture_2d, rgb, unsigned_byte = 0x0DE1, 0x1907, 0x1401
+    # rows packed tightly (alignment 1, no row length or skips), the unpack state restored after
+    store = {0x0CF5: 1, 0x0CF2: 0, 0x0CF3: 0, 0x0CF4: 0}  # UNPACK_ALIGNMENT, _ROW_LENGTH, _SKIP_ROWS, _SKIP_PIXELS
+    saved = {}
+    for k in store:
+        v = ctypes.c_int(0)
+        gl.glGetIntegerv(k, ctypes.byref(v))
+        saved[k] = v.value
+    for k, v in store.items():
+        gl.glPixelStorei(k, v)
+    gl.glBindTexture(texture_2d, int(texture_id))
+    gl.glTexSubImage2D(texture_2d, 0, 0, 0, img.shape[1], img.shape[0], rgb, unsigned_byte,
+                       img.ctypes.data_as(ctypes.c_void_p))
+    gl.glBindTexture(texture_2d, 0)
+    for k, v in saved.items():
+        gl.glPixelStorei(k, v)
+    return True
 
 
 class Window:
@@ -98,7 +141,7 @@ class Window:
         if self.texture is None or self.texture_shape != img.shape:
             self.texture = immvision.GlTexture(img)
             self.texture_shape = img.shape
-        else:
+        elif not _tex_sub_image(self.texture.texture_id, img):
             self.texture.update_from_image(img)
 
     def _stats(self, imgui) -> None:
@@ -153,6 +196,8 @@ class Window:
         from imgui_bundle import hello_imgui, imgui
 
         s = self.session
+        if self.t0 is None:
+            self._background()  # the theme is applied by now
         s.wait_frame(UI_WAIT_S)
         now = time.perf_counter()
         dt = 0.0 if self.last is None else now - self.last
@@ -160,9 +205,18 @@ class Window:
         vp = imgui.get_main_viewport()
         imgui.set_next_window_pos(vp.work_pos)
         imgui.set_next_window_size(vp.work_size)
+        # no background quad over the whole window: the clear colour is its colour (:meth:`_background`); under a
+        # software OpenGL (llvmpipe) the blended full-window quad cost ~6 of the window's ~19 ms of CPU a UI frame
         flags = (imgui.WindowFlags_.no_decoration.value | imgui.WindowFlags_.no_move.value
-                 | imgui.WindowFlags_.no_saved_settings.value | imgui.WindowFlags_.no_bring_to_front_on_focus.value)
+                 | imgui.WindowFlags_.no_saved_settings.value | imgui.WindowFlags_.no_bring_to_front_on_focus.value
+                 | imgui.WindowFlags_.no_background.value)
         imgui.begin("pywarp view", None, flags)
+        style = imgui.get_style()
+        if style.window_border_size > 0:  # the window's frame, which the background pass drew (a few thin quads)
+            p0, size = imgui.get_window_pos(), imgui.get_window_size()
+            imgui.get_background_draw_list().add_rect(p0, imgui.ImVec2(p0.x + size.x, p0.y + size.y),
+                                                      imgui.get_color_u32(imgui.Col_.border.value),
+                                                      style.window_rounding, style.window_border_size)
         imgui.begin_child("panel", imgui.ImVec2(PANEL_WIDTH, 0), imgui.ChildFlags_.borders.value)
         self._stats(imgui)
         imgui.separator()
@@ -216,6 +270,16 @@ class Window:
         elif s.worker.busy() or inp.held or inp.pressed or self.dragging or s.script is not None \
                 or self.benchmark is not None or s.time_playing:
             hello_imgui.request_refresh()  # no idling while anything happens
+
+    @staticmethod
+    def _background() -> None:
+        """The window's clear colour: the theme's window background as it looked blended over the (black) clear
+        colour when the main ImGui window drew it, so the window looks as before without drawing it."""
+        from imgui_bundle import hello_imgui, imgui
+
+        c = imgui.get_style().color_(imgui.Col_.window_bg.value)
+        hello_imgui.get_runner_params().imgui_window_params.background_color = \
+            imgui.ImVec4(c.x * c.w, c.y * c.w, c.z * c.w, 1.0)
 
     def _release(self) -> None:
         # the texture is deleted while its OpenGL context exists (deleting it later would crash)

@@ -2,7 +2,8 @@
 where neither Xvfb nor a display exists: every registered scene opens and Esc exits 0 without a traceback; a
 scripted flight's screenshot matches the offline render of the same camera and settings (SSIM >= 0.9); the keys
 moved the camera as they say; a panel change (coverage) changes the image; the image is really drawn in the window
-(found in the window's own screenshot); real key events (xdotool) drive the camera and quit."""
+(found in the window's own screenshot) and the window looks as before its background quad was dropped; real key
+events (xdotool) drive the camera and quit."""
 from __future__ import annotations
 
 import json
@@ -20,6 +21,10 @@ from pywarp.core import scenes as S
 from pywarp.viewer import controls as V
 
 PANEL_WIDTH = 470  # pywarp.viewer.window.PANEL_WIDTH (not imported: it imports imgui-bundle)
+#: the window's background and frame colours (sRGB) in a screenshot of the window as it was drawn with ImGui's own
+#: full-window background (imgui-bundle 1.93's default theme)
+WINDOW_BG = (30, 31, 33)
+WINDOW_FRAME = (77, 78, 79)
 
 
 def ssim(a, b) -> float:
@@ -92,6 +97,12 @@ def test_clouds_script_screenshot_matches_the_offline_render(display, run_view, 
     assert np.mean(np.abs(a.astype(float) - b.astype(float))) > 1.0  # coverage changed the image
     win = np.asarray(Image.open(tmp_path / "win.png"))[..., :3]
     assert find(win, b) < 2.0  # the last frame is on screen, drawn 1:1 as a texture beside the panel
+    # the window looks as it did when ImGui drew a background over all of it (colours read from a screenshot of
+    # that version): the empty area below the image in the theme's window colour, a 1-px frame at the edges
+    h, w = win.shape[:2]
+    assert np.abs(win[h - 20:h - 4, w - 60:w - 4].astype(int) - WINDOW_BG).max() <= 2
+    for edge in (win[h // 2, 0], win[h // 2, w - 1], win[0, w // 2], win[h - 1, w // 2]):
+        assert np.abs(edge.astype(int) - WINDOW_FRAME).max() <= 2
 
 
 @pytest.mark.skipif(shutil.which("xdotool") is None, reason="xdotool is not installed (apt-get install xdotool)")
@@ -127,3 +138,53 @@ def test_real_key_events_fly_the_camera_and_esc_exits_0(display, small_options, 
     assert p.returncode == 0 and "Traceback" not in err, err[-3000:]
     st = json.loads((tmp_path / "state.json").read_text())["settings"]
     assert st["camera_z_km"] < -0.05 and st["camera_x_km"] == pytest.approx(0.0, abs=1e-9)  # W: forward, -z
+
+
+TEXTURE_PROGRAM = r"""
+import ctypes, ctypes.util, json
+import numpy as np
+from imgui_bundle import hello_imgui, immapp, immvision
+from pywarp.viewer.window import _tex_sub_image
+
+rng = np.random.default_rng(7)
+a = rng.integers(0, 256, (45, 81, 3), dtype=np.uint8)  # 81 x 3 bytes a row: not a multiple of 4
+b = rng.integers(0, 256, (45, 81, 3), dtype=np.uint8)
+out = {}
+
+def gui():
+    if out:
+        return
+    gl = ctypes.CDLL(ctypes.util.find_library("GL"))
+    gl.glPixelStorei(0x0CF5, 4)  # UNPACK_ALIGNMENT left at GL's default by whoever ran before
+    t = immvision.GlTexture(a)
+    out["sub"] = _tex_sub_image(t.texture_id, b)
+    back = np.zeros_like(b)
+    gl.glBindTexture(0x0DE1, t.texture_id)
+    gl.glPixelStorei(0x0D05, 1)  # PACK_ALIGNMENT: rows packed tightly
+    gl.glGetTexImage(0x0DE1, 0, 0x1907, 0x1401, back.ctypes.data_as(ctypes.c_void_p))
+    gl.glBindTexture(0x0DE1, 0)
+    v = ctypes.c_int(0)
+    gl.glGetIntegerv(0x0CF5, ctypes.byref(v))
+    out.update(equal_b=bool((back == b).all()), equal_a=bool((back == a).all()), alignment_after=v.value)
+    del t
+    hello_imgui.get_runner_params().app_shall_exit = True
+
+params = hello_imgui.RunnerParams()
+params.callbacks.show_gui = gui
+immapp.run(params)
+print(json.dumps(out))
+"""
+
+
+def test_texture_update_in_place_replaces_every_pixel(display, tmp_path):
+    """The window's cheaper upload (glTexSubImage2D into the existing texture) gives the new image exactly, rows of
+    a width whose bytes are not a multiple of 4 included, and leaves the unpack alignment as it found it."""
+    env = dict(os.environ, DISPLAY=display)
+    env.pop("WAYLAND_DISPLAY", None)
+    proc = subprocess.run([sys.executable, "-c", TEXTURE_PROGRAM], cwd=tmp_path, env=env, capture_output=True,
+                          text=True, timeout=300)
+    ok(proc)
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert out["sub"], "libGL could not be called: the window falls back to re-creating the texture"
+    assert out["equal_b"] and not out["equal_a"]
+    assert out["alignment_after"] == 4
