@@ -239,7 +239,8 @@ BACKGROUND_REFINE_FRAMES = 16
 #: the benchmark (640x360, 2 cores, idle, the terrain background at its ~2x cheaper still): 1 gives 26.1 frames/s
 #: without a window and 13.2-14.8 under Xvfb, SSIM 0.94 / 0.92 (mean / p5); 2 gives 27.3 and 20.8 frames/s, SSIM
 #: 0.88-0.89 / 0.83-0.85. 1: the quality target (SSIM 0.90 / 0.80) and the frame rate without a window, 1-2 frames/s
-#: short of 15 under Xvfb (whose software OpenGL takes a core's 20-30 ms a frame)
+#: short of 15 under Xvfb (whose software OpenGL then took a core's 20-30 ms a frame; ~13 ms since the window
+#: stopped drawing its full-window background: tools/window_cost.py)
 NEW_DIRECTION_FACTOR = 1
 #: a reconstructed view is refined at most every this many frames (background_scale > 1): the frames between show the
 #: drops over the view as it is (the drops move every frame; a refinement costs a background frame at 1/16 of the

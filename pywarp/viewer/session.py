@@ -55,7 +55,8 @@ START_FACTOR = 2
 #: smallest preview width (px)
 MIN_PREVIEW_WIDTH = 32
 #: frame-rate targets (frames/s at 640 x 360 on two cores while moving), by scene: (without a window, with a window
-#: under Xvfb, whose software OpenGL takes 20-30 ms of CPU a frame); rain composites its drops over its background
+#: under Xvfb, whose software OpenGL takes ~13 ms of CPU a UI frame: tools/window_cost.py); rain composites its drops
+#: over its background
 TARGET_FPS = {"clouds": (30.0, 24.0), "flight": (30.0, 24.0), "terrain": (30.0, 24.0), "rain": (20.0, 15.0)}
 #: what is shown while moving against the full render of the same pose: (ssim_mean, ssim_p5) at least, every scene
 TARGET_SSIM = (0.90, 0.80)
