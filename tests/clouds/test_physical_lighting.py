@@ -3,7 +3,10 @@ octaves by the optical depth towards the sun (vc-x-ms-gain): closed form, limits
 Delta scaling of the approximate Mie phase (vc-x-mie-delta, vc-x-mie-delta-scale; cclouds/cloudscape.h "Delta
 scaling"): the closed form written out again in float64 from the published fit, the
 identity sigma' p' = sigma p - sigma f (1 - w_D) HG(g_HG), the normalisation, C and Warp agreeing (the functions,
-the energy and the per-frame light set-up), bad values refused, and the path-traced reference's medium untouched."""
+the energy and the per-frame light set-up), bad values refused, and the path-traced reference's medium untouched.
+The octaves' weights by the depth along the view (vc-x-ms-view) and by the sun's elevation and the sample's place
+between the sun and the viewer (vc-x-ms-slab), the ambient's anisotropy (vc-x-ambient-aniso): closed forms, limits,
+C and Warp (functions and pixels), their effect on the image, bad values refused, the reference ignoring them."""
 from __future__ import annotations
 
 import math
