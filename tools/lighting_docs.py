@@ -6,8 +6,8 @@ machine finishes in about half an hour.
     python tools/lighting_docs.py [--width 96 --height 54 --spp 128] [--json OUT.json]
 
 Writes docs/images/lighting/<scene>-<row>.png (the reference exposed for display and the rows ``default``,
-``physical`` and ``physical energy`` under the reference's exposure alone -- no rescaling) and docs/lighting_table.inc (included by the
-page). The images stay linear up to the renderer's display step (clamp, sRGB); a shared display transform would
+``physical``, ``physical energy`` and ``physical slab`` under the reference's exposure alone -- no rescaling) and
+docs/lighting_table.inc (included by the page). The images stay linear up to the renderer's display step (clamp, sRGB); a shared display transform would
 replace :func:`pywarp.clouds.bench_reference._srgb` here and in the benchmark.
 """
 from __future__ import annotations
@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 #: The rows shown as images (the reference besides): the renderer's defaults and the physical models.
-IMAGE_ROWS = ("default", "physical", "physical energy")
+IMAGE_ROWS = ("default", "physical", "physical energy", "physical slab")
 
 
 def _slug(name: str) -> str:

@@ -143,7 +143,12 @@
  *                             ms_view_trans 0.3, ambient_aniso 0.3 (with ms_a 0.5, ms_b 0.75): chosen against the
  *                             path-traced reference in physical units (tools/tune_lighting.py --physical --grid 2);
  *                             it is not the default because it does not yet meet the targets of the comparison in
- *                             every view (the docs give the numbers). */
+ *                             every view (the docs give the numbers).
+ *   ms_slab 0 (ms_slab_mu 1, ms_slab_far 0)   off: the octaves as above. With k > 0, mu0^1 is the sun's flux through
+ *                             a slab's top (two-stream) and s = 0 no weight by the sample's place; the model
+ *                             ``physical slab`` of docs/lighting.rst sets k 1.6, p 0.4, s 0.5, measured against the
+ *                             converged references (not the default: the renderer's defaults stay those of the
+ *                             earlier images). */
 void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
 {
     static const float sun[3] = {12.0f, 11.52f, 10.56f};
@@ -209,6 +214,9 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->ms_view = 0.0f;
     out->ms_view_trans = 1.0f;
     out->ambient_aniso = 0.0f;
+    out->ms_slab = 0.0f;
+    out->ms_slab_mu = 1.0f;
+    out->ms_slab_far = 0.0f;
     out->mie_delta = 0.0f;
     out->lod = 1;
     out->lod_bias = 0.0f;
@@ -316,6 +324,9 @@ ccl_status ccl_cloudscape_check(const ccl_cloudscape_params *p, const ccl_cloud_
     if (!(p->ms_view >= 0.0f && p->ms_view <= 1000.0f)) return bad(out_field, "ms_view");
     if (!(p->ms_view_trans >= 0.001f && p->ms_view_trans <= 1.0f)) return bad(out_field, "ms_view_trans");
     if (!(p->ambient_aniso >= 0.0f && p->ambient_aniso <= 1.0f)) return bad(out_field, "ambient_aniso");
+    if (!(p->ms_slab >= 0.0f && p->ms_slab <= 1000.0f)) return bad(out_field, "ms_slab");
+    if (!(p->ms_slab_mu >= 0.0f && p->ms_slab_mu <= 4.0f)) return bad(out_field, "ms_slab_mu");
+    if (!(p->ms_slab_far >= 0.0f && p->ms_slab_far <= 1.0f)) return bad(out_field, "ms_slab_far");
     if (!(p->mie_delta >= 0.0f && p->mie_delta <= 1.0f)) return bad(out_field, "mie_delta");
     if (!(p->lod == 0 || p->lod == 1)) return bad(out_field, "lod");
     if (!(p->weather_detile == 0 || p->weather_detile == 1)) return bad(out_field, "weather_detile");
@@ -665,6 +676,17 @@ float ccl_cloudscape_ms_view(float trans, float k, float t0)
     return 1.0f + k * fmaxf(1.0f - trans / t0, 0.0f);
 }
 
+float ccl_cloudscape_ms_slab(float mu0, float d, float trans, float k, float p, float s)
+{
+    float tau_v, r;
+    CCL_REQUIRE(!(mu0 < -1.0f || mu0 > 1.0f) && !(d < 0.0f) && !(trans < 0.0f || trans > 1.0f) && !(k < 0.0f) &&
+                !(p < 0.0f) && !(s < 0.0f || s > 1.0f));
+    if (!(k > 0.0f)) return 1.0f;
+    tau_v = -logf(fmaxf(trans, 1.0e-30f));
+    r = d + tau_v > 0.0f ? d / (d + tau_v) : 0.0f;
+    return k * powf(fmaxf(mu0, 0.0f), p) * (1.0f - s * r);
+}
+
 float ccl_cloudscape_ambient_aniso(float mu, float trans, float alpha)
 {
     CCL_REQUIRE(!(mu < -1.0f || mu > 1.0f) && !(trans < 0.0f || trans > 1.0f) && !(alpha < 0.0f || alpha > 1.0f));
@@ -877,9 +899,10 @@ static float light_depth(const ccl_cloudscape_params *p, const ccl_cloud_texture
 /* vc-2.31 + vc-A20: the light of a lit sample from its optical depth towards the sun (E of vc-2.31 with the
  * multiple-scattering octaves, dual-lobe phase, beer / powder flags) and the ambient by relative height; trans: the
  * view transmittance in front of the sample and view the view direction, for the octaves' weight by the depth into
- * the cloud (vc-x-ms-view) and the ambient's anisotropy (vc-x-ambient-aniso), both 1 at their defaults */
+ * the cloud (vc-x-ms-view) and the ambient's anisotropy (vc-x-ambient-aniso); to_sun for the octaves' weight by the
+ * sun's elevation and the sample's place between the sun and the viewer (vc-x-ms-slab); all 1 at their defaults */
 static ccl_vec3 sample_light(const ccl_cloudscape_params *p, float d_light, float precip, ccl_vec3 pos,
-                             float cos_theta, float trans, ccl_vec3 view)
+                             float cos_theta, float trans, ccl_vec3 view, ccl_vec3 to_sun)
 {
     const ccl_cloud_layer *L = &p->layer;
     const float a = p->absorption_base + p->absorption_precip * precip;
@@ -894,13 +917,18 @@ static ccl_vec3 sample_light(const ccl_cloudscape_params *p, float d_light, floa
                                                            p->ambient_aniso)
                             : 1.0f;
     ccl_vec3 light;
-    if (p->ms_view > 0.0f && p->ms_octaves > 1) {
-        /* the octaves i >= 1 (the whole energy less that of one octave) by the depth into the cloud */
+    if ((p->ms_view > 0.0f || p->ms_slab > 0.0f) && p->ms_octaves > 1) {
+        /* the octaves i >= 1 (the whole energy less that of one octave) by the depth into the cloud and by the sun's
+         * elevation and the sample's place between the sun and the viewer (vc-x-ms-slab) */
         ccl_cloudscape_params q = *p;
-        float e1;
+        float e1, w = 1.0f;
         q.ms_octaves = 1;
         e1 = ccl_cloudscape_energy(&q, d_light, a, cos_theta);
-        e = e1 + (e - e1) * ccl_cloudscape_ms_view(trans, p->ms_view, p->ms_view_trans);
+        if (p->ms_view > 0.0f) w = ccl_cloudscape_ms_view(trans, p->ms_view, p->ms_view_trans);
+        if (p->ms_slab > 0.0f)
+            w *= ccl_cloudscape_ms_slab(fminf(fmaxf(ccl_vec3_dot(to_sun, ccl_vec3_normalize(rel)), -1.0f), 1.0f),
+                                        d_light, trans, p->ms_slab, p->ms_slab_mu, p->ms_slab_far);
+        e = e1 + (e - e1) * w;
     }
     light.x = p->sun_colour[0] * e + amb_w * (p->ambient_bottom[0] + (p->ambient_top[0] - p->ambient_bottom[0]) * h);
     light.y = p->sun_colour[1] * e + amb_w * (p->ambient_bottom[1] + (p->ambient_top[1] - p->ambient_bottom[1]) * h);
@@ -994,7 +1022,8 @@ void ccl_cloudscape_march_textbook(const ccl_cloudscape_params *p, const ccl_clo
         d = textbook_light_depth(p, t, pos, to_sun); /* vc-A19: only where the density is non-zero */
         /* vc-2.31 + vc-A20: L = sun E(d, a, theta, g) + the ambient by relative height; vc-A21: C += T (1 -
          * exp(-sigma rho dt)) L, T *= exp(-sigma rho dt), and stop once O_D = 1 - T has reached its maximum */
-        if (march_sample(p, rho, dt, sample_light(p, d, precip, pos, cos_theta, T, dir), t_i, &C, &T, &depth_w, &depth_sum))
+        if (march_sample(p, rho, dt, sample_light(p, d, precip, pos, cos_theta, T, dir, to_sun), t_i, &C, &T,
+                         &depth_w, &depth_sum))
             break;
     }
     out_rgb[0] = C.x;
@@ -1137,7 +1166,7 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     continue;
                 }
                 d_cur = light_depth(p, t, pos, to_sun, t_i, pixel_angle);
-                light = sample_light(p, d_cur, precip, pos, cos_theta, trans, dir);
+                light = sample_light(p, d_cur, precip, pos, cos_theta, trans, dir, to_sun);
                 if (pend) {
                     /* the waiting sample: the mean of its neighbours' optical depths where it is the middle of three
                      * consecutive samples and its weight in the pixel times the largest difference of their lights
@@ -1150,8 +1179,9 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                     pend = 0;
                     if (t_i - pend_t > 1.5f * dt || w_p * diff > p->light_interp)
                         d_p = light_depth(p, t, pend_pos, to_sun, pend_t, pixel_angle);
-                    if (march_sample(p, pend_rho, dt, sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, dir), pend_t,
-                                     &colour, &trans, &depth_w, &depth_sum))
+                    if (march_sample(p, pend_rho, dt,
+                                     sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, dir, to_sun),
+                                     pend_t, &colour, &trans, &depth_w, &depth_sum))
                         break;
                 }
                 computed = 1;
@@ -1163,7 +1193,7 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
             if (pend) /* the ray ended with a sample waiting (a stop never leaves one) */
                 march_sample(p, pend_rho, dt,
                              sample_light(p, light_depth(p, t, pend_pos, to_sun, pend_t, pixel_angle), pend_precip,
-                                          pend_pos, cos_theta, trans, dir),
+                                          pend_pos, cos_theta, trans, dir, to_sun),
                              pend_t, &colour, &trans, &depth_w, &depth_sum);
         }
     }

@@ -320,6 +320,10 @@ static void test_check_names_the_lighting_fields(void)
     BAD(q.ms_view = NAN, "ms_view");
     BAD(q.ms_view_trans = 0.0f, "ms_view_trans");
     BAD(q.ambient_aniso = 1.5f, "ambient_aniso");
+    BAD(q.ms_slab = -1.0f, "ms_slab");
+    BAD(q.ms_slab = NAN, "ms_slab");
+    BAD(q.ms_slab_mu = 4.5f, "ms_slab_mu");
+    BAD(q.ms_slab_far = 1.5f, "ms_slab_far");
     /* the march's parameters of this renderer: the exit's fill, the light interpolation, the far light sample's
      * distance (each factor finite, their product too large: its weight x 0 was a NaN pixel, found by fuzzing) */
     BAD(q.exit_fill = 2, "exit_fill");
@@ -353,9 +357,41 @@ static void test_view_weights_closed_form(void)
     CCL_CHECK(p.ms_view == 0.0f && p.ms_view_trans == 1.0f && p.ambient_aniso == 0.0f);
 }
 
+/* vc-x-ms-slab against its closed form in double, its limits and its defaults (off) */
+static void test_ms_slab_closed_form(void)
+{
+    ccl_cloudscape_params p;
+    int i, j;
+    for (i = 0; i <= 20; ++i) {
+        const double mu0 = -0.5 + i / 13.0 > 1.0 ? 1.0 : -0.5 + i / 13.0;
+        for (j = 0; j <= 10; ++j) {
+            const double d = 0.7 * j, T = exp(-0.4 * (10 - j) * (i % 3));
+            const double tv = -log(T), r = d + tv > 0.0 ? d / (d + tv) : 0.0;
+            const double w = 1.8 * pow(fmax(mu0, 0.0), 0.5) * (1.0 - 0.67 * r);
+            const float got = ccl_cloudscape_ms_slab((float)mu0, (float)d, (float)T, 1.8f, 0.5f, 0.67f);
+            CCL_CHECK(fabs((double)got - w) <= 1e-5 * (1.0 + w));
+            CCL_CHECK(ccl_cloudscape_ms_slab((float)mu0, (float)d, (float)T, 0.0f, 0.5f, 0.67f) == 1.0f);
+        }
+    }
+    /* the sun at the zenith, no weight by place: k; the sun at or below the horizon: 0; p = 0: no elevation term */
+    CCL_CHECK(ccl_cloudscape_ms_slab(1.0f, 3.0f, 0.5f, 2.0f, 1.0f, 0.0f) == 2.0f);
+    CCL_CHECK(ccl_cloudscape_ms_slab(0.0f, 3.0f, 0.5f, 2.0f, 0.5f, 0.5f) == 0.0f);
+    CCL_CHECK(ccl_cloudscape_ms_slab(-0.3f, 3.0f, 0.5f, 2.0f, 0.5f, 0.5f) == 0.0f);
+    CCL_CHECK(ccl_cloudscape_ms_slab(0.2f, 3.0f, 0.5f, 2.0f, 0.0f, 0.0f) == 2.0f);
+    /* nothing towards the sun (the lit side, r = 0): k mu0^p; nothing back to the eye (r = 1): k mu0^p (1 - s);
+     * neither (r = 0 by definition) and an opaque view in front (tau_v = -ln 1e-30) stay finite */
+    CCL_CHECK(ccl_cloudscape_ms_slab(0.25f, 0.0f, 0.3f, 1.0f, 0.5f, 0.6f) == 0.5f);
+    CCL_CHECK(fabsf(ccl_cloudscape_ms_slab(0.25f, 5.0f, 1.0f, 1.0f, 0.5f, 0.6f) - 0.2f) <= 1e-6f);
+    CCL_CHECK(ccl_cloudscape_ms_slab(0.25f, 0.0f, 1.0f, 1.0f, 0.5f, 0.6f) == 0.5f);
+    CCL_CHECK(isfinite(ccl_cloudscape_ms_slab(0.5f, 1.0e6f, 0.0f, 1000.0f, 4.0f, 1.0f)));
+    ccl_cloudscape_params_default(&p);
+    CCL_CHECK(p.ms_slab == 0.0f && p.ms_slab_mu == 1.0f && p.ms_slab_far == 0.0f);
+}
+
 int main(void)
 {
     CCL_RUN(test_air_mass_closed_form);
+    CCL_RUN(test_ms_slab_closed_form);
     CCL_RUN(test_sun_attenuation_closed_form);
     CCL_RUN(test_sun_reddens_towards_the_horizon);
     CCL_RUN(test_energy_one_octave_one_lobe_is_vc_2_31);

@@ -318,7 +318,7 @@ CLOUDSCAPE_PARAMS = CStruct(
         "ms_octaves": f"in [1, {MAX_MS_OCTAVES}]", "ms_a": "in [0, 1]", "ms_b": "in [0, 1]", "ms_c": "in [0, 1]",
         "silver_g": "in (-1, 1)", "silver_weight": "in [0, 1]", "phase": "0 (thesis) or 1 (mie)",
         "droplet_um": "in [5, 50]", "ambient_ground_weight": "in [0, 1]", "mie_delta": "in [0, 1]", "ms_depth": ">= 0 and finite",
-        "ms_thin": "in [0, 1]", "ms_view": "in [0, 1000]", "ms_view_trans": "in [0.001, 1]", "ambient_aniso": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
+        "ms_thin": "in [0, 1]", "ms_view": "in [0, 1000]", "ms_view_trans": "in [0.001, 1]", "ambient_aniso": "in [0, 1]", "ms_slab": "in [0, 1000]", "ms_slab_mu": "in [0, 4]", "ms_slab_far": "in [0, 1]", "lod": "0 or 1", "weather_detile": "0 or 1",
         "lod_bias": "in [-4, 4]", "refine_step_km": ">= 0 and finite", "refine_max": "in [1, 64]",
     })
 #: the layer's fields: computed from the settings (earth_radius_km, layer_base_km, layer_top_km), never ``advanced``
@@ -641,6 +641,23 @@ class CloudscapeSettings(Settings):
                                      "cosine of the view with the local up (vc-x-ambient-aniso); 0 = off (isotropic)",
                                  reason="0: the thesis's isotropic ambient; the physical model of docs/lighting.rst "
                                         "sets it (measured against the path-traced reference)")
+    ms_slab: float = param(0.0, lo=0.0, hi=1000.0, c="ms_slab", group="lighting", cli="--ms-slab",
+                           doc="sky lighting: gain k of the multiple-scattering octaves' weight by the sun's elevation "
+                               "and the sample's place between the sun and the viewer, k max(mu0, 0)^p (1 - s r), mu0 "
+                               "the sun's cosine with the local up, r = d / (d + tau_v) the optical depth towards the "
+                               "sun over it plus that back to the eye (vc-x-ms-slab); 0 = off (weight 1)",
+                           reason="0: the octaves of Wrenninge et al. 2013 as they are and the earlier images; the "
+                                  "model 'physical slab' of docs/lighting.rst sets 1.6 (measured against the "
+                                  "converged references)")
+    ms_slab_mu: float = param(1.0, lo=0.0, hi=4.0, c="ms_slab_mu", group="lighting", cli="--ms-slab-mu",
+                              doc="sky lighting: the exponent p of mu0 in --ms-slab's weight",
+                              reason="1: the sun's flux through a horizontal cloud top (two-stream slab); the model "
+                                     "'physical slab' sets 0.4 (measured); used when ms_slab > 0")
+    ms_slab_far: float = param(0.0, lo=0.0, hi=1.0, c="ms_slab_far", group="lighting", cli="--ms-slab-far",
+                               doc="sky lighting: the share s of --ms-slab's weight lost where the sample is on the "
+                                   "cloud's side away from the sun (r = 1)",
+                               reason="0: no weight by the sample's place; the model 'physical slab' sets 0.5 "
+                                      "(measured); used when ms_slab > 0")
     ms_octaves: int = param(4, kind="int", lo=1, hi=MAX_MS_OCTAVES, c="ms_octaves", group="lighting",
                             doc="sky lighting: multiple-scattering octaves (Wrenninge et al. 2013; 1 = single "
                                 "scattering); octave i scales the optical depth, contribution and phase eccentricity "

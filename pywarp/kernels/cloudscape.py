@@ -135,6 +135,9 @@ class CloudscapeParams:
     ms_view: float
     ms_view_trans: float
     ambient_aniso: float
+    ms_slab: float
+    ms_slab_mu: float
+    ms_slab_far: float
     mie_delta: float
     lod: int
     lod_bias: float
@@ -508,6 +511,34 @@ def cloudscape_ms_view(trans: float, k: float, t0: float) -> float:
     return 1.0 + k * wp.max(1.0 - trans / t0, 0.0)
 
 
+@declare("vc-x-ms-slab", c="ccl_cloudscape_ms_slab",
+         args=(Arg("mu0", "cosine of the direction to the sun with the local up", lo=-1.0, hi=1.0),
+               Arg("d", "optical depth towards the sun", lo=0.0, hi=1.0e6),
+               Arg("trans", "view transmittance in front of the sample", lo=0.0, hi=1.0),
+               Arg("k", "gain of the weight; 0 = off", lo=0.0, hi=1.0e3),
+               Arg("p", "exponent of mu0", lo=0.0, hi=4.0),
+               Arg("s", "share lost on the side away from the sun", lo=0.0, hi=1.0)),
+         outputs=("weight",),
+         summary="Weight of the multiple-scattering octaves by the sun's elevation and the sample's place between "
+                 "the sun and the viewer (beyond the text): k max(mu0, 0)^p (1 - s r), r = d / (d + tau_v), tau_v = "
+                 "-ln max(T, 1e-30) the optical depth back to the eye (r = 0 where d + tau_v = 0): light scattered "
+                 "many times comes from the sun's flux through the cloud's top and fades towards its far side; 1 "
+                 "when k = 0.",
+         references=("Wrenninge, Kulla & Lundqvist, Oz: the great and volumetric, SIGGRAPH 2013 Talks",
+                     "Bohren & Clothiaux, Fundamentals of Atmospheric Radiation, Wiley 2006, ch. 6 (two-stream "
+                     "theory of a cloud slab)"))
+@wp.func
+def cloudscape_ms_slab(mu0: float, d: float, trans: float, k: float, p: float, s: float) -> float:
+    """Twin of ``ccl_cloudscape_ms_slab`` (cloudscape.h)."""
+    if not (k > 0.0):
+        return 1.0
+    tau_v = -wp.log(wp.max(trans, 1.0e-30))
+    r = float(0.0)
+    if d + tau_v > 0.0:
+        r = d / (d + tau_v)
+    return k * wp.pow(wp.max(mu0, 0.0), p) * (1.0 - s * r)
+
+
 @declare("vc-x-ambient-aniso", c="ccl_cloudscape_ambient_aniso",
          args=(Arg("mu", "cosine of the view direction with the local up", lo=-1.0, hi=1.0),
                Arg("trans", "view transmittance in front of the sample", lo=0.0, hi=1.0),
@@ -525,22 +556,29 @@ def cloudscape_ambient_aniso(mu: float, trans: float, alpha: float) -> float:
 
 @wp.func
 def sample_light(p: CloudscapeParams, d_light: float, precip: float, pos: wp.vec3, cos_theta: float, trans: float,
-                 view: wp.vec3) -> wp.vec3:
+                 view: wp.vec3, to_sun: wp.vec3) -> wp.vec3:
     """vc-2.31 + vc-A20: the light of a lit sample from its optical depth towards the sun ``d_light`` (E of vc-2.31
     with the multiple-scattering octaves, dual-lobe phase, beer / powder flags) and the ambient by relative height
     (twin of ``sample_light`` in cloudscape.c). ``trans``: the view transmittance in front of the sample and ``view``
     the view direction, for the octaves' weight by the depth into the cloud (vc-x-ms-view) and the ambient's
-    anisotropy (vc-x-ambient-aniso); both off (weight 1) at their defaults."""
+    anisotropy (vc-x-ambient-aniso); ``to_sun`` for the octaves' weight by the sun's elevation and the sample's
+    place between the sun and the viewer (vc-x-ms-slab); all off (weight 1) at their defaults."""
     a = p.absorption_base + p.absorption_precip * precip
     e = cloudscape_energy(p, d_light, a, cos_theta)
     amb_w = float(1.0)
     if p.ambient_aniso > 0.0:  # (off: no normalisation per sample)
         amb_w = cloudscape_ambient_aniso(wp.dot(view, wp.normalize(pos - p.centre)), trans, p.ambient_aniso)
-    if p.ms_view > 0.0 and p.ms_octaves > 1:
+    if (p.ms_view > 0.0 or p.ms_slab > 0.0) and p.ms_octaves > 1:
         q = p
         q.ms_octaves = 1
         e1 = cloudscape_energy(q, d_light, a, cos_theta)
-        e = e1 + (e - e1) * cloudscape_ms_view(trans, p.ms_view, p.ms_view_trans)
+        w = float(1.0)
+        if p.ms_view > 0.0:
+            w = cloudscape_ms_view(trans, p.ms_view, p.ms_view_trans)
+        if p.ms_slab > 0.0:
+            mu0 = wp.min(wp.max(wp.dot(to_sun, wp.normalize(pos - p.centre)), -1.0), 1.0)
+            w = w * cloudscape_ms_slab(mu0, d_light, trans, p.ms_slab, p.ms_slab_mu, p.ms_slab_far)
+        e = e1 + (e - e1) * w
     h = clouds_relative_height(wp.length(pos - p.centre), p.r_inner, p.r_outer, 0)
     return wp.vec3(
         p.sun_colour[0] * e + amb_w * (p.ambient_bottom[0] + (p.ambient_top[0] - p.ambient_bottom[0]) * h),
@@ -639,8 +677,8 @@ def cloudscape_march_textbook(p: CloudscapeParams, tex: CloudTextures, eye: wp.v
             d = textbook_light_depth(p, tex, pos, to_sun)  # vc-A19: only where the density is non-zero
             # vc-2.31 + vc-A20: L = sun E(d, a, theta, g) + the ambient by relative height; vc-A21: C += T (1 -
             # exp(-sigma rho dt)) L, T *= exp(-sigma rho dt), and stop once O_D = 1 - T has reached its maximum
-            C, T, depth_w, depth_sum, stop = march_sample(p, C, T, depth_w, depth_sum, rho, dt,
-                                                          sample_light(p, d, precip, pos, cos_theta, T, dir), t_i)
+            light = sample_light(p, d, precip, pos, cos_theta, T, dir, to_sun)
+            C, T, depth_w, depth_sum, stop = march_sample(p, C, T, depth_w, depth_sum, rho, dt, light, t_i)
             if stop != 0:
                 break
     depth = float(0.0)
@@ -801,7 +839,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                         pend_pos = pos
                         continue
                     d_cur = light_depth(p, tex, pos, to_sun, t_i, pixel_angle)
-                    light = sample_light(p, d_cur, precip, pos, cos_theta, trans, d)
+                    light = sample_light(p, d_cur, precip, pos, cos_theta, trans, d, to_sun)
                     if pend != 0:
                         # the waiting sample: the mean of its neighbours' optical depths where it is the middle of
                         # three consecutive samples and its weight in the pixel times the largest difference of
@@ -816,7 +854,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                             d_p = light_depth(p, tex, pend_pos, to_sun, pend_t, pixel_angle)
                         colour, trans, depth_w, depth_sum, stop = march_sample(
                             p, colour, trans, depth_w, depth_sum, pend_rho, dt,
-                            sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, d), pend_t)
+                            sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, d, to_sun), pend_t)
                         if stop != 0:
                             break
                     computed = 1
@@ -831,7 +869,7 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                 d_p = light_depth(p, tex, pend_pos, to_sun, pend_t, pixel_angle)
                 colour, trans, depth_w, depth_sum, stop = march_sample(
                     p, colour, trans, depth_w, depth_sum, pend_rho, dt,
-                    sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, d), pend_t)
+                    sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, d, to_sun), pend_t)
     depth = float(0.0)
     if depth_w > 0.0:
         depth = depth_sum / depth_w

@@ -3,7 +3,10 @@ octaves by the optical depth towards the sun (vc-x-ms-gain): closed form, limits
 Delta scaling of the approximate Mie phase (vc-x-mie-delta, vc-x-mie-delta-scale; cclouds/cloudscape.h "Delta
 scaling"): the closed form written out again in float64 from the published fit, the
 identity sigma' p' = sigma p - sigma f (1 - w_D) HG(g_HG), the normalisation, C and Warp agreeing (the functions,
-the energy and the per-frame light set-up), bad values refused, and the path-traced reference's medium untouched."""
+the energy and the per-frame light set-up), bad values refused, and the path-traced reference's medium untouched.
+The octaves' weights by the depth along the view (vc-x-ms-view) and by the sun's elevation and the sample's place
+between the sun and the viewer (vc-x-ms-slab), the ambient's anisotropy (vc-x-ambient-aniso): closed forms, limits,
+C and Warp (functions and pixels), their effect on the image, bad values refused, the reference ignoring them."""
 from __future__ import annotations
 
 import math
@@ -273,6 +276,97 @@ def test_ms_view_and_ambient_aniso_change_the_image_as_stated():
         np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
 
 
+# --- the octaves' weight by the sun's elevation and the sample's place between the sun and the viewer (vc-x-ms-slab) ---
+
+def _slab(mu0, d, trans, k, p, s_):
+    """vc-x-ms-slab in float64, written from its specification (spec/vc.md)."""
+    tau_v = -np.log(np.maximum(trans, 1e-30))
+    r = np.where(d + tau_v > 0, d / np.where(d + tau_v > 0, d + tau_v, 1.0), 0.0)
+    return k * np.maximum(mu0, 0.0) ** p * (1.0 - s_ * r)
+
+
+@pytest.mark.spec("vc-x-ms-slab")
+def test_ms_slab_closed_form_and_limits():
+    f = lib().ccl_cloudscape_ms_slab
+    mu0 = np.linspace(-0.2, 1.0, 25)
+    for d, trans in ((0.0, 1.0), (0.0, 0.2), (4.0, 1.0), (4.0, 0.05), (30.0, 0.9), (1.0, 0.0)):
+        for k, p, s_ in ((1.8, 0.5, 0.67), (1.0, 1.0, 0.0), (3.0, 2.0, 1.0)):
+            w = np.array([f(float(m), d, trans, k, p, s_) for m in mu0])
+            np.testing.assert_allclose(w, _slab(mu0, d, trans, k, p, s_), rtol=2e-6, atol=1e-7)
+            # no sun flux at or below the horizon; growing with the sun's elevation
+            assert np.all(w[mu0 <= 0] == 0.0) and np.all(np.diff(w) >= 0)
+    # the lit side (nothing towards the sun): k mu0^p; the far side (nothing back to the eye): k mu0^p (1 - s)
+    assert f(0.25, 0.0, 0.3, 1.0, 0.5, 0.6) == pytest.approx(0.5, rel=1e-6)
+    assert f(0.25, 5.0, 1.0, 1.0, 0.5, 0.6) == pytest.approx(0.2, rel=1e-6)
+    # deeper towards the sun (d up) at the same view depth: the weight falls
+    ws = [f(0.6, d, 0.3, 1.8, 0.5, 0.67) for d in (0.0, 1.0, 5.0, 50.0)]
+    assert all(a > b for a, b in zip(ws, ws[1:]))
+    assert all(f(float(m), 3.0, 0.5, 0.0, 0.5, 0.67) == 1.0 for m in mu0)  # off
+
+
+@pytest.mark.spec("vc-x-ms-slab")
+def test_ms_slab_c_and_warp_agree():
+    rng = np.random.default_rng(13)
+    n = 300
+    mu0 = np.float32(rng.uniform(-1, 1, n))
+    d = np.float32(np.where(rng.uniform(size=n) < 0.1, 0.0, rng.exponential(5.0, n)))
+    trans = np.float32(np.where(rng.uniform(size=n) < 0.1, rng.choice([0.0, 1.0], n), rng.uniform(0, 1, n)))
+    k = np.float32(np.where(rng.uniform(size=n) < 0.2, 0.0, rng.uniform(0, 5, n)))
+    p = np.float32(rng.uniform(0, 4, n))
+    s_ = np.float32(rng.uniform(0, 1, n))
+    assert_twins_agree("vc-x-ms-slab", mu0, d, trans, k, p, s_, ulp=8)
+
+
+def test_ms_slab_changes_the_image_as_stated():
+    """Whole pixels, C and Warp: with the sun's flux alone (p = 1, s = 0) the octaves fall with the sun's elevation,
+    so a low sun darkens the clouds more than a high one against the model without the term; the share lost on the
+    far side (s > 0) darkens a view from below (the bases, on the side away from the sun) by more than a view from
+    above (the sunlit tops); C and Warp agree on sampled pixels with the term on."""
+    from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
+
+    phys = dict(units="physical", phase="mie", lighting="sky", mie_delta=1.0, ms_depth=1.5, ms_thin=0.3,
+                aerial_km=0.0, powder=False, jitter="none")
+    rng = np.random.default_rng(2)
+    xs, ys = rng.integers(0, SMALL["width"], 200), rng.integers(0, SMALL["height"], 200)
+
+    def px(**kw):
+        t = CloudscapeTechnique(small(**{**phys, **kw}))
+        return render_pixels_warp(t, xs, ys), t
+
+    below = dict(camera_altitude_km=0.3, camera_pitch_deg=25.0)
+    above = dict(camera_altitude_km=6.0, camera_pitch_deg=-35.0)
+    ratio = {}
+    for elev in (75.0, 10.0):
+        base, _ = px(sun_elevation_deg=elev, **below)
+        flux, _ = px(sun_elevation_deg=elev, ms_slab=1.0, **below)
+        cloudy = np.any(np.abs(flux - base) > 1e-5, axis=1)
+        assert cloudy.mean() > 0.1 and np.all(flux <= base + 1e-6)  # weight mu0 <= 1 on the octaves only
+        ratio[elev] = flux[cloudy].sum() / base[cloudy].sum()
+    assert ratio[10.0] < ratio[75.0] < 1.0
+    far = {}
+    for name, view in (("below", below), ("above", above)):
+        flux, _ = px(ms_slab=1.0, ms_slab_mu=0.5, **view)
+        lost, _ = px(ms_slab=1.0, ms_slab_mu=0.5, ms_slab_far=0.67, **view)
+        cloudy = np.any(np.abs(lost - flux) > 1e-5, axis=1)
+        assert cloudy.mean() > 0.1 and np.all(lost <= flux + 1e-6)
+        far[name] = lost[cloudy].sum() / flux[cloudy].sum()
+    assert far["below"] < far["above"]
+    for view in (below, above):
+        w, t = px(ms_slab=1.8, ms_slab_mu=0.5, ms_slab_far=0.67, ms_view=3.0, ms_view_trans=0.3, **view)
+        c = render_pixels_c(t.settings, t.textures, xs, ys)
+        assert np.all(np.isfinite(w))
+        np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
+
+
+def test_ms_slab_bad_values_are_refused():
+    with pytest.raises(ValueError, match="ms_slab"):
+        small(ms_slab=-1.0)
+    with pytest.raises(ValueError, match="ms_slab_mu"):
+        small(ms_slab_mu=4.5)
+    with pytest.raises(ValueError, match="ms_slab_far"):
+        small(ms_slab_far=1.5)
+
+
 def test_ms_view_and_ambient_aniso_bad_values_are_refused():
     with pytest.raises(ValueError, match="ms_view"):
         small(ms_view=-1.0)
@@ -283,7 +377,7 @@ def test_ms_view_and_ambient_aniso_bad_values_are_refused():
 
 
 def test_the_reference_ignores_the_view_terms_and_its_cache_key_too():
-    """The path tracer does not read ms_view, ms_view_trans, ambient_aniso (real-time only): the same image with and
+    """The path tracer does not read ms_view, ms_view_trans, ambient_aniso, ms_slab* (real-time only): the same image with and
     without them, so they do not key its cache (bench_reference.NOT_IN_REFERENCE_KEY) and the references cached
     before them stay valid; a setting it reads (the sun) changes the key."""
     from dataclasses import replace
@@ -292,7 +386,7 @@ def test_the_reference_ignores_the_view_terms_and_its_cache_key_too():
     from pywarp.clouds.reference import ReferenceRenderer
 
     s = small(phase="mie", units="physical", lighting="sky", width=12, height=8)
-    t = replace(s, ms_view=3.0, ms_view_trans=0.3, ambient_aniso=0.6)
+    t = replace(s, ms_view=3.0, ms_view_trans=0.3, ambient_aniso=0.6, ms_slab=1.8, ms_slab_mu=0.5, ms_slab_far=0.67)
     a = ReferenceRenderer(s, spp=2, seed=3).render(encode=False)
     b = ReferenceRenderer(t, spp=2, seed=3).render(encode=False)
     np.testing.assert_array_equal(a, b)
