@@ -78,6 +78,12 @@ SHARPNESS_MIX = wp.constant(2.0)
 #: with depth: the history sampled with Catmull-Rom (Karis 2014; clamped into its four nearest pixels' box, no
 #: ringing) rather than bilinearly, which blurs it further every frame: SSIM 0.868 against 0.839 on the terrain's walk
 CUBIC_HISTORY = True
+#: with depth, while anything changes: whether the far field (sky) keeps its colour-clamped history (else the
+#: interpolation of the fresh pixels; a still view still converges through the history). MEASURED
+SKY_HISTORY = True
+#: with depth: whether the colour-clamped history (sky, water) is sampled with Catmull-Rom as a surface's kept by its
+#: depth is (:data:`CUBIC_HISTORY`), rather than bilinearly. MEASURED
+CLAMPED_CUBIC = True
 #: with depth: the four fresh pixels around a window pixel whose depths are within this ratio of each other lie on
 #: one smooth surface, and the pixel's depth is their bilinear interpolation (else the nearest one's: an edge).
 #: 1.25: the ground seen at a grazing angle changes its depth by ~10-20 % per fresh pixel at 1/16 of the pixels;
@@ -306,7 +312,8 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
                         reject: float, prev_eye: wp.vec3, blend: float, cubic: int,
                         changing: wp.array(dtype=wp.uint8, ndim=2), has_changing: int,
                         clamp_blend: float, hist_res: wp.array(dtype=float, ndim=2),
-                        enlarge: wp.array(dtype=float, ndim=2)) -> tuple[wp.vec3, float, float]:
+                        enlarge: wp.array(dtype=float, ndim=2), sky: int,
+                        clamped_cubic: int) -> tuple[wp.vec3, float, float]:
     """One pixel of the window's picture (see the module docstring) and the depth it shows (-1: far field): with
     ``has_depth`` the history is found through the depth of the nearest fresh pixel (``depth[j, i]``, distance along
     the ray; < 0: far field); with ``reject`` > 0 too (the history has its depth, ``hist_depth``) the history is kept
@@ -405,6 +412,11 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
             h = hs + (spatial - hs) * w
             return h, tk, res + (1.0 / float(f) - res) * w
         return spatial, t, 1.0 / float(f)
+    hcubic = cubic
+    if has_depth != 0 and clamp != 0:  # a frame with depth, while anything changes: the colour-clamped history
+        if sky == 0 and t <= 0.0:  # the far field: the interpolation
+            return spatial, t, 1.0 / float(f)
+        hcubic = clamped_cubic
     q = g * wp.vec3(float(x), float(y), 1.0)
     if has_depth != 0 and t > 0.0:
         q = depth_reprojection(x, y, t, width, height, inv_view_proj_rot, eye, prev_view_proj)
@@ -414,7 +426,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
     py = q[1] / q[2]
     if px < -0.5 or py < -0.5 or px > float(width) - 0.5 or py > float(height) - 0.5:  # off the previous picture
         return spatial, t, 1.0 / float(f)
-    h = sample_history(hist, px, py, width, height, cubic)
+    h = sample_history(hist, px, py, width, height, hcubic)
     if clamp != 0:
         xa = wp.max(ci - 1, 0)
         xb = wp.min(ci + 1, lw - 1)
@@ -477,15 +489,16 @@ def resolve_kernel(row0: int, fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.a
                    eye: wp.vec3, prev_view_proj: wp.mat44, hist_depth: wp.array(dtype=float, ndim=2),
                    reject: float, prev_eye: wp.vec3, blend: float, cubic: int,
                    changing: wp.array(dtype=wp.uint8, ndim=2), has_changing: int, clamp_blend: float,
-                   hist_res: wp.array(dtype=float, ndim=2), enlarge: wp.array(dtype=float, ndim=2),
-                   out: wp.array(dtype=wp.vec3, ndim=2), out_depth: wp.array(dtype=float, ndim=2),
+                   hist_res: wp.array(dtype=float, ndim=2), enlarge: wp.array(dtype=float, ndim=2), sky: int,
+                   clamped_cubic: int, out: wp.array(dtype=wp.vec3, ndim=2), out_depth: wp.array(dtype=float, ndim=2),
                    out_res: wp.array(dtype=float, ndim=2),
                    shown: wp.array(dtype=wp.uint8, ndim=3)):
     i, x = wp.tid()
     y = row0 + i
     c, r, res = resolve_pixel_depth(fresh, hist, f, ox, oy, has_hist, clamp, g, width, height, x, y, depth, has_depth,
                             inv_view_proj_rot, eye, prev_view_proj, hist_depth, reject, prev_eye, blend, cubic,
-                            changing, has_changing, clamp_blend, hist_res, enlarge)
+                            changing, has_changing, clamp_blend, hist_res, enlarge, sky,
+                            clamped_cubic)
     out[y, x] = c
     out_depth[y, x] = r
     out_res[y, x] = res
@@ -504,13 +517,16 @@ class TemporalUpsampler:
     and blended with :data:`HISTORY_BLEND`."""
 
     def __init__(self, launcher, width: int, height: int, factor: int = 2, depth_blend: float | None = None,
-                 depth_reject: float | None = None, cubic: bool | None = None):
+                 depth_reject: float | None = None, cubic: bool | None = None, sky: bool | None = None,
+                 clamped_cubic: bool | None = None):
         self.launcher = launcher
         self.device = launcher.device
         self.width, self.height = int(width), int(height)
         self.depth_blend = float(DEPTH_BLEND if depth_blend is None else depth_blend)
         self.depth_reject = float(DEPTH_REJECT if depth_reject is None else depth_reject)
         self.cubic = bool(CUBIC_HISTORY if cubic is None else cubic)
+        self.sky = bool(SKY_HISTORY if sky is None else sky)
+        self.clamped_cubic = bool(CLAMPED_CUBIC if clamped_cubic is None else clamped_cubic)
         if not 0.0 <= self.depth_blend <= 1.0:
             raise ValueError(f"depth_blend must be in [0, 1], got {self.depth_blend}")
         if not (self.depth_reject == 0.0 or self.depth_reject >= 1.0):
@@ -628,7 +644,8 @@ class TemporalUpsampler:
                               wp.vec3(*np.asarray(camera.eye, np.float32).tolist()), _mat44(prev.view_proj),
                               self._hdepth, float(reject), wp.vec3(*np.asarray(prev.eye, np.float32).tolist()),
                               float(self.depth_blend), int(self.cubic and depth is not None), chg,
-                              int(changing is not None), float(HISTORY_BLEND), self._hres, grow],
+                              int(changing is not None), float(HISTORY_BLEND), self._hres, grow,
+                              int(self.sky), int(self.cubic and self.clamped_cubic and depth is not None)],
                              [self._out, self._odepth, self._ores, self._shown])
         self._hist, self._out = self._out, self._hist
         self._hdepth, self._odepth = self._odepth, self._hdepth
