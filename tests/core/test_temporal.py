@@ -324,7 +324,7 @@ def interpolation(fresh: np.ndarray, f: int, ox: int, oy: int, width: int, heigh
 @pytest.mark.parametrize("sky", [False, True])
 def test_the_sky_without_its_history_is_the_interpolation(sky):
     """With depth and ``sky=False``, while the camera turns, a far-field pixel is this frame's interpolation of the
-    fresh pixels (computed here independently); with the sky's history (default) it is not (the check can fail). A
+    fresh pixels (computed here independently; the default, SKY_HISTORY); with ``sky=True`` it is not (the check can fail). A
     still view converges to the full render either way."""
     up = T.TemporalUpsampler(launcher("cpu", None), W, H, 2, sky=sky)
     for k in range(4):
