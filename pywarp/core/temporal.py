@@ -248,19 +248,20 @@ def sample_surface(hist: wp.array(dtype=wp.vec3, ndim=2), hist_depth: wp.array(d
     y0 = wp.max(wp.min(int(cy), height - 2), 0)
     ta = wp.clamp(cx - float(x0), 0.0, 1.0)
     tb = wp.clamp(cy - float(y0), 0.0, 1.0)
+    a00 = agrees(hist_depth[y0, x0], dist, reject)
+    a10 = agrees(hist_depth[y0, x0 + 1], dist, reject)
+    a01 = agrees(hist_depth[y0 + 1, x0], dist, reject)
+    a11 = agrees(hist_depth[y0 + 1, x0 + 1], dist, reject)
+    if a00 and a10 and a01 and a11:  # the common case: no colour read twice
+        return vec4_of(sample_history(hist, px, py, width, height, cubic), 1.0)
     acc = wp.vec3(0.0, 0.0, 0.0)
     wsum = float(0.0)
-    n = int(0)
     for j in range(2):
         for i in range(2):
-            hd = hist_depth[y0 + j, x0 + i]
-            if agrees(hd, dist, reject):
+            if agrees(hist_depth[y0 + j, x0 + i], dist, reject):
                 w = wp.where(i == 0, 1.0 - ta, ta) * wp.where(j == 0, 1.0 - tb, tb)
                 acc = acc + hist[y0 + j, x0 + i] * w
                 wsum = wsum + w
-                n = n + 1
-    if n == 4:
-        return vec4_of(sample_history(hist, px, py, width, height, cubic), 1.0)
     if wsum <= 1.0e-6:
         return wp.vec4(0.0, 0.0, 0.0, 0.0)  # none of them: rejected
     return vec4_of(acc / wsum, 1.0)
