@@ -321,6 +321,15 @@ def history_candidate(x: int, y: int, tc: float, d: wp.vec3, g: wp.mat33, eye: w
 
 
 @wp.func
+def bilerp(fresh: wp.array(dtype=wp.vec3, ndim=2), i0: int, i1: int, j0: int, j1: int, a: float,
+           b: float) -> wp.vec3:
+    """The fresh pixels' bilinear interpolation at (i0 + a, j0 + b) of their grid (i1, j1 the next column and row):
+    computed where a window pixel uses it (a surface's kept history does not)."""
+    return (fresh[j0, i0] * (1.0 - a) + fresh[j0, i1] * a) * (1.0 - b) + (fresh[j1, i0] * (1.0 - a)
+                                                                       + fresh[j1, i1] * a) * b
+
+
+@wp.func
 def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(dtype=wp.vec3, ndim=2), f: int,
                         ox: int, oy: int, has_hist: int, clamp: int, g: wp.mat33, width: int, height: int, x: int,
                         y: int, depth: wp.array(dtype=float, ndim=2), has_depth: int, inv_view_proj_rot: wp.mat44,
@@ -357,8 +366,6 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
     j1 = wp.min(j0 + 1, lh - 1)
     a = u - float(i0)
     b = v - float(j0)
-    spatial = (fresh[j0, i0] * (1.0 - a) + fresh[j0, i1] * a) * (1.0 - b) + (fresh[j1, i0] * (1.0 - a)
-                                                                               + fresh[j1, i1] * a) * b
     ci = wp.min(int(u + 0.5), lw - 1)
     cj = wp.min(int(v + 0.5), lh - 1)
     t = -1.0
@@ -379,7 +386,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
         if tlo > 0.0 and thi <= tlo * DEPTH_SMOOTH:
             t = (t00 * (1.0 - a) + t10 * a) * (1.0 - b) + (t01 * (1.0 - a) + t11 * a) * b
     if has_hist == 0:
-        return spatial, t, 1.0 / float(f)
+        return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
     steady = int(1)  # the nearest fresh pixel shows a surface whose colour only the motion changes
     if has_changing != 0:
         if changing[cj, ci] != wp.uint8(0):
@@ -417,7 +424,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
             res = wp.min(1.0, rh / wp.max(grow, 1.0e-6))
             w = wp.max(wp.clamp((SHARPNESS_MIX - res * float(f)) / (SHARPNESS_MIX - 1.0), 0.0, 1.0), blend)
             if w >= 1.0:  # the interpolation wholly: the history's colour is not needed (most of the cost)
-                return spatial, tk, 1.0 / float(f)
+                return bilerp(fresh, i0, i1, j0, j1, a, b), tk, 1.0 / float(f)
             hs = wp.vec3(0.0, 0.0, 0.0)
             if tk > 0.0:
                 hs4 = sample_surface(hist, hist_depth, found[0], found[1], wp.length(eye - prev_eye + d * tk), reject,
@@ -425,23 +432,25 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
                 hs = wp.vec3(hs4[0], hs4[1], hs4[2])
             else:
                 hs = sample_history(hist, found[0], found[1], width, height, cubic)
-            h = hs + (spatial - hs) * w
+            h = hs
+            if w > 0.0:  # (else the history alone: the interpolation is not computed)
+                h = hs + (bilerp(fresh, i0, i1, j0, j1, a, b) - hs) * w
             return h, tk, res + (1.0 / float(f) - res) * w
-        return spatial, t, 1.0 / float(f)
+        return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
     hcubic = cubic
     if has_depth != 0 and clamp != 0:  # a frame with depth, while anything changes: the colour-clamped history
         if sky == 0 and t <= 0.0:  # the far field: the interpolation
-            return spatial, t, 1.0 / float(f)
+            return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
         hcubic = clamped_cubic
     q = g * wp.vec3(float(x), float(y), 1.0)
     if has_depth != 0 and t > 0.0:
         q = depth_reprojection(x, y, t, width, height, inv_view_proj_rot, eye, prev_view_proj)
     if q[2] <= 0.0:  # the point was behind the previous camera
-        return spatial, t, 1.0 / float(f)
+        return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
     px = q[0] / q[2]
     py = q[1] / q[2]
     if px < -0.5 or py < -0.5 or px > float(width) - 0.5 or py > float(height) - 0.5:  # off the previous picture
-        return spatial, t, 1.0 / float(f)
+        return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
     h = sample_history(hist, px, py, width, height, hcubic)
     if clamp != 0:
         xa = wp.max(ci - 1, 0)
@@ -456,7 +465,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
         lo = wp.min(wp.min(wp.min(s1, s3), wp.min(s4, s5)), s7)
         hi = wp.max(wp.max(wp.max(s1, s3), wp.max(s4, s5)), s7)
         h = wp.min(wp.max(h, lo), hi)
-        h = h + (spatial - h) * clamp_blend
+        h = h + (bilerp(fresh, i0, i1, j0, j1, a, b) - h) * clamp_blend
         return h, t, 1.0 / float(f)
     # unclamped (a still view): the history as it is, and its sharpness with it
     return h, t, hist_res[wp.clamp(int(py + 0.5), 0, height - 1), wp.clamp(int(px + 0.5), 0, width - 1)]
