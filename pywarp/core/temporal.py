@@ -42,11 +42,11 @@ textured surface: it lets through what the cross happens to span and clips detai
   spacing, is their interpolation while the camera moves (:data:`SKY_HISTORY`; else the colour clamp).
 
 What a frame with depth costs (CPU of one 640 x 360 resolve at 1/16 of the pixels on the terrain's walk, the
-enlargement pass included; median of 20 frames, the old and new passes interleaved in one process): 24.1 ms before,
-18.7 ms now -- the sky's interpolation and the bilinear clamped history 5 ms of it, the history's depths read once per
-candidate and its colour skipped where the interpolation replaces it the rest. Of the pass, the fresh grid's
-bilinear colour and depth for every window pixel are ~6 ms, a surface's reprojection, depth test and Catmull-Rom
-sample ~8 ms (47 % of the pixels), the writes ~2.4 ms.
+enlargement pass included; median of 20 frames, the old and new passes interleaved in one process): 24.9 ms before,
+18.4 ms now -- the sky's interpolation and the bilinear clamped history 5 ms of it; the history's depths read once
+per candidate, its colour not where the interpolation replaces it, nor the interpolation where the history alone is
+shown, the rest. Of the pass, the fresh grid's position, depth and colour for every window pixel are ~6 ms, a
+surface's reprojection, depth test and Catmull-Rom sample ~8 ms (47 % of the pixels), the writes ~2.4 ms.
 
 Measured on the terrain viewer benchmark's walk (``W`` held, time playing; tools/terrain_preview_eval.py, 640 x 360,
 SSIM on luminance of the shown frame against the full render, mean / 5th percentile; CPU ms of a frame, one run on
