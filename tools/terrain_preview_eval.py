@@ -7,7 +7,7 @@ The motion is the viewer benchmark's (``W`` held: walking along the view at the 
 viewer's 20x) in fixed steps of 1/30 s (``--fps``: another rate, e.g. the benchmark's on a loaded machine), so that it does not depend on the machine's speed. The motion starts from the
 full render of its first pose (the viewer's refined frame before the keys are pressed). A policy is either
 ``{"scaled": [w, h]}`` -- the preview settings at w x h, enlarged bilinearly to 640 x 360 as the window shows it --
-or ``{"factor": f, "depth": true, "water": true, "blend": b, "reject": r, "cubic": true}`` -- the temporal
+or ``{"factor": f, "depth": true, "water": true, "blend": b, "reject": r, "cubic": true, "sky": true, "clamped_cubic": true}`` -- the temporal
 reconstruction of :mod:`pywarp.core.temporal` at 1/f^2 of the pixels per frame (``depth``: fed the terrain's depth;
 ``water``: and its water as changing; the rest the :class:`~pywarp.core.temporal.TemporalUpsampler` arguments,
 defaults the module's); either may add ``"changes": {...}`` to the preview settings (e.g. ``{"quality": "full"}``). From frame ``--first`` on, every
@@ -108,7 +108,8 @@ def main() -> int:
             w, h = pol["scaled"]
         else:
             up = T.TemporalUpsampler(full.launcher, W, H, int(pol["factor"]), depth_blend=pol.get("blend"),
-                                     depth_reject=pol.get("reject"), cubic=pol.get("cubic"))
+                                     depth_reject=pol.get("reject"), cubic=pol.get("cubic"),
+                                     sky=pol.get("sky"), clamped_cubic=pol.get("clamped_cubic"))
             use_depth = bool(pol.get("depth", True))
             up.remember(start, technique_camera(full, Pose.from_settings(states[0])), key=None,
                         depth=start_depth if use_depth else None)

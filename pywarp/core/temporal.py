@@ -37,8 +37,16 @@ textured surface: it lets through what the cross happens to span and clips detai
 * a kept history that has been enlarged since its pixels were rendered (walking into a slope) loses sharpness
   (:data:`SHARPNESS_MIX`): each pixel carries it (1 rendered, divided by each frame's enlargement, measured per fresh
   cell), and where it falls to 1/f this frame's interpolation takes over -- else a stretched history smears;
-* the far field (sky) and what the scene marks as ``changing`` (water: waves in time, reflections with the view)
-  keep the colour clamp above.
+* what the scene marks as ``changing`` (water: waves in time, reflections with the view) keeps the colour clamp
+  above (its history sampled bilinearly, :data:`CLAMPED_CUBIC`); the far field (sky), smooth at the fresh pixels'
+  spacing, is their interpolation while the camera moves (:data:`SKY_HISTORY`; else the colour clamp).
+
+What a frame with depth costs (CPU of one 640 x 360 resolve at 1/16 of the pixels on the terrain's walk, the
+enlargement pass included; median of 20 frames, the old and new passes interleaved in one process): 24.9 ms before,
+18.4 ms now -- the sky's interpolation and the bilinear clamped history 5 ms of it; the history's depths read once
+per candidate, its colour not where the interpolation replaces it, nor the interpolation where the history alone is
+shown, the rest. Of the pass, the fresh grid's position, depth and colour for every window pixel are ~6 ms, a
+surface's reprojection, depth test and Catmull-Rom sample ~8 ms (47 % of the pixels), the writes ~2.4 ms.
 
 Measured on the terrain viewer benchmark's walk (``W`` held, time playing; tools/terrain_preview_eval.py, 640 x 360,
 SSIM on luminance of the shown frame against the full render, mean / 5th percentile; CPU ms of a frame, one run on
@@ -47,7 +55,9 @@ pixels the colour clamp 0.808 / 0.795 (53 ms), with Catmull-Rom 0.812 / 0.800, t
 bilinearly 0.839 / 0.827, with Catmull-Rom but the water trusted 0.857 / 0.842, as here 0.868 / 0.856 (62 ms), the
 interpolation mixed in at 0.1 0.821 / 0.809; at 1/4 of the pixels 0.933 / 0.922 (167 ms). The benchmark's whole
 13 s at 28 frames/s (over a crest): 0.890 / 0.832 against the enlarged frame's 0.892 / 0.851 (the history moved
-onto its own depth: 0.883 / 0.807; without the sharpness: 0.878 / 0.776).
+onto its own depth: 0.883 / 0.807; without the sharpness: 0.878 / 0.776). Measured again with the sky interpolated
+while moving (:data:`SKY_HISTORY`) and the clamped history bilinear (:data:`CLAMPED_CUBIC`): the 2 s 0.867 / 0.855
+(56 ms) against 0.868 / 0.856 (63 ms), the whole walk 0.894 / 0.840 against 0.894 / 0.839.
 """
 from __future__ import annotations
 
@@ -78,6 +88,17 @@ SHARPNESS_MIX = wp.constant(2.0)
 #: with depth: the history sampled with Catmull-Rom (Karis 2014; clamped into its four nearest pixels' box, no
 #: ringing) rather than bilinearly, which blurs it further every frame: SSIM 0.868 against 0.839 on the terrain's walk
 CUBIC_HISTORY = True
+#: with depth, while the camera moves: whether the far field (sky) keeps its colour-clamped history; False: the
+#: interpolation of the fresh pixels (a still camera keeps it: time playing, the clouds drift in a clamped history;
+#: a still view converges through it). On the terrain benchmark's
+#: whole walk (tools/terrain_preview_eval.py --fps 28 --frames 364) SSIM 0.8943 / 0.8397 (mean / 5th percentile)
+#: against 0.8937 / 0.8390 with the history, 6 ms less CPU a frame of ~63 (the sky is ~43 % of the picture and smooth
+#: at the fresh pixels' spacing; on the walk's first 2 s 0.8673 / 0.8554 against 0.8677 / 0.8559)
+SKY_HISTORY = False
+#: with depth: whether the colour-clamped history (the sky's where kept, the water's) is sampled with Catmull-Rom as a
+#: surface's kept by its depth is (:data:`CUBIC_HISTORY`) rather than bilinearly: False -- the clamp into the fresh
+#: pixels' box bounds it either way; SSIM 0.8943 / 0.8397 both on the whole walk, ~0.7 ms less CPU a frame
+CLAMPED_CUBIC = False
 #: with depth: the four fresh pixels around a window pixel whose depths are within this ratio of each other lie on
 #: one smooth surface, and the pixel's depth is their bilinear interpolation (else the nearest one's: an edge).
 #: 1.25: the ground seen at a grazing angle changes its depth by ~10-20 % per fresh pixel at 1/16 of the pixels;
@@ -188,13 +209,16 @@ def sample_history(hist: wp.array(dtype=wp.vec3, ndim=2), px: float, py: float, 
         return (c00 * (1.0 - ta) + c10 * ta) * (1.0 - tb) + (c01 * (1.0 - ta) + c11 * ta) * tb
     wx = catmull_rom(ta)
     wy = catmull_rom(tb)
+    # the four columns clamped once (x0 - 1 and x0 + 2 may fall off the picture; x0 and x0 + 1 never do)
+    xa = wp.max(x0 - 1, 0)
+    xd = wp.min(x0 + 2, width - 1)
     acc = wp.vec3(0.0, 0.0, 0.0)
     for j in range(4):
         yy = wp.clamp(y0 - 1 + j, 0, height - 1)
-        row = wp.vec3(0.0, 0.0, 0.0)
-        for i in range(4):
-            xx = wp.clamp(x0 - 1 + i, 0, width - 1)
-            row = row + hist[yy, xx] * wx[i]
+        row = hist[yy, xa] * wx[0]
+        row = row + hist[yy, x0] * wx[1]
+        row = row + hist[yy, x0 + 1] * wx[2]
+        row = row + hist[yy, xd] * wx[3]
         acc = acc + row * wy[j]
     lo = wp.min(wp.min(c00, c10), wp.min(c01, c11))
     hi = wp.max(wp.max(c00, c10), wp.max(c01, c11))
@@ -226,22 +250,42 @@ def sample_surface(hist: wp.array(dtype=wp.vec3, ndim=2), hist_depth: wp.array(d
     y0 = wp.max(wp.min(int(cy), height - 2), 0)
     ta = wp.clamp(cx - float(x0), 0.0, 1.0)
     tb = wp.clamp(cy - float(y0), 0.0, 1.0)
+    a00 = agrees(hist_depth[y0, x0], dist, reject)
+    a10 = agrees(hist_depth[y0, x0 + 1], dist, reject)
+    a01 = agrees(hist_depth[y0 + 1, x0], dist, reject)
+    a11 = agrees(hist_depth[y0 + 1, x0 + 1], dist, reject)
+    if a00 and a10 and a01 and a11:  # the common case: no colour read twice
+        return vec4_of(sample_history(hist, px, py, width, height, cubic), 1.0)
     acc = wp.vec3(0.0, 0.0, 0.0)
     wsum = float(0.0)
-    n = int(0)
     for j in range(2):
         for i in range(2):
-            hd = hist_depth[y0 + j, x0 + i]
-            if agrees(hd, dist, reject):
+            if agrees(hist_depth[y0 + j, x0 + i], dist, reject):
                 w = wp.where(i == 0, 1.0 - ta, ta) * wp.where(j == 0, 1.0 - tb, tb)
                 acc = acc + hist[y0 + j, x0 + i] * w
                 wsum = wsum + w
-                n = n + 1
-    if n == 4:
-        return vec4_of(sample_history(hist, px, py, width, height, cubic), 1.0)
     if wsum <= 1.0e-6:
         return wp.vec4(0.0, 0.0, 0.0, 0.0)  # none of them: rejected
     return vec4_of(acc / wsum, 1.0)
+
+
+@wp.func
+def surface_seen(hist_depth: wp.array(dtype=float, ndim=2), px: float, py: float, dist: float, reject: float,
+                 width: int, height: int) -> bool:
+    """Whether :func:`sample_surface` keeps the history at (px, py) for a point at distance ``dist`` (any of the four
+    pixels around with weight shows that surface), without reading a colour."""
+    cx = wp.clamp(px, 0.0, float(width - 1))
+    cy = wp.clamp(py, 0.0, float(height - 1))
+    x0 = wp.max(wp.min(int(cx), width - 2), 0)
+    y0 = wp.max(wp.min(int(cy), height - 2), 0)
+    ta = wp.clamp(cx - float(x0), 0.0, 1.0)
+    tb = wp.clamp(cy - float(y0), 0.0, 1.0)
+    wsum = float(0.0)
+    for j in range(2):
+        for i in range(2):
+            if agrees(hist_depth[y0 + j, x0 + i], dist, reject):
+                wsum = wsum + wp.where(i == 0, 1.0 - ta, ta) * wp.where(j == 0, 1.0 - tb, tb)
+    return wsum > 1.0e-6
 
 
 @wp.func
@@ -251,8 +295,8 @@ def history_candidate(x: int, y: int, tc: float, d: wp.vec3, g: wp.mat33, eye: w
     """Whether the previous picture saw the point at distance ``tc`` along window pixel (x, y)'s unit ray ``d``
     (``tc`` <= 0: the far field, seen where the history's depth is far too): (px, py, t, 1) with the point's pixel
     in the previous picture, where its distance from the previous eye lies within ``reject`` of the range of the
-    history's depths at the four pixels around it (which pixels agree, :func:`sample_surface` picks), else
-    (.., .., .., 0). (Moving the point along the ray onto the history's own depth measured worse: SSIM 0.883
+    depth of one of the four history pixels around it with weight (:func:`surface_seen`; which pixels agree,
+    :func:`sample_surface` picks), else (.., .., .., 0). (Moving the point along the ray onto the history's own depth measured worse: SSIM 0.883
     against 0.890 on the terrain's walk -- the history's depths between fresh pixels are estimates, and the error
     fed back into the next frame's history.)"""
     no = wp.vec4(0.0, 0.0, tc, 0.0)
@@ -269,25 +313,20 @@ def history_candidate(x: int, y: int, tc: float, d: wp.vec3, g: wp.mat33, eye: w
         if hist_depth[wp.clamp(int(py + 0.5), 0, height - 1), wp.clamp(int(px + 0.5), 0, width - 1)] <= 0.0:
             return wp.vec4(px, py, tc, 1.0)
         return no
-    cx = wp.clamp(px, 0.0, float(width - 1))
-    cy = wp.clamp(py, 0.0, float(height - 1))
-    x0 = wp.max(wp.min(int(cx), width - 2), 0)
-    y0 = wp.max(wp.min(int(cy), height - 2), 0)
-    h00 = hist_depth[y0, x0]
-    h10 = hist_depth[y0, x0 + 1]
-    h01 = hist_depth[y0 + 1, x0]
-    h11 = hist_depth[y0 + 1, x0 + 1]
-    big = float(1.0e30)
-    lo = wp.min(wp.min(wp.where(h00 > 0.0, h00, big), wp.where(h10 > 0.0, h10, big)),
-                wp.min(wp.where(h01 > 0.0, h01, big), wp.where(h11 > 0.0, h11, big)))
-    hi = wp.max(wp.max(h00, h10), wp.max(h01, h11))
-    if hi <= 0.0:
-        return no
     e = eye - prev_eye
     dist = wp.length(e + d * tc)  # the point's distance from the previous eye
-    if dist * reject < lo or dist > hi * reject:  # outside the range the history saw there
+    if not surface_seen(hist_depth, px, py, dist, reject, width, height):  # no history pixel around saw it
         return no
     return wp.vec4(px, py, tc, 1.0)
+
+
+@wp.func
+def bilerp(fresh: wp.array(dtype=wp.vec3, ndim=2), i0: int, i1: int, j0: int, j1: int, a: float,
+           b: float) -> wp.vec3:
+    """The fresh pixels' bilinear interpolation at (i0 + a, j0 + b) of their grid (i1, j1 the next column and row):
+    computed where a window pixel uses it (a surface's kept history does not)."""
+    return (fresh[j0, i0] * (1.0 - a) + fresh[j0, i1] * a) * (1.0 - b) + (fresh[j1, i0] * (1.0 - a)
+                                                                       + fresh[j1, i1] * a) * b
 
 
 @wp.func
@@ -298,7 +337,8 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
                         reject: float, prev_eye: wp.vec3, blend: float, cubic: int,
                         changing: wp.array(dtype=wp.uint8, ndim=2), has_changing: int,
                         clamp_blend: float, hist_res: wp.array(dtype=float, ndim=2),
-                        enlarge: wp.array(dtype=float, ndim=2)) -> tuple[wp.vec3, float, float]:
+                        enlarge: wp.array(dtype=float, ndim=2), sky: int,
+                        clamped_cubic: int) -> tuple[wp.vec3, float, float]:
     """One pixel of the window's picture (see the module docstring) and the depth it shows (-1: far field): with
     ``has_depth`` the history is found through the depth of the nearest fresh pixel (``depth[j, i]``, distance along
     the ray; < 0: far field); with ``reject`` > 0 too (the history has its depth, ``hist_depth``) the history is kept
@@ -309,23 +349,23 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
     lw = fresh.shape[1]
     dx = x - ox
     dy = y - oy
-    if dx >= 0 and dy >= 0 and dx % f == 0 and dy % f == 0:
+    m = f - 1  # f is a power of two (FACTORS): the remainder is a mask, the quotient a product with 1/f (exact)
+    if dx >= 0 and dy >= 0 and (dx & m) == 0 and (dy & m) == 0:
         c = fresh[dy // f, dx // f]
         t_own = -1.0
         if has_depth != 0:
             t_own = depth[dy // f, dx // f]
         return c, t_own, 1.0
     # this pixel in the fresh grid: bilinear weights, and the nearest fresh pixel (the centre of the clamp's cross)
-    u = wp.clamp(float(dx) / float(f), 0.0, float(lw - 1))
-    v = wp.clamp(float(dy) / float(f), 0.0, float(lh - 1))
+    inv_f = 1.0 / float(f)
+    u = wp.clamp(float(dx) * inv_f, 0.0, float(lw - 1))
+    v = wp.clamp(float(dy) * inv_f, 0.0, float(lh - 1))
     i0 = wp.min(int(u), lw - 1)
     j0 = wp.min(int(v), lh - 1)
     i1 = wp.min(i0 + 1, lw - 1)
     j1 = wp.min(j0 + 1, lh - 1)
     a = u - float(i0)
     b = v - float(j0)
-    spatial = (fresh[j0, i0] * (1.0 - a) + fresh[j0, i1] * a) * (1.0 - b) + (fresh[j1, i0] * (1.0 - a)
-                                                                               + fresh[j1, i1] * a) * b
     ci = wp.min(int(u + 0.5), lw - 1)
     cj = wp.min(int(v + 0.5), lh - 1)
     t = -1.0
@@ -346,7 +386,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
         if tlo > 0.0 and thi <= tlo * DEPTH_SMOOTH:
             t = (t00 * (1.0 - a) + t10 * a) * (1.0 - b) + (t01 * (1.0 - a) + t11 * a) * b
     if has_hist == 0:
-        return spatial, t, 1.0 / float(f)
+        return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
     steady = int(1)  # the nearest fresh pixel shows a surface whose colour only the motion changes
     if has_changing != 0:
         if changing[cj, ci] != wp.uint8(0):
@@ -356,8 +396,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
         # (at a silhouette the pixel may lie on either side); the first whose point the history saw (its depth there
         # within the ratio ``reject``) is kept, refined onto the history's own surface
         d = pixel_ray(x, y, width, height, inv_view_proj_rot)
-        hs = wp.vec4(0.0, 0.0, 0.0, 0.0)
-        tk = t
+        found = wp.vec4(0.0, 0.0, 0.0, 0.0)
         for k in range(5):
             tc = t
             if k == 1:
@@ -368,17 +407,13 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
                 tc = t01
             elif k == 4:
                 tc = t11
-            if hs[3] == 0.0 and (k == 0 or tc != t):
-                found = history_candidate(x, y, tc, d, g, eye, prev_eye, prev_view_proj, hist_depth, reject, width,
-                                          height)
-                if found[3] != 0.0:
-                    tk = found[2]
-                    if tk > 0.0:
-                        hs = sample_surface(hist, hist_depth, found[0], found[1], wp.length(eye - prev_eye + d * tk),
-                                            reject, width, height, cubic)
-                    else:
-                        hs = vec4_of(sample_history(hist, found[0], found[1], width, height, cubic), 1.0)
-        if hs[3] != 0.0:
+            if found[3] == 0.0 and (k == 0 or tc != t):
+                cand = history_candidate(x, y, tc, d, g, eye, prev_eye, prev_view_proj, hist_depth, reject, width,
+                                         height)
+                if cand[3] != 0.0:
+                    found = cand
+        if found[3] != 0.0:
+            tk = found[2]
             # the history's sharpness at the point (1: rendered there; 1/f: the interpolation's), lost as the point
             # comes nearer (its picture enlarged by the previous distance over this one); below SHARPNESS_MIX / f the
             # interpolation of this frame's fresh pixels takes over, wholly at 1/f
@@ -388,20 +423,35 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
                 grow = wp.length(eye - prev_eye + d * tk) / wp.max(tk, 1.0e-6)
             res = wp.min(1.0, rh / wp.max(grow, 1.0e-6))
             w = wp.max(wp.clamp((SHARPNESS_MIX - res * float(f)) / (SHARPNESS_MIX - 1.0), 0.0, 1.0), blend)
-            h = wp.vec3(hs[0], hs[1], hs[2])
-            h = h + (spatial - h) * w
+            if w >= 1.0:  # the interpolation wholly: the history's colour is not needed (most of the cost)
+                return bilerp(fresh, i0, i1, j0, j1, a, b), tk, 1.0 / float(f)
+            hs = wp.vec3(0.0, 0.0, 0.0)
+            if tk > 0.0:
+                hs4 = sample_surface(hist, hist_depth, found[0], found[1], wp.length(eye - prev_eye + d * tk), reject,
+                                     width, height, cubic)
+                hs = wp.vec3(hs4[0], hs4[1], hs4[2])
+            else:
+                hs = sample_history(hist, found[0], found[1], width, height, cubic)
+            h = hs
+            if w > 0.0:  # (else the history alone: the interpolation is not computed)
+                h = hs + (bilerp(fresh, i0, i1, j0, j1, a, b) - hs) * w
             return h, tk, res + (1.0 / float(f) - res) * w
-        return spatial, t, 1.0 / float(f)
+        return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
+    hcubic = cubic
+    if has_depth != 0 and clamp != 0:  # a frame with depth, while anything changes: the colour-clamped history
+        if sky == 0 and t <= 0.0:  # the far field: the interpolation
+            return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
+        hcubic = clamped_cubic
     q = g * wp.vec3(float(x), float(y), 1.0)
     if has_depth != 0 and t > 0.0:
         q = depth_reprojection(x, y, t, width, height, inv_view_proj_rot, eye, prev_view_proj)
     if q[2] <= 0.0:  # the point was behind the previous camera
-        return spatial, t, 1.0 / float(f)
+        return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
     px = q[0] / q[2]
     py = q[1] / q[2]
     if px < -0.5 or py < -0.5 or px > float(width) - 0.5 or py > float(height) - 0.5:  # off the previous picture
-        return spatial, t, 1.0 / float(f)
-    h = sample_history(hist, px, py, width, height, cubic)
+        return bilerp(fresh, i0, i1, j0, j1, a, b), t, 1.0 / float(f)
+    h = sample_history(hist, px, py, width, height, hcubic)
     if clamp != 0:
         xa = wp.max(ci - 1, 0)
         xb = wp.min(ci + 1, lw - 1)
@@ -415,7 +465,7 @@ def resolve_pixel_depth(fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.array(d
         lo = wp.min(wp.min(wp.min(s1, s3), wp.min(s4, s5)), s7)
         hi = wp.max(wp.max(wp.max(s1, s3), wp.max(s4, s5)), s7)
         h = wp.min(wp.max(h, lo), hi)
-        h = h + (spatial - h) * clamp_blend
+        h = h + (bilerp(fresh, i0, i1, j0, j1, a, b) - h) * clamp_blend
         return h, t, 1.0 / float(f)
     # unclamped (a still view): the history as it is, and its sharpness with it
     return h, t, hist_res[wp.clamp(int(py + 0.5), 0, height - 1), wp.clamp(int(px + 0.5), 0, width - 1)]
@@ -464,15 +514,16 @@ def resolve_kernel(row0: int, fresh: wp.array(dtype=wp.vec3, ndim=2), hist: wp.a
                    eye: wp.vec3, prev_view_proj: wp.mat44, hist_depth: wp.array(dtype=float, ndim=2),
                    reject: float, prev_eye: wp.vec3, blend: float, cubic: int,
                    changing: wp.array(dtype=wp.uint8, ndim=2), has_changing: int, clamp_blend: float,
-                   hist_res: wp.array(dtype=float, ndim=2), enlarge: wp.array(dtype=float, ndim=2),
-                   out: wp.array(dtype=wp.vec3, ndim=2), out_depth: wp.array(dtype=float, ndim=2),
+                   hist_res: wp.array(dtype=float, ndim=2), enlarge: wp.array(dtype=float, ndim=2), sky: int,
+                   clamped_cubic: int, out: wp.array(dtype=wp.vec3, ndim=2), out_depth: wp.array(dtype=float, ndim=2),
                    out_res: wp.array(dtype=float, ndim=2),
                    shown: wp.array(dtype=wp.uint8, ndim=3)):
     i, x = wp.tid()
     y = row0 + i
     c, r, res = resolve_pixel_depth(fresh, hist, f, ox, oy, has_hist, clamp, g, width, height, x, y, depth, has_depth,
                             inv_view_proj_rot, eye, prev_view_proj, hist_depth, reject, prev_eye, blend, cubic,
-                            changing, has_changing, clamp_blend, hist_res, enlarge)
+                            changing, has_changing, clamp_blend, hist_res, enlarge, sky,
+                            clamped_cubic)
     out[y, x] = c
     out_depth[y, x] = r
     out_res[y, x] = res
@@ -491,13 +542,16 @@ class TemporalUpsampler:
     and blended with :data:`HISTORY_BLEND`."""
 
     def __init__(self, launcher, width: int, height: int, factor: int = 2, depth_blend: float | None = None,
-                 depth_reject: float | None = None, cubic: bool | None = None):
+                 depth_reject: float | None = None, cubic: bool | None = None, sky: bool | None = None,
+                 clamped_cubic: bool | None = None):
         self.launcher = launcher
         self.device = launcher.device
         self.width, self.height = int(width), int(height)
         self.depth_blend = float(DEPTH_BLEND if depth_blend is None else depth_blend)
         self.depth_reject = float(DEPTH_REJECT if depth_reject is None else depth_reject)
         self.cubic = bool(CUBIC_HISTORY if cubic is None else cubic)
+        self.sky = bool(SKY_HISTORY if sky is None else sky)
+        self.clamped_cubic = bool(CLAMPED_CUBIC if clamped_cubic is None else clamped_cubic)
         if not 0.0 <= self.depth_blend <= 1.0:
             raise ValueError(f"depth_blend must be in [0, 1], got {self.depth_blend}")
         if not (self.depth_reject == 0.0 or self.depth_reject >= 1.0):
@@ -578,8 +632,9 @@ class TemporalUpsampler:
             raise ValueError(f"fresh must be {lw}x{lh} (the planned size), got {fresh.shape[1]}x{fresh.shape[0]}")
         src = wp.array(np.ascontiguousarray(fresh[..., :3], dtype=np.float32), dtype=wp.vec3, device=self.device)
         has_hist = self._prev_cam is not None
-        still = has_hist and key == self._prev_key and all(
+        same_camera = has_hist and all(
             np.array_equal(getattr(camera, n), getattr(self._prev_cam, n)) for n in ("view_proj", "inv_view_proj"))
+        still = same_camera and key == self._prev_key
         prev = self._prev_cam if has_hist else camera
         g = reprojection(camera, prev, self.width, self.height)
         if depth is not None:
@@ -615,7 +670,8 @@ class TemporalUpsampler:
                               wp.vec3(*np.asarray(camera.eye, np.float32).tolist()), _mat44(prev.view_proj),
                               self._hdepth, float(reject), wp.vec3(*np.asarray(prev.eye, np.float32).tolist()),
                               float(self.depth_blend), int(self.cubic and depth is not None), chg,
-                              int(changing is not None), float(HISTORY_BLEND), self._hres, grow],
+                              int(changing is not None), float(HISTORY_BLEND), self._hres, grow,
+                              int(self.sky or same_camera), int(self.cubic and self.clamped_cubic and depth is not None)],
                              [self._out, self._odepth, self._ores, self._shown])
         self._hist, self._out = self._out, self._hist
         self._hdepth, self._odepth = self._odepth, self._hdepth

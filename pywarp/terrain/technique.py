@@ -55,7 +55,8 @@ class TerrainTechnique(Technique):
     #: (:meth:`depth`, :meth:`changing`): at 1/16 of the pixels per frame, on the viewer benchmark's walk
     #: (tools/terrain_preview_eval.py), SSIM 0.868 / 0.856 (mean / 5th percentile) against the full render where the
     #: enlarged 213 x 120 frame of the same CPU gives 0.834 / 0.820 (over the whole 13 s, a crest included, 0.890 /
-    #: 0.832 against 0.892 / 0.851); it costs the 640 x 360 resolve on top (~23 ms of CPU a frame: fewer frames/s)
+    #: 0.832 against 0.892 / 0.851); it costs the 640 x 360 resolve on top (~18 ms of CPU a frame besides the
+    #: 160 x 90 render's ~35: fewer frames/s; the sky, ~43 % of the picture, is interpolated while moving)
     preview_mode = "temporal"
 
     def invalidated(self, new: TerrainSettings, old: TerrainSettings) -> set:
