@@ -52,6 +52,9 @@ START_SCALE = 2
 QUALITY_SAMPLES = 8
 #: the reduction factor the temporal previews start with (1/4 of the pixels rendered per frame)
 START_FACTOR = 2
+#: a temporal preview that takes more than this many budgets doubles the reduction factor at once (the frame at
+#: twice the factor costs about a quarter: 2.5 budgets become ~0.6)
+FACTOR_JUMP = 2.5
 #: smallest preview width (px)
 MIN_PREVIEW_WIDTH = 32
 #: frame-rate targets (frames/s at 640 x 360 on two cores while moving), by scene: (without a window, with a window
@@ -254,12 +257,18 @@ class RenderWorker:
         return d, (changing() if changing is not None and d is not None else None)
 
     def _adapt_factor(self, seconds: float) -> None:
-        """The reduction factor of the temporal previews: doubled when a preview takes over 1.25 budgets, halved when
-        the frame it would give (about f^2/(f/2)^2 = 4 times the work) fits in 0.8 of one."""
+        """The reduction factor of the temporal previews: doubled when a preview takes over 1.25 budgets (at once when
+        one takes over :data:`FACTOR_JUMP` budgets: the first preview of a motion at a factor far too small, e.g. the
+        terrain's 1/4 of the pixels at ~4 budgets on two cores, is not repeated while the average catches up), halved
+        when the frame it would give (about f^2/(f/2)^2 = 4 times the work) fits in 0.8 of one."""
         from ..core.temporal import VIEWER_FACTORS
 
         self._ema = seconds if self._ema is None else 0.6 * self._ema + 0.4 * seconds
         self._since_scale += 1
+        if not self.fixed_scale and seconds > FACTOR_JUMP * self.budget_s and self.factor < VIEWER_FACTORS[-1]:
+            self.factor *= 2
+            self._since_scale, self._ema = 0, None
+            return
         if self.fixed_scale or self._since_scale < 3:
             return
         if self._ema > 1.25 * self.budget_s and self.factor < VIEWER_FACTORS[-1]:

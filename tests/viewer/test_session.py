@@ -230,3 +230,34 @@ def test_the_viewer_shows_the_display_transform_of_the_panel(clouds, small_setti
         assert np.array_equal(f.image, clouds.technique(session.settings).render())
     finally:
         session.close()
+
+
+def test_the_temporal_factor_doubles_at_once_for_a_preview_far_over_its_budget():
+    """A temporal preview over FACTOR_JUMP budgets doubles the factor with that frame; one over 1.25 budgets only
+    after three frames; one under halves it again (after three) only where four times its cost fits."""
+    from pywarp.core import scenes as S
+    from pywarp.core.temporal import VIEWER_FACTORS
+    from pywarp.viewer.session import FACTOR_JUMP, RenderWorker
+
+    worker = RenderWorker(S.scene("terrain"), budget_s=0.03, factor=2)
+    try:
+        worker._adapt_factor(0.03 * (FACTOR_JUMP + 0.5))  # the first preview: 3 budgets
+        assert worker.factor == 4
+        worker._adapt_factor(0.03 * 1.5)  # over 1.25 budgets but below the jump: waits for the average
+        worker._adapt_factor(0.03 * 1.5)
+        assert worker.factor == 4
+        worker._adapt_factor(0.03 * 1.5)
+        assert worker.factor == min(8, VIEWER_FACTORS[-1])
+        worker.factor = 4
+        worker._since_scale, worker._ema = 0, None
+        for _ in range(3):
+            worker._adapt_factor(0.03 * 0.1)  # 4 x 0.1 budget fits in 0.8: back to 1/4 of the pixels
+        assert worker.factor == 2
+        fixed = RenderWorker(S.scene("terrain"), budget_s=0.03, factor=2, fixed_scale=True)
+        try:
+            fixed._adapt_factor(0.03 * 10)
+            assert fixed.factor == 2  # a fixed scale never adapts
+        finally:
+            fixed.close()
+    finally:
+        worker.close()
