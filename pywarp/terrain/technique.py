@@ -33,12 +33,24 @@ from .settings import PREVIEW, TerrainSettings  # noqa: E402
 
 def effective(settings: TerrainSettings) -> TerrainSettings:
     """The settings a frame is rendered with: ``settings`` itself for quality 'full'; for 'preview' the reductions
-    of :data:`pywarp.terrain.settings.PREVIEW` at 1/preview_scale of the width and height (rounded up)."""
+    of :data:`pywarp.terrain.settings.PREVIEW` at 1/preview_scale of the width and height (rounded up). The last
+    answer is kept for the same (frozen) settings object: a viewer frame asks four times, and each new settings
+    object validates every field."""
     s = settings
     if s.quality != "preview":
         return s
+    global _EFFECTIVE_LAST
+    last = _EFFECTIVE_LAST  # one tuple, read and replaced whole (the viewer's threads may both ask)
+    if last[0] is s and last[1] == PREVIEW:
+        return last[2]
     k = s.preview_scale
-    return replace(s, **PREVIEW, width=-(-s.width // k), height=-(-s.height // k))
+    e = replace(s, **PREVIEW, width=-(-s.width // k), height=-(-s.height // k))
+    _EFFECTIVE_LAST = (s, dict(PREVIEW), e)
+    return e
+
+
+#: (settings, PREVIEW as it was, effective settings) of the last call of :func:`effective` with a preview
+_EFFECTIVE_LAST: tuple = (None, None, None)
 
 
 #: a depth's point within this share of (1 + its distance) of the water plane shows the water
@@ -114,12 +126,13 @@ class TerrainTechnique(Technique):
             return None
         return self._buffers["depth"].numpy().copy()
 
-    def changing(self) -> np.ndarray | None:
+    def changing(self, depth: np.ndarray | None = None) -> np.ndarray | None:
         """Where the last frame shows the water (bool, :meth:`depth`'s size; None where it has none): its waves move
         with time and its reflection with the view, so the temporal reconstruction colour-clamps its history there
-        rather than trusting it by depth. A pixel is water where its depth's point lies on the water plane (within
+        rather than trusting it by depth (``depth``: :meth:`depth`'s answer where the caller has it already). A pixel
+        is water where its depth's point lies on the water plane (within
         :data:`WATER_TOLERANCE` of its distance; the shore's terrain at that height counts too, harmlessly)."""
-        d = self.depth()
+        d = self.depth() if depth is None else depth
         if d is None:
             return None
         cam = self._last_camera

@@ -254,7 +254,7 @@ class RenderWorker:
         depth = getattr(self.tech, "depth", None)
         d = depth() if depth is not None else None
         changing = getattr(self.tech, "changing", None)
-        return d, (changing() if changing is not None and d is not None else None)
+        return d, (changing(d) if changing is not None and d is not None else None)
 
     def _adapt_factor(self, seconds: float) -> None:
         """The reduction factor of the temporal previews: doubled when a preview takes over 1.25 budgets (at once when
