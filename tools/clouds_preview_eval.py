@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import os
 import math
 import time
 
@@ -57,6 +58,8 @@ def main() -> int:
     ap.add_argument("--dump", default=None)
     ap.add_argument("--policy", action="append", default=[], metavar="NAME=JSON")
     a = ap.parse_args()
+    if a.dump:
+        os.makedirs(a.dump, exist_ok=True)
     if a.frames < 1 or not 1 <= a.every <= a.frames:
         ap.error("--frames must be >= 1 and --every in [1, frames]")
     policies = dict(DEFAULT) if not a.policy else {}

@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import os
 import time
 
 import numpy as np
@@ -65,6 +66,8 @@ def main() -> int:
     ap.add_argument("--verbose", action="store_true", help="print each compared frame's SSIM")
     ap.add_argument("--policy", action="append", default=[], metavar="NAME=JSON")
     a = ap.parse_args()
+    if a.dump:
+        os.makedirs(a.dump, exist_ok=True)
     if a.frames < 1 or not 1 <= a.first <= a.frames or a.every < 1:
         ap.error("--frames must be >= 1, --first in [1, frames], --every >= 1")
     policies = dict(DEFAULT) if not a.policy else {}
