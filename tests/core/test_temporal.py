@@ -354,23 +354,3 @@ def test_the_sky_without_its_history_is_the_interpolation(sky):
     for k in range(4):
         img = ground_step(up, pose, True)
     assert np.abs(img.astype(int) - ground(pose, W, H)[0].astype(int)).max() <= 1
-
-
-def test_the_interpolation_keeps_to_its_side_of_a_silhouette():
-    """With depth and no history, a window pixel between fresh pixels of the far field (depth < 0, bright) and of a
-    surface (depth > 0, dark) takes only the fresh pixels of its nearest fresh pixel's side: no dark fringe in the
-    sky, no light one on the ridge; without depth the same frame blends across (the check can fail)."""
-    f = 4
-    up = T.TemporalUpsampler(launcher("cpu", None), W, H, f)
-    lw, lh, _ = up.plan()
-    fresh = np.full((lh, lw, 3), 200, np.uint8)
-    depth = np.full((lh, lw), -1.0, np.float32)
-    fresh[lh // 2:] = 20  # a ridge below the middle row of the fresh grid
-    depth[lh // 2:] = 50.0
-    cam = pose_camera(Pose(y=1.5, fov_y_deg=60.0), W, H)
-    img = up.resolve(fresh, cam, depth=depth).astype(int)
-    assert set(np.unique(img)) <= {20, 200}, np.unique(img)  # every pixel wholly on one side
-    assert (img[0] == 200).all() and (img[-1] == 20).all()
-    up.reset()
-    blended = up.resolve(fresh, cam).astype(int)
-    assert ((blended > 20) & (blended < 200)).any()
