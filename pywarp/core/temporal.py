@@ -191,16 +191,22 @@ def catmull_rom(t: float) -> wp.vec4:
 
 
 @wp.func
+def history_cell(px: float, py: float, width: int, height: int):
+    """The history pixel (x0, y0) at the top left of pixel coordinates (px, py), clamped so that x0 + 1 and y0 + 1 lie
+    in the picture, and the bilinear weights (ta, tb) of x0 + 1 and y0 + 1: (x0, y0, ta, tb)."""
+    cx = wp.clamp(px, 0.0, float(width - 1))
+    cy = wp.clamp(py, 0.0, float(height - 1))
+    x0 = wp.max(wp.min(int(cx), width - 2), 0)
+    y0 = wp.max(wp.min(int(cy), height - 2), 0)
+    return x0, y0, wp.clamp(cx - float(x0), 0.0, 1.0), wp.clamp(cy - float(y0), 0.0, 1.0)
+
+
+@wp.func
 def sample_history(hist: wp.array(dtype=wp.vec3, ndim=2), px: float, py: float, width: int, height: int,
                    cubic: int) -> wp.vec3:
     """The history at pixel coordinates (px, py) (inside the picture): bilinear, or with ``cubic`` Catmull-Rom over
     the 4 x 4 pixels around it clamped into the box of the four nearest (no ringing past them; Karis 2014)."""
-    px = wp.clamp(px, 0.0, float(width - 1))
-    py = wp.clamp(py, 0.0, float(height - 1))
-    x0 = wp.max(wp.min(int(px), width - 2), 0)
-    y0 = wp.max(wp.min(int(py), height - 2), 0)
-    ta = wp.clamp(px - float(x0), 0.0, 1.0)
-    tb = wp.clamp(py - float(y0), 0.0, 1.0)
+    x0, y0, ta, tb = history_cell(px, py, width, height)
     c00 = hist[y0, x0]
     c10 = hist[y0, x0 + 1]
     c01 = hist[y0 + 1, x0]
@@ -244,12 +250,7 @@ def sample_surface(hist: wp.array(dtype=wp.vec3, ndim=2), hist_depth: wp.array(d
     the four pixels around all show that surface (their depths within ``reject`` of ``dist``), else the bilinear
     weights of those that do, renormalised -- at the edge of an occluder the history does not mix the occluder in;
     the last component 0 where none does (rejected)."""
-    cx = wp.clamp(px, 0.0, float(width - 1))
-    cy = wp.clamp(py, 0.0, float(height - 1))
-    x0 = wp.max(wp.min(int(cx), width - 2), 0)
-    y0 = wp.max(wp.min(int(cy), height - 2), 0)
-    ta = wp.clamp(cx - float(x0), 0.0, 1.0)
-    tb = wp.clamp(cy - float(y0), 0.0, 1.0)
+    x0, y0, ta, tb = history_cell(px, py, width, height)
     a00 = agrees(hist_depth[y0, x0], dist, reject)
     a10 = agrees(hist_depth[y0, x0 + 1], dist, reject)
     a01 = agrees(hist_depth[y0 + 1, x0], dist, reject)
@@ -274,12 +275,7 @@ def surface_seen(hist_depth: wp.array(dtype=float, ndim=2), px: float, py: float
                  width: int, height: int) -> bool:
     """Whether :func:`sample_surface` keeps the history at (px, py) for a point at distance ``dist`` (any of the four
     pixels around with weight shows that surface), without reading a colour."""
-    cx = wp.clamp(px, 0.0, float(width - 1))
-    cy = wp.clamp(py, 0.0, float(height - 1))
-    x0 = wp.max(wp.min(int(cx), width - 2), 0)
-    y0 = wp.max(wp.min(int(cy), height - 2), 0)
-    ta = wp.clamp(cx - float(x0), 0.0, 1.0)
-    tb = wp.clamp(cy - float(y0), 0.0, 1.0)
+    x0, y0, ta, tb = history_cell(px, py, width, height)
     wsum = float(0.0)
     for j in range(2):
         for i in range(2):
