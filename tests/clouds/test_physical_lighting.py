@@ -242,11 +242,15 @@ def test_ms_view_and_ambient_aniso_c_and_warp_agree():
     assert_twins_agree("vc-x-ambient-aniso", mu, trans, alpha, ulp=4)
 
 
-def test_ms_view_and_ambient_aniso_change_the_image_as_stated():
-    """Whole pixels, C and Warp: the view weight brightens the clouds and never darkens a pixel (weight >= 1 on the
-    octaves only); with the ambient's anisotropy a view from above is darker than without, one from below brighter;
-    C and Warp agree on sampled pixels with both terms on."""
-    from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
+#: the views of the image tests of the terms: from 0.3 km looking up 25 deg, from 6 km looking down 35 deg
+_BELOW = dict(camera_altitude_km=0.3, camera_pitch_deg=25.0)
+_ABOVE = dict(camera_altitude_km=6.0, camera_pitch_deg=-35.0)
+
+
+def _pixel_renderer():
+    """(px, xs, ys): 200 sampled pixels of the small scene, and ``px(**settings)`` -> (their Warp colours, the
+    technique) in the physical medium with the octaves' gain on, no haze, no powder, no jitter."""
+    from pywarp.clouds.cloudscape import render_pixels_warp
 
     phys = dict(units="physical", phase="mie", lighting="sky", mie_delta=1.0, ms_depth=1.5, ms_thin=0.3,
                 aerial_km=0.0, powder=False, jitter="none")
@@ -257,8 +261,24 @@ def test_ms_view_and_ambient_aniso_change_the_image_as_stated():
         t = CloudscapeTechnique(small(**{**phys, **kw}))
         return render_pixels_warp(t, xs, ys), t
 
-    below = dict(camera_altitude_km=0.3, camera_pitch_deg=25.0)
-    above = dict(camera_altitude_km=6.0, camera_pitch_deg=-35.0)
+    return px, xs, ys
+
+
+def _agrees_with_c(w, t, xs, ys):
+    """Warp's colours ``w`` of the sampled pixels are finite and C's of the same technique's settings agree."""
+    from pywarp.clouds.cloudscape import render_pixels_c
+
+    c = render_pixels_c(t.settings, t.textures, xs, ys)
+    assert np.all(np.isfinite(w))
+    np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
+
+
+def test_ms_view_and_ambient_aniso_change_the_image_as_stated():
+    """Whole pixels, C and Warp: the view weight brightens the clouds and never darkens a pixel (weight >= 1 on the
+    octaves only); with the ambient's anisotropy a view from above is darker than without, one from below brighter;
+    C and Warp agree on sampled pixels with both terms on."""
+    px, xs, ys = _pixel_renderer()
+    below, above = _BELOW, _ABOVE
     base_b, _ = px(**below)
     view_b, _ = px(ms_view=3.0, ms_view_trans=0.3, **below)
     assert np.all(view_b >= base_b - 1e-6) and np.mean(view_b.sum(1) > base_b.sum(1) + 1e-4) > 0.1
@@ -271,9 +291,7 @@ def test_ms_view_and_ambient_aniso_change_the_image_as_stated():
     assert aniso_a[cloudy_a].sum() < base_a[cloudy_a].sum() and aniso_b[cloudy_b].sum() > base_b[cloudy_b].sum()
     for view in (below, above):
         w, t = px(ms_view=3.0, ms_view_trans=0.3, ambient_aniso=0.6, **view)
-        c = render_pixels_c(t.settings, t.textures, xs, ys)
-        assert np.all(np.isfinite(w))
-        np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
+        _agrees_with_c(w, t, xs, ys)
 
 
 # --- the octaves' weight by the sun's elevation and the sample's place between the sun and the viewer (vc-x-ms-slab) ---
@@ -322,19 +340,8 @@ def test_ms_slab_changes_the_image_as_stated():
     so a low sun darkens the clouds more than a high one against the model without the term; the share lost on the
     far side (s > 0) darkens a view from below (the bases, on the side away from the sun) by more than a view from
     above (the sunlit tops); C and Warp agree on sampled pixels with the term on."""
-    from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
-
-    phys = dict(units="physical", phase="mie", lighting="sky", mie_delta=1.0, ms_depth=1.5, ms_thin=0.3,
-                aerial_km=0.0, powder=False, jitter="none")
-    rng = np.random.default_rng(2)
-    xs, ys = rng.integers(0, SMALL["width"], 200), rng.integers(0, SMALL["height"], 200)
-
-    def px(**kw):
-        t = CloudscapeTechnique(small(**{**phys, **kw}))
-        return render_pixels_warp(t, xs, ys), t
-
-    below = dict(camera_altitude_km=0.3, camera_pitch_deg=25.0)
-    above = dict(camera_altitude_km=6.0, camera_pitch_deg=-35.0)
+    px, xs, ys = _pixel_renderer()
+    below, above = _BELOW, _ABOVE
     ratio = {}
     for elev in (75.0, 10.0):
         base, _ = px(sun_elevation_deg=elev, **below)
@@ -353,9 +360,7 @@ def test_ms_slab_changes_the_image_as_stated():
     assert far["below"] < far["above"]
     for view in (below, above):
         w, t = px(ms_slab=1.8, ms_slab_mu=0.5, ms_slab_far=0.67, ms_view=3.0, ms_view_trans=0.3, **view)
-        c = render_pixels_c(t.settings, t.textures, xs, ys)
-        assert np.all(np.isfinite(w))
-        np.testing.assert_allclose(w, c, rtol=0, atol=1e-5)
+        _agrees_with_c(w, t, xs, ys)
 
 
 def test_ms_slab_bad_values_are_refused():
