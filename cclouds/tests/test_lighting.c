@@ -105,6 +105,7 @@ static void test_energy_octave_sum_closed_form(void)
     p.ms_a = 0.6f;
     p.ms_b = 0.45f;
     p.ms_c = 0.7f;
+    p.ms_depth = 0.0f; /* the octave sum alone: no weight by the optical depth towards the sun */
     for (n = 1; n <= CCL_CLOUDSCAPE_MAX_MS_OCTAVES; ++n)
         for (j = 0; j <= 8; ++j) {
             const double c = -1.0 + 0.25 * j, d = 1.3, a = 1.4;
@@ -141,9 +142,9 @@ static void test_energy_octaves_brighten_thick_clouds_most(void)
     CCL_CHECK(prev > 10.0f); /* deep inside, the halved extinction of the octaves dominates */
 }
 
-static void test_light_thesis_is_an_unchanged_copy(void)
+static void test_light_thesis_is_a_copy_with_the_further_terms_off(void)
 {
-    ccl_cloudscape_params p, out;
+    ccl_cloudscape_params p, expect, out;
     ccl_cloudscape_sky sky;
     memset(&sky, 0, sizeof sky);
     sky.kind = CCL_SKY_GRADIENT;
@@ -151,9 +152,24 @@ static void test_light_thesis_is_an_unchanged_copy(void)
     sky.sun[1] = 1.0f;
     ccl_cloudscape_params_default(&p);
     p.lighting = CCL_LIGHTING_THESIS;
+    /* the defaults turn the sky lighting's terms on; the thesis's lighting has one octave, one lobe, none of them */
+    CCL_CHECK(p.ms_octaves > 1 && p.ms_depth > 0.0f && p.ms_view > 0.0f && p.ms_slab > 0.0f &&
+              p.ambient_aniso > 0.0f && p.ambient_ground_weight > 0.0f && p.mie_delta > 0.0f);
+    p.silver_weight = 0.3f;
+    expect = p;
+    expect.ms_octaves = 1;
+    expect.silver_weight = 0.0f;
+    expect.ms_depth = 0.0f;
+    expect.ms_view = 0.0f;
+    expect.ms_slab = 0.0f;
+    expect.ambient_aniso = 0.0f;
+    expect.ambient_ground_weight = 0.0f;
+    expect.mie_delta = 0.0f;
     memset(&out, 0xab, sizeof out);
     ccl_cloudscape_light(&p, &sky, &out);
-    CCL_CHECK(memcmp(&p, &out, sizeof p) == 0);
+    CCL_CHECK(memcmp(&expect, &out, sizeof p) == 0);
+    ccl_cloudscape_light(&p, &sky, &p); /* out may equal p */
+    CCL_CHECK(memcmp(&expect, &p, sizeof p) == 0);
 }
 
 static void test_light_hemisphere_means_of_a_gradient_sky(void)
@@ -175,6 +191,7 @@ static void test_light_hemisphere_means_of_a_gradient_sky(void)
     sky.sun[1] = 0.5f; /* 30 degrees up */
     sky.sun[2] = -0.8660254f;
     ccl_cloudscape_params_default(&p);
+    p.ambient_ground_weight = 0.0f; /* the sky's means alone, without the lit ground's share */
     ccl_cloudscape_light(&p, &sky, &out);
     att = ccl_sky_sun_attenuation(acosf(0.5f), p.turbidity);
     CCL_CHECK(out.sun_colour[0] == p.sun_intensity * att.x);
@@ -337,10 +354,10 @@ static void test_check_names_the_lighting_fields(void)
 #undef BAD
 }
 
-/* vc-x-ms-view and vc-x-ambient-aniso against their closed forms in double, their limits and their defaults (off) */
+/* vc-x-ms-view and vc-x-ambient-aniso against their closed forms in double, and their limits (their defaults:
+ * tests/clouds/test_default_lighting.py) */
 static void test_view_weights_closed_form(void)
 {
-    ccl_cloudscape_params p;
     int i;
     for (i = 0; i <= 20; ++i) {
         const double T = i / 20.0, mu = -1.0 + i / 10.0;
@@ -353,14 +370,11 @@ static void test_view_weights_closed_form(void)
     CCL_CHECK(ccl_cloudscape_ms_view(0.0f, 3.0f, 0.3f) == 4.0f && ccl_cloudscape_ms_view(0.3f, 3.0f, 0.3f) == 1.0f);
     CCL_CHECK(ccl_cloudscape_ambient_aniso(-1.0f, 1.0f, 0.4f) == 0.6f);
     CCL_CHECK(ccl_cloudscape_ambient_aniso(0.7f, 0.0f, 1.0f) == 1.0f);
-    ccl_cloudscape_params_default(&p);
-    CCL_CHECK(p.ms_view == 0.0f && p.ms_view_trans == 1.0f && p.ambient_aniso == 0.0f);
 }
 
-/* vc-x-ms-slab against its closed form in double, its limits and its defaults (off) */
+/* vc-x-ms-slab against its closed form in double, and its limits (its defaults: tests/clouds/test_default_lighting.py) */
 static void test_ms_slab_closed_form(void)
 {
-    ccl_cloudscape_params p;
     int i, j;
     for (i = 0; i <= 20; ++i) {
         const double mu0 = -0.5 + i / 13.0 > 1.0 ? 1.0 : -0.5 + i / 13.0;
@@ -384,8 +398,6 @@ static void test_ms_slab_closed_form(void)
     CCL_CHECK(fabsf(ccl_cloudscape_ms_slab(0.25f, 5.0f, 1.0f, 1.0f, 0.5f, 0.6f) - 0.2f) <= 1e-6f);
     CCL_CHECK(ccl_cloudscape_ms_slab(0.25f, 0.0f, 1.0f, 1.0f, 0.5f, 0.6f) == 0.5f);
     CCL_CHECK(isfinite(ccl_cloudscape_ms_slab(0.5f, 1.0e6f, 0.0f, 1000.0f, 4.0f, 1.0f)));
-    ccl_cloudscape_params_default(&p);
-    CCL_CHECK(p.ms_slab == 0.0f && p.ms_slab_mu == 1.0f && p.ms_slab_far == 0.0f);
 }
 
 int main(void)
@@ -397,7 +409,7 @@ int main(void)
     CCL_RUN(test_energy_one_octave_one_lobe_is_vc_2_31);
     CCL_RUN(test_energy_octave_sum_closed_form);
     CCL_RUN(test_energy_octaves_brighten_thick_clouds_most);
-    CCL_RUN(test_light_thesis_is_an_unchanged_copy);
+    CCL_RUN(test_light_thesis_is_a_copy_with_the_further_terms_off);
     CCL_RUN(test_light_hemisphere_means_of_a_gradient_sky);
     CCL_RUN(test_ground_clear_and_under_an_opaque_layer);
     CCL_RUN(test_check_names_the_lighting_fields);

@@ -206,8 +206,10 @@ def test_energy_with_the_mie_phase_closed_form():
     hg = lambda g: (1 - g * g) / (4 * math.pi * (1 + g * g - 2 * g * cos_t) ** 1.5)  # noqa: E731
     mie = (1 - w_d) * hg(g_hg) + w_d * hg(g_d) * (1 + al * cos_t ** 2) / (1 + al * (1 + 2 * g_d ** 2) / 3)
     for octaves in (1, 3):
+        # the full Mie phase (no delta scaling) and the octaves' sum alone (no gain by the depth), b = 0.5
         cp = CLOUDSCAPE_PARAMS.to_c(small(phase="mie", droplet_um=d_um, ms_octaves=octaves, beer=False, powder=False,
-                                          silver_weight=0.7, g=-0.5).c_values())
+                                          silver_weight=0.7, g=-0.5, mie_delta=0.0, ms_depth=0.0,
+                                          advanced={"ms_b": 0.5}).c_values())
         e = np.array([lib().ccl_cloudscape_energy(cp, 1.0, 1.0, float(c)) for c in cos_t])
         expected = sum(0.5 ** i * (0.5 ** i * mie + (1 - 0.5 ** i) / (4 * math.pi)) for i in range(octaves))
         np.testing.assert_allclose(e, expected, rtol=3e-4)
@@ -217,7 +219,7 @@ def test_physical_units_light_closed_form(tech):
     """units=physical: the sun is k x 127.5 klx x the atmosphere's transmittance (k = sky_exposure), and the ambient
     is the mean of the sky k C_HDR -- the Preetham sky before the tone map (pywarp.sky_preetham_colour,
     output='hdr'), averaged here by an independent quadrature (64 x 128 cells); C and Warp agree."""
-    s = small(units="physical", sun_elevation_deg=35.0, sky_exposure=0.05)
+    s = small(units="physical", sun_elevation_deg=35.0, sky_exposure=0.05, ambient_ground_weight=0.0)  # the sky alone
     t = CloudscapeTechnique(s, textures=tech.textures)
     c = _c_lit(s)
     np.testing.assert_array_equal(np.array(t.params.sun_colour, dtype=np.float32),
@@ -245,7 +247,7 @@ def test_ambient_ground_weight_blends_in_the_lit_ground(tech, units):
     """ambient_ground_weight w: ambient_top = (1 - w) x the sky's mean + w x the unshadowed ground's radiance
     albedo (E_sun cos theta_s / pi + ambient_ground), from the lights of w = 0; bottom keeps its ratio; C and Warp
     agree."""
-    s0 = small(units=units, sun_elevation_deg=50.0, ground_albedo=(0.2, 0.3, 0.1))
+    s0 = small(units=units, sun_elevation_deg=50.0, ground_albedo=(0.2, 0.3, 0.1), ambient_ground_weight=0.0)
     t0 = CloudscapeTechnique(s0, textures=tech.textures)
     s = dataclasses.replace(s0, ambient_ground_weight=0.5)
     t = CloudscapeTechnique(s, textures=tech.textures)

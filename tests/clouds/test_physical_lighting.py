@@ -99,7 +99,9 @@ def _energy_kernel(p: K.CloudscapeParams, d: wp.array(dtype=float), a: wp.array(
 
 
 def test_energy_c_equals_warp_and_uses_the_delta_phase():
-    s = small(phase="mie", droplet_um=12.0, ms_octaves=3, mie_delta=0.7, beer=False, powder=False)
+    # the octaves' sum alone (b = 0.5, no gain by the depth towards the sun)
+    s = small(phase="mie", droplet_um=12.0, ms_octaves=3, mie_delta=0.7, beer=False, powder=False, ms_depth=0.0,
+              advanced={"ms_b": 0.5})
     v = s.c_values()
     rng = np.random.default_rng(3)
     d = np.float32(rng.uniform(0, 8, 300))
@@ -176,7 +178,7 @@ def test_ms_gain_c_and_warp_agree():
 def test_energy_weighs_the_octaves_by_the_gain():
     """Without Beer and powder: E = p_0 + gain sum_{i >= 1} b^i p_i, gain from the closed form; C equals Warp."""
     s = small(phase="mie", droplet_um=15.0, ms_octaves=4, ms_depth=2.0, ms_thin=0.2, beer=False, powder=False)
-    off = small(phase="mie", droplet_um=15.0, ms_octaves=4, beer=False, powder=False)
+    off = small(phase="mie", droplet_um=15.0, ms_octaves=4, beer=False, powder=False, ms_depth=0.0)
     one = small(phase="mie", droplet_um=15.0, ms_octaves=1, beer=False, powder=False)
     cp, cp_off, cp_one = (CLOUDSCAPE_PARAMS.to_c(x.c_values()) for x in (s, off, one))
     for d in (0.0, 0.7, 5.0):
@@ -247,13 +249,19 @@ _BELOW = dict(camera_altitude_km=0.3, camera_pitch_deg=25.0)
 _ABOVE = dict(camera_altitude_km=6.0, camera_pitch_deg=-35.0)
 
 
+#: The terms of the image tests, off in their base model (each test turns its own on; the defaults turn them on)
+VIEW_TERMS_OFF = dict(ms_view=0.0, ms_view_trans=1.0, ambient_aniso=0.0, ms_slab=0.0, ms_slab_mu=1.0, ms_slab_far=0.0)
+
+
 def _pixel_renderer():
     """(px, xs, ys): 200 sampled pixels of the small scene, and ``px(**settings)`` -> (their Warp colours, the
-    technique) in the physical medium with the octaves' gain on, no haze, no powder, no jitter."""
+    technique) in the physical medium with the octaves' gain on (b = 0.5, the sky's ambient alone), the terms of
+    VIEW_TERMS_OFF off, no haze, no powder, no jitter."""
     from pywarp.clouds.cloudscape import render_pixels_warp
 
     phys = dict(units="physical", phase="mie", lighting="sky", mie_delta=1.0, ms_depth=1.5, ms_thin=0.3,
-                aerial_km=0.0, powder=False, jitter="none")
+                aerial_km=0.0, powder=False, jitter="none", ambient_ground_weight=0.0, advanced={"ms_b": 0.5},
+                **VIEW_TERMS_OFF)
     rng = np.random.default_rng(2)
     xs, ys = rng.integers(0, SMALL["width"], 200), rng.integers(0, SMALL["height"], 200)
 
