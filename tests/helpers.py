@@ -65,6 +65,30 @@ def look_at64(eye, target):
     return e, s, np.cross(s, f), f
 
 
+#: The lighting terms of issue 32's measured model (on by default) switched off and the octaves' contribution ms_b
+#: back at 0.5: the lighting under which the march's approximations -- the early exit and its fill, step grouping, light
+#: interpolation, the textbook march's long steps -- were measured, whose numbers their tests hold. The terms that read
+#: the view's transmittance T in front of each sample (vc-x-ms-view, vc-x-ambient-aniso, vc-x-ms-slab) take it once
+#: per sample, so any coarser march (a longer step, a group, the fill of the rest of the ray) also changes their
+#: weights. Under the defaults (240 x 135) the approximations change the frame by more than the jitter in places:
+#: the exit's 99.9th percentile 8.1 levels against the jitter's 6.9 (dense view); light interpolation at a low sun at
+#: most 7.1 levels against 2.6 (mean 0.037 against 0.064); step grouping at most 0.12 against 0.042 (linear); the
+#: textbook march's long steps 26.5 levels on average against its noise of 7.2 (below, sun 35 deg).
+LIGHTING_TERMS_OFF = dict(ms_view=0.0, ambient_aniso=0.0, ms_slab=0.0, ms_depth=0.0, ambient_ground_weight=0.0,
+                          advanced={"ms_b": 0.5})
+
+
+def merged(*parts: dict) -> dict:
+    """Settings changes one after the other, their ``advanced`` dicts merged (not replaced)."""
+    out, advanced = {}, {}
+    for part in parts:
+        out.update(part)
+        advanced.update(part.get("advanced", {}))
+    if advanced:
+        out["advanced"] = advanced
+    return out
+
+
 def march_frames(view: dict, marches: dict, reference: str, width: int = 240, height: int = 135) -> dict:
     """The cloudscape seen from ``view`` (settings) under each settings change of ``marches`` (one texture set):
     display-linear frames in levels of 8 bits by name, the view samples each took as ``name + "_samples"``, and the
@@ -77,7 +101,7 @@ def march_frames(view: dict, marches: dict, reference: str, width: int = 240, he
     out = {}
     tex = None
     for name, kw in marches.items():
-        s = CloudscapeSettings(width=width, height=height, **view, **kw)
+        s = CloudscapeSettings(width=width, height=height, **merged(view, kw))
         t = CloudscapeTechnique(s, textures=tex)
         tex = t.textures
         pose = Pose.from_settings(s)

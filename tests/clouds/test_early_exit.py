@@ -9,10 +9,11 @@ threshold without it -- an estimate of the rest of the ray, not an arbitrary col
 without the fill in tests/clouds/test_cloudscape.py (test_warp_pixels_match_c_reference)."""
 import numpy as np
 import pytest
-from helpers import march_frames, pixel_change
+from helpers import LIGHTING_TERMS_OFF, march_frames, pixel_change
 
-#: the default view and clouds twice as dense (the ladder's dense case: more rays stop, earlier)
-VIEWS = {"default": {}, "dense": dict(sigma_per_km=60.0)}
+#: the default view and clouds twice as dense (the ladder's dense case: more rays stop, earlier), under the lighting
+#: without the terms of issue 32 (helpers.LIGHTING_TERMS_OFF gives the reason)
+VIEWS = {"default": dict(LIGHTING_TERMS_OFF), "dense": dict(sigma_per_km=60.0, **LIGHTING_TERMS_OFF)}
 MARCHES = {"whole": dict(early_exit=False), "exit": {}, "exit_no_fill": dict(advanced={"exit_fill": 0}),
            "exit_1_256": dict(advanced={"exit_fill": 0, "exit_eps": 1.0 / 256.0})}
 

@@ -11,10 +11,11 @@ with the interpolation (the default) and without it in tests/clouds/test_cloudsc
 (test_warp_pixels_match_c_reference)."""
 import numpy as np
 import pytest
-from helpers import march_frames, pixel_change
+from helpers import LIGHTING_TERMS_OFF, march_frames, pixel_change
 
-VIEWS = {"default": {}, "low_sun": dict(sun_elevation_deg=6.0),
-         "above": dict(camera_altitude_km=8.0, camera_pitch_deg=-25.0)}
+#: under the lighting without the terms of issue 32 (helpers.LIGHTING_TERMS_OFF)
+VIEWS = {"default": dict(LIGHTING_TERMS_OFF), "low_sun": dict(sun_elevation_deg=6.0, **LIGHTING_TERMS_OFF),
+         "above": dict(camera_altitude_km=8.0, camera_pitch_deg=-25.0, **LIGHTING_TERMS_OFF)}
 MARCHES = {"off": dict(advanced={"light_interp": 0.0}), "on": {},
            "everywhere": dict(advanced={"light_interp": 1.0e30})}
 

@@ -12,6 +12,7 @@ of a stratus frame off by more than 8 levels of 8 bits). C and Warp agree on a g
 tests/clouds/test_cloudscape.py (test_warp_pixels_match_c_reference)."""
 import numpy as np
 import pytest
+from helpers import LIGHTING_TERMS_OFF
 
 from pywarp.clouds.technique import CloudscapeTechnique
 from pywarp.clouds.settings import CloudscapeSettings
@@ -19,7 +20,8 @@ from pywarp.core.pose import Pose
 
 #: a view from below the layer pitched up so far that every ray's view steps are short (elevation >= 15 deg: the
 #: 2.5 km layer takes <= 9.7 km of ray in >= 100 steps, < 0.1 km each): every ray is grouped
-STEEP = dict(camera_pitch_deg=45.0, fov_y_deg=60.0, jitter="offset")
+#: (under the lighting without the terms of issue 32, helpers.LIGHTING_TERMS_OFF)
+STEEP = dict(camera_pitch_deg=45.0, fov_y_deg=60.0, jitter="offset", **LIGHTING_TERMS_OFF)
 #: the default clouds (mostly cumulus) and the thinnest ones, stratus, at full texture size
 GENERA = {"default": {}, "stratus": dict(cloud_type=0.0, coverage=0.9)}
 

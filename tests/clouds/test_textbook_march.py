@@ -17,7 +17,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from helpers import march_frames, pixel_change
+from helpers import LIGHTING_TERMS_OFF, march_frames, merged, pixel_change
 
 from pywarp.clouds.cloudscape import render_pixels_c, render_pixels_warp
 from pywarp.clouds.technique import CloudscapeTechnique
@@ -32,7 +32,8 @@ SMALL = dict(base_size=32, detail_size=16, curl_size=32, weather_size=64)
 #: sun (35 deg) and a low one (6 deg: long light paths through the clouds' edges)
 PLACES = {"below": {}, "inside": dict(camera_altitude_km=2.5, camera_pitch_deg=0.0),
           "above": dict(camera_altitude_km=8.0, camera_pitch_deg=-25.0)}
-VIEWS = {f"{place}_{sun}": {**kw, "sun_elevation_deg": elevation}
+#: (under the lighting without the terms of issue 32, helpers.LIGHTING_TERMS_OFF)
+VIEWS = {f"{place}_{sun}": {**kw, "sun_elevation_deg": elevation, **LIGHTING_TERMS_OFF}
          for place, kw in PLACES.items() for sun, elevation in (("sun35", 35.0), ("sun6", 6.0))}
 #: the fast march with its three approximations off
 APPROXIMATIONS_OFF = dict(lod=False, refine_step_km=0.0, advanced={"light_interp": 0.0})
@@ -77,7 +78,7 @@ def test_c_check_refuses_a_bad_march(bad):
 
 def _pixels(view: dict, **kw):
     """A 96 x 54 view with small textures and 300 sampled pixels of it."""
-    s = CloudscapeSettings(width=96, height=54, **SMALL, **view, **kw)
+    s = CloudscapeSettings(width=96, height=54, **SMALL, **merged(view, kw))
     rng = np.random.default_rng(7)
     return s, rng.integers(0, s.width, 300), rng.integers(0, s.height, 300)
 
