@@ -153,9 +153,10 @@
  *                             elevation and the sample's place between the sun and the viewer, 1.6 mu0^0.4 (1 - 0.5
  *                             r); the ambient by the view direction, 1 + 0.3 mu T. Off (the earlier images):
  *                             mie_delta 0, ms_depth 0, ms_view 0, ambient_aniso 0, ms_slab 0, ambient_ground_weight 0,
- *                             ms_b 0.5. Every one of these is a sky-lighting term: with CCL_LIGHTING_THESIS
- *                             ccl_cloudscape_light sets each to its neutral value, so that the thesis's lighting keeps
- *                             the thesis's images. */
+ *                             ms_b 0.5. Every one of these is a sky-lighting term: for the thesis's images
+ *                             CCL_LIGHTING_THESIS takes them off, with ms_octaves 1 and silver_weight 0, as the caller's
+ *                             choice (pywarp's settings: THESIS_LIGHTING in pywarp/clouds/settings.py; an explicit
+ *                             change may still set any of them, e.g. the silver lobe under the thesis's lighting). */
 void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
 {
     static const float sun[3] = {12.0f, 11.52f, 10.56f};
@@ -866,17 +867,6 @@ void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_s
             q.sigma = p->sigma * scale;
             q.sigma_light = p->sigma_light * scale;
         }
-    } else {
-        /* the thesis's lighting: one octave, one HG lobe and every later term at its neutral value (the terms are sky
-         * lighting's; the defaults set them) -- the same fields as THESIS_LIGHTING in pywarp/clouds/settings.py */
-        q.ms_octaves = 1;
-        q.silver_weight = 0.0f;
-        q.ms_depth = 0.0f;
-        q.ms_view = 0.0f;
-        q.ms_slab = 0.0f;
-        q.ambient_aniso = 0.0f;
-        q.ambient_ground_weight = 0.0f;
-        q.mie_delta = 0.0f;
     }
     *out = q;
 }

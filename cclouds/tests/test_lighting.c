@@ -142,9 +142,9 @@ static void test_energy_octaves_brighten_thick_clouds_most(void)
     CCL_CHECK(prev > 10.0f); /* deep inside, the halved extinction of the octaves dominates */
 }
 
-static void test_light_thesis_is_a_copy_with_the_further_terms_off(void)
+static void test_light_thesis_is_an_unchanged_copy(void)
 {
-    ccl_cloudscape_params p, expect, out;
+    ccl_cloudscape_params p, out;
     ccl_cloudscape_sky sky;
     memset(&sky, 0, sizeof sky);
     sky.kind = CCL_SKY_GRADIENT;
@@ -152,24 +152,9 @@ static void test_light_thesis_is_a_copy_with_the_further_terms_off(void)
     sky.sun[1] = 1.0f;
     ccl_cloudscape_params_default(&p);
     p.lighting = CCL_LIGHTING_THESIS;
-    /* the defaults turn the sky lighting's terms on; the thesis's lighting has one octave, one lobe, none of them */
-    CCL_CHECK(p.ms_octaves > 1 && p.ms_depth > 0.0f && p.ms_view > 0.0f && p.ms_slab > 0.0f &&
-              p.ambient_aniso > 0.0f && p.ambient_ground_weight > 0.0f && p.mie_delta > 0.0f);
-    p.silver_weight = 0.3f;
-    expect = p;
-    expect.ms_octaves = 1;
-    expect.silver_weight = 0.0f;
-    expect.ms_depth = 0.0f;
-    expect.ms_view = 0.0f;
-    expect.ms_slab = 0.0f;
-    expect.ambient_aniso = 0.0f;
-    expect.ambient_ground_weight = 0.0f;
-    expect.mie_delta = 0.0f;
     memset(&out, 0xab, sizeof out);
     ccl_cloudscape_light(&p, &sky, &out);
-    CCL_CHECK(memcmp(&expect, &out, sizeof p) == 0);
-    ccl_cloudscape_light(&p, &sky, &p); /* out may equal p */
-    CCL_CHECK(memcmp(&expect, &p, sizeof p) == 0);
+    CCL_CHECK(memcmp(&p, &out, sizeof p) == 0);
 }
 
 static void test_light_hemisphere_means_of_a_gradient_sky(void)
@@ -409,7 +394,7 @@ int main(void)
     CCL_RUN(test_energy_one_octave_one_lobe_is_vc_2_31);
     CCL_RUN(test_energy_octave_sum_closed_form);
     CCL_RUN(test_energy_octaves_brighten_thick_clouds_most);
-    CCL_RUN(test_light_thesis_is_a_copy_with_the_further_terms_off);
+    CCL_RUN(test_light_thesis_is_an_unchanged_copy);
     CCL_RUN(test_light_hemisphere_means_of_a_gradient_sky);
     CCL_RUN(test_ground_clear_and_under_an_opaque_layer);
     CCL_RUN(test_check_names_the_lighting_fields);

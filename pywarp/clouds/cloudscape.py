@@ -28,7 +28,7 @@ from ..kernels import reproj as RP  # noqa: E402
 from ..kernels import sky as S  # noqa: E402
 from . import sky as SKY  # noqa: E402
 from . import textures as T  # noqa: E402
-from .settings import CLOUDSCAPE_PARAMS, SKIES, THESIS_LIGHTING, CloudscapeSettings  # noqa: E402,F401  (re-exported)
+from .settings import CLOUDSCAPE_PARAMS, SKIES, CloudscapeSettings  # noqa: E402,F401  (re-exported)
 
 
 # --- sky models (vc-A31) --------------------------------------------------------------------------------------------------
@@ -301,15 +301,12 @@ def light_params(params: K.CloudscapeParams, sky: "SkyModel", device: str = "cpu
     """The per-frame lighting setup, twin of ``ccl_cloudscape_light``: with sky lighting, ``params`` with sun colour
     and ambients from ``sky`` (its kind, sun, Preetham and gradient constants), computed once by
     :func:`pywarp.kernels.cloudscape.cloudscape_light` (one thread, the same float32 operations as the C); the
-    thesis's lighting returns ``params`` with the fields of :data:`pywarp.clouds.settings.THESIS_LIGHTING` (one octave,
-    one HG lobe, the later terms off), as the C does. Called when the settings or the sky change, not per frame.
+    thesis's lighting returns ``params`` unchanged. Called when the settings or the sky change, not per frame.
 
     A user's own sky model (a :class:`SkyModel` whose ``kind`` is neither gradient nor Preetham) cannot be evaluated
     per direction by the kernel: its sun still sets the sun colour, and the ambient comes from the default gradient
     sky (vc-A28)."""
     if params.lighting != K.LIGHTING_SKY:
-        for name, value in THESIS_LIGHTING.items():
-            setattr(params, name, value)
         return params
     kind = int(sky.kind)
     if kind not in (K.SKY_GRADIENT, K.SKY_PREETHAM, K.SKY_PREETHAM_RADIANCE):

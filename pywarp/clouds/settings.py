@@ -67,9 +67,10 @@ MARCH_ENUM = {"fast": "CCL_CLOUDSCAPE_MARCH_FAST", "textbook": "CCL_CLOUDSCAPE_M
 
 
 #: The thesis's lighting (lighting='thesis'): one octave, one HG lobe and every later lighting term at its neutral
-#: value, whatever the defaults (these are sky lighting's terms; the defaults turn them on). Set by
-#: :meth:`CloudscapeSettings.c_values` (before ``advanced``) and by ``ccl_cloudscape_light`` for CCL_LIGHTING_THESIS
-#: (the same fields; tests/clouds/test_default_lighting.py pins the two together).
+#: value, whatever the defaults (these are sky lighting's terms; the defaults turn them on) -- the one place that
+#: sets them: :meth:`CloudscapeSettings.c_values`, before ``advanced`` (which may still set any of them, e.g. the
+#: silver lobe of figure 2.17). The C leaves them to its caller (``ccl_cloudscape_light`` copies the thesis's
+#: parameters unchanged); tests/clouds/test_default_lighting.py checks that none of the terms reaches a pixel.
 THESIS_LIGHTING = dict(ms_octaves=1, silver_weight=0.0, ms_depth=0.0, ms_view=0.0, ms_slab=0.0, ambient_aniso=0.0,
                        ambient_ground_weight=0.0, mie_delta=0.0)
 

@@ -1073,9 +1073,8 @@ def cloudscape_ground(p: CloudscapeParams, tex: CloudTextures, point: wp.vec3, t
 @wp.func
 def cloudscape_light(p: CloudscapeParams, sky_kind: int, sun: wp.vec3, preetham: Preetham,
                      gradient: SkyGradient) -> CloudscapeParams:
-    """Twin of ``ccl_cloudscape_light`` for sky lighting: ``p`` with sun_colour, ambient_top / _bottom / _ground from
-    the sky model; unchanged for the thesis's lighting (``pywarp.clouds.cloudscape.light_params`` sets the thesis's
-    fields, ``pywarp.clouds.settings.THESIS_LIGHTING``, without a launch)."""
+    """Twin of ``ccl_cloudscape_light``: ``p`` with sun_colour, ambient_top / _bottom / _ground from the sky model
+    (sky lighting), unchanged for the thesis's lighting."""
     q = p
     if p.lighting == LIGHTING_SKY:
         dtheta = 1.5707963 / float(SKY_THETA_CELLS)

@@ -34,8 +34,9 @@
  *
  * Lighting (p->lighting; not in the thesis, which gives no light colours, vc-A36):
  *   CCL_LIGHTING_THESIS: sun_colour, ambient_bottom / _top are the constants of ccl_cloudscape_params_default and B is
- *     ground_colour on the Earth; ccl_cloudscape_light sets one octave, one HG lobe and turns the sky lighting's
- *     further terms off -- the thesis's images.
+ *     ground_colour on the Earth -- the thesis's images with one octave (ms_octaves 1), one HG lobe (silver_weight 0)
+ *     and the sky lighting's further terms off (ms_depth, ms_view, ms_slab, ambient_aniso, ambient_ground_weight,
+ *     mie_delta 0; the defaults turn them on), which the caller sets (pywarp: THESIS_LIGHTING).
  *   CCL_LIGHTING_SKY (default): ccl_cloudscape_light, called once per frame (per settings change) before the pixels,
  *     replaces the constants by values of the sky model (gradient or Preetham, whichever the scene uses):
  *       sun_colour     = sun_intensity * ccl_sky_sun_attenuation(theta_s, turbidity)  (Preetham et al. 1999 A.1:
@@ -476,9 +477,7 @@ CCL_API void ccl_cloudscape_ground(const ccl_cloudscape_params *p, const ccl_clo
 
 /* The per-frame lighting setup (see "Lighting" above): *out = *p, and for p->lighting == CCL_LIGHTING_SKY with
  * sun_colour, ambient_top, ambient_bottom and ambient_ground computed from the sky model and sky->sun (theta_s =
- * acos(clamp(sun.y, 0, 1))); CCL_LIGHTING_THESIS: a copy with the thesis's single octave and HG lobe and the sky
- * lighting's further terms off (ms_octaves 1; silver_weight, ms_depth, ms_view, ms_slab, ambient_aniso,
- * ambient_ground_weight, mie_delta 0), the thesis's images whatever the defaults of those terms. out may equal p. Call it once before
+ * acos(clamp(sun.y, 0, 1))); CCL_LIGHTING_THESIS: an unchanged copy. out may equal p. Call it once before
  * ccl_cloudscape_pixel (ccl_cloudscape_render does); p and sky must have passed ccl_cloudscape_check. */
 CCL_API void ccl_cloudscape_light(const ccl_cloudscape_params *p, const ccl_cloudscape_sky *sky,
                                   ccl_cloudscape_params *out);
