@@ -130,8 +130,8 @@ def main(out_dir, quick: bool = False) -> list[Path]:
     # sun (a = 1.4, the renderer's a = 1 + 2·precipitation at precipitation 0.2): powder rises from 0, Beer falls from
     # 1, their product peaks at d = ln(3)/2 ≈ 0.55 for a = 1 — the edges (small d) are dark, a thin layer just inside
     # is brightest; (3) the energy E with HG at θ = 90° (side light): the shadowed side (large d) is dark; the
-    # renderer's multiple-scattering octaves (sky lighting: octave i with d·0.5^i, contribution 0.5^i) lift the deep,
-    # shadowed parts.
+    # renderer's multiple-scattering octaves (sky lighting: octave i with d·0.5^i, contribution 0.75^i, the octaves
+    # i >= 1 weighted by 0.2 + 0.8 (1 - exp(-d / 1.5)): the defaults) lift the deep, shadowed parts.
 
     # %%
     theta = np.linspace(0.0, np.pi, 361)
