@@ -127,7 +127,7 @@
  *                             within 0.5 of the best (mean SSIM 0.774 against 0.776 for eight). ms_b 0.75 (with the
  *                             lighting terms below): chosen against the path-traced references in physical units
  *                             (tools/tune_lighting.py --physical, issue 32's model ``physical slab``,
- *                             docs/lighting.rst): with 0.5 the thick cloud lacks the light of the higher orders.
+ *                             docs/lighting.rst), together with the lighting terms below.
  *   silver_g 0.8, silver_weight 0   no second lobe: by the same measurement every weight raises the error in every
  *                             scene (4 octaves: w 0 9.04, 0.15 9.25, 0.3 with silver_g 0.8 9.71) -- the medium's
  *                             phase function is the one HG lobe g; the lobe stays an option (fig 2.17 shows it).
@@ -146,8 +146,9 @@
  *                             ms_b 0.75 above: chosen against the path-traced references, issue 32's ``physical
  *                             slab``, docs/lighting.rst (tools/tune_lighting.py against the converged references:
  *                             thick cloud within 0.90-1.10 of the references' energy in every tuning view and the
- *                             low sun). mie_delta acts with the Mie phase only: the Mie phase's forward peak (its
- *                             share w_D) goes on as unscattered light, extinction x (1 - w_D). The octaves i >= 1
+ *                             low sun). mie_delta acts with the Mie phase only: its forward HG lobe (share 1 - w_D)
+ *                             goes on as unscattered light, extinction x w_D (0.49 at 15 um), Draine's lobe the
+ *                             phase. The octaves i >= 1
  *                             are weighted by the optical depth d towards the sun, 0.2 + 0.8 (1 - exp(-d / 1.5)), by
  *                             the depth into the cloud along the view, 1 + 4 max(1 - T / 0.5, 0), and by the sun's
  *                             elevation and the sample's place between the sun and the viewer, 1.6 mu0^0.4 (1 - 0.5
