@@ -1192,6 +1192,10 @@ void ccl_cloudscape_march(const ccl_cloudscape_params *p, const ccl_cloud_textur
                                      sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, dir, to_sun),
                                      pend_t, &colour, &trans, &depth_w, &depth_sum))
                         break;
+                    /* this sample's light at the transmittance in front of it, now past the waiting sample (the
+                     * terms that read it: vc-x-ms-view, vc-x-ms-slab, vc-x-ambient-aniso) */
+                    if (p->ms_view > 0.0f || p->ms_slab > 0.0f || p->ambient_aniso > 0.0f)
+                        light = sample_light(p, d_cur, precip, pos, cos_theta, trans, dir, to_sun);
                 }
                 computed = 1;
                 d_prev = d_cur;

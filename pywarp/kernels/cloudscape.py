@@ -857,6 +857,10 @@ def cloudscape_march(p: CloudscapeParams, tex: CloudTextures, eye: wp.vec3, d: w
                             sample_light(p, d_p, pend_precip, pend_pos, cos_theta, trans, d, to_sun), pend_t)
                         if stop != 0:
                             break
+                        # this sample's light at the transmittance in front of it, now past the waiting sample (the
+                        # terms that read it: vc-x-ms-view, vc-x-ms-slab, vc-x-ambient-aniso)
+                        if p.ms_view > 0.0 or p.ms_slab > 0.0 or p.ambient_aniso > 0.0:
+                            light = sample_light(p, d_cur, precip, pos, cos_theta, trans, d, to_sun)
                     computed = 1
                     d_prev = d_cur
                     light_prev = light
