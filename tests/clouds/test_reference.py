@@ -177,6 +177,102 @@ def test_slab_single_scattering_with_the_mie_phase(textures):
     assert np.all(se < 0.02 * expected)
 
 
+def _cut(d, cut_deg):
+    """(p_c, f_c) of the truncated Mie phase from the float64 fit: the phase at the cut, and 2 pi int (p - p_c) dmu
+    over the cone (Gauss-Legendre in theta, dense at the ~0.4 deg peak)."""
+    x, w = np.polynomial.legendre.leggauss(200)
+    edges = np.radians([0.0, 0.1, 0.3, 1.0, cut_deg])
+    th = np.concatenate([0.5 * (b - a) * x + 0.5 * (a + b) for a, b in zip(edges[:-1], edges[1:])])
+    wt = np.concatenate([0.5 * (b - a) * w for a, b in zip(edges[:-1], edges[1:])])
+    p_c = float(_mie_fit(math.cos(math.radians(cut_deg)), d))
+    return p_c, float(np.sum(2 * np.pi * wt * np.sin(th) * np.maximum(_mie_fit(np.cos(th), d) - p_c, 0.0)))
+
+
+@pytest.mark.parametrize("d, cut", [(15.0, 3.0), (5.0, 1.0), (40.0, 5.0)])
+def test_truncated_peak_cut_and_its_sampler(d, cut):
+    """peak_cut: p_c and f_c against the float64 fit's quadrature (rtol 1e-3: p_c is float32); and the sampler of the
+    truncated phase min(p, p_c) / (1 - f_c) (rejection from the full phase) follows it: its CDF at 8 cosines against
+    the quadrature, 5 binomial standard errors (n = 2^18); nothing inside the cone beyond its flattened share."""
+    from pywarp.clouds.reference import peak_cut
+
+    cos_c, p_c, f_c = peak_cut(d, cut)
+    ref_pc, ref_fc = _cut(d, cut)
+    assert cos_c == pytest.approx(math.cos(math.radians(cut)), abs=1e-7)
+    assert p_c == pytest.approx(ref_pc, rel=1e-3) and f_c == pytest.approx(ref_fc, rel=1e-3, abs=1e-4)
+    n = 1 << 18
+    r = ReferenceParams()
+    r.phase = 1  # K.PHASE_MIE
+    r.droplet_um = d
+    r.peak_cut = 1
+    r.cut_cos, r.cut_value, r.cut_share = cos_c, p_c, f_c
+    out = wp.zeros(n, dtype=float)
+    wp.launch(phase_samples_kernel, dim=n, inputs=[r, wp.uint32(19)], outputs=[out])
+    c = out.numpy().astype(np.float64)
+    x, w = np.polynomial.legendre.leggauss(200)
+    edges = np.radians(sorted({0.0, 0.25, 1.0, cut, 4.0, 15.0, 45.0, 180.0}))  # the kink at the cut on an edge
+    th = np.concatenate([0.5 * (b - a) * x + 0.5 * (a + b) for a, b in zip(edges[:-1], edges[1:])])
+    wt = np.concatenate([0.5 * (b - a) * w for a, b in zip(edges[:-1], edges[1:])])
+    mass = 2 * np.pi * wt * np.sin(th) * np.minimum(_mie_fit(np.cos(th), d), ref_pc) / (1.0 - ref_fc)
+    assert float(np.sum(mass)) == pytest.approx(1.0, abs=1e-4)  # normalised
+    for mu0 in (-0.5, 0.0, 0.5, 0.9, 0.99, 0.998, math.cos(math.radians(cut)), 0.99995):
+        q = float(np.sum(mass[np.cos(th) <= mu0]))
+        assert abs(np.mean(c <= mu0) - q) < 5 * math.sqrt(q * (1 - q) / n) + 1e-4, (mu0, np.mean(c <= mu0), q)
+
+
+def test_truncated_peak_first_order_is_the_exact_medium_s(textures):
+    """peak='truncated' computes the sun's single scattering along the camera ray in the exact medium: with one
+    scattering (bounces = 1) its image is test_slab_single_scattering_with_the_mie_phase's closed form (the full Mie
+    phase, extinction sigma). Tolerance: 4 standard errors."""
+    d_um = 10.0
+    s = small(**{**SLAB, "fov_y_deg": 40.0}, camera_altitude_km=0.5, camera_pitch_deg=70.0, phase="mie",
+              droplet_um=d_um)
+    r = ReferenceRenderer(s, textures, spp=256, seed=6, bounces=1, albedo=1.0, density="slab", slab_density=RHO,
+                          sky=False, ground_albedo=(0.0, 0.0, 0.0), pixel_filter="centre", peak="truncated")
+    mean, se = _mean_and_se(r, r.render(encode=False))
+    from pywarp import camera_ray
+
+    cam = pose_camera(Pose.from_settings(s), s.width, s.height)
+    ys, xs = np.mgrid[0:s.height, 0:s.width]
+    d = np.asarray(camera_ray(xs.ravel(), ys.ravel(), s.width, s.height, cam), dtype=np.float64)
+    mu = d @ np.asarray(s.sun(), dtype=np.float64)
+    tau = 30.0 * RHO * 0.1
+    x = tau * (1 - mu) / mu
+    shape = np.where(x > 1e-6, -np.expm1(-x) / np.maximum(1 - mu, 1e-300), tau / mu)
+    e_sun = np.array([r.params.sun_colour[i] for i in range(3)], dtype=np.float64)
+    expected = e_sun * np.mean(_mie_fit(mu, d_um) * math.exp(-tau) * shape)
+    assert np.all(np.abs(mean - expected) < 4 * se), (mean, expected, se)
+    assert np.all(se < 0.02 * expected)
+
+
+@pytest.mark.parametrize("albedo", [1.0, 0.0])
+def test_truncated_peak_passes_its_share_unscattered(textures, albedo):
+    """The sun on the ground under a slab, seen from below it (bounces = 1: the ground's next-event estimate only):
+    with peak='truncated' the slab's transmittance is exp(-tau (1 - omega f_c)) -- f_c of the float64 quadrature --
+    and exp(-tau) when nothing scatters (albedo 0). Tolerance: 4 standard errors; not the exact medium's exp(-tau)
+    at albedo 1."""
+    s = small(**SLAB, camera_altitude_km=0.5, camera_pitch_deg=-89.0, phase="mie")
+    a = (0.5, 0.3, 0.8)
+    r = ReferenceRenderer(s, textures, spp=128, seed=3, bounces=1, albedo=albedo, density="slab", slab_density=RHO,
+                          sky=False, ground_albedo=a, pixel_filter="centre", peak="truncated")
+    mean, se = _mean_and_se(r, r.render(encode=False))
+    e_sun = np.array([r.params.sun_colour[i] for i in range(3)], dtype=np.float64)
+    tau = 30.0 * RHO * 0.1
+    f_c = _cut(s.droplet_um, 3.0)[1]
+    expected = np.array(a) / math.pi * e_sun * math.exp(-tau * (1.0 - albedo * f_c))
+    assert np.all(np.abs(mean - expected) < 4 * se), (mean, expected, se)
+    if albedo > 0:
+        assert np.all(np.abs(mean - expected * math.exp(-tau * f_c)) > 4 * se)
+
+
+def test_forward_peak_option_is_checked(textures):
+    with pytest.raises(ValueError, match="peak must be one of 'exact', 'truncated'"):
+        ReferenceRenderer(small(phase="mie"), textures, spp=2, peak="none")
+    with pytest.raises(ValueError, match="needs the Mie phase"):
+        ReferenceRenderer(small(), textures, spp=2, peak="truncated")
+    with pytest.raises(ValueError, match=r"peak_cut_deg must be in \[0.5, 5\]"):
+        ReferenceRenderer(small(phase="mie"), textures, spp=2, peak="truncated", peak_cut_deg=10.0)
+
+
 def test_clear_sky_ground_in_physical_units(textures):
     """units=physical, no clouds, the sun overhead, a Lambertian ground seen from 0.5 km looking down: L = A / pi
     (E_sun + E_sky) with E_sun = k 127.5 klx x the transmittance towards the sun (Preetham A.1,
@@ -489,6 +585,8 @@ def test_compare_gives_a_row_per_scene_and_model(medium):
     res, images = compare(16, 9, spp=4, scenes=["noon"], progress=lambda m: None, settings=SMALL, medium=medium)
     (sc,) = res["scenes"]
     assert res["medium"] == medium
+    # the physical medium's references treat the Mie phase's forward peak as unscattered light (converged pixels)
+    assert res["peak"] is None and sc["peak"] == ("truncated" if medium == "physical" else "exact")
     extra = list(PHYSICAL_MODELS) if medium == "physical" else []
     assert sc["scene"] == "noon" and [m["model"] for m in sc["models"]] == [*MODELS, *extra, "default"]
     assert sum(sc["pixels"].values()) == 16 * 9
@@ -506,6 +604,8 @@ def test_compare_gives_a_row_per_scene_and_model(medium):
     json.dumps(res)  # the --json output
     with pytest.raises(ValueError, match=r"spp must be in \[4, 65536\]"):
         compare(16, 9, spp=3)
+    with pytest.raises(ValueError, match="peak must be None, 'exact' or"):
+        compare(16, 9, spp=4, medium="display", peak="truncated")
 
 
 def test_compare_reads_the_references_it_cached(tmp_path):
@@ -516,7 +616,7 @@ def test_compare_reads_the_references_it_cached(tmp_path):
     kw = dict(scenes=["noon"], progress=lambda m: None, settings=SMALL, medium="physical", cache=str(tmp_path))
     first, _ = compare(16, 9, spp=4, **kw)
     files = sorted(tmp_path.glob("*.npz"))
-    assert len(files) == 1 and files[0].name.startswith("reference-noon-16x9-4-")
+    assert len(files) == 1 and files[0].name.startswith("reference-noon-truncated-16x9-4-")
     said = []
     again, _ = compare(16, 9, spp=4, **{**kw, "progress": said.append})
     assert any("from " + str(tmp_path) in m for m in said)
@@ -526,3 +626,6 @@ def test_compare_reads_the_references_it_cached(tmp_path):
     compare(16, 9, spp=6, **kw)
     compare(16, 9, spp=4, **{**kw, "settings": {**SMALL, "droplet_um": 20.0}})
     assert len(list(tmp_path.glob("*.npz"))) == 3
+    exact, _ = compare(16, 9, spp=4, **kw, peak="exact")  # the exact forward peak: another reference
+    assert len(list(tmp_path.glob("*.npz"))) == 4 and exact["scenes"][0]["peak"] == "exact"
+    assert exact["scenes"][0]["noise_floor"] != first["scenes"][0]["noise_floor"]
