@@ -135,24 +135,24 @@
  *                             mean over the upper hemisphere (0 is the sky's mean alone, 0.5 the mean over the whole
  *                             sphere of directions, the lower half the lit ground: the in-scattered light of an
  *                             isotropic phase for a cloud with nothing around it). Chosen against the path-traced
- *                             references, issue 32's ``physical slab``, docs/lighting.rst.
+ *                             references, issue 32's ``physical slab 2``, docs/lighting.rst.
  *   phase CCL_CLOUDSCAPE_PHASE_THESIS, droplet_um 15   the thesis's HG lobe by default (its images); with
  *                             CCL_CLOUDSCAPE_PHASE_MIE the approximate Mie phase of 15 um droplets (effective radius
  *                             7.5 um, in the 5-10 um of fair-weather cumulus; g = 0.87). Octave i then takes c^i of
  *                             it and 1 - c^i of the isotropic phase: the mean cosine c^i g, as HG(c^i g) has.
- *   mie_delta 1, ms_depth 1.5, ms_thin 0.2, ms_view 4, ms_view_trans 0.5, ambient_aniso 0.3, ms_slab 1.6,
- *   ms_slab_mu 0.4, ms_slab_far 0.5   the lighting terms beyond the octaves (vc-x-mie-delta, vc-x-ms-gain,
+ *   mie_delta 1, ms_depth 1.5, ms_thin 0.2, ms_view 4, ms_view_trans 0.5, ambient_aniso 0.6, ms_slab 1.6,
+ *   ms_slab_mu 0.3, ms_slab_far 0.67   the lighting terms beyond the octaves (vc-x-mie-delta, vc-x-ms-gain,
  *                             vc-x-ms-view, vc-x-ambient-aniso, vc-x-ms-slab), with ambient_ground_weight 0.25 and
  *                             ms_b 0.75 above: chosen against the path-traced references, issue 32's ``physical
- *                             slab``, docs/lighting.rst (tools/tune_lighting.py against the converged references:
- *                             thick cloud within 0.90-1.10 of the references' energy in every tuning view and the
- *                             low sun). mie_delta acts with the Mie phase only: its forward HG lobe (share 1 - w_D)
+ *                             slab 2``, docs/lighting.rst (tools/tune_lighting.py --grid 5 against the converged
+ *                             truncated-peak references: CIEDE2000 <= 3 and thick cloud within 0.90-1.10 of the
+ *                             references' energy in every view). mie_delta acts with the Mie phase only: its forward HG lobe (share 1 - w_D)
  *                             goes on as unscattered light, extinction x w_D (0.49 at 15 um), Draine's lobe the
  *                             phase. The octaves i >= 1
  *                             are weighted by the optical depth d towards the sun, 0.2 + 0.8 (1 - exp(-d / 1.5)), by
  *                             the depth into the cloud along the view, 1 + 4 max(1 - T / 0.5, 0), and by the sun's
- *                             elevation and the sample's place between the sun and the viewer, 1.6 mu0^0.4 (1 - 0.5
- *                             r); the ambient by the view direction, 1 + 0.3 mu T. Off (the earlier images):
+ *                             elevation and the sample's place between the sun and the viewer, 1.6 mu0^0.3 (1 - 0.67
+ *                             r); the ambient by the view direction, 1 + 0.6 mu T. Off (the earlier images):
  *                             mie_delta 0, ms_depth 0, ms_view 0, ambient_aniso 0, ms_slab 0, ambient_ground_weight 0,
  *                             ms_b 0.5. Every one of these is a sky-lighting term: for the thesis's images
  *                             CCL_LIGHTING_THESIS takes them off, with ms_octaves 1 and silver_weight 0, as the caller's
@@ -222,10 +222,10 @@ void ccl_cloudscape_params_default(ccl_cloudscape_params *out)
     out->ms_thin = 0.2f;
     out->ms_view = 4.0f;
     out->ms_view_trans = 0.5f;
-    out->ambient_aniso = 0.3f;
+    out->ambient_aniso = 0.6f;
     out->ms_slab = 1.6f;
-    out->ms_slab_mu = 0.4f;
-    out->ms_slab_far = 0.5f;
+    out->ms_slab_mu = 0.3f;
+    out->ms_slab_far = 0.67f;
     out->mie_delta = 1.0f;
     out->lod = 1;
     out->lod_bias = 0.0f;

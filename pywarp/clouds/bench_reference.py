@@ -109,14 +109,21 @@ MODELS = {
 #:   a low one; this term removes that trend. Chosen among 64 candidates (k 1.4-2.0, s 0.33-0.8, p 0.3-0.6,
 #:   tools/tune_lighting.py --grid 4) by the same objective over TUNING_SCENES against the converged references
 #:   (eight tied within 0.03 of the best score; of those the smallest largest thick-energy share).
+#: * ``physical slab 2`` -- the renderer's defaults: ``physical slab`` retuned after the light interpolation's fix
+#:   (the sample after a waiting one lit at its own view transmittance: 3-5 % more thick-cloud light) against the
+#:   truncated-peak references (:data:`CONVERGED_TRUNCATED`), with the ambient's anisotropy: 1.6 mu0^0.3 (1 - 0.67
+#:   r), ambient 1 + 0.6 mu T. Chosen among 54 candidates (k 1.2-1.6, s 0.5-0.8, p 0.3-0.4, alpha 0.3-0.6,
+#:   tools/tune_lighting.py --grid 5) as the smallest largest share of the targets over TUNING_SCENES (0.922; grid
+#:   4's tie rule, applied after the held-out views were seen, would take alpha 0.45 with view above at CIEDE2000
+#:   3.04; docs/lighting.rst).
 #: * ``physical v2`` -- the model before the view terms (tools/tune_lighting.py --physical, grid 1): t = 0.3.
 #: * ``physical v1`` -- the first model of issue 32, kept for comparison: the full Mie phase, four octaves of
 #:   0.3^i / 0.6^i unweighted.
 #:
 #: Low sun and view above were not seen by any tuning. Against the converged references (:data:`CONVERGED`), the
-#: retuning by --grid 3 --converged --objective both chose ``physical energy`` again; ``physical slab`` meets issue
-#: 32's targets in every view but the CIEDE2000 of the two views from above and the view above's thick energy
-#: (docs/lighting.rst).
+#: retuning by --grid 3 --converged --objective both chose ``physical energy`` again; ``physical slab`` met issue
+#: 32's targets in every view but the CIEDE2000 of the two views from above and the view above's thick energy;
+#: against the truncated-peak references ``physical slab 2`` meets them all (docs/lighting.rst).
 _PHYSICAL = dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
                  mie_delta=1.0, ms_depth=1.5)
 PHYSICAL_MODELS = {
@@ -126,6 +133,8 @@ PHYSICAL_MODELS = {
                             advanced={"ms_a": 0.5, "ms_b": 0.75}),
     "physical slab": dict(**_PHYSICAL, ms_thin=0.2, ms_view=4.0, ms_view_trans=0.5, ambient_aniso=0.3, ms_slab=1.6,
                           ms_slab_mu=0.4, ms_slab_far=0.5, advanced={"ms_a": 0.5, "ms_b": 0.75}),
+    "physical slab 2": dict(**_PHYSICAL, ms_thin=0.2, ms_view=4.0, ms_view_trans=0.5, ambient_aniso=0.6, ms_slab=1.6,
+                            ms_slab_mu=0.3, ms_slab_far=0.67, advanced={"ms_a": 0.5, "ms_b": 0.75}),
     "physical v2": dict(**_PHYSICAL, ms_thin=0.3, advanced={"ms_a": 0.5, "ms_b": 0.75}),
     "physical v1": dict(lighting="sky", powder=False, aerial_km=0.0, ambient_ground_weight=0.25, ms_octaves=4,
                         advanced={"ms_a": 0.3, "ms_b": 0.6}),
@@ -133,9 +142,9 @@ PHYSICAL_MODELS = {
 #: The scenes and views the ``physical`` model was tuned on (tools/tune_lighting.py); the others were held out.
 TUNING_SCENES = ("noon", "from above", "view below")
 #: The model tests/clouds/test_lighting_converged.py holds to issue 32's targets against the converged references
-#: (:data:`CONVERGED`): ``physical slab``, the only model whose thick cloud is within 0.90-1.10 of the references'
-#: energy in every tuning view and in the low sun held out (docs/lighting.rst).
-CONVERGED_MODEL = "physical slab"
+#: (:data:`CONVERGED_TRUNCATED`, the thick energy also against :data:`CONVERGED`): ``physical slab 2``, the
+#: renderer's defaults (tests/clouds/test_default_lighting.py pins them together; docs/lighting.rst).
+CONVERGED_MODEL = "physical slab 2"
 #: The row of the renderer's defaults (no lighting change; the medium's units and phase), after MODELS.
 DEFAULT_ROW = "default"
 #: The media of the comparison: what the reference and every model share (the scene's sky units and the clouds'

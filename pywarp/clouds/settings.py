@@ -616,60 +616,61 @@ class CloudscapeSettings(Settings):
                                              "sky mean over the upper hemisphere + w ground radiance; 0.5 = the mean "
                                              "over all directions",
                                          reason="0.25: a quarter of the ambient from the lit ground below; "
-                                                "chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst (ccl_cloudscape_params_default); 0 = the sky's mean alone")
+                                                "chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst (ccl_cloudscape_params_default); 0 = the sky's mean alone")
     mie_delta: float = param(1.0, lo=0.0, hi=1.0, c="mie_delta", group="lighting", cli="--mie-delta",
                              doc="sky lighting with phase=mie: the share f of the Mie phase's forward HG lobe (the "
                                  "droplets' diffraction peak) that the lighting treats as unscattered light: "
                                  "extinction x (1 - f (1 - w_D)), the phase without that share (delta scaling, "
                                  "vc-x-mie-delta); 0 = off",
                              reason="1: the whole forward peak (extinction x w_D = 0.49 at 15 um, Draine's lobe "
-                                    "as the phase); chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst; acts with phase=mie only")
+                                    "as the phase); chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst; acts with phase=mie only")
     ms_depth: float = param(1.5, lo=0.0, hi=1e6, c="ms_depth", group="lighting", cli="--ms-depth",
                             doc="sky lighting: optical depth scale D of the multiple-scattering octaves' weight "
                                 "t + (1 - t)(1 - exp(-d / D)), d the optical depth towards the sun, t = --ms-thin "
                                 "(vc-x-ms-gain); 0 = off (weight 1)",
                             reason="1.5: the octaves reach 1 - 1/e of their weight at an optical depth of 1.5 "
-                                   "towards the sun; chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst")
+                                   "towards the sun; chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst")
     ms_thin: float = param(0.2, lo=0.0, hi=1.0, c="ms_thin", group="lighting", cli="--ms-thin",
                            doc="sky lighting: the octaves' weight at d = 0 (see --ms-depth)",
                            reason="0.2: a fifth of the octaves where there is no cloud towards the sun; "
-                                  "chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst; used when ms_depth > 0")
+                                  "chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst; used when ms_depth > 0")
     ms_view: float = param(4.0, lo=0.0, hi=1000.0, c="ms_view", group="lighting", cli="--ms-view",
                            doc="sky lighting: the multiple-scattering octaves' weight by the depth into the cloud "
                                "along the view, 1 + k (1 - T), T the view transmittance in front of the sample "
                                "(vc-x-ms-view); 0 = off",
-                           reason="4: the octaves up to 5 times deep in the cloud along the view; chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst")
+                           reason="4: the octaves up to 5 times deep in the cloud along the view; chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst")
     ms_view_trans: float = param(0.5, lo=0.001, hi=1.0, c="ms_view_trans", group="lighting", cli="--ms-view-trans",
                                  doc="sky lighting: the view transmittance T0 below which --ms-view's weight grows: "
                                      "1 + k max(1 - T / T0, 0)",
-                                 reason="0.5: the weight grows once half the view's light is gone; chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst; used "
+                                 reason="0.5: the weight grows once half the view's light is gone; chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst; used "
                                         "when ms_view > 0")
-    ambient_aniso: float = param(0.3, lo=0.0, hi=1.0, c="ambient_aniso", group="lighting", cli="--ambient-aniso",
+    ambient_aniso: float = param(0.6, lo=0.0, hi=1.0, c="ambient_aniso", group="lighting", cli="--ambient-aniso",
                                  doc="sky lighting: the ambient's weight by the view direction, 1 + alpha mu T, mu the "
                                      "cosine of the view with the local up (vc-x-ambient-aniso); 0 = off (isotropic)",
-                                 reason="0.3: the ambient 30 % brighter looking up at the visible surface, 30 % "
-                                        "darker looking down; chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst")
+                                 reason="0.6: the ambient 60 % brighter looking up at the visible surface, 60 % "
+                                        "darker looking down (a thin cloud's sky light, scattered by the droplets' "
+                                        "forward-peaked phase, goes on down more than it comes back up); chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst")
     ms_slab: float = param(1.6, lo=0.0, hi=1000.0, c="ms_slab", group="lighting", cli="--ms-slab",
                            doc="sky lighting: gain k of the multiple-scattering octaves' weight by the sun's elevation "
                                "and the sample's place between the sun and the viewer, k max(mu0, 0)^p (1 - s r), mu0 "
                                "the sun's cosine with the local up, r = d / (d + tau_v) the optical depth towards the "
                                "sun over it plus that back to the eye (vc-x-ms-slab); 0 = off (weight 1)",
                            reason="1.6: removes the trend of the thick cloud's energy with the sun's elevation "
-                                  "seen from below; chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst")
-    ms_slab_mu: float = param(0.4, lo=0.0, hi=4.0, c="ms_slab_mu", group="lighting", cli="--ms-slab-mu",
+                                  "seen from below; chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst")
+    ms_slab_mu: float = param(0.3, lo=0.0, hi=4.0, c="ms_slab_mu", group="lighting", cli="--ms-slab-mu",
                               doc="sky lighting: the exponent p of mu0 in --ms-slab's weight",
-                              reason="0.4: a weaker fall with the sun's elevation than the 1 of the sun's flux "
-                                     "through a horizontal cloud top (two-stream slab); chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst; used when ms_slab > 0")
-    ms_slab_far: float = param(0.5, lo=0.0, hi=1.0, c="ms_slab_far", group="lighting", cli="--ms-slab-far",
+                              reason="0.3: a weaker fall with the sun's elevation than the 1 of the sun's flux "
+                                     "through a horizontal cloud top (two-stream slab); chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst; used when ms_slab > 0")
+    ms_slab_far: float = param(0.67, lo=0.0, hi=1.0, c="ms_slab_far", group="lighting", cli="--ms-slab-far",
                                doc="sky lighting: the share s of --ms-slab's weight lost where the sample is on the "
                                    "cloud's side away from the sun (r = 1)",
-                               reason="0.5: half the weight lost on the side away from the sun; chosen against the path-traced references, issue 32's 'physical slab', docs/lighting.rst; used "
+                               reason="0.67: two thirds of the weight lost on the side away from the sun; chosen against the path-traced references, issue 32's 'physical slab 2', docs/lighting.rst; used "
                                       "when ms_slab > 0")
     ms_octaves: int = param(4, kind="int", lo=1, hi=MAX_MS_OCTAVES, c="ms_octaves", group="lighting",
                             doc="sky lighting: multiple-scattering octaves (Wrenninge et al. 2013; 1 = single "
                                 "scattering); octave i scales the optical depth and phase eccentricity by 0.5^i and "
                                 "the contribution by 0.75^i (ms_a, ms_b, ms_c through `advanced`; ms_b 0.75 "
-                                "chosen against the path-traced references, issue 32's 'physical slab', "
+                                "chosen against the path-traced references, issue 32's 'physical slab 2', "
                                 "docs/lighting.rst)",
                             reason="4 (ccl_cloudscape_params_default; measured with 0.5 per octave): against the "
                                    "path-traced reference (tools/tune_lighting.py, mean CIEDE2000 of three scenes): 1 "
