@@ -219,12 +219,15 @@ def test_truncated_peak_cut_and_its_sampler(d, cut):
         assert abs(np.mean(c <= mu0) - q) < 5 * math.sqrt(q * (1 - q) / n) + 1e-4, (mu0, np.mean(c <= mu0), q)
 
 
-def test_truncated_peak_first_order_is_the_exact_medium_s(textures):
-    """peak='truncated' computes the sun's single scattering along the camera ray in the exact medium: with one
-    scattering (bounces = 1) its image is test_slab_single_scattering_with_the_mie_phase's closed form (the full Mie
-    phase, extinction sigma). Tolerance: 4 standard errors."""
+@pytest.mark.parametrize("pitch, fov", [(70.0, 40.0), (89.0, 3.0)])
+def test_truncated_peak_single_scattering_is_tms(textures, pitch, fov):
+    """peak='truncated' scatters the camera ray's sun through the full phase over 1 - f_c in the scaled medium (TMS):
+    with one scattering (bounces = 1) the image is test_slab_single_scattering_with_the_mie_phase's closed form with
+    the optical depth tau (1 - f_c) and the phase p / (1 - f_c) -- p the float64 fit, f_c its quadrature -- for a
+    wide view and for one within 3 deg of the sun (inside the cut, where the truncated phase min(p, p_c) would be far
+    off). Tolerance: 4 standard errors; and not the exact medium's value (nor, near the sun, the truncated phase's)."""
     d_um = 10.0
-    s = small(**{**SLAB, "fov_y_deg": 40.0}, camera_altitude_km=0.5, camera_pitch_deg=70.0, phase="mie",
+    s = small(**{**SLAB, "fov_y_deg": fov}, camera_altitude_km=0.5, camera_pitch_deg=pitch, phase="mie",
               droplet_um=d_um)
     r = ReferenceRenderer(s, textures, spp=256, seed=6, bounces=1, albedo=1.0, density="slab", slab_density=RHO,
                           sky=False, ground_albedo=(0.0, 0.0, 0.0), pixel_filter="centre", peak="truncated")
@@ -235,13 +238,22 @@ def test_truncated_peak_first_order_is_the_exact_medium_s(textures):
     ys, xs = np.mgrid[0:s.height, 0:s.width]
     d = np.asarray(camera_ray(xs.ravel(), ys.ravel(), s.width, s.height, cam), dtype=np.float64)
     mu = d @ np.asarray(s.sun(), dtype=np.float64)
-    tau = 30.0 * RHO * 0.1
-    x = tau * (1 - mu) / mu
-    shape = np.where(x > 1e-6, -np.expm1(-x) / np.maximum(1 - mu, 1e-300), tau / mu)
     e_sun = np.array([r.params.sun_colour[i] for i in range(3)], dtype=np.float64)
-    expected = e_sun * np.mean(_mie_fit(mu, d_um) * math.exp(-tau) * shape)
+    p_c, f_c = _cut(d_um, 3.0)
+
+    def single(tau, p):
+        x = tau * (1 - mu) / mu
+        shape = np.where(x > 1e-6, -np.expm1(-x) / np.maximum(1 - mu, 1e-300), tau / mu)
+        return e_sun * np.mean(p * math.exp(-tau) * shape)
+
+    tau = 30.0 * RHO * 0.1
+    p = _mie_fit(mu, d_um)
+    expected = single(tau * (1 - f_c), p / (1 - f_c))
     assert np.all(np.abs(mean - expected) < 4 * se), (mean, expected, se)
     assert np.all(se < 0.02 * expected)
+    others = [single(tau, p)] + ([single(tau * (1 - f_c), np.minimum(p, p_c) / (1 - f_c))] if fov < 5 else [])
+    for other in others:
+        assert np.all(np.abs(mean - other) > 4 * se), (mean, other)
 
 
 @pytest.mark.parametrize("albedo", [1.0, 0.0])
