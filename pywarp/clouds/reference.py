@@ -164,8 +164,8 @@ PEAKS = ("exact", "truncated")
 #: paths against 1-2.7 exact). Smaller cuts are closer to ``exact`` where the sun is low (docs/lighting.rst) and
 #: noisier: at 1 deg the largest estimate is ~115/sr.
 PEAK_CUT_DEG = 3.0
-#: Cut angles accepted: (0.5, 5] deg (wider cuts flatten the phase's shoulder; f_c <= 0.45 keeps the sampler's
-#: acceptance >= 0.55).
+#: Cut angles accepted: [0.5, 5] deg (wider cuts flatten the phase's shoulder; f_c <= 0.48 there, for 5-50 um
+#: droplets, keeps the sampler's acceptance >= 0.52).
 PEAK_CUT_RANGE = (0.5, 5.0)
 
 _INF = wp.constant(1.0e30)
@@ -538,8 +538,9 @@ def sample_hg(d: wp.vec3, g: float, state: wp.uint32):
 
 
 #: Most proposals of the truncated Mie phase's rejection sampler (peak 'truncated', :func:`sample_phase`): a proposal
-#: from the full phase is accepted with probability min(1, p_c / p), on average 1 - f_c >= 0.5 (f_c <= 0.45 for cuts
-#: up to 5 deg, :data:`PEAK_CUT_RANGE`), so all 256 fail with probability <= 2^-256 -- never -- and the loop is finite.
+#: from the full phase is accepted with probability min(1, p_c / p), on average 1 - f_c >= 0.52 (f_c <= 0.48 for
+#: cuts up to 5 deg, :data:`PEAK_CUT_RANGE`), so all 256 fail with probability < 2^-256 -- never -- and the loop is
+#: finite.
 TRUNCATED_TRIES = wp.constant(256)
 
 

@@ -212,6 +212,8 @@ def test_truncated_peak_cut_and_its_sampler(d, cut):
     edges = np.radians(sorted({0.0, 0.25, 1.0, cut, 4.0, 15.0, 45.0, 180.0}))  # the kink at the cut on an edge
     th = np.concatenate([0.5 * (b - a) * x + 0.5 * (a + b) for a, b in zip(edges[:-1], edges[1:])])
     wt = np.concatenate([0.5 * (b - a) * w for a, b in zip(edges[:-1], edges[1:])])
+    # the phase falls monotonically past the cut (no lobe above p_c outside the cone: f_c is all of p - p_c > 0)
+    assert np.all(_mie_fit(np.cos(th[th > math.radians(cut)]), d) <= ref_pc)
     mass = 2 * np.pi * wt * np.sin(th) * np.minimum(_mie_fit(np.cos(th), d), ref_pc) / (1.0 - ref_fc)
     assert float(np.sum(mass)) == pytest.approx(1.0, abs=1e-4)  # normalised
     for mu0 in (-0.5, 0.0, 0.5, 0.9, 0.99, 0.998, math.cos(math.radians(cut)), 0.99995):
