@@ -206,7 +206,6 @@ class ReferenceParams:
     box_filter: int       # 1: uniform over the pixel, 0: pixel centres
     rr_threshold: float
     peak_cut: int         # 1: the Mie phase's forward peak truncated (PEAKS, 'truncated')
-    cut_cos: float        # cos of the cut angle theta_c
     cut_value: float      # p_c = the Mie phase at theta_c [1/sr]
     cut_share: float      # f_c = the share of scattering inside the cone above p_c, passed unscattered
     ext_scale: float      # the extinction's factor: 1, or 1 - albedo f_c with peak_cut
@@ -962,11 +961,11 @@ class ReferenceRenderer:
         r.rr_threshold = RR_TRANSMITTANCE
         r.peak_cut = int(self.peak == "truncated")
         r.ext_scale = 1.0
-        r.cut_cos, r.cut_value, r.cut_share = 1.0, 0.0, 0.0
+        r.cut_value, r.cut_share = 0.0, 0.0
         if self.cut is not None:
             # delta-M scaling of the share f_c passed unscattered: extinction sigma (1 - omega f_c), single-scattering
             # albedo omega (1 - f_c) / (1 - omega f_c)
-            r.cut_cos, r.cut_value, r.cut_share = self.cut
+            r.cut_value, r.cut_share = self.cut[1], self.cut[2]
             r.ext_scale = 1.0 - self.albedo * self.cut[2]
             r.albedo = self.albedo * (1.0 - self.cut[2]) / r.ext_scale
         return r

@@ -41,7 +41,7 @@ def base_and_textures():
     return base, RenderTextures.generate(base)
 
 
-def _thick_energy(z, cls="thick"):
+def _class_energy(z, cls="thick"):
     """(sum over the class's pixels (default thick) of the full reference per channel, its standard error, the
     halves' difference in standard errors of the difference) from the per-pixel standard-error images (pixels
     independent)."""
@@ -64,7 +64,7 @@ def test_the_references_are_converged(view):
     for k in ("a", "b"):
         assert np.all(np.isfinite(z[k])) and z[k].min() >= 0.0
     assert np.mean(z["tau"] >= 3.0) > 0.05
-    full, se, z_halves = _thick_energy(z)
+    full, se, z_halves = _class_energy(z)
     assert np.all(se / full <= 0.025), se / full
     assert np.all(np.abs(z_halves) <= 4.0), z_halves
 
@@ -82,7 +82,7 @@ def test_the_truncated_references_are_converged_pixel_by_pixel(view):
     assert z["peak"] == "truncated" and z["spp"] >= 4096
     for k in ("a", "b"):
         assert np.all(np.isfinite(z[k])) and z[k].min() >= 0.0
-    full, se, z_halves = _thick_energy(z)
+    full, se, z_halves = _class_energy(z)
     assert np.all(se / full <= 0.01), se / full
     assert np.all(np.abs(z_halves) <= 4.0), z_halves
     floor = absolute_errors(z["a"], z["b"], exposure(z["ref"]), z["tau"])["delta_e"]
@@ -109,8 +109,8 @@ def test_the_truncated_references_agree_with_the_exact_ones(view):
     for cls in CLASS_EDGES:
         if not class_mask(e["tau"], cls).any():
             continue
-        fd, sd, _ = _thick_energy(d, cls)
-        fe, se, _ = _thick_energy(e, cls)
+        fd, sd, _ = _class_energy(d, cls)
+        fe, se, _ = _class_energy(e, cls)
         z_diff = (fd - fe) / np.sqrt(sd ** 2 + se ** 2)
         assert np.all(np.abs(z_diff) <= 4.0), (cls, fd / fe, z_diff)
     ex = exposure(e["ref"])

@@ -204,7 +204,7 @@ def test_truncated_peak_cut_and_its_sampler(d, cut):
     r.phase = 1  # K.PHASE_MIE
     r.droplet_um = d
     r.peak_cut = 1
-    r.cut_cos, r.cut_value, r.cut_share = cos_c, p_c, f_c
+    r.cut_value, r.cut_share = p_c, f_c
     out = wp.zeros(n, dtype=float)
     wp.launch(phase_samples_kernel, dim=n, inputs=[r, wp.uint32(19)], outputs=[out])
     c = out.numpy().astype(np.float64)
